@@ -1,0 +1,52 @@
+# The verbs people type. Each installs what is missing first (Debian packages,
+# the .venv, the C++ build), so `make validate` and `make test` work on a fresh
+# Debian 12 machine.
+SHELL := /bin/bash
+VENV  := .venv
+PY    := $(VENV)/bin/python
+BUILD := build
+SUDO  := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+
+APT_PACKAGES := build-essential cmake ninja-build python3 python3-venv python3-dev \
+	libembree-dev libopenexr-dev libtbb-dev libpugixml-dev libtinyobjloader-dev \
+	libllvm19 googletest libgtest-dev
+
+# Mitsuba's llvm variants need LLVM 19 (Debian's libllvm19; 15 and 16 crash).
+export DRJIT_LIBLLVM_PATH ?= $(firstword $(wildcard /usr/lib/*/libLLVM.so.19* /usr/lib/*/libLLVM-19.so))
+
+.PHONY: validate test build deps clean
+
+## validate: run the whole validation; writes results/<run>/ and fails on any FAIL
+validate: build
+	$(PY) -m harness validate
+
+## test: the C++ unit tests (ctest), then the Python suites (pytest)
+test: build
+	ctest --test-dir $(BUILD) --output-on-failure
+	$(PY) -m pytest
+
+## build: Debian packages, the .venv, and the C++ renderer with its Python module
+build: deps $(VENV)/.installed
+	@[ -f $(BUILD)/build.ninja ] || cmake -S . -B $(BUILD) -G Ninja -DPython_EXECUTABLE=$(abspath $(PY))
+	cmake --build $(BUILD)
+
+## deps: install the Debian packages that are missing (apt-get, with sudo unless root)
+deps:
+	@missing=$$(for p in $(APT_PACKAGES); do \
+		dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q "ok installed" || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+		echo "Installing Debian packages:" $$missing; \
+		$(SUDO) apt-get update && \
+		$(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $$missing; \
+	fi
+
+# The .venv with the pinned Python packages; the C++ module is found through a .pth file.
+$(VENV)/.installed: pyproject.toml | deps
+	[ -x $(PY) ] || python3 -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e .
+	echo "$(abspath $(BUILD))/python" > "$$($(PY) -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/mcrender-build.pth"
+	touch $@
+
+clean:
+	rm -rf $(BUILD) $(VENV) results

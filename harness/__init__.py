@@ -1,0 +1,1 @@
+"""mcval: a validation harness for Monte Carlo renderers."""

@@ -1,0 +1,117 @@
+"""The domains a warp can map to, each with a map onto the parameter square [0,1]^2.
+
+Every map is measure-preserving up to a constant (`measure`), so a density p on
+the domain is the density p * measure on the parameter square. Directions use
+(s, t) = (cos theta mapped to [0,1], phi / 2 pi); the disk uses (r^2, phi / 2 pi).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from harness.stats import UNIT_TOLERANCE
+
+TWO_PI = 2.0 * np.pi
+
+
+@dataclass(frozen=True)
+class Domain:
+    """A warp's target domain and its parameterisation."""
+
+    name: str
+    dim: int
+    #: Size of the domain (area or solid angle): the constant Jacobian of the parameter map.
+    measure: float
+    to_param: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
+    from_param: Callable[[np.ndarray, np.ndarray], np.ndarray]
+    contains: Callable[[np.ndarray], np.ndarray]
+    #: Points of the ambient space outside the domain, where the pdf must be 0 (None: there are none).
+    outside: Callable[[np.random.Generator, int], np.ndarray] | None
+
+
+def _azimuth(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    return np.mod(np.arctan2(y, x) / TWO_PI, 1.0)
+
+
+def _direction(z: np.ndarray, t: np.ndarray) -> np.ndarray:
+    r = np.sqrt(np.clip(1.0 - z * z, 0.0, None))
+    phi = TWO_PI * t
+    return np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=-1)
+
+
+def _unit(p: np.ndarray) -> np.ndarray:
+    return np.abs(np.linalg.norm(p, axis=-1) - 1.0) <= UNIT_TOLERANCE
+
+
+def _box_outside(lo: float, hi: float) -> Callable[[np.random.Generator, int], np.ndarray]:
+    """Points in a margin around the box [lo, hi]^2, none of them inside it."""
+    def sample(rng: np.random.Generator, n: int) -> np.ndarray:
+        width = hi - lo
+        p = rng.uniform(lo - width, hi + width, size=(4 * n, 2))
+        p = p[~np.all((p >= lo) & (p <= hi), axis=1)]
+        return p[:n]
+    return sample
+
+
+def _disk_outside(rng: np.random.Generator, n: int) -> np.ndarray:
+    r = rng.uniform(1.0 + 1e-3, 2.0, n)
+    phi = rng.uniform(0.0, TWO_PI, n)
+    return np.stack([r * np.cos(phi), r * np.sin(phi)], axis=-1)
+
+
+def _below_horizon(rng: np.random.Generator, n: int) -> np.ndarray:
+    z = -rng.uniform(1e-3, 1.0, n)
+    return _direction(z, rng.uniform(0.0, 1.0, n))
+
+
+SQUARE = Domain(
+    "square", 2, 1.0,
+    to_param=lambda p: (p[:, 0], p[:, 1]),
+    from_param=lambda s, t: np.stack([s, t], axis=-1),
+    contains=lambda p: np.all((p >= 0.0) & (p <= 1.0), axis=1),
+    outside=_box_outside(0.0, 1.0),
+)
+
+TENT = Domain(
+    "tent", 2, 4.0,
+    to_param=lambda p: ((p[:, 0] + 1.0) / 2.0, (p[:, 1] + 1.0) / 2.0),
+    from_param=lambda s, t: np.stack([2.0 * s - 1.0, 2.0 * t - 1.0], axis=-1),
+    contains=lambda p: np.all(np.abs(p) <= 1.0, axis=1),
+    outside=_box_outside(-1.0, 1.0),
+)
+
+DISK = Domain(
+    "disk", 2, np.pi,
+    to_param=lambda p: (np.sum(p * p, axis=1), _azimuth(p[:, 0], p[:, 1])),
+    from_param=lambda s, t: np.sqrt(s)[:, None] * np.stack([np.cos(TWO_PI * t), np.sin(TWO_PI * t)], axis=-1),
+    contains=lambda p: np.sum(p * p, axis=1) <= 1.0 + UNIT_TOLERANCE,
+    outside=_disk_outside,
+)
+
+SPHERE = Domain(
+    "sphere", 3, 4.0 * np.pi,
+    to_param=lambda p: ((p[:, 2] + 1.0) / 2.0, _azimuth(p[:, 0], p[:, 1])),
+    from_param=lambda s, t: _direction(2.0 * s - 1.0, t),
+    contains=_unit,
+    outside=None,
+)
+
+HEMISPHERE = Domain(
+    "hemisphere", 3, TWO_PI,
+    to_param=lambda p: (p[:, 2], _azimuth(p[:, 0], p[:, 1])),
+    from_param=_direction,
+    contains=lambda p: _unit(p) & (p[:, 2] >= 0.0),
+    outside=_below_horizon,
+)
+
+DOMAINS = {d.name: d for d in (SQUARE, TENT, DISK, SPHERE, HEMISPHERE)}
+
+
+def get_domain(name: str) -> Domain:
+    """The domain called `name`; a ValueError lists the known ones otherwise."""
+    try:
+        return DOMAINS[name]
+    except KeyError:
+        raise ValueError(f"unknown domain {name!r}: expected one of {', '.join(DOMAINS)}") from None

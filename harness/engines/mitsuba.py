@@ -1,0 +1,80 @@
+"""Mitsuba 3 as the reference engine (PyPI `mitsuba`, variant llvm_ad_rgb by default)."""
+from __future__ import annotations
+
+import glob
+import os
+
+import numpy as np
+
+from harness.engines.base import Engine, WarpFunctions
+
+DEFAULT_VARIANT = "llvm_ad_rgb"
+
+
+def _find_llvm() -> str | None:
+    """Dr.Jit needs LLVM 19 on Debian 12 (15 and 16 crash): the libllvm19 package's library."""
+    for pattern in ("/usr/lib/*/libLLVM.so.19*", "/usr/lib/*/libLLVM-19.so", "/usr/lib/llvm-19/lib/libLLVM*.so*"):
+        found = sorted(glob.glob(pattern))
+        if found:
+            return found[0]
+    return None
+
+
+def load_mitsuba(variant: str = DEFAULT_VARIANT):
+    """Import mitsuba with `variant` set; for llvm variants, point Dr.Jit at LLVM 19 first."""
+    if variant.startswith("llvm") and not os.environ.get("DRJIT_LIBLLVM_PATH"):
+        path = _find_llvm()
+        if path is None:
+            raise RuntimeError(f"Mitsuba variant {variant} needs LLVM 19: `sudo apt-get install libllvm19` "
+                               "or set DRJIT_LIBLLVM_PATH")
+        os.environ["DRJIT_LIBLLVM_PATH"] = path
+    import mitsuba as mi
+    mi.set_variant(variant)
+    return mi
+
+
+class MitsubaEngine(Engine):
+    """Mitsuba 3 from PyPI."""
+
+    name = "mitsuba"
+
+    def __init__(self, variant: str = DEFAULT_VARIANT) -> None:
+        if not variant.startswith("llvm"):
+            raise ValueError("warps need a vectorised Mitsuba variant (llvm_*): scalar ones take one sample per call")
+        self.variant = variant
+        self._mi = load_mitsuba(variant)
+        import drjit
+        self._dr = drjit
+
+    def version(self) -> str:
+        return f"mitsuba {self._mi.__version__} ({self.variant}), drjit {self._dr.__version__}"
+
+    def warp(self, name: str, alpha: float | None = None) -> WarpFunctions | None:
+        mi, dr = self._mi, self._dr
+        sample_fn = getattr(mi.warp, name, None)
+        pdf_fn = getattr(mi.warp, name + "_pdf", None)
+        if sample_fn is None or pdf_fn is None:
+            return None
+        extra = () if alpha is None else (float(alpha),)
+
+        def sample(u: np.ndarray) -> np.ndarray:
+            out = sample_fn(mi.Point2f(np.asarray(u, np.float32).T), *extra)
+            return np.array(out, dtype=np.float64).T
+
+        def pdf(p: np.ndarray) -> np.ndarray:
+            p = np.asarray(p, np.float32).T
+            arg = mi.Point2f(p) if p.shape[0] == 2 else mi.Vector3f(p)
+            values = np.array(pdf_fn(arg, *extra), dtype=np.float64).reshape(-1)
+            # Constant densities come back as a single value.
+            return np.broadcast_to(values, (p.shape[1],)).copy()
+
+        def native_run(n: int):
+            u = mi.Point2f(np.random.default_rng(1).random((2, n), dtype=np.float32))
+            dr.eval(u)
+
+            def run():
+                dr.eval(sample_fn(u, *extra))
+                dr.sync_thread()
+            return run
+
+        return WarpFunctions(sample, pdf, native_run)

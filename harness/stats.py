@@ -1,0 +1,22 @@
+"""Statistical constants of the harness, named once, and the corrections built on them."""
+from __future__ import annotations
+
+#: Family-wise false-alarm rate of one whole run (all tests together).
+SIGNIFICANCE = 0.01
+#: Histogram cells expecting fewer samples than this are pooled before a chi-square test.
+MIN_EXPECTED = 5.0
+#: Samples drawn per warp for the goodness-of-fit and homogeneity tests.
+WARP_SAMPLES = 1_000_000
+#: Histogram resolution per axis of a warp's parameter square (odd: no cell edge on a symmetry axis).
+HISTOGRAM_RES = 51
+#: How far the integral of a pdf over its domain may be from 1.
+NORMALISATION_TOLERANCE = 1e-3
+#: Relative agreement required between two implementations of the same pdf (float32 both).
+PDF_RELATIVE_TOLERANCE = 1e-3
+#: Slack on "unit length" and "inside the unit disk" for points rounded to float32.
+UNIT_TOLERANCE = 1e-5
+
+
+def sidak_level(alpha: float, n_tests: int) -> float:
+    """Per-test significance that keeps the family-wise false-alarm rate at `alpha` over `n_tests`."""
+    return 1.0 - (1.0 - alpha) ** (1.0 / max(n_tests, 1))

@@ -1,0 +1,241 @@
+"""The individual checks of a warp against its pdf. Each returns a CheckResult.
+
+Statistical checks carry a p-value and are decided later, once the number of
+tests in the run (and so the Sidak-corrected level) is known.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Any, Callable
+
+import numpy as np
+
+from harness.chi2 import goodness_of_fit, homogeneity
+from harness.cubature import integrate_cells
+from harness.domains import Domain
+from harness.stats import HISTOGRAM_RES, NORMALISATION_TOLERANCE, PDF_RELATIVE_TOLERANCE
+
+Sampler = Callable[[np.ndarray], np.ndarray]
+Pdf = Callable[[np.ndarray], np.ndarray]
+
+
+@dataclass
+class CheckResult:
+    """One check's verdict, its headline figure and the numbers behind it.
+
+    passed is None for a check that was skipped, and for a statistical check
+    whose p-value has not been compared with the run's level yet.
+    """
+
+    passed: bool | None
+    figure: float | None
+    summary: str
+    details: dict[str, Any] = field(default_factory=dict)
+    p_value: float | None = None
+    #: A failure that no significance level can excuse (samples outside the domain, NaN, ...).
+    hard_failure: str | None = None
+    skipped: bool = False
+
+    def decide(self, level: float) -> None:
+        """Set `passed` for a statistical check from its p-value and the per-test level."""
+        if self.p_value is not None:
+            self.passed = self.hard_failure is None and self.p_value >= level
+            self.details["level"] = level
+
+    def to_json(self) -> dict[str, Any]:
+        out = {"pass": self.passed, "figure": self.figure, "summary": self.summary}
+        if self.p_value is not None:
+            out["p_value"] = self.p_value
+        if self.hard_failure:
+            out["hard_failure"] = self.hard_failure
+        if self.skipped:
+            out["skipped"] = True
+        out.update(self.details)
+        return out
+
+
+def skipped(reason: str) -> CheckResult:
+    return CheckResult(None, None, f"skipped: {reason}", skipped=True)
+
+
+def _as_points(x: Any, n: int, name: str) -> np.ndarray:
+    a = np.asarray(x, dtype=np.float64)
+    if a.ndim != 2 or a.shape[0] != n:
+        raise ValueError(f"{name} returned shape {a.shape}, expected ({n}, 2) or ({n}, 3)")
+    return a
+
+
+def _as_values(x: Any, n: int, name: str) -> np.ndarray:
+    a = np.asarray(x, dtype=np.float64).reshape(-1)
+    if a.shape[0] != n:
+        raise ValueError(f"{name} returned {a.shape[0]} values for {n} points")
+    return a
+
+
+def histogram(domain: Domain, points: np.ndarray, res: int = HISTOGRAM_RES) -> np.ndarray:
+    """Counts of points (assumed inside the domain) per cell of the res x res parameter grid."""
+    s, t = domain.to_param(points)
+    i = np.clip((np.asarray(s) * res).astype(np.int64), 0, res - 1)
+    j = np.clip((np.asarray(t) * res).astype(np.int64), 0, res - 1)
+    return np.bincount(i * res + j, minlength=res * res).reshape(res, res).astype(float)
+
+
+def expected_probabilities(domain: Domain, pdf: Pdf, res: int = HISTOGRAM_RES):
+    """Probability of each parameter cell under pdf, integrated adaptively."""
+    def density(s: np.ndarray, t: np.ndarray) -> np.ndarray:
+        return _as_values(pdf(domain.from_param(s, t)), len(s), "pdf") * domain.measure
+    return integrate_cells(density, res)
+
+
+def chi2_check(observed: np.ndarray, probabilities: np.ndarray, outside: int) -> CheckResult:
+    """Goodness of fit of the histogram of samples against the pdf's cell probabilities."""
+    n = observed.sum() + outside
+    expected = probabilities * n
+    hard = None
+    if not np.all(np.isfinite(probabilities)):
+        hard = "pdf is not finite somewhere in the domain"
+    elif np.any(probabilities < 0):
+        hard = "pdf is negative somewhere in the domain"
+    elif outside:
+        hard = f"{outside} samples outside the domain"
+    else:
+        stray = int(observed[expected <= 0].sum())
+        if stray:
+            hard = f"{stray} samples in cells where the pdf is zero"
+    if hard:
+        return CheckResult(False, 0.0, hard, p_value=0.0, hard_failure=hard)
+    res = goodness_of_fit(observed, expected)
+    return CheckResult(None, res.p_value, f"p = {res.p_value:.3g}", p_value=res.p_value,
+                       details={"statistic": res.statistic, "dof": res.dof,
+                                "pooled_cells": res.pooled_cells, "samples": int(n)})
+
+
+def normalisation_check(integral: float, error: float) -> CheckResult:
+    """The pdf's integral over the domain is 1 within NORMALISATION_TOLERANCE."""
+    ok = bool(np.isfinite(integral) and abs(integral - 1.0) <= NORMALISATION_TOLERANCE)
+    return CheckResult(ok, float(integral), f"integral = {integral:.6g}",
+                       details={"tolerance": NORMALISATION_TOLERANCE, "integration_error": error})
+
+
+def domain_check(domain: Domain, points: np.ndarray, pdf: Pdf, rng: np.random.Generator) -> CheckResult:
+    """Samples lie in the domain, the pdf is finite and >= 0 at them, and 0 outside the domain."""
+    outside = int(np.count_nonzero(~domain.contains(points)))
+    pdf_at_samples = _as_values(pdf(points), len(points), "pdf")
+    bad_pdf = int(np.count_nonzero(~np.isfinite(pdf_at_samples) | (pdf_at_samples < 0)))
+    leak = 0
+    if domain.outside is not None:
+        probes = domain.outside(rng, 10_000)
+        leak = int(np.count_nonzero(_as_values(pdf(probes), len(probes), "pdf") != 0))
+    violations = outside + bad_pdf + leak
+    summary = "ok" if not violations else ", ".join(
+        f"{k} {v}" for k, v in (("outside", outside), ("bad pdf", bad_pdf), ("pdf>0 off domain", leak)) if v)
+    return CheckResult(violations == 0, float(violations), summary,
+                       details={"samples_outside": outside, "bad_pdf_at_samples": bad_pdf,
+                                "pdf_nonzero_outside": leak})
+
+
+def _rounding_sensitivity(points: np.ndarray, pdf: Pdf) -> np.ndarray:
+    """How much pdf changes when any coordinate of a point moves by one float32 ulp.
+
+    A float32 formula that cancels (1 - cos^2 near the pole) is this sensitive
+    to its input's rounding, so no implementation can be asked to agree with it
+    more closely than that.
+    """
+    base = _as_values(pdf(points), len(points), "pdf")
+    worst = np.zeros(len(points))
+    p32 = points.astype(np.float32)
+    for axis in range(points.shape[1]):
+        for direction in (-np.inf, np.inf):
+            moved = p32.copy()
+            moved[:, axis] = np.nextafter(p32[:, axis], np.float32(direction))
+            diff = np.abs(_as_values(pdf(moved.astype(np.float64)), len(points), "pdf") - base)
+            worst = np.maximum(worst, np.nan_to_num(diff))
+    return worst
+
+
+def pdf_agreement_check(points: np.ndarray, pdf: Pdf, reference_pdf: Pdf) -> CheckResult:
+    """Our pdf equals the reference pdf at the same points inside the support.
+
+    Allowed difference per point: PDF_RELATIVE_TOLERANCE of the reference value,
+    plus twice the reference's own change under one-ulp moves of the point.
+    """
+    ref = _as_values(reference_pdf(points), len(points), "reference pdf")
+    inside = ref > 0
+    points, ref = points[inside], ref[inside]
+    ours = _as_values(pdf(points), len(points), "pdf")
+    slack = 2.0 * _rounding_sensitivity(points, reference_pdf)
+    excess = np.abs(ours - ref) - slack
+    rel = np.where(np.isfinite(ours), np.maximum(excess, 0.0) / ref, np.inf)
+    worst = float(np.max(rel, initial=0.0))
+    raw = float(np.max(np.abs(ours - ref) / ref, initial=0.0))
+    ok = worst <= PDF_RELATIVE_TOLERANCE
+    needed_slack = int(np.count_nonzero((np.abs(ours - ref) > PDF_RELATIVE_TOLERANCE * ref)
+                                        & (rel <= PDF_RELATIVE_TOLERANCE)))
+    summary = f"max rel. diff {raw:.2g}"
+    if needed_slack:
+        summary += f" ({needed_slack} pts within ref. rounding)"
+    detail = {"points": len(points), "tolerance": PDF_RELATIVE_TOLERANCE, "max_relative_difference": raw,
+              "points_within_reference_rounding": needed_slack}
+    if not ok:
+        k = int(np.argmax(rel))
+        detail["worst_point"] = points[k].tolist()
+        detail["worst_values"] = [float(ours[k]), float(ref[k])]
+    return CheckResult(ok, worst, summary, details=detail)
+
+
+def homogeneity_check(observed: np.ndarray, reference_observed: np.ndarray) -> CheckResult:
+    """Our samples and the reference sampler's samples come from one distribution."""
+    res = homogeneity(observed, reference_observed)
+    return CheckResult(None, res.p_value, f"p = {res.p_value:.3g}", p_value=res.p_value,
+                       details={"statistic": res.statistic, "dof": res.dof, "pooled_cells": res.pooled_cells})
+
+
+def hard_input_grid() -> np.ndarray:
+    """u on a grid of values that break careless warps, in both coordinates.
+
+    0, the smallest positive double and float, the smallest normal float, 0.5,
+    one ulp below 1 in double and in float, and 1.
+    """
+    values = np.array([0.0, 5e-324, float(np.float32(1.4e-45)), float(np.finfo(np.float32).tiny),
+                       0.5, 1.0 - 2.0 ** -53, 1.0 - 2.0 ** -24, 1.0])
+    a, b = np.meshgrid(values, values, indexing="ij")
+    return np.stack([a.ravel(), b.ravel()], axis=-1)
+
+
+def hard_inputs_check(domain: Domain, variants: dict[str, tuple[Sampler, Pdf]]) -> CheckResult:
+    """On hard inputs every sample is finite and in the domain, and its pdf finite and positive.
+
+    `variants` maps a label (e.g. "alpha=1e-4") to a (sample, pdf) pair.
+    """
+    u = hard_input_grid()
+    nonfinite = outside = bad_pdf = 0
+    failing: list[str] = []
+    for label, (sample, pdf) in variants.items():
+        points = _as_points(sample(u), len(u), "sample")
+        finite = np.all(np.isfinite(points), axis=1)
+        inside = finite & domain.contains(np.where(finite[:, None], points, 0.0))
+        values = _as_values(pdf(points), len(points), "pdf")
+        good = inside & np.isfinite(values) & (values > 0)
+        nonfinite += int(np.count_nonzero(~finite))
+        outside += int(np.count_nonzero(finite & ~inside))
+        bad_pdf += int(np.count_nonzero(inside & ~good))
+        failing += [f"{label} u={tuple(float(x) for x in u[k])}" for k in np.flatnonzero(~good)[:3]]
+    ok = nonfinite == outside == bad_pdf == 0
+    summary = f"NaN/Inf {nonfinite}" + ("" if ok else f", outside {outside}, bad pdf {bad_pdf}")
+    details = {"nan_inf": nonfinite, "outside": outside, "bad_pdf": bad_pdf,
+               "inputs": len(u) * len(variants), "variants": list(variants)}
+    if failing:
+        details["failing_inputs"] = failing[:10]
+    return CheckResult(ok, float(nonfinite), summary, details=details)
+
+
+def measure_rate(sample: Callable[[], Any], n: int, repeats: int = 5) -> float:
+    """Samples per second of a call that warps n samples: the median of several runs after a warm-up."""
+    sample()
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        sample()
+        times.append(time.perf_counter() - start)
+    return n / float(np.median(times))

@@ -1,0 +1,143 @@
+"""Warp conformance: a sampler checked against its own pdf, and against a reference implementation.
+
+Public API::
+
+    result = check_warp(sample, pdf, "disk", seed=0)
+    result.passed, result.checks["chi2"].figure
+
+`sample` maps an (N, 2) array of uniforms in [0,1)^2 to (N, 2) or (N, 3)
+points, `pdf` maps such points to (N,) densities (w.r.t. area on 2D domains,
+solid angle on the sphere and hemisphere). Checks that need a reference
+implementation are skipped unless one is given.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from harness import warp_checks as wc
+from harness.domains import get_domain
+from harness.engines.base import WarpFunctions
+from harness.stats import SIGNIFICANCE, WARP_SAMPLES, sidak_level
+
+#: The checks, in the order reports show them.
+CHECK_NAMES = ("chi2", "normalisation", "domain", "pdf_vs_mitsuba", "samples_vs_mitsuba",
+               "hard_inputs", "throughput")
+
+
+@dataclass
+class WarpResult:
+    """Every check of one warp (with one parameter value), and the histograms behind them."""
+
+    warp: str
+    params: Any
+    domain: str
+    checks: dict[str, wc.CheckResult]
+    #: Histograms over the parameter square: our samples, the pdf's expectation, the reference's samples.
+    observed: np.ndarray
+    expected: np.ndarray
+    reference_observed: np.ndarray | None
+    seconds: float
+    seed: int
+
+    @property
+    def passed(self) -> bool:
+        return all(bool(c.passed) for c in self.checks.values() if not c.skipped)
+
+    @property
+    def label(self) -> str:
+        return self.warp if self.params is None else f"{self.warp} {format_params(self.params)}"
+
+    def to_json(self) -> dict[str, Any]:
+        return {"warp": self.warp, "params": self.params, "domain": self.domain, "pass": self.passed,
+                "seed": self.seed, "seconds": self.seconds,
+                "checks": {k: c.to_json() for k, c in self.checks.items()}}
+
+
+def format_params(params: Any) -> str:
+    if isinstance(params, dict):
+        return ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in params.items())
+    return str(params)
+
+
+def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "user warp",
+                  params: Any = None, seed: int = 0, samples: int = WARP_SAMPLES,
+                  reference: WarpFunctions | None = None, native_run=None,
+                  hard_variants: dict[str, tuple[wc.Sampler, wc.Pdf]] | None = None) -> WarpResult:
+    """Run every check; statistical ones are left undecided (see `decide`)."""
+    start = time.perf_counter()
+    dom = get_domain(domain)
+    rng = np.random.default_rng(seed)
+    u = rng.random((samples, 2))
+    points = wc._as_points(sample(u), samples, "sample")
+    if points.shape[1] != dom.dim:
+        raise ValueError(f"sample returned {points.shape[1]}D points; the {domain} domain is {dom.dim}D")
+    inside = np.all(np.isfinite(points), axis=1) & dom.contains(np.nan_to_num(points))
+    observed = wc.histogram(dom, points[inside])
+    cells = wc.expected_probabilities(dom, pdf)
+
+    checks = {
+        "chi2": wc.chi2_check(observed, cells.values, int(np.count_nonzero(~inside))),
+        "normalisation": wc.normalisation_check(float(cells.values.sum()), cells.error),
+        "domain": wc.domain_check(dom, points, pdf, rng),
+    }
+    reference_observed = None
+    if reference is None:
+        checks["pdf_vs_mitsuba"] = wc.skipped("no reference implementation")
+        checks["samples_vs_mitsuba"] = wc.skipped("no reference implementation")
+    else:
+        probe = points[inside][:100_000]
+        grid = dom.from_param(*[a.ravel() for a in np.meshgrid(
+            (np.arange(51) + 0.5) / 51, (np.arange(51) + 0.5) / 51, indexing="ij")])
+        checks["pdf_vs_mitsuba"] = wc.pdf_agreement_check(np.concatenate([probe, grid]), pdf, reference.pdf)
+        ref_points = wc._as_points(reference.sample(np.random.default_rng([seed, 1]).random((samples, 2))),
+                                   samples, "reference sample")
+        reference_observed = wc.histogram(dom, ref_points[dom.contains(ref_points)])
+        checks["samples_vs_mitsuba"] = wc.homogeneity_check(observed, reference_observed)
+    checks["hard_inputs"] = wc.hard_inputs_check(dom, hard_variants or {"": (sample, pdf)})
+    checks["throughput"] = throughput_check(sample, native_run, reference)
+    return WarpResult(name, params, domain, checks, observed, cells.values * samples,
+                      reference_observed, time.perf_counter() - start, seed)
+
+
+def throughput_check(sample: wc.Sampler, native_run, reference: WarpFunctions | None,
+                     n: int = 1 << 20) -> wc.CheckResult:
+    """Samples per second of our warp, beside the reference's (each in its own containers)."""
+    if native_run is None:
+        u = np.random.default_rng(1).random((n, 2))
+        rate = wc.measure_rate(lambda: sample(u), n)
+    else:
+        rate = wc.measure_rate(native_run(n), n)
+    details: dict[str, Any] = {"samples_per_second": rate}
+    summary = f"{rate / 1e6:.0f} M/s"
+    if reference is not None:
+        ref_rate = wc.measure_rate(reference.native_run(n), n)
+        details.update(reference_samples_per_second=ref_rate, ratio=rate / ref_rate)
+        summary += f" ({rate / ref_rate:.2f}x Mitsuba)"
+    return wc.CheckResult(bool(rate > 0), rate, summary, details=details)
+
+
+def decide(results: list[WarpResult], alpha: float = SIGNIFICANCE) -> float:
+    """Decide every statistical check of a run at the Sidak level over all of them; returns that level."""
+    tests = [c for r in results for c in r.checks.values() if c.p_value is not None]
+    level = sidak_level(alpha, len(tests))
+    for c in tests:
+        c.decide(level)
+    return level
+
+
+def check_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, params: Any = None, seed: int = 0,
+               *, samples: int = WARP_SAMPLES, reference: WarpFunctions | None = None,
+               name: str = "user warp") -> WarpResult:
+    """Check a warp given as Python functions over numpy arrays; see the module docstring.
+
+    `domain` is "square" ([0,1]^2), "tent" ([-1,1]^2), "disk", "sphere" or
+    "hemisphere". `params` is only a label recorded in the result.
+    """
+    result = evaluate_warp(sample, pdf, domain, name=name, params=params, seed=seed,
+                           samples=samples, reference=reference)
+    decide([result])
+    return result
