@@ -114,7 +114,7 @@ def chi2_check(observed: np.ndarray, probabilities: np.ndarray, outside: int) ->
 def normalisation_check(integral: float, error: float) -> CheckResult:
     """The pdf's integral over the domain is 1 within NORMALISATION_TOLERANCE."""
     ok = bool(np.isfinite(integral) and abs(integral - 1.0) <= NORMALISATION_TOLERANCE)
-    return CheckResult(ok, float(integral), f"integral = {integral:.6g}",
+    return CheckResult(ok, float(integral), f"integral = {integral:.6f}",
                        details={"tolerance": NORMALISATION_TOLERANCE, "integration_error": error})
 
 

@@ -1,0 +1,1 @@
+"""Reports: terminal tables, HTML pages and plots. Only this package formats; only the CLI prints."""

@@ -1,0 +1,52 @@
+"""Histogram heat maps of a warp: observed, expected, the reference's samples and the residuals."""
+from __future__ import annotations
+
+import io
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from harness.domains import get_domain  # noqa: E402
+
+#: Axis labels of each domain's parameter square.
+_AXES = {"square": ("x", "y"), "tent": ("(x+1)/2", "(y+1)/2"), "disk": ("r²", "φ/2π"),
+         "sphere": ("(cos θ+1)/2", "φ/2π"), "hemisphere": ("cos θ", "φ/2π")}
+
+
+def warp_heatmaps_png(observed: np.ndarray, expected: np.ndarray, reference: np.ndarray | None,
+                      domain: str, title: str) -> bytes:
+    """A row of heat maps over the parameter square, as PNG bytes.
+
+    Panels: our samples, the pdf's expected counts, Mitsuba's samples (if any),
+    and the Pearson residual (O - E) / sqrt(E), which shows where a fit fails.
+    """
+    get_domain(domain)  # fail early on an unknown domain
+    panels = [("observed (ours)", observed), ("expected (pdf)", expected)]
+    if reference is not None:
+        panels.append(("observed (Mitsuba)", reference))
+    vmax = max(float(np.max(p)) for _, p in panels) or 1.0
+    fig, axes = plt.subplots(1, len(panels) + 1, figsize=(3.1 * (len(panels) + 1), 3.2), constrained_layout=True)
+    xlabel, ylabel = _AXES[domain]
+    for ax, (name, data) in zip(axes, panels):
+        im = ax.imshow(data.T, origin="lower", extent=(0, 1, 0, 1), cmap="viridis", vmin=0, vmax=vmax,
+                       aspect="auto", interpolation="nearest")
+        ax.set_title(name, fontsize=9)
+    fig.colorbar(im, ax=axes[: len(panels)], shrink=0.8, label="samples per cell")
+    with np.errstate(divide="ignore", invalid="ignore"):
+        resid = np.where(expected > 0, (observed - expected) / np.sqrt(expected), np.where(observed > 0, 10.0, 0.0))
+    rim = axes[-1].imshow(resid.T, origin="lower", extent=(0, 1, 0, 1), cmap="RdBu_r", vmin=-5, vmax=5,
+                          aspect="auto", interpolation="nearest")
+    axes[-1].set_title("(O−E)/√E", fontsize=9)
+    fig.colorbar(rim, ax=axes[-1], shrink=0.8)
+    for ax in axes:
+        ax.set_xlabel(xlabel, fontsize=8)
+        ax.set_ylabel(ylabel, fontsize=8)
+        ax.tick_params(labelsize=7)
+    fig.suptitle(title, fontsize=10)
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=80)
+    plt.close(fig)
+    return buf.getvalue()

@@ -1,0 +1,69 @@
+"""Run folders under results/ and files written whole or not at all."""
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from datetime import datetime
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+
+def new_run_dir(root: str | Path = "results") -> Path:
+    """A fresh folder results/<date>-<time>[-n], and results/latest pointing at it."""
+    root = Path(root)
+    root.mkdir(parents=True, exist_ok=True)
+    stamp = datetime.now().strftime("%Y%m%d-%H%M%S")
+    run, n = root / stamp, 1
+    while run.exists():
+        n += 1
+        run = root / f"{stamp}-{n}"
+    run.mkdir()
+    latest = root / "latest"
+    tmp = root / f".latest-{os.getpid()}"
+    tmp.unlink(missing_ok=True)
+    tmp.symlink_to(run.name)
+    os.replace(tmp, latest)
+    return run
+
+
+def write_atomic(path: str | Path, data: bytes | str) -> Path:
+    """Write to a temporary file beside `path`, then rename: readers never see half a file."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data.encode() if isinstance(data, str) else data)
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
+    return path
+
+
+def _plain(x: Any) -> Any:
+    if isinstance(x, (np.floating, np.integer)):
+        return x.item()
+    if isinstance(x, float) and not np.isfinite(x):
+        return str(x)  # JSON has no inf or nan
+    if isinstance(x, dict):
+        return {k: _plain(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_plain(v) for v in x]
+    return x
+
+
+def write_json(path: str | Path, payload: dict) -> Path:
+    """JSON (numpy scalars made plain, inf/nan as strings), written atomically."""
+    return write_atomic(path, json.dumps(_plain(payload), indent=2) + "\n")
+
+
+def write_npz(path: str | Path, **arrays: np.ndarray) -> Path:
+    """A compressed .npz, written atomically."""
+    import io
+    buf = io.BytesIO()
+    np.savez_compressed(buf, **{k: v for k, v in arrays.items() if v is not None})
+    return write_atomic(path, buf.getvalue())

@@ -1,0 +1,30 @@
+"""What a warp run leaves behind: JSON, the HTML page, and the data of every failure."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from harness.report.warp_html import warp_report_html
+from harness.results import write_atomic, write_json, write_npz
+from harness.warp_suite import WarpSpec, reproduce_command
+from harness.warps import WarpResult
+
+
+def warp_payload(results: list[WarpResult], level: float, meta: dict) -> dict:
+    """The warps part of results.json."""
+    return {"pass": all(r.passed for r in results), "level": level, "meta": meta,
+            "warps": [r.to_json() for r in results]}
+
+
+def write_warp_outputs(run_dir: Path, specs: list[WarpSpec], results: list[WarpResult], level: float,
+                       meta: dict, seed: int) -> dict[str, Path]:
+    """Write warps.html and, for each failing warp, warps/<key>.npz with its histograms and checks."""
+    reproduce, data_files = {}, {}
+    for spec, r in zip(specs, results):
+        reproduce[r.label] = reproduce_command(spec.key, seed)
+        if not r.passed:
+            path = run_dir / "warps" / f"{spec.key.replace(':', '_')}.npz"
+            write_npz(path, observed=r.observed, expected=r.expected, reference_observed=r.reference_observed)
+            write_json(path.with_suffix(".json"), {**r.to_json(), "reproduce": reproduce[r.label]})
+            data_files[r.label] = str(path.relative_to(run_dir))
+    html_path = write_atomic(run_dir / "warps.html", warp_report_html(results, level, meta, reproduce, data_files))
+    return {"html": html_path, **{k: run_dir / v for k, v in data_files.items()}}

@@ -1,0 +1,91 @@
+"""The warp conformance matrix: every warp of our renderer, Beckmann at several alphas, against Mitsuba."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from harness.engines.base import Engine
+from harness.stats import SIGNIFICANCE, WARP_SAMPLES
+from harness.warps import WarpResult, decide, evaluate_warp
+
+#: Beckmann roughnesses in the matrix; small ones are where careless cell integrals fail.
+BECKMANN_ALPHAS = (0.01, 0.05, 0.1, 0.3, 1.0)
+#: Roughnesses swept by the hard-inputs check of every Beckmann entry.
+HARD_ALPHAS = tuple(float(a) for a in np.logspace(-4, 1, 11))
+
+
+@dataclass(frozen=True)
+class WarpSpec:
+    """One row of the matrix: a warp (Mitsuba's name), its domain, its parameter."""
+
+    name: str
+    domain: str
+    alpha: float | None = None
+
+    @property
+    def key(self) -> str:
+        """Short id used on the command line (--only) and in file names."""
+        short = self.name.removeprefix("square_to_")
+        return short if self.alpha is None else f"{short}:{self.alpha:g}"
+
+    @property
+    def params(self) -> dict | None:
+        return None if self.alpha is None else {"alpha": self.alpha}
+
+
+SUITE: tuple[WarpSpec, ...] = (
+    WarpSpec("square_to_uniform_square", "square"),
+    WarpSpec("square_to_tent", "tent"),
+    WarpSpec("square_to_uniform_disk", "disk"),
+    WarpSpec("square_to_uniform_sphere", "sphere"),
+    WarpSpec("square_to_uniform_hemisphere", "hemisphere"),
+    WarpSpec("square_to_cosine_hemisphere", "hemisphere"),
+    *(WarpSpec("square_to_beckmann", "hemisphere", a) for a in BECKMANN_ALPHAS),
+)
+
+
+def select(only: list[str] | None) -> list[WarpSpec]:
+    """The specs whose key, or warp name, is in `only` (all of them when `only` is empty)."""
+    if not only:
+        return list(SUITE)
+    chosen = [s for s in SUITE if s.key in only or s.name.removeprefix("square_to_") in only]
+    unknown = set(only) - {s.key for s in chosen} - {s.name.removeprefix("square_to_") for s in chosen}
+    if unknown:
+        raise ValueError(f"unknown warp {', '.join(sorted(unknown))}: choose from {', '.join(s.key for s in SUITE)}")
+    return chosen
+
+
+def check_spec(spec: WarpSpec, ours: Engine, reference: Engine | None, seed: int, samples: int) -> WarpResult:
+    """Every check of one spec: our warp against its pdf and against the reference engine's."""
+    functions = ours.warp(spec.name, spec.alpha)
+    if functions is None:
+        raise RuntimeError(f"engine {ours.name} has no warp {spec.name}")
+    ref = reference.warp(spec.name, spec.alpha) if reference is not None else None
+    variants = None
+    if spec.alpha is not None:
+        variants = {}
+        for a in HARD_ALPHAS:
+            f = ours.warp(spec.name, a)
+            variants[f"alpha={a:.3g}"] = (f.sample, f.pdf)
+    return evaluate_warp(functions.sample, functions.pdf, spec.domain, name=spec.name, params=spec.params,
+                         seed=seed, samples=samples, reference=ref, native_run=functions.native_run,
+                         hard_variants=variants)
+
+
+def run_matrix(ours: Engine, reference: Engine | None, specs: list[WarpSpec], seed: int = 0,
+               samples: int = WARP_SAMPLES,
+               on_progress: Callable[[WarpSpec], None] | None = None) -> tuple[list[WarpResult], float]:
+    """Check every spec; decide all statistical tests together (Sidak). Returns results and the per-test level."""
+    results = []
+    for spec in specs:
+        results.append(check_spec(spec, ours, reference, seed, samples))
+        if on_progress:
+            on_progress(spec)
+    return results, decide(results, SIGNIFICANCE)
+
+
+def reproduce_command(spec_key: str, seed: int) -> str:
+    """The command that re-runs one row of the matrix."""
+    return f"python -m harness warps --only {spec_key} --seed {seed}"

@@ -1,0 +1,81 @@
+"""The chi-square tests are calibrated (false alarms at the stated rate) and have power."""
+import numpy as np
+import pytest
+from scipy import stats as sps
+
+from harness.chi2 import goodness_of_fit, homogeneity
+from harness.cubature import integrate_cells
+from harness.stats import sidak_level
+
+RUNS = 300
+LEVEL = 0.05
+
+
+def _false_alarm_interval():
+    return sps.binom.interval(0.999, RUNS, LEVEL)
+
+
+def _uniform_counts(rng, n, cells, tilt=0.0):
+    """Counts of n draws over `cells` cells, uniform or tilted linearly by `tilt`."""
+    p = 1.0 + tilt * np.linspace(-1, 1, cells)
+    return rng.multinomial(n, p / p.sum()).astype(float)
+
+
+def test_goodness_of_fit_false_alarm_rate_matches_level():
+    rng = np.random.default_rng(7)
+    cells = 225
+    expected = np.full(cells, 20_000 / cells)
+    p_values = np.array([goodness_of_fit(_uniform_counts(rng, 20_000, cells), expected).p_value
+                         for _ in range(RUNS)])
+    lo, hi = _false_alarm_interval()
+    assert lo <= np.sum(p_values < LEVEL) <= hi
+    assert sps.kstest(p_values, "uniform").pvalue > 1e-3
+
+
+def test_goodness_of_fit_rejects_a_four_percent_tilt():
+    rng = np.random.default_rng(8)
+    cells = 225
+    expected = np.full(cells, 1e6 / cells)
+    for _ in range(5):
+        assert goodness_of_fit(_uniform_counts(rng, 1_000_000, cells, tilt=0.04), expected).p_value < 1e-4
+
+
+def test_goodness_of_fit_rejects_wrong_normalisation():
+    observed = np.full(100, 1000.0)
+    assert goodness_of_fit(observed, observed * 1.05).p_value < 1e-6
+
+
+def test_pooling_keeps_sparse_tails_valid():
+    rng = np.random.default_rng(9)
+    p = np.exp(-np.linspace(0, 12, 200))
+    p /= p.sum()
+    p_values = [goodness_of_fit(rng.multinomial(5000, p), 5000 * p).p_value for _ in range(RUNS)]
+    lo, hi = _false_alarm_interval()
+    assert lo <= np.sum(np.array(p_values) < LEVEL) <= hi
+    assert goodness_of_fit(rng.multinomial(5000, p), 5000 * p).pooled_cells > 50
+
+
+def test_homogeneity_false_alarm_rate_and_power():
+    rng = np.random.default_rng(10)
+    p_values = np.array([homogeneity(_uniform_counts(rng, 20_000, 225), _uniform_counts(rng, 20_000, 225)).p_value
+                         for _ in range(RUNS)])
+    lo, hi = _false_alarm_interval()
+    assert lo <= np.sum(p_values < LEVEL) <= hi
+    assert homogeneity(_uniform_counts(rng, 10**6, 225), _uniform_counts(rng, 10**6, 225, tilt=0.03)).p_value < 1e-4
+
+
+def test_sidak_level():
+    assert sidak_level(0.01, 1) == pytest.approx(0.01)
+    n = 21
+    assert 1 - (1 - sidak_level(0.01, n)) ** n == pytest.approx(0.01)
+
+
+def test_cell_integrals_of_smooth_and_peaked_densities():
+    res = integrate_cells(lambda s, t: 6 * s * t * t, 15)
+    edges = np.arange(16) / 15
+    exact = np.outer(np.diff(edges**2), np.diff(edges**3))
+    assert np.allclose(res.values, exact, rtol=1e-9, atol=1e-14)
+    # A spike of width 1e-4 at the edge of one cell: a fixed rule misses it, the adaptive one does not.
+    width = 1e-4
+    res = integrate_cells(lambda s, t: np.exp(-(1 - s) / width) / width, 51)
+    assert res.values.sum() == pytest.approx(1.0, abs=1e-6)

@@ -1,0 +1,44 @@
+"""The command line: help, the warps matrix with its JSON and HTML, and clear errors."""
+import json
+import subprocess
+import sys
+
+import pytest
+
+from harness.cli import main
+
+
+def test_help_lists_the_subcommands():
+    out = subprocess.run([sys.executable, "-m", "harness", "--help"], capture_output=True, text=True)
+    assert out.returncode == 0
+    assert "warps" in out.stdout and "validate" in out.stdout
+
+
+def test_warps_writes_json_and_html(tmp_path):
+    json_path = tmp_path / "warps.json"
+    code = main(["warps", "--only", "tent", "beckmann:0.1", "--samples", "200000", "--out", str(tmp_path),
+                 "--json", str(json_path)])
+    assert code == 0
+    data = json.loads(json_path.read_text())
+    assert data["pass"] is True
+    entries = {(e["warp"], json.dumps(e["params"])): e for e in data["warps"]}
+    beckmann = entries[("square_to_beckmann", json.dumps({"alpha": 0.1}))]
+    assert set(beckmann["checks"]) == {"chi2", "normalisation", "domain", "pdf_vs_mitsuba", "samples_vs_mitsuba",
+                                       "hard_inputs", "throughput"}
+    for check in beckmann["checks"].values():
+        assert check["pass"] is True and "figure" in check
+    run = tmp_path / "latest"
+    assert json.loads((run / "results.json").read_text())["warps"]
+    page = (run / "warps.html").read_text()
+    assert page.count("data:image/png;base64,") == 2
+
+
+def test_unknown_warp_is_a_clear_error(tmp_path, capsys):
+    assert main(["warps", "--only", "tentacle", "--out", str(tmp_path)]) == 2
+    assert "unknown warp tentacle" in capsys.readouterr().err
+
+
+def test_bad_arguments_exit_with_usage():
+    with pytest.raises(SystemExit) as e:
+        main(["warps", "--samples", "many"])
+    assert e.value.code == 2
