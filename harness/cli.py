@@ -13,7 +13,8 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, T
 from harness.results import new_run_dir, write_atomic, write_json
 from harness.stats import WARP_SAMPLES
 
-console = Console(stderr=False)
+# Logs (CI, pipes) get a wide table rather than a truncated one.
+console = Console(width=None if sys.stdout.isatty() else 120)
 err = Console(stderr=True)
 
 
