@@ -9,7 +9,7 @@ SUDO  := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 APT_PACKAGES := build-essential cmake ninja-build python3 python3-venv python3-dev \
 	libembree-dev libopenexr-dev libtbb-dev libpugixml-dev libtinyobjloader-dev \
-	libllvm19 googletest libgtest-dev
+	libassimp-dev libcli11-dev libllvm19 googletest libgtest-dev
 
 # Mitsuba's llvm variants need LLVM 19 (Debian's libllvm19; 15 and 16 crash).
 export DRJIT_LIBLLVM_PATH ?= $(firstword $(wildcard /usr/lib/*/libLLVM.so.19* /usr/lib/*/libLLVM-19.so))
@@ -25,10 +25,12 @@ test: build
 	ctest --test-dir $(BUILD) --output-on-failure
 	$(PY) -m pytest
 
-## build: Debian packages, the .venv, and the C++ renderer with its Python module
+## build: Debian packages, the .venv, the C++ renderer (`render` in .venv/bin) and the scenes' meshes
 build: deps $(VENV)/.installed
 	@[ -f $(BUILD)/build.ninja ] || cmake -S . -B $(BUILD) -G Ninja -DPython_EXECUTABLE=$(abspath $(PY))
 	cmake --build $(BUILD)
+	ln -sf $(abspath $(BUILD))/render $(VENV)/bin/render
+	$(PY) scenes/generate_meshes.py -q
 
 ## deps: install the Debian packages that are missing (apt-get, with sudo unless root)
 deps:

@@ -63,8 +63,12 @@ void bindWarp(nb::module_ &m, const char *name, const char *pdfName, Sample samp
 
 }  // namespace
 
+void bindRender(nb::module_ &m);  // render_binding.cpp
+
 NB_MODULE(mcrender, m) {
-    m.doc() = "The mcval renderer: sample warps over numpy arrays of shape (N, 2) or (N, 3), float32.";
+    m.doc() = "The mcval renderer: render(scene, ...), and the sample warps over numpy arrays of shape "
+              "(N, 2) or (N, 3), float32.";
+    bindRender(m);
 
     bindWarp<2>(m, "square_to_uniform_square", "square_to_uniform_square_pdf",
                 squareToUniformSquare, squareToUniformSquarePdf);

@@ -1,0 +1,41 @@
+#include "camera.h"
+
+#include <cmath>
+
+namespace mcr {
+
+namespace {
+constexpr float kDegToRad = 3.14159265358979323846f / 180.f;
+
+/// The horizontal fov implied by `fov` along `axis` on a width x height film (Mitsuba's rules).
+float horizontalFov(float fov, const std::string &axis, float width, float height) {
+    const float aspect = width / height;
+    std::string a = axis;
+    if (a == "smaller") a = width <= height ? "x" : "y";
+    if (a == "larger") a = width >= height ? "x" : "y";
+    const float t = std::tan(0.5f * fov * kDegToRad);
+    if (a == "y") return 2.f * std::atan(t * aspect) / kDegToRad;
+    if (a == "diagonal") return 2.f * std::atan(t * width / std::sqrt(width * width + height * height)) / kDegToRad;
+    return fov;
+}
+}  // namespace
+
+Camera::Camera(const CameraSpec &spec, int width, int height)
+    : m_toWorld(spec.toWorld), m_origin(spec.toWorld.point({0.f, 0.f, 0.f})),
+      m_fovX(horizontalFov(spec.fov, spec.fovAxis, float(width), float(height))),
+      m_tanHalfX(std::tan(0.5f * m_fovX * kDegToRad)), m_aspect(float(width) / float(height)),
+      m_width(float(width)), m_height(float(height)), m_near(spec.nearClip), m_far(spec.farClip) {}
+
+Ray Camera::generateRay(float x, float y) const {
+    // Camera space: +z forward, +x to the left, +y up; the left edge of the image is +x.
+    const float sx = x / m_width, sy = y / m_height;
+    const Vec3f local = normalize(Vec3f((1.f - 2.f * sx) * m_tanHalfX, (1.f - 2.f * sy) * m_tanHalfX / m_aspect, 1.f));
+    Ray ray;
+    ray.o = m_origin;
+    ray.d = normalize(m_toWorld.vector(local));
+    ray.tnear = m_near / local.z;  // clip planes are distances along the optical axis
+    ray.tfar = m_far / local.z;
+    return ray;
+}
+
+}  // namespace mcr

@@ -1,0 +1,105 @@
+#include "embree_scene.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace mcr {
+
+namespace {
+// Embree calls this from C code, where an exception must not pass: keep the message, throw later.
+thread_local std::string tLastError;
+void onEmbreeError(void *, RTCError code, const char *message) {
+    tLastError = "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "");
+}
+
+RTCRay toRtc(const Ray &ray) {
+    RTCRay r;
+    r.org_x = ray.o.x; r.org_y = ray.o.y; r.org_z = ray.o.z;
+    r.dir_x = ray.d.x; r.dir_y = ray.d.y; r.dir_z = ray.d.z;
+    r.tnear = ray.tnear;
+    r.tfar = ray.tfar;
+    r.time = 0.f;
+    r.mask = std::numeric_limits<unsigned>::max();
+    r.id = 0;
+    r.flags = 0;
+    return r;
+}
+}  // namespace
+
+EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes) : m_meshes(meshes) {
+    m_device = rtcNewDevice(nullptr);
+    if (!m_device) throw std::runtime_error("cannot create an Embree device");
+    rtcSetDeviceErrorFunction(m_device, onEmbreeError, nullptr);
+    m_scene = rtcNewScene(m_device);
+    for (const Mesh &mesh : meshes) {
+        RTCGeometry geom = rtcNewGeometry(m_device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        // Embree's own buffers are padded for its SIMD loads; ours are not, so copy.
+        auto *v = static_cast<float *>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                               3 * sizeof(float), mesh.positions.size()));
+        for (size_t i = 0; i < mesh.positions.size(); ++i) {
+            v[3 * i] = mesh.positions[i].x;
+            v[3 * i + 1] = mesh.positions[i].y;
+            v[3 * i + 2] = mesh.positions[i].z;
+        }
+        auto *idx = static_cast<unsigned *>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                    3 * sizeof(unsigned), mesh.indices.size() / 3));
+        std::copy(mesh.indices.begin(), mesh.indices.end(), idx);
+        rtcCommitGeometry(geom);
+        rtcAttachGeometry(m_scene, geom);  // ids follow mesh order
+        rtcReleaseGeometry(geom);
+    }
+    rtcCommitScene(m_scene);
+    if (rtcGetDeviceError(m_device) != RTC_ERROR_NONE) {
+        const std::string message = tLastError;
+        rtcReleaseScene(m_scene);
+        rtcReleaseDevice(m_device);
+        throw std::runtime_error("cannot build the BVH: " + message);
+    }
+}
+
+EmbreeScene::~EmbreeScene() {
+    if (m_scene) rtcReleaseScene(m_scene);
+    if (m_device) rtcReleaseDevice(m_device);
+}
+
+bool EmbreeScene::intersect(const Ray &ray, Hit &hit) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray = toRtc(ray);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(m_scene, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+
+    const Mesh &mesh = m_meshes[rh.hit.geomID];
+    const uint32_t *tri = &mesh.indices[3 * rh.hit.primID];
+    const Vec3f &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
+    const float u = rh.hit.u, v = rh.hit.v, w = 1.f - u - v;
+    hit.t = rh.ray.tfar;
+    hit.p = w * p0 + u * p1 + v * p2;
+    hit.ng = normalize(cross(p1 - p0, p2 - p0));
+    if (mesh.normals.empty()) {
+        hit.ns = hit.ng;
+    } else {
+        const Vec3f n = w * mesh.normals[tri[0]] + u * mesh.normals[tri[1]] + v * mesh.normals[tri[2]];
+        const float len2 = squaredNorm(n);
+        hit.ns = len2 > 0.f ? n / std::sqrt(len2) : hit.ng;
+    }
+    hit.mesh = rh.hit.geomID;
+    hit.prim = rh.hit.primID;
+    return true;
+}
+
+bool EmbreeScene::occluded(const Ray &ray) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r = toRtc(ray);
+    rtcOccluded1(m_scene, &context, &r);
+    return r.tfar < 0.f;  // Embree sets tfar to -inf on a hit
+}
+
+}  // namespace mcr

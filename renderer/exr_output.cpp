@@ -1,0 +1,66 @@
+#include "exr_output.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <random>
+
+#include <ImfChannelList.h>
+#include <ImfDoubleAttribute.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIntAttribute.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
+
+namespace mcr {
+
+namespace {
+
+void addLayer(Imf::Header &header, Imf::FrameBuffer &fb, const std::string &prefix, const Image &image) {
+    static const char *names[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c) {
+        const std::string name = prefix + names[c];
+        header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+        char *base = reinterpret_cast<char *>(const_cast<float *>(image.rgb.data() + c));
+        fb.insert(name, Imf::Slice(Imf::FLOAT, base, 3 * sizeof(float), 3 * sizeof(float) * image.width));
+    }
+}
+
+}  // namespace
+
+void writeExr(const std::string &path, const RenderOutput &output, const OutputInfo &info) {
+    const RenderStats &s = output.stats;
+    Imf::Header header(output.mean.width, output.mean.height);
+    header.insert("mcval.scene", Imf::StringAttribute(info.sceneFile));
+    header.insert("mcval.integrator", Imf::StringAttribute(s.integrator));
+    header.insert("mcval.spp", Imf::IntAttribute(s.spp));
+    header.insert("mcval.batches", Imf::IntAttribute(s.batches));
+    header.insert("mcval.seed", Imf::StringAttribute(std::to_string(s.seed)));
+    header.insert("mcval.loadSeconds", Imf::DoubleAttribute(info.loadSeconds));
+    header.insert("mcval.bvhSeconds", Imf::DoubleAttribute(s.bvhSeconds));
+    header.insert("mcval.renderSeconds", Imf::DoubleAttribute(s.renderSeconds));
+    header.insert("mcval.cameraRays", Imf::StringAttribute(std::to_string(s.cameraRays)));
+    header.insert("mcval.shadowRays", Imf::StringAttribute(std::to_string(s.shadowRays)));
+
+    Imf::FrameBuffer fb;
+    addLayer(header, fb, "", output.mean);
+    addLayer(header, fb, "variance.", output.variance);
+    for (size_t k = 0; k < output.batches.size(); ++k)
+        addLayer(header, fb, "batch" + std::to_string(k) + ".", output.batches[k]);
+
+    namespace fs = std::filesystem;
+    const fs::path target(path);
+    const fs::path tmp = target.parent_path() /
+                         ("." + target.filename().string() + ".tmp" + std::to_string(std::random_device{}()));
+    try {
+        Imf::OutputFile file(tmp.string().c_str(), header);
+        file.setFrameBuffer(fb);
+        file.writePixels(output.mean.height);
+    } catch (...) {
+        std::remove(tmp.string().c_str());
+        throw;
+    }
+    fs::rename(tmp, target);
+}
+
+}  // namespace mcr

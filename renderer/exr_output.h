@@ -1,0 +1,21 @@
+// OpenEXR output: linear float32 mean, variance and batch layers, timings in the header.
+#pragma once
+
+#include <string>
+
+#include "render.h"
+
+namespace mcr {
+
+/// Timings measured outside render() (scene loading), to go into the header beside the rest.
+struct OutputInfo {
+    std::string sceneFile;
+    double loadSeconds = 0.0;
+};
+
+/// Writes R, G, B (mean), variance.R/G/B and, for K > 1 batches, batch<k>.R/G/B. Header attributes
+/// mcval.* hold the integrator, spp, seed, timings and ray counts. Written to a temporary file in
+/// the same folder, then renamed: a reader never sees half a file.
+void writeExr(const std::string &path, const RenderOutput &output, const OutputInfo &info);
+
+}  // namespace mcr

@@ -1,0 +1,82 @@
+#include "film.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mcr {
+
+ImageBlock::ImageBlock(int x0, int y0, int width, int height, const FilterSpec &filter)
+    : m_filter(filter), m_radius(filter.radius()) {
+    const int border = static_cast<int>(std::ceil(m_radius - 0.5f));
+    m_x0 = x0 - border;
+    m_y0 = y0 - border;
+    m_width = width + 2 * border;
+    m_height = height + 2 * border;
+    m_data.assign(static_cast<size_t>(kChannels) * m_width * m_height, 0.0);
+}
+
+void ImageBlock::put(float x, float y, const Color &L) {
+    // Pixel (i, j) has its centre at (i + 0.5, j + 0.5), as in Mitsuba.
+    const int ilo = std::max(static_cast<int>(std::ceil(x - 0.5f - m_radius)), m_x0);
+    const int ihi = std::min(static_cast<int>(std::floor(x - 0.5f + m_radius)), m_x0 + m_width - 1);
+    const int jlo = std::max(static_cast<int>(std::ceil(y - 0.5f - m_radius)), m_y0);
+    const int jhi = std::min(static_cast<int>(std::floor(y - 0.5f + m_radius)), m_y0 + m_height - 1);
+    for (int j = jlo; j <= jhi; ++j) {
+        const float wy = m_filter.eval(static_cast<float>(j) + 0.5f - y);
+        if (wy == 0.f) continue;
+        for (int i = ilo; i <= ihi; ++i) {
+            const double w = static_cast<double>(wy) * m_filter.eval(static_cast<float>(i) + 0.5f - x);
+            if (w == 0.0) continue;
+            double *s = &m_data[kChannels * ((j - m_y0) * m_width + (i - m_x0))];
+            const double w2 = w * w;
+            s[0] += w;
+            s[4] += w2;
+            for (int c = 0; c < 3; ++c) {
+                const double l = L[c];
+                s[1 + c] += w * l;
+                s[5 + c] += w2 * l;
+                s[8 + c] += w2 * l * l;
+            }
+        }
+    }
+}
+
+Film::Film(int width, int height)
+    : m_width(width), m_height(height), m_data(static_cast<size_t>(ImageBlock::kChannels) * width * height, 0.0) {}
+
+void Film::merge(const ImageBlock &block) {
+    for (int j = 0; j < block.height(); ++j) {
+        const int y = block.y0() + j;
+        if (y < 0 || y >= m_height) continue;
+        for (int i = 0; i < block.width(); ++i) {
+            const int x = block.x0() + i;
+            if (x < 0 || x >= m_width) continue;
+            const double *src = block.sums(i, j);
+            double *dst = &m_data[ImageBlock::kChannels * (y * m_width + x)];
+            for (int c = 0; c < ImageBlock::kChannels; ++c) dst[c] += src[c];
+        }
+    }
+}
+
+void Film::develop(std::vector<float> &mean, std::vector<float> &variance) const {
+    const size_t n = static_cast<size_t>(m_width) * m_height;
+    mean.assign(3 * n, 0.f);
+    variance.assign(3 * n, 0.f);
+    for (size_t p = 0; p < n; ++p) {
+        const double *s = &m_data[ImageBlock::kChannels * p];
+        const double w = s[0], w2 = s[4];
+        if (!(w > 0.0)) continue;
+        // Effective sample count of a weighted mean; the variance needs at least two.
+        const double nEff = w * w / w2;
+        for (int c = 0; c < 3; ++c) {
+            const double m = s[1 + c] / w;
+            mean[3 * p + c] = static_cast<float>(m);
+            if (nEff > 1.0 + 1e-9) {
+                const double spread = std::max(0.0, s[8 + c] - 2.0 * m * s[5 + c] + m * m * w2);
+                variance[3 * p + c] = static_cast<float>(spread / (w * w) * nEff / (nEff - 1.0));
+            }
+        }
+    }
+}
+
+}  // namespace mcr

@@ -1,0 +1,51 @@
+// Splatting samples through the reconstruction filter, and developing mean and variance.
+#pragma once
+
+#include <vector>
+
+#include "scene.h"
+
+namespace mcr {
+
+/// Per-pixel sums (in double) for the pixels a tile's samples can reach: the tile plus a
+/// border as wide as the filter. Each tile has its own block, so threads never share one.
+class ImageBlock {
+public:
+    ImageBlock(int x0, int y0, int width, int height, const FilterSpec &filter);
+
+    /// Adds radiance L sampled at film position (x, y) to every pixel the filter reaches.
+    void put(float x, float y, const Color &L);
+
+    int x0() const { return m_x0; }
+    int y0() const { return m_y0; }
+    int width() const { return m_width; }
+    int height() const { return m_height; }
+    /// The sums at block pixel (i, j): w, w L (3), w^2, w^2 L (3), w^2 L^2 (3).
+    const double *sums(int i, int j) const { return &m_data[kChannels * (j * m_width + i)]; }
+
+    static constexpr int kChannels = 11;
+
+private:
+    FilterSpec m_filter;
+    float m_radius;
+    int m_x0, m_y0, m_width, m_height;
+    std::vector<double> m_data;
+};
+
+/// The whole image's sums; blocks are merged in a fixed order, so the result is the same
+/// whatever the thread count.
+class Film {
+public:
+    Film(int width, int height);
+    void merge(const ImageBlock &block);
+
+    /// Mean radiance per pixel (RGB, row-major from the top-left), and the variance of that mean
+    /// estimated from the weighted spread of the samples (with an effective-count correction).
+    void develop(std::vector<float> &mean, std::vector<float> &variance) const;
+
+private:
+    int m_width, m_height;
+    std::vector<double> m_data;
+};
+
+}  // namespace mcr

@@ -1,0 +1,50 @@
+// The integrator interface and its one factory.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "../embree_scene.h"
+#include "../ray.h"
+#include "../sampler.h"
+#include "../scene.h"
+
+namespace mcr {
+
+/// Rays traced by one thread, by kind.
+struct RayCounts {
+    uint64_t camera = 0;
+    uint64_t shadow = 0;
+    uint64_t total() const { return camera + shadow; }
+};
+
+/// Estimates the radiance arriving along a camera ray.
+class Integrator {
+public:
+    virtual ~Integrator() = default;
+    /// One sample of the radiance along `ray` (RGB); counts the rays it traces.
+    virtual Color Li(const Ray &ray, Sampler &sampler, RayCounts &counts) const = 0;
+};
+
+/// The integrator `spec.type` (normals, simple or ao) over the given scene; throws SceneError otherwise.
+std::unique_ptr<Integrator> createIntegrator(const IntegratorSpec &spec, const SceneDescription &scene,
+                                             const EmbreeScene &embree);
+
+/// The shared first step: trace the camera ray; false on a miss.
+inline bool traceCamera(const EmbreeScene &embree, const Ray &ray, Hit &hit, RayCounts &counts) {
+    ++counts.camera;
+    return embree.intersect(ray, hit);
+}
+
+/// A ray leaving `hit` in direction d without re-hitting its surface.
+inline Ray spawnRay(const Hit &hit, const Vec3f &d, float tfar) {
+    const Vec3f side = dot(hit.ng, d) >= 0.f ? hit.ng : -hit.ng;
+    Ray r;
+    r.o = offsetRayOrigin(hit.p, side);
+    r.d = d;
+    r.tnear = 0.f;
+    r.tfar = tfar;
+    return r;
+}
+
+}  // namespace mcr

@@ -1,0 +1,33 @@
+#include "simple.h"
+
+#include <cmath>
+
+#include "../warp.h"
+
+namespace mcr {
+
+Color SimpleIntegrator::Li(const Ray &ray, Sampler &, RayCounts &counts) const {
+    Hit hit;
+    if (!traceCamera(m_embree, ray, hit, counts)) return {0.f, 0.f, 0.f};
+    // One-sided diffuse, as Mitsuba's: black seen from behind the shading normal.
+    if (dot(hit.ns, ray.d) >= 0.f) return {0.f, 0.f, 0.f};
+    const Color &rho = m_embree.meshes()[hit.mesh].reflectance;
+    Color sum{0.f, 0.f, 0.f};
+    for (const PointLight &light : m_scene.pointLights) {
+        const Vec3f toLight = light.position - hit.p;
+        const float dist2 = squaredNorm(toLight);
+        if (!(dist2 > 0.f)) continue;
+        const float dist = std::sqrt(dist2);
+        const Vec3f wi = toLight / dist;
+        const float cosTheta = dot(hit.ns, wi);
+        if (cosTheta <= 0.f) continue;
+        // Stop just short of the light: nothing behind it may shadow.
+        const Ray shadow = spawnRay(hit, wi, dist * (1.f - 1e-4f));
+        ++counts.shadow;
+        if (m_embree.occluded(shadow)) continue;
+        sum = sum + light.intensity * (cosTheta / dist2);
+    }
+    return rho * sum * kInvPi;
+}
+
+}  // namespace mcr

@@ -1,0 +1,80 @@
+// render: the command-line front end of the renderer.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "error.h"
+#include "exr_output.h"
+#include "progress.h"
+#include "render.h"
+#include "scene.h"
+
+using namespace mcr;
+
+int main(int argc, char **argv) {
+    CLI::App app{"Render a scene file (a subset of Mitsuba 3 XML) with the normals, simple or ao integrator.\n"
+                 "Writes OpenEXR: R,G,B (mean), variance.R/G/B, and batch<k>.R/G/B with --batches K."};
+    std::string scenePath, outPath, integrator;
+    int spp = 0, threads = 0, batches = 1;
+    uint64_t seed = 0;
+    std::vector<std::string> defines;
+    bool quiet = false;
+    app.add_option("scene", scenePath, "scene file (.xml)")->required()->check(CLI::ExistingFile);
+    app.add_option("-o,--output", outPath, "output .exr (default: the scene's name, .exr, in the current folder)");
+    app.add_option("--spp", spp, "samples per pixel (per batch; default: the scene's sample_count)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--seed", seed, "random seed (default 0)");
+    app.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+    app.add_option("--batches", batches, "independent images to render, each with --spp samples (default 1)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--integrator", integrator, "normals, simple or ao (default: the scene's)")
+        ->check(CLI::IsMember({"normals", "simple", "ao"}));
+    app.add_option("-D,--define", defines, "set a scene parameter: -D name=value (overrides its <default>)");
+    app.add_flag("-q,--quiet", quiet, "no progress bar or summary");
+    CLI11_PARSE(app, argc, argv);
+
+    try {
+        std::map<std::string, std::string> params;
+        for (const std::string &d : defines) {
+            const size_t eq = d.find('=');
+            if (eq == std::string::npos || eq == 0) throw SceneError("-D expects name=value, got \"" + d + "\"");
+            params[d.substr(0, eq)] = d.substr(eq + 1);
+        }
+        if (outPath.empty()) outPath = std::filesystem::path(scenePath).stem().string() + ".exr";
+        const auto start = std::chrono::steady_clock::now();
+        const SceneDescription scene = loadScene(scenePath, params);
+        OutputInfo info{scenePath, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+
+        RenderOptions options;
+        options.spp = spp;
+        options.seed = seed;
+        options.threads = threads;
+        options.batches = batches;
+        options.integrator = integrator;
+        ProgressBar bar;
+        if (!quiet) options.progress = [&bar](double f) { bar.update(f); };
+        const RenderOutput output = render(scene, options);
+        bar.finish();
+        writeExr(outPath, output, info);
+        if (!quiet) {
+            const RenderStats &s = output.stats;
+            const double rays = double(s.cameraRays + s.shadowRays);
+            std::fprintf(stderr, "%s: %s, %dx%d, %d spp x %d batches; load %.3fs, BVH %.3fs, render %.3fs, "
+                                 "%.1f Mrays/s\n",
+                         outPath.c_str(), s.integrator.c_str(), output.mean.width, output.mean.height, s.spp,
+                         s.batches, info.loadSeconds, s.bvhSeconds, s.renderSeconds, rays / s.renderSeconds / 1e6);
+        }
+        return 0;
+    } catch (const SceneError &e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+    }
+}

@@ -1,0 +1,77 @@
+// What a scene file describes, after loading: plain data, in world space.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "transform.h"
+#include "vector.h"
+
+namespace mcr {
+
+using Color = Vec3f;  ///< linear RGB
+
+/// A triangle mesh in world space with its diffuse reflectance.
+struct Mesh {
+    std::string name;                ///< what the scene called it (for messages)
+    std::vector<Vec3f> positions;
+    std::vector<Vec3f> normals;      ///< per vertex; empty for flat shading
+    std::vector<uint32_t> indices;   ///< three per triangle, counter-clockwise seen from the front
+    Color reflectance{0.5f, 0.5f, 0.5f};
+};
+
+/// An isotropic point light; intensity in W/sr.
+struct PointLight {
+    Vec3f position;
+    Color intensity;
+};
+
+/// Mitsuba's `perspective` sensor.
+struct CameraSpec {
+    Transform toWorld;
+    float fov = 0.f;                 ///< degrees, along fovAxis
+    std::string fovAxis = "x";       ///< x, y, diagonal, smaller, larger
+    float nearClip = 1e-2f;
+    float farClip = 1e4f;
+};
+
+/// Reconstruction filter: `box` (radius 0.5) or `gaussian` (stddev 0.5, radius 4 stddev).
+struct FilterSpec {
+    enum class Type { Box, Gaussian } type = Type::Gaussian;
+    float stddev = 0.5f;
+    float radius() const { return type == Type::Box ? 0.5f : 4.f * stddev; }
+    /// The 1D filter weight at offset x (pixels); the 2D weight is separable.
+    float eval(float x) const;
+};
+
+struct FilmSpec {
+    int width = 768, height = 576;   ///< Mitsuba's hdrfilm defaults
+    FilterSpec filter;
+};
+
+/// Which of our integrators to run, and its parameters.
+struct IntegratorSpec {
+    std::string type;
+    int aoSamples = 1;               ///< `ao`: occlusion rays per camera sample
+};
+
+/// Everything the renderer needs from a scene file.
+struct SceneDescription {
+    std::string file;
+    CameraSpec camera;
+    FilmSpec film;
+    int sampleCount = 4;             ///< Mitsuba's `independent` default
+    std::vector<Mesh> meshes;
+    std::vector<PointLight> pointLights;
+    std::optional<Color> environment;  ///< radiance of the `constant` emitter, if any
+    IntegratorSpec integrator;
+};
+
+/// Loads a scene file of the Mitsuba 3 XML subset; `params` override its <default> values.
+/// Throws SceneError naming file, line and what was expected.
+SceneDescription loadScene(const std::string &path, const std::map<std::string, std::string> &params = {});
+
+}  // namespace mcr

@@ -1,0 +1,225 @@
+// The Mitsuba 3 XML subset of DESIGN.md: every element and property outside it is an error.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "error.h"
+#include "mesh.h"
+#include "scene.h"
+#include "xml_props.h"
+
+namespace mcr {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string typeOf(const XmlContext &ctx, const pugi::xml_node &node) { return ctx.attr(node, "type"); }
+
+void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene) {
+    if (typeOf(ctx, node) != "perspective") ctx.fail(node, "unsupported sensor type: expected \"perspective\"");
+    XmlProps props(ctx, node);
+    CameraSpec &cam = scene.camera;
+    cam.fov = props.getFloatRequired("fov");
+    if (!(cam.fov > 0.f && cam.fov < 180.f)) ctx.fail(node, "fov must be in (0, 180) degrees");
+    cam.fovAxis = props.getString("fov_axis", "x");
+    if (cam.fovAxis != "x" && cam.fovAxis != "y" && cam.fovAxis != "diagonal" && cam.fovAxis != "smaller" &&
+        cam.fovAxis != "larger")
+        ctx.fail(node, "fov_axis must be x, y, diagonal, smaller or larger");
+    cam.nearClip = props.getFloat("near_clip", 1e-2f);
+    cam.farClip = props.getFloat("far_clip", 1e4f);
+    if (!(cam.nearClip > 0.f && cam.farClip > cam.nearClip)) ctx.fail(node, "need 0 < near_clip < far_clip");
+    cam.toWorld = props.getTransform("to_world");
+    props.finish("fov, fov_axis, near_clip, far_clip, to_world");
+    for (const auto &child : props.objects()) {
+        const std::string tag = child.name();
+        if (tag == "film") {
+            if (typeOf(ctx, child) != "hdrfilm") ctx.fail(child, "unsupported film type: expected \"hdrfilm\"");
+            XmlProps fp(ctx, child);
+            scene.film.width = fp.getInt("width", 768);
+            scene.film.height = fp.getInt("height", 576);
+            if (scene.film.width < 1 || scene.film.height < 1 || scene.film.width > 16384 || scene.film.height > 16384)
+                ctx.fail(child, "width and height must be in 1..16384");
+            fp.finish("width, height");
+            for (const auto &f : fp.objects()) {
+                if (std::string(f.name()) != "rfilter") ctx.fail(f, "unsupported element in <film>: expected <rfilter>");
+                const std::string type = typeOf(ctx, f);
+                XmlProps rp(ctx, f);
+                if (type == "box") {
+                    scene.film.filter.type = FilterSpec::Type::Box;
+                    rp.finish("no properties");
+                } else if (type == "gaussian") {
+                    scene.film.filter.type = FilterSpec::Type::Gaussian;
+                    scene.film.filter.stddev = rp.getFloat("stddev", 0.5f);
+                    if (!(scene.film.filter.stddev > 0.f)) ctx.fail(f, "stddev must be positive");
+                    rp.finish("stddev");
+                } else {
+                    ctx.fail(f, "unsupported rfilter type \"" + type + "\": expected box or gaussian");
+                }
+                if (!rp.objects().empty()) ctx.fail(rp.objects()[0], "unexpected element inside <rfilter>");
+            }
+        } else if (tag == "sampler") {
+            if (typeOf(ctx, child) != "independent") ctx.fail(child, "unsupported sampler type: expected \"independent\"");
+            XmlProps sp(ctx, child);
+            scene.sampleCount = sp.getInt("sample_count", 4);
+            if (scene.sampleCount < 1) ctx.fail(child, "sample_count must be at least 1");
+            sp.finish("sample_count");
+            if (!sp.objects().empty()) ctx.fail(sp.objects()[0], "unexpected element inside <sampler>");
+        } else {
+            ctx.fail(child, "unsupported element in <sensor>: expected <film> or <sampler>");
+        }
+    }
+}
+
+Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node) {
+    if (typeOf(ctx, node) != "diffuse") ctx.fail(node, "unsupported bsdf type: expected \"diffuse\"");
+    XmlProps props(ctx, node);
+    const Color rho = props.getColor("reflectance", {0.5f, 0.5f, 0.5f});
+    if (rho.x < 0.f || rho.y < 0.f || rho.z < 0.f || rho.x > 1.f || rho.y > 1.f || rho.z > 1.f)
+        ctx.fail(node, "reflectance must lie in [0, 1]");
+    props.finish("reflectance");
+    if (!props.objects().empty()) ctx.fail(props.objects()[0], "unexpected element inside <bsdf>");
+    return rho;
+}
+
+void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const std::map<std::string, Color> &bsdfs,
+               SceneDescription &scene) {
+    const std::string type = typeOf(ctx, node);
+    XmlProps props(ctx, node);
+    const Transform toWorld = props.getTransform("to_world");
+    Mesh mesh;
+    if (type == "obj" || type == "ply") {
+        const std::string filename = props.getStringRequired("filename");
+        const bool faceNormals = props.getBool("face_normals", false);
+        props.finish("filename, face_normals, to_world");
+        const fs::path path = fs::path(ctx.file).parent_path() / filename;
+        if (!fs::exists(path)) ctx.fail(node, "mesh file not found: " + path.string());
+        try {
+            mesh = loadMeshFile(path.string(), toWorld, faceNormals);
+        } catch (const SceneError &e) {
+            ctx.fail(node, e.what());
+        }
+    } else if (type == "rectangle" || type == "cube") {
+        props.finish("to_world");
+        mesh = type == "rectangle" ? makeRectangle(toWorld) : makeCube(toWorld);
+    } else {
+        ctx.fail(node, "unsupported shape type \"" + type + "\": expected obj, ply, rectangle or cube");
+    }
+    mesh.name = node.attribute("id") ? ctx.attr(node, "id") : type + " at line " + std::to_string(ctx.line(node));
+    bool hasBsdf = false;
+    for (const auto &child : props.objects()) {
+        const std::string tag = child.name();
+        if (hasBsdf && (tag == "bsdf" || tag == "ref")) ctx.fail(child, "a shape takes one bsdf");
+        if (tag == "bsdf") {
+            mesh.reflectance = loadBsdf(ctx, child);
+        } else if (tag == "ref") {
+            const std::string id = ctx.attr(child, "id");
+            const auto it = bsdfs.find(id);
+            if (it == bsdfs.end()) ctx.fail(child, "no <bsdf id=\"" + id + "\"> defined before this point");
+            mesh.reflectance = it->second;
+        } else {
+            ctx.fail(child, "unsupported element in <shape>: expected <bsdf> or <ref>");
+        }
+        hasBsdf = true;
+    }
+    scene.meshes.push_back(std::move(mesh));
+}
+
+void loadEmitter(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene) {
+    const std::string type = typeOf(ctx, node);
+    XmlProps props(ctx, node);
+    if (type == "point") {
+        PointLight light;
+        light.position = props.getPoint("position", {0.f, 0.f, 0.f});
+        light.intensity = props.getColor("intensity", {1.f, 1.f, 1.f});
+        props.finish("position, intensity");
+        scene.pointLights.push_back(light);
+    } else if (type == "constant") {
+        if (scene.environment) ctx.fail(node, "only one constant emitter is supported");
+        scene.environment = props.getColor("radiance", {1.f, 1.f, 1.f});
+        props.finish("radiance");
+    } else {
+        ctx.fail(node, "unsupported emitter type \"" + type + "\": expected point or constant");
+    }
+    if (!props.objects().empty()) ctx.fail(props.objects()[0], "unexpected element inside <emitter>");
+}
+
+void loadIntegrator(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene) {
+    const std::string type = typeOf(ctx, node);
+    XmlProps props(ctx, node);
+    if (type == "ao") {
+        scene.integrator.aoSamples = props.getInt("samples", 1);
+        if (scene.integrator.aoSamples < 1) ctx.fail(node, "samples must be at least 1");
+        props.finish("samples");
+    } else if (type == "normals" || type == "simple") {
+        props.finish("no properties");
+    } else {
+        ctx.fail(node, "unsupported integrator type \"" + type + "\": expected normals, simple or ao");
+    }
+    scene.integrator.type = type;
+}
+
+}  // namespace
+
+SceneDescription loadScene(const std::string &path, const std::map<std::string, std::string> &params) {
+    XmlContext ctx;
+    ctx.file = path;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw SceneError(path, 0, "cannot open scene file");
+    std::stringstream buf;
+    buf << in.rdbuf();
+    ctx.text = buf.str();
+
+    pugi::xml_document doc;
+    const pugi::xml_parse_result parsed = doc.load_buffer(ctx.text.data(), ctx.text.size());
+    if (!parsed) {
+        const int line = 1 + static_cast<int>(std::count(ctx.text.begin(), ctx.text.begin() + parsed.offset, '\n'));
+        throw SceneError(path, line, std::string("malformed XML: ") + parsed.description());
+    }
+    const pugi::xml_node root = doc.document_element();
+    if (std::string(root.name()) != "scene") ctx.fail(root, "the root element must be <scene>");
+    if (!root.attribute("version")) ctx.fail(root, "missing version attribute, e.g. version=\"3.0.0\"");
+
+    // <default> values first (Mitsuba takes them in document order, before use), then overrides.
+    for (pugi::xml_node node : root.children("default")) {
+        const std::string name = node.attribute("name").value();
+        if (name.empty() || !node.attribute("value")) ctx.fail(node, "expected name=\"...\" and value=\"...\"");
+        ctx.params[name] = node.attribute("value").value();
+    }
+    for (const auto &[k, v] : params) ctx.params[k] = v;
+
+    SceneDescription scene;
+    scene.file = path;
+    std::map<std::string, Color> bsdfs;
+    bool hasSensor = false, hasIntegrator = false;
+    for (pugi::xml_node node : root.children()) {
+        if (node.type() != pugi::node_element) continue;
+        const std::string tag = node.name();
+        if (tag == "default") continue;
+        if (tag == "sensor") {
+            if (hasSensor) ctx.fail(node, "only one sensor is supported");
+            loadSensor(ctx, node, scene);
+            hasSensor = true;
+        } else if (tag == "shape") {
+            loadShape(ctx, node, bsdfs, scene);
+        } else if (tag == "bsdf") {
+            const std::string id = ctx.attr(node, "id");
+            if (id.empty()) ctx.fail(node, "a top-level <bsdf> needs an id to be referenced by");
+            bsdfs[id] = loadBsdf(ctx, node);
+        } else if (tag == "emitter") {
+            loadEmitter(ctx, node, scene);
+        } else if (tag == "integrator") {
+            if (hasIntegrator) ctx.fail(node, "only one integrator is supported");
+            loadIntegrator(ctx, node, scene);
+            hasIntegrator = true;
+        } else {
+            ctx.fail(node, "unsupported element: expected <default>, <sensor>, <shape>, <bsdf>, <emitter> or <integrator>");
+        }
+    }
+    if (!hasSensor) ctx.fail(root, "the scene has no <sensor type=\"perspective\">");
+    if (scene.meshes.empty()) ctx.fail(root, "the scene has no <shape>");
+    return scene;
+}
+
+}  // namespace mcr

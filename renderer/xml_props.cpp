@@ -1,0 +1,220 @@
+#include "xml_props.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdlib>
+#include <sstream>
+
+#include "error.h"
+
+namespace mcr {
+
+namespace {
+const std::set<std::string> kPropertyTags = {"float", "integer", "boolean", "string", "rgb",
+                                             "point", "vector", "transform", "spectrum"};
+
+std::vector<std::string> splitNumbers(const std::string &text) {
+    std::string s = text;
+    std::replace(s.begin(), s.end(), ',', ' ');
+    std::istringstream in(s);
+    std::vector<std::string> out;
+    for (std::string tok; in >> tok;) out.push_back(tok);
+    return out;
+}
+}  // namespace
+
+int XmlContext::line(const pugi::xml_node &node) const {
+    const ptrdiff_t offset = node.offset_debug();
+    if (offset < 0) return 0;
+    return 1 + static_cast<int>(std::count(text.begin(), text.begin() + std::min<size_t>(offset, text.size()), '\n'));
+}
+
+void XmlContext::fail(const pugi::xml_node &node, const std::string &message) const {
+    throw SceneError(file, line(node), "<" + std::string(node.name()) + ">: " + message);
+}
+
+std::string XmlContext::attr(const pugi::xml_node &node, const char *name) const {
+    std::string value = node.attribute(name).value();
+    for (size_t pos = value.find('$'); pos != std::string::npos; pos = value.find('$', pos)) {
+        size_t end = pos + 1;
+        while (end < value.size() && (std::isalnum(static_cast<unsigned char>(value[end])) || value[end] == '_')) ++end;
+        const std::string key = value.substr(pos + 1, end - pos - 1);
+        const auto it = params.find(key);
+        if (it == params.end())
+            fail(node, "parameter $" + key + " has no <default> and was not given (e.g. -D " + key + "=...)");
+        value.replace(pos, end - pos, it->second);
+        pos += it->second.size();
+    }
+    return value;
+}
+
+XmlProps::XmlProps(const XmlContext &ctx, const pugi::xml_node &element) : m_ctx(ctx), m_element(element) {
+    for (pugi::xml_node child : element.children()) {
+        if (child.type() != pugi::node_element) continue;
+        if (!kPropertyTags.count(child.name())) {
+            m_objects.push_back(child);
+            continue;
+        }
+        const std::string name = child.attribute("name").value();
+        if (name.empty()) ctx.fail(child, "property without a name attribute");
+        if (m_props.count(name)) ctx.fail(child, "property \"" + name + "\" given twice");
+        m_props[name] = child;
+    }
+}
+
+pugi::xml_node XmlProps::find(const std::string &name, const char *tag) {
+    const auto it = m_props.find(name);
+    if (it == m_props.end()) return {};
+    m_used.insert(name);
+    if (std::string(it->second.name()) != tag)
+        m_ctx.fail(it->second, "property \"" + name + "\" must be a <" + tag + ">");
+    return it->second;
+}
+
+float XmlProps::parseFloat(const pugi::xml_node &node, const std::string &text) const {
+    errno = 0;
+    char *end = nullptr;
+    const float v = std::strtof(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || errno == ERANGE)
+        m_ctx.fail(node, "expected a number, got \"" + text + "\"");
+    return v;
+}
+
+Vec3f XmlProps::parseTriple(const pugi::xml_node &node, const std::string &text) const {
+    const auto parts = splitNumbers(text);
+    if (parts.size() == 1) {
+        const float v = parseFloat(node, parts[0]);
+        return {v, v, v};
+    }
+    if (parts.size() != 3) m_ctx.fail(node, "expected three numbers \"x, y, z\", got \"" + text + "\"");
+    return {parseFloat(node, parts[0]), parseFloat(node, parts[1]), parseFloat(node, parts[2])};
+}
+
+float XmlProps::getFloat(const std::string &name, float def) {
+    const auto node = find(name, "float");
+    return node ? parseFloat(node, m_ctx.attr(node, "value")) : def;
+}
+
+float XmlProps::getFloatRequired(const std::string &name) {
+    if (!m_props.count(name)) m_ctx.fail(m_element, "missing <float name=\"" + name + "\" value=\"...\"/>");
+    return getFloat(name, 0.f);
+}
+
+int XmlProps::getInt(const std::string &name, int def) {
+    const auto node = find(name, "integer");
+    if (!node) return def;
+    const std::string text = m_ctx.attr(node, "value");
+    errno = 0;
+    char *end = nullptr;
+    const long v = std::strtol(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || errno == ERANGE || v < -2147483647L || v > 2147483647L)
+        m_ctx.fail(node, "expected an integer, got \"" + text + "\"");
+    return static_cast<int>(v);
+}
+
+bool XmlProps::getBool(const std::string &name, bool def) {
+    const auto node = find(name, "boolean");
+    if (!node) return def;
+    const std::string text = m_ctx.attr(node, "value");
+    if (text == "true") return true;
+    if (text == "false") return false;
+    m_ctx.fail(node, "expected true or false, got \"" + text + "\"");
+}
+
+std::string XmlProps::getString(const std::string &name, const std::string &def) {
+    const auto node = find(name, "string");
+    return node ? m_ctx.attr(node, "value") : def;
+}
+
+std::string XmlProps::getStringRequired(const std::string &name) {
+    if (!m_props.count(name)) m_ctx.fail(m_element, "missing <string name=\"" + name + "\" value=\"...\"/>");
+    return getString(name, "");
+}
+
+Vec3f XmlProps::getColor(const std::string &name, const Vec3f &def) {
+    const auto it = m_props.find(name);
+    if (it == m_props.end()) return def;
+    m_used.insert(name);
+    const std::string tag = it->second.name();
+    if (tag == "float") {
+        const float v = parseFloat(it->second, m_ctx.attr(it->second, "value"));
+        return {v, v, v};
+    }
+    if (tag != "rgb") m_ctx.fail(it->second, "property \"" + name + "\" must be an <rgb> or a <float>");
+    return parseTriple(it->second, m_ctx.attr(it->second, "value"));
+}
+
+Vec3f XmlProps::getPoint(const std::string &name, const Vec3f &def) {
+    const auto node = find(name, "point");
+    if (!node) return def;
+    if (node.attribute("value")) return parseTriple(node, m_ctx.attr(node, "value"));
+    const auto coord = [&](const char *a) {
+        return node.attribute(a) ? parseFloat(node, m_ctx.attr(node, a)) : 0.f;
+    };
+    return {coord("x"), coord("y"), coord("z")};
+}
+
+Transform XmlProps::getTransform(const std::string &name) {
+    const auto node = find(name, "transform");
+    return node ? parseTransform(node) : Transform();
+}
+
+Transform XmlProps::parseTransform(const pugi::xml_node &node) const {
+    Transform result;
+    for (pugi::xml_node step : node.children()) {
+        if (step.type() != pugi::node_element) continue;
+        const std::string tag = step.name();
+        const auto triple = [&](const char *attr, float def) {
+            if (step.attribute("value")) return parseTriple(step, m_ctx.attr(step, "value"));
+            const auto c = [&](const char *a) { return step.attribute(a) ? parseFloat(step, m_ctx.attr(step, a)) : def; };
+            (void)attr;
+            return Vec3f(c("x"), c("y"), c("z"));
+        };
+        Transform t;
+        if (tag == "translate") {
+            t = Transform::translate(triple("value", 0.f));
+        } else if (tag == "scale") {
+            t = Transform::scale(triple("value", 1.f));
+        } else if (tag == "rotate") {
+            if (!step.attribute("angle")) m_ctx.fail(step, "missing angle=\"degrees\"");
+            const Vec3f axis = triple("value", 0.f);
+            if (squaredNorm(axis) == 0.f) m_ctx.fail(step, "rotation axis is zero: give x, y or z");
+            t = Transform::rotate(axis, parseFloat(step, m_ctx.attr(step, "angle")));
+        } else if (tag == "matrix") {
+            const auto parts = splitNumbers(m_ctx.attr(step, "value"));
+            if (parts.size() != 16) m_ctx.fail(step, "expected 16 numbers in value");
+            float a[16];
+            for (int i = 0; i < 16; ++i) a[i] = parseFloat(step, parts[i]);
+            try {
+                t = Transform(a);
+            } catch (const SceneError &e) {
+                m_ctx.fail(step, e.what());
+            }
+        } else if (tag == "lookat") {
+            const auto vec = [&](const char *a, bool required) {
+                if (!step.attribute(a)) {
+                    if (required) m_ctx.fail(step, std::string("missing ") + a + "=\"x, y, z\"");
+                    return Vec3f(0.f, 1.f, 0.f);
+                }
+                return parseTriple(step, m_ctx.attr(step, a));
+            };
+            const Vec3f origin = vec("origin", true), target = vec("target", true), up = vec("up", false);
+            if (squaredNorm(target - origin) == 0.f) m_ctx.fail(step, "origin and target coincide");
+            if (squaredNorm(cross(up, target - origin)) == 0.f) m_ctx.fail(step, "up is parallel to the view direction");
+            t = Transform::lookAt(origin, target, up);
+        } else {
+            m_ctx.fail(step, "unsupported transform step: expected translate, scale, rotate, matrix or lookat");
+        }
+        result = t * result;  // later steps apply after earlier ones
+    }
+    return result;
+}
+
+void XmlProps::finish(const std::string &expected) const {
+    for (const auto &[name, node] : m_props)
+        if (!m_used.count(name))
+            m_ctx.fail(node, "unsupported property \"" + name + "\" of <" + m_element.name() + " type=\"" +
+                                 m_element.attribute("type").value() + "\">: expected " + expected);
+}
+
+}  // namespace mcr

@@ -1,0 +1,64 @@
+// Typed access to the property children of one Mitsuba XML element, with file:line errors.
+#pragma once
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <pugixml.hpp>
+
+#include "transform.h"
+#include "vector.h"
+
+namespace mcr {
+
+/// The parse state shared by all elements of one file: its name, text (for line numbers) and $parameters.
+struct XmlContext {
+    std::string file;
+    std::string text;
+    std::map<std::string, std::string> params;
+
+    int line(const pugi::xml_node &node) const;
+    /// Throws SceneError at the node's line.
+    [[noreturn]] void fail(const pugi::xml_node &node, const std::string &message) const;
+    /// An attribute's value with $name parameters substituted.
+    std::string attr(const pugi::xml_node &node, const char *name) const;
+};
+
+/// The `<float name=...>`-style children of an element. Each get* consumes one; finish() rejects leftovers.
+class XmlProps {
+public:
+    XmlProps(const XmlContext &ctx, const pugi::xml_node &element);
+
+    float getFloat(const std::string &name, float def);
+    float getFloatRequired(const std::string &name);
+    int getInt(const std::string &name, int def);
+    bool getBool(const std::string &name, bool def);
+    std::string getString(const std::string &name, const std::string &def);
+    std::string getStringRequired(const std::string &name);
+    /// `<rgb>` with "r, g, b" or a single value, or a `<float>` gray.
+    Vec3f getColor(const std::string &name, const Vec3f &def);
+    /// `<point>` with value="x, y, z" or x/y/z attributes.
+    Vec3f getPoint(const std::string &name, const Vec3f &def);
+    Transform getTransform(const std::string &name);
+
+    /// Child elements that are objects (film, sampler, bsdf, ref, ...), for the caller to handle.
+    const std::vector<pugi::xml_node> &objects() const { return m_objects; }
+    /// Throws if a property was given that nothing asked for.
+    void finish(const std::string &expected) const;
+
+private:
+    pugi::xml_node find(const std::string &name, const char *tag);
+    float parseFloat(const pugi::xml_node &node, const std::string &text) const;
+    Vec3f parseTriple(const pugi::xml_node &node, const std::string &text) const;
+    Transform parseTransform(const pugi::xml_node &node) const;
+
+    const XmlContext &m_ctx;
+    pugi::xml_node m_element;
+    std::map<std::string, pugi::xml_node> m_props;
+    std::set<std::string> m_used;
+    std::vector<pugi::xml_node> m_objects;
+};
+
+}  // namespace mcr

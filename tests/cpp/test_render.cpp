@@ -1,0 +1,64 @@
+// Rendering: the same bits whatever the thread count, and no NaN or Inf anywhere.
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "render.h"
+#include "scene.h"
+
+using namespace mcr;
+namespace fs = std::filesystem;
+
+namespace {
+SceneDescription smallScene(const std::string &name) {
+    const std::string path = (fs::path(MCVAL_SOURCE_DIR) / "scenes" / name).string();
+    return loadScene(path, {{"res", "48"}});
+}
+}  // namespace
+
+TEST(Render, SameSeedSameBitsWhateverTheThreadCount) {
+    const SceneDescription scene = smallScene("sphere_plane.xml");
+    for (const char *integrator : {"simple", "ao"}) {
+        RenderOptions options;
+        options.spp = 4;
+        options.seed = 7;
+        options.integrator = integrator;
+        options.threads = 1;
+        const RenderOutput one = render(scene, options);
+        options.threads = 2;
+        const RenderOutput two = render(scene, options);
+        ASSERT_EQ(one.mean.rgb.size(), two.mean.rgb.size());
+        EXPECT_EQ(0, std::memcmp(one.mean.rgb.data(), two.mean.rgb.data(), one.mean.rgb.size() * sizeof(float)))
+            << integrator;
+        EXPECT_EQ(0, std::memcmp(one.variance.rgb.data(), two.variance.rgb.data(),
+                                 one.variance.rgb.size() * sizeof(float)));
+        options.seed = 8;
+        const RenderOutput other = render(scene, options);
+        EXPECT_NE(0, std::memcmp(one.mean.rgb.data(), other.mean.rgb.data(), one.mean.rgb.size() * sizeof(float)));
+    }
+}
+
+TEST(Render, EverySceneAndIntegratorIsFinite) {
+    for (const auto &entry : fs::directory_iterator(fs::path(MCVAL_SOURCE_DIR) / "scenes")) {
+        if (entry.path().extension() != ".xml" || entry.path().filename().string()[0] == '.') continue;
+        const SceneDescription scene = loadScene(entry.path().string(), {{"res", "32"}});
+        for (const char *integrator : {"normals", "simple", "ao"}) {
+            RenderOptions options;
+            options.spp = 2;
+            options.batches = 2;
+            options.integrator = integrator;
+            const RenderOutput out = render(scene, options);
+            size_t bad = 0, nonzero = 0;
+            for (float v : out.mean.rgb) {
+                bad += !std::isfinite(v);
+                nonzero += v != 0.f;
+            }
+            for (float v : out.variance.rgb) bad += !(std::isfinite(v) && v >= 0.f);
+            EXPECT_EQ(bad, 0u) << entry.path() << " " << integrator;
+            EXPECT_GT(nonzero, out.mean.rgb.size() / 10) << entry.path() << " " << integrator;
+            EXPECT_EQ(out.batches.size(), 2u);
+        }
+    }
+}

@@ -1,0 +1,120 @@
+// Bad scene files give one clear error each: file, line, element, what was expected.
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "error.h"
+#include "scene.h"
+
+using namespace mcr;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char *kHeader = "<scene version=\"3.0.0\">\n";
+
+std::string writeScene(const std::string &name, const std::string &body) {
+    const fs::path path = fs::temp_directory_path() / ("mcval_test_" + name + ".xml");
+    std::ofstream(path) << body;
+    return path.string();
+}
+
+std::string sensor(const std::string &inner = "") {
+    return "  <sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>" + inner +
+           "<film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/>"
+           "</film></sensor>\n";
+}
+
+const std::string kShape = "  <shape type=\"rectangle\"/>\n";
+
+/// The SceneError message of loading body, or "" if it loads.
+std::string errorOf(const std::string &name, const std::string &body) {
+    const std::string path = writeScene(name, body);
+    try {
+        loadScene(path);
+    } catch (const SceneError &e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(SceneLoader, AValidSceneLoads) {
+    const std::string path = writeScene("valid", std::string(kHeader) + "<default name=\"w\" value=\"0.3\"/>\n" +
+                                                     sensor() + "  <shape type=\"cube\"><bsdf type=\"diffuse\">"
+                                                     "<rgb name=\"reflectance\" value=\"$w, 0.2, 0.1\"/></bsdf></shape>\n"
+                                                     "  <emitter type=\"point\"><point name=\"position\" value=\"0, 4, 0\"/>"
+                                                     "</emitter>\n<integrator type=\"ao\"><integer name=\"samples\" "
+                                                     "value=\"4\"/></integrator>\n</scene>\n");
+    const SceneDescription scene = loadScene(path);
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    EXPECT_EQ(scene.meshes[0].indices.size(), 36u);
+    EXPECT_FLOAT_EQ(scene.meshes[0].reflectance.x, 0.3f);
+    EXPECT_EQ(scene.integrator.type, "ao");
+    EXPECT_EQ(scene.integrator.aoSamples, 4);
+    EXPECT_EQ(scene.film.width, 8);
+    EXPECT_FLOAT_EQ(loadScene(path, {{"w", "0.9"}}).meshes[0].reflectance.x, 0.9f);
+}
+
+struct BadCase {
+    const char *name;
+    std::string body;
+    const char *expected;  ///< a fragment of the message
+    int line;
+};
+
+/// gtest prints the case by name.
+void PrintTo(const BadCase &c, std::ostream *os) { *os << c.name; }
+
+class SceneLoaderErrors : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(SceneLoaderErrors, NamesFileLineAndWhatWasExpected) {
+    const BadCase &c = GetParam();
+    const std::string message = errorOf(c.name, c.body);
+    ASSERT_FALSE(message.empty()) << c.name << " loaded without error";
+    EXPECT_NE(message.find(c.expected), std::string::npos) << message;
+    EXPECT_NE(message.find("mcval_test_" + std::string(c.name) + ".xml:" + std::to_string(c.line) + ":"),
+              std::string::npos)
+        << message;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Kinds, SceneLoaderErrors,
+    ::testing::Values(
+        BadCase{"malformed", std::string(kHeader) + sensor() + "<shape type=\"cube\">\n</scene>\n", "malformed XML", 4},
+        BadCase{"unknown_element", std::string(kHeader) + sensor() + "  <texture type=\"bitmap\"/>\n</scene>\n",
+                "unsupported element", 3},
+        BadCase{"unknown_shape", std::string(kHeader) + sensor() + "  <shape type=\"sphere\"/>\n</scene>\n",
+                "expected obj, ply, rectangle or cube", 3},
+        BadCase{"unknown_property", std::string(kHeader) + sensor() +
+                "  <shape type=\"cube\">\n    <boolean name=\"flip_normals\" value=\"true\"/>\n  </shape>\n</scene>\n",
+                "unsupported property \"flip_normals\"", 4},
+        BadCase{"bad_number", std::string(kHeader) + sensor() + kShape +
+                "  <emitter type=\"point\">\n    <rgb name=\"intensity\" value=\"1, x, 1\"/>\n  </emitter>\n</scene>\n",
+                "expected a number, got \"x\"", 5},
+        BadCase{"missing_fov", std::string(kHeader) + "  <sensor type=\"perspective\"/>\n" + kShape + "</scene>\n",
+                "missing <float name=\"fov\"", 2},
+        BadCase{"undefined_parameter", std::string(kHeader) + sensor() +
+                "  <integrator type=\"$integrator\"/>\n" + kShape + "</scene>\n", "parameter $integrator", 3},
+        BadCase{"missing_mesh", std::string(kHeader) + sensor() +
+                "  <shape type=\"ply\"><string name=\"filename\" value=\"nowhere.ply\"/></shape>\n</scene>\n",
+                "mesh file not found", 3},
+        BadCase{"bad_integrator", std::string(kHeader) + sensor() + kShape + "  <integrator type=\"path\"/>\n</scene>\n",
+                "expected normals, simple or ao", 4},
+        BadCase{"bad_rfilter", std::string(kHeader) +
+                "  <sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n    <film type=\"hdrfilm\">\n"
+                "      <rfilter type=\"tent\"/></film></sensor>\n" + kShape + "</scene>\n",
+                "expected box or gaussian", 4},
+        BadCase{"unknown_ref", std::string(kHeader) + sensor() + "  <shape type=\"cube\">\n    <ref id=\"gold\"/>\n"
+                "  </shape>\n</scene>\n", "no <bsdf id=\"gold\">", 4}),
+    [](const auto &info) { return std::string(info.param.name); });
+
+TEST(SceneLoader, EveryShippedSceneLoads) {
+    for (const auto &entry : fs::directory_iterator(fs::path(MCVAL_SOURCE_DIR) / "scenes")) {
+        if (entry.path().extension() != ".xml" || entry.path().filename().string()[0] == '.') continue;
+        EXPECT_NO_THROW(loadScene(entry.path().string())) << entry.path();
+    }
+}
