@@ -14,7 +14,7 @@ APT_PACKAGES := build-essential cmake ninja-build python3 python3-venv python3-d
 # Mitsuba's llvm variants need LLVM 19 (Debian's libllvm19; 15 and 16 crash).
 export DRJIT_LIBLLVM_PATH ?= $(firstword $(wildcard /usr/lib/*/libLLVM.so.19* /usr/lib/*/libLLVM-19.so))
 
-.PHONY: validate test build deps clean
+.PHONY: validate test bench build deps clean
 
 ## validate: run the whole validation; writes results/<run>/ and fails on any FAIL
 validate: build
@@ -24,6 +24,11 @@ validate: build
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure
 	$(PY) -m pytest
+
+## bench: rays per second of each integrator beside a raw Embree loop (high-poly scene)
+bench: build
+	@mkdir -p results
+	$(BUILD)/bench_rays scenes/highpoly.xml --json results/bench_rays.json
 
 ## build: Debian packages, the .venv, the C++ renderer (`render` in .venv/bin) and the scenes' meshes
 build: deps $(VENV)/.installed

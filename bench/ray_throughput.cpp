@@ -1,0 +1,125 @@
+// Rays per second of each integrator on a scene, beside a raw Embree loop that traces the
+// same rays with no shading: the physical limit of this machine for those rays.
+//
+//   build/bench_rays scenes/highpoly.xml [--spp N] [--repeats R] [--json PATH]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <tbb/parallel_for.h>
+
+#include "camera.h"
+#include "embree_scene.h"
+#include "frame.h"
+#include "integrators/integrator.h"
+#include "render.h"
+#include "scene.h"
+#include "warp.h"
+
+using namespace mcr;
+
+namespace {
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+/// The rays an integrator traces, rebuilt with the renderer's own camera, sampler and spawn rule.
+struct RaySet {
+    std::vector<Ray> closest;   ///< camera rays (closest hit)
+    std::vector<Ray> occlusion; ///< shadow or AO rays (any hit)
+};
+
+RaySet collectRays(const SceneDescription &scene, const EmbreeScene &embree, const std::string &integrator, int spp) {
+    const Camera camera(scene.camera, scene.film.width, scene.film.height);
+    RaySet rays;
+    for (int y = 0; y < scene.film.height; ++y) {
+        for (int x = 0; x < scene.film.width; ++x) {
+            Sampler sampler(0, 0, static_cast<uint64_t>(y) * scene.film.width + x);
+            for (int s = 0; s < spp; ++s) {
+                const Vec2f j = sampler.next2D();
+                const Ray ray = camera.generateRay(float(x) + j.x, float(y) + j.y);
+                rays.closest.push_back(ray);
+                Hit hit;
+                if (integrator == "normals" || !embree.intersect(ray, hit) || dot(hit.ns, ray.d) >= 0.f) continue;
+                if (integrator == "simple") {
+                    for (const PointLight &light : scene.pointLights) {
+                        const Vec3f to = light.position - hit.p;
+                        const float dist = norm(to);
+                        if (dot(hit.ns, to) > 0.f) rays.occlusion.push_back(spawnRay(hit, to / dist, dist * (1.f - 1e-4f)));
+                    }
+                } else {
+                    const Frame frame(hit.ns);
+                    for (int i = 0; i < scene.integrator.aoSamples; ++i)
+                        rays.occlusion.push_back(spawnRay(hit, frame.toWorld(squareToCosineHemisphere(sampler.next2D())), 1e30f));
+                }
+            }
+        }
+    }
+    return rays;
+}
+
+/// Seconds to trace every ray of the set in parallel, doing nothing with the answers.
+double traceRaw(const EmbreeScene &embree, const RaySet &rays) {
+    const auto start = std::chrono::steady_clock::now();
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.closest.size(), 1024), [&](const auto &r) {
+        Hit hit;
+        for (size_t i = r.begin(); i != r.end(); ++i) embree.intersect(rays.closest[i], hit);
+    });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.occlusion.size(), 1024), [&](const auto &r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) embree.occluded(rays.occlusion[i]);
+    });
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    CLI::App app{"Rays per second of each integrator beside a raw Embree loop over the same rays."};
+    std::string scenePath, jsonPath;
+    int spp = 16, repeats = 5;
+    app.add_option("scene", scenePath, "scene file")->required()->check(CLI::ExistingFile);
+    app.add_option("--spp", spp, "samples per pixel (default 16)")->check(CLI::PositiveNumber);
+    app.add_option("--repeats", repeats, "runs per measurement; the median is reported (default 5)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--json", jsonPath, "also write the figures as JSON");
+    CLI11_PARSE(app, argc, argv);
+
+    const SceneDescription scene = loadScene(scenePath);
+    const EmbreeScene embree(scene.meshes);
+    std::printf("%s: %dx%d, %d spp, %zu triangles; medians of %d runs\n", scenePath.c_str(), scene.film.width,
+                scene.film.height, spp, [&] { size_t n = 0; for (const Mesh &m : scene.meshes) n += m.indices.size() / 3; return n; }(),
+                repeats);
+    std::printf("%-10s %14s %14s %8s\n", "integrator", "ours Mrays/s", "raw Mrays/s", "ratio");
+    std::string json = "{\n  \"scene\": \"" + scenePath + "\",\n  \"spp\": " + std::to_string(spp) + ",\n  \"integrators\": {";
+    bool first = true;
+    for (const char *name : {"normals", "simple", "ao"}) {
+        RenderOptions options;
+        options.spp = spp;
+        options.integrator = name;
+        std::vector<double> ours, raw;
+        uint64_t rayCount = 0;
+        for (int r = 0; r < repeats; ++r) {
+            const RenderOutput out = render(scene, options);
+            rayCount = out.stats.cameraRays + out.stats.shadowRays;
+            ours.push_back(double(rayCount) / out.stats.renderSeconds);
+        }
+        const RaySet rays = collectRays(scene, embree, name, spp);
+        const double rawCount = double(rays.closest.size() + rays.occlusion.size());
+        for (int r = 0; r < repeats; ++r) raw.push_back(rawCount / traceRaw(embree, rays));
+        const double o = median(ours), w = median(raw);
+        std::printf("%-10s %14.2f %14.2f %8.2f   (%llu rays; raw set %.0f)\n", name, o / 1e6, w / 1e6, o / w,
+                    static_cast<unsigned long long>(rayCount), rawCount);
+        json += std::string(first ? "" : ",") + "\n    \"" + name + "\": {\"ours_rays_per_second\": " + std::to_string(o) +
+                ", \"raw_rays_per_second\": " + std::to_string(w) + ", \"ratio\": " + std::to_string(o / w) + "}";
+        first = false;
+    }
+    json += "\n  }\n}\n";
+    if (!jsonPath.empty()) std::ofstream(jsonPath) << json;
+    return 0;
+}
