@@ -9,12 +9,12 @@ SUDO  := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 APT_PACKAGES := build-essential cmake ninja-build python3 python3-venv python3-dev \
 	libembree-dev libopenexr-dev libtbb-dev libpugixml-dev libtinyobjloader-dev \
-	libassimp-dev libcli11-dev libllvm19 googletest libgtest-dev
+	libassimp-dev libcli11-dev libllvm19 googletest libgtest-dev chromium
 
 # Mitsuba's llvm variants need LLVM 19 (Debian's libllvm19; 15 and 16 crash).
 export DRJIT_LIBLLVM_PATH ?= $(firstword $(wildcard /usr/lib/*/libLLVM.so.19* /usr/lib/*/libLLVM-19.so))
 
-.PHONY: validate test bench build deps clean
+.PHONY: validate test references bench build deps clean
 
 ## validate: run the whole validation; writes results/<run>/ and fails on any FAIL
 validate: build
@@ -24,6 +24,10 @@ validate: build
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure
 	$(PY) -m pytest
+
+## references: render and store the Mitsuba references (the only command that writes references/)
+references: build
+	$(PY) -m harness references
 
 ## bench: rays per second of each integrator beside a raw Embree loop (high-poly scene)
 bench: build

@@ -1,8 +1,7 @@
-"""The command line: `python -m harness {warps,validate}`. The only module that prints."""
+"""The command line: `python -m harness {warps,images,references,validate}`. The only module that prints."""
 from __future__ import annotations
 
 import argparse
-import platform
 import sys
 import time
 from pathlib import Path
@@ -22,12 +21,21 @@ def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="python -m harness",
         description="mcval: validate a Monte Carlo renderer against its pdfs and against Mitsuba 3.",
-        epilog="Each command writes results/<run>/ (results.json, HTML pages) and exits 1 if any check fails.")
+        epilog="Each command but `references` writes results/<run>/ (results.json, HTML pages, junit.xml) "
+               "and exits 1 if any check fails, 2 on bad input.")
     sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     def common(q: argparse.ArgumentParser) -> None:
         q.add_argument("--out", type=Path, default=Path("results"), help="folder for run folders (default: results)")
         q.add_argument("--seed", type=int, default=0, help="seed of every random choice (default: 0)")
+
+    def image_options(q: argparse.ArgumentParser) -> None:
+        q.add_argument("--scenes", "--only", dest="scenes", nargs="+", metavar="CASE",
+                       help="scenes, integrators or scene:integrator cases, e.g. cornell ao plane_point:simple "
+                            "(default: all)")
+        q.add_argument("--baseline", type=Path, metavar="RESULTS_JSON",
+                       help="compare with this run's results.json (default: the previous run's)")
+        q.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant (default: llvm_ad_rgb)")
 
     w = sub.add_parser("warps", help="the warp conformance matrix alone",
                        description="Check every warp of the renderer against its pdf (chi-square, normalisation, "
@@ -40,13 +48,33 @@ def _parser() -> argparse.ArgumentParser:
                    help=f"samples per warp for the statistical tests (default: {WARP_SAMPLES})")
     w.add_argument("--no-mitsuba", action="store_true", help="skip the checks against Mitsuba 3")
 
+    i = sub.add_parser("images", help="every scene with every integrator against Mitsuba 3",
+                       description="Render the scene suite with our renderer and compare with Mitsuba 3 "
+                                   "(stored references when their provenance matches) and closed forms.")
+    common(i)
+    image_options(i)
+
+    r = sub.add_parser("references", help="render and store Mitsuba references under references/",
+                       description="Render Mitsuba 3 references (K batches) for the scene suite and store them "
+                                   "with their provenance. The only command that writes references/.")
+    r.add_argument("--scenes", "--only", dest="scenes", nargs="+", metavar="CASE", help="as for `images`")
+    r.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant (default: llvm_ad_rgb)")
+
     v = sub.add_parser("validate", help="everything: what `make validate` runs",
-                       description="Run the whole validation and write results/<run>/report.html.")
+                       description="Warp conformance and image validation; writes results/<run>/report.html.")
     common(v)
+    image_options(v)
     return p
 
 
+def _progress(label: str) -> Progress:
+    return Progress(TextColumn(label), BarColumn(), MofNCompleteColumn(), TextColumn("{task.description}"),
+                    TimeElapsedColumn(), console=err, transient=True)
+
+
 def _run_warps(args, specs, run_dir: Path) -> tuple[bool, dict]:
+    import platform
+
     from harness.engines.ours import OurEngine
     from harness.report.warp_table import warp_table
     from harness.warp_outputs import warp_payload, write_warp_outputs
@@ -59,8 +87,7 @@ def _run_warps(args, specs, run_dir: Path) -> tuple[bool, dict]:
         reference = MitsubaEngine()
     samples = getattr(args, "samples", WARP_SAMPLES)
     start = time.perf_counter()
-    with Progress(TextColumn("warps"), BarColumn(), MofNCompleteColumn(), TextColumn("{task.description}"),
-                  TimeElapsedColumn(), console=err, transient=True) as progress:
+    with _progress("warps") as progress:
         task = progress.add_task("", total=len(specs))
         results, level = run_matrix(ours, reference, specs, seed=args.seed, samples=samples,
                                     on_progress=lambda s: progress.update(task, advance=1, description=s.key))
@@ -70,38 +97,93 @@ def _run_warps(args, specs, run_dir: Path) -> tuple[bool, dict]:
             "machine": f"{platform.machine()}, {platform.system()} {platform.release()}"}
     console.print(warp_table(results, level))
     paths = write_warp_outputs(run_dir, specs, results, level, meta, args.seed)
-    payload = warp_payload(results, level, meta)
     failed = [r.label for r in results if not r.passed]
     console.print(f"{len(results) - len(failed)} of {len(results)} warps pass, in {seconds:.1f} s. "
                   f"Page: {paths['html']}")
     for label in failed:
         console.print(f"[red]FAIL[/] {label}: data in {run_dir / 'warps'}")
+    return not failed, warp_payload(results, level, meta)
+
+
+def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path | None) -> tuple[bool, dict]:
+    from harness.engines.mitsuba import MitsubaEngine
+    from harness.engines.ours import OurEngine
+    from harness.image_outputs import write_image_outputs
+    from harness.image_run import run_images
+    from harness.report.image_table import image_table
+
+    ours, mitsuba = OurEngine(), MitsubaEngine(args.variant)
+    start = time.perf_counter()
+    with _progress("images") as progress:
+        task = progress.add_task("", total=len(cases))
+        results, alpha = run_images(cases, ours, mitsuba, args.seed,
+                                    on_progress=lambda c: progress.update(task, advance=1, description=c.key),
+                                    on_message=lambda m: progress.console.print(f"[yellow]{m}[/]"))
+    seconds = time.perf_counter() - start
+    console.print(image_table(results, alpha))
+    meta = {"engine": ours.version(), "reference": mitsuba.version(), "seed": args.seed,
+            "image seconds": round(seconds, 1)}
+    payload = write_image_outputs(run_dir, results, alpha, warps, meta, baseline)
+    for entry in payload["regression"] or []:
+        if entry["flags"]:
+            console.print(f"[yellow]changed[/] {entry['scene']}:{entry['integrator']}: {'; '.join(entry['flags'])}")
+    failed = [r for r in results if not r.passed]
+    console.print(f"{len(results) - len(failed)} of {len(results)} image comparisons pass, in {seconds:.1f} s. "
+                  f"Report: {run_dir / 'report.html'}")
+    for r in failed:
+        from harness.report.image_html import reproduce_command
+        console.print(f"[red]FAIL[/] {r.case.key}{' — ' + r.note if r.note else ''}: {reproduce_command(r)}")
     return not failed, payload
 
 
-def _index_html(sections: dict[str, tuple[bool, str]]) -> str:
-    from harness.report.style import CSS
-    rows = "".join(f'<tr><td><a href="{href}">{name}</a></td><td class="{"pass" if ok else "fail"}">'
-                   f'{"PASS" if ok else "FAIL"}</td></tr>' for name, (ok, href) in sections.items())
-    return (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>mcval report</title>"
-            f"<style>{CSS}</style></head><body><h1>mcval validation report</h1>"
-            f"<table><tr><th>section</th><th>verdict</th></tr>{rows}</table></body></html>")
+def _references(args) -> int:
+    from harness.engines.mitsuba import MitsubaEngine
+    from harness.image_suite import select_cases
+    from harness.references import render_reference, write_reference
+
+    cases = select_cases(args.scenes)
+    mitsuba = MitsubaEngine(args.variant)
+    with _progress("references") as progress:
+        task = progress.add_task("", total=len(cases))
+        for case in cases:
+            progress.update(task, description=case.key)
+            path = write_reference(case, mitsuba, render_reference(case, mitsuba))
+            progress.console.print(f"wrote {path}")
+            progress.update(task, advance=1)
+    return 0
 
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
+    from harness.image_suite import select_cases
     from harness.warp_suite import select
     try:
-        specs = select(getattr(args, "only", None))
+        if args.command == "references":
+            return _references(args)
+        specs = select(getattr(args, "only", None)) if args.command in ("warps", "validate") else []
+        cases = select_cases(args.scenes) if args.command in ("images", "validate") else []
+        # Resolved now: `latest` moves to the new run below.
+        baseline = getattr(args, "baseline", None) or ((args.out / "latest").resolve() / "results.json")
         run_dir = new_run_dir(args.out)
-        ok, payload = _run_warps(args, specs, run_dir)
-        payload = {"run": run_dir.name, "pass": ok, **{k: v for k, v in payload.items() if k != "pass"}}
+        payload: dict = {"run": run_dir.name}
+        ok = True
+        warps = None
+        if specs:
+            warps_ok, warps = _run_warps(args, specs, run_dir)
+            ok &= warps_ok
+            payload.update(warps=warps["warps"], warp_level=warps["level"])
+        if cases:
+            images_ok, images = _run_images(args, cases, run_dir, warps, baseline)
+            ok &= images_ok
+            payload.update(images)
+        elif warps is not None:
+            write_atomic(run_dir / "report.html",
+                         f'<!DOCTYPE html><meta charset="utf-8"><a href="warps.html">Warp conformance</a>')
+        payload["pass"] = ok
         write_json(run_dir / "results.json", payload)
-        if args.command == "warps" and args.json:
+        if getattr(args, "json", None):
             write_json(args.json, payload)
-        if args.command == "validate":
-            write_atomic(run_dir / "report.html", _index_html({"Warp conformance": (ok, "warps.html")}))
-        console.print(f"Results: {run_dir / 'results.json'}")
+        console.print(f"Results: {run_dir / 'results.json'} — {'PASS' if ok else 'FAIL'}")
         return 0 if ok else 1
     except (RuntimeError, ValueError) as e:
         err.print(f"[bold red]error:[/] {e}")

@@ -20,3 +20,10 @@ UNIT_TOLERANCE = 1e-5
 def sidak_level(alpha: float, n_tests: int) -> float:
     """Per-test significance that keeps the family-wise false-alarm rate at `alpha` over `n_tests`."""
     return 1.0 - (1.0 - alpha) ** (1.0 / max(n_tests, 1))
+
+#: Independent batches each engine renders for an image comparison.
+IMAGE_BATCHES = 8
+#: Side of the square tiles of the middle test scale, in pixels.
+TILE_SIZE = 8
+#: Differences below this fraction of a value are float32 rounding, not bias (a floor on the standard error).
+ROUNDING_TOLERANCE = 1e-5

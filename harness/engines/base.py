@@ -23,16 +23,44 @@ class WarpFunctions:
     native_run: Callable[[int], Callable[[], Any]]
 
 
+@dataclass
+class RenderResult:
+    """K independent renders of one scene by one engine, and what they cost.
+
+    batches: (K, H, W, 3) float32, linear RGB, each batch with `spp` samples per pixel.
+    seconds: wall-clock times by phase ("load", "build" or "jit", "render", "total"); what each
+    includes is the engine's to say in its docstring.
+    """
+
+    engine: str
+    scene: str
+    integrator: str
+    spp: int
+    seed: int
+    batches: np.ndarray
+    seconds: dict[str, float]
+
+    @property
+    def mean(self) -> np.ndarray:
+        return self.batches.mean(axis=0)
+
+
 class Engine(ABC):
     """A renderer the harness can drive."""
 
     #: Short name used in reports and results.json.
     name: str
 
-    @abstractmethod
+    def render(self, scene: str, integrator: str, spp: int, batches: int, seed: int,
+               params: dict[str, str] | None = None) -> RenderResult:
+        """Render `scene` with our integrator `integrator` (normals, simple, ao), `batches`
+        independent times at `spp` samples per pixel; `params` override the scene's <default>s."""
+        raise NotImplementedError(f"engine {self.name} does not render images")
+
     def warp(self, name: str, alpha: float | None = None) -> WarpFunctions | None:
         """The warp called `name` (Mitsuba's snake-case name, e.g. "square_to_tent"),
         with its parameter if it has one; None if this engine lacks that distribution."""
+        return None
 
     @abstractmethod
     def version(self) -> str:

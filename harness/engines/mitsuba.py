@@ -3,10 +3,12 @@ from __future__ import annotations
 
 import glob
 import os
+import time
 
 import numpy as np
 
-from harness.engines.base import Engine, WarpFunctions
+from harness.engines.base import Engine, RenderResult, WarpFunctions
+from harness.engines.mitsuba_scene import load_scene
 
 DEFAULT_VARIANT = "llvm_ad_rgb"
 
@@ -39,8 +41,6 @@ class MitsubaEngine(Engine):
     name = "mitsuba"
 
     def __init__(self, variant: str = DEFAULT_VARIANT) -> None:
-        if not variant.startswith("llvm"):
-            raise ValueError("warps need a vectorised Mitsuba variant (llvm_*): scalar ones take one sample per call")
         self.variant = variant
         self._mi = load_mitsuba(variant)
         import drjit
@@ -51,6 +51,8 @@ class MitsubaEngine(Engine):
 
     def warp(self, name: str, alpha: float | None = None) -> WarpFunctions | None:
         mi, dr = self._mi, self._dr
+        if not self.variant.startswith("llvm"):
+            return None  # scalar variants take one sample per call: no array warps
         sample_fn = getattr(mi.warp, name, None)
         pdf_fn = getattr(mi.warp, name + "_pdf", None)
         if sample_fn is None or pdf_fn is None:
@@ -78,3 +80,28 @@ class MitsubaEngine(Engine):
             return run
 
         return WarpFunctions(sample, pdf, native_run)
+
+    def render(self, scene: str, integrator: str, spp: int, batches: int, seed: int,
+               params: dict[str, str] | None = None) -> RenderResult:
+        """Seconds: "load" (parse, build the scene and its BVH), "first" (the first batch, with the
+        JIT compilation of an llvm variant), "render" (all batches), "total"."""
+        mi = self._mi
+        start = time.perf_counter()
+        loaded = load_scene(scene, integrator, **(params or {}))
+        seconds = {"load": time.perf_counter() - start}
+        images = []
+        render_start = time.perf_counter()
+        for k in range(batches):
+            batch_start = time.perf_counter()
+            image = np.array(mi.render(loaded, spp=spp, seed=mitsuba_seed(seed, k)), dtype=np.float32)
+            images.append(image[..., :3])
+            if k == 0:
+                seconds["first"] = time.perf_counter() - batch_start
+        seconds["render"] = time.perf_counter() - render_start
+        seconds["total"] = time.perf_counter() - start
+        return RenderResult(self.name, str(scene), integrator, spp, seed, np.stack(images), seconds)
+
+
+def mitsuba_seed(seed: int, batch: int) -> int:
+    """A distinct 32-bit Mitsuba seed per (seed, batch)."""
+    return (seed * 1_000_003 + batch * 7919 + 1) % 2**32

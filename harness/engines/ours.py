@@ -1,9 +1,11 @@
 """Our renderer, through its Python module `mcrender` (built by CMake, see the Makefile)."""
 from __future__ import annotations
 
+import time
+
 import numpy as np
 
-from harness.engines.base import Engine, WarpFunctions
+from harness.engines.base import Engine, RenderResult, WarpFunctions
 
 
 def _load_module():
@@ -44,3 +46,15 @@ class OurEngine(Engine):
             return lambda: sample_fn(u, *extra)
 
         return WarpFunctions(sample, pdf, native_run)
+
+    def render(self, scene: str, integrator: str, spp: int, batches: int, seed: int,
+               params: dict[str, str] | None = None) -> RenderResult:
+        """Seconds: "load" (parse the scene, read meshes), "build" (BVH), "render" (all batches), "total"."""
+        start = time.perf_counter()
+        out = self._m.render(str(scene), spp=spp, seed=seed, batches=batches, integrator=integrator,
+                             params={k: str(v) for k, v in (params or {}).items()})
+        total = time.perf_counter() - start
+        stats = out["stats"]
+        seconds = {"load": stats["load_seconds"], "build": stats["bvh_seconds"],
+                   "render": stats["render_seconds"], "total": total}
+        return RenderResult(self.name, str(scene), integrator, spp, seed, np.asarray(out["batches"]), seconds)

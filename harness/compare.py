@@ -1,0 +1,155 @@
+"""Comparing two engines' batch renders: Welch's t-test at three scales, and error metrics.
+
+Public API::
+
+    result = compare_batches(test, reference)   # (K, H, W, 3) arrays each
+    result.passed, result.scales, result.metrics
+
+Each engine renders K independent batches, so any statistic (a pixel, a tile
+mean, the image mean) is a mean of K independent values per engine, and Welch's
+t-test on them is valid whatever the filter or sampler correlation (Jung,
+Hanika, Dachsbacher, JCGT 2020). The false-alarm rate `alpha` is split evenly
+(Sidak) over the three scales, then over the tests within a scale, so a global
+bias (a missing 1/pi) and a local one (a shadow in the wrong place) are both
+caught. A render can be reduced to its `Summary` first (what references store).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from harness.metrics import image_metrics
+from harness.stats import ROUNDING_TOLERANCE, SIGNIFICANCE, TILE_SIZE, sidak_level
+from harness.welch import BatchStats, critical_t, welch_p_values
+
+SCALES = ("pixel", "tile", "image")
+
+
+@dataclass
+class Summary:
+    """What the tests need of K batches: per-scale means and variances, and the mean image."""
+
+    pixel: BatchStats     # (H, W, 3)
+    tile: BatchStats      # (H/tile, W/tile, 3)
+    image: BatchStats     # (3,)
+    tile_size: int
+
+    @property
+    def mean_image(self) -> np.ndarray:
+        return self.pixel.mean
+
+
+def tile_means(x: np.ndarray, tile: int) -> np.ndarray:
+    """(K, H, W, C) -> (K, ceil(H/tile), ceil(W/tile), C) means; edge tiles average what they hold."""
+    k, h, w, c = x.shape
+    th, tw = -(-h // tile), -(-w // tile)
+    padded = np.full((k, th * tile, tw * tile, c), np.nan)
+    padded[:, :h, :w] = x
+    return np.nanmean(padded.reshape(k, th, tile, tw, tile, c), axis=(2, 4))
+
+
+def summarize(batches: np.ndarray, tile: int = TILE_SIZE) -> Summary:
+    """Summary of (K, H, W, 3) batches (K >= 2)."""
+    b = np.asarray(batches, np.float64)
+    if b.ndim != 4 or b.shape[-1] != 3:
+        raise ValueError(f"expected (K, H, W, 3) batches, got shape {b.shape}")
+    if b.shape[0] < 2:
+        raise ValueError("at least 2 batches are needed to estimate a variance")
+    return Summary(BatchStats.of(b), BatchStats.of(tile_means(b, tile)), BatchStats.of(b.mean(axis=(1, 2))), tile)
+
+
+@dataclass
+class ScaleTest:
+    """Every test at one scale: how many, at what level, the smallest p-value and where."""
+
+    scale: str
+    tests: int
+    level: float
+    min_p: float
+    failures: int
+    #: (row, column) of the smallest p-value, in pixels (a tile's top-left corner at the tile scale).
+    worst: tuple[int, int]
+    #: p-values over the image, min over channels, at pixel resolution.
+    p_map: np.ndarray = field(repr=False)
+
+    @property
+    def passed(self) -> bool:
+        return self.failures == 0
+
+    def to_json(self) -> dict:
+        return {"scale": self.scale, "tests": self.tests, "level": self.level, "min_p": self.min_p,
+                "failures": self.failures, "worst": list(self.worst), "pass": self.passed}
+
+
+@dataclass
+class Comparison:
+    """The verdict of one test-vs-reference comparison."""
+
+    scales: list[ScaleTest]
+    metrics: dict[str, float]
+    #: Smallest bias of the image mean, relative to the mean magnitude, detected half of the time.
+    detectable_bias: float
+    batches: tuple[int, int]
+
+    @property
+    def passed(self) -> bool:
+        return all(s.passed for s in self.scales)
+
+    @property
+    def failed_scales(self) -> list[str]:
+        return [s.scale for s in self.scales if not s.passed]
+
+    def to_json(self) -> dict:
+        return {"pass": self.passed, "tests": [s.to_json() for s in self.scales], "metrics": self.metrics,
+                "detectable_bias": self.detectable_bias, "batches": list(self.batches)}
+
+
+def _scale_test(name: str, a: BatchStats, b: BatchStats, level_family: float, shape: tuple[int, int],
+                upsample: int, scale: float, rounding: float) -> ScaleTest:
+    p, _, _ = welch_p_values(a, b, scale, rounding)
+    level = sidak_level(level_family, p.size)
+    pmin = p.min(axis=-1) if p.ndim == 3 else np.full((1, 1), p.min())
+    idx = np.unravel_index(int(np.argmin(pmin)), pmin.shape)
+    full = np.kron(pmin, np.ones((upsample, upsample)))[: shape[0], : shape[1]]
+    if full.shape != shape:
+        full = np.full(shape, float(p.min()))
+    return ScaleTest(name, int(p.size), level, float(p.min()), int(np.count_nonzero(p < level)),
+                     (int(idx[0]) * upsample, int(idx[1]) * upsample), full)
+
+
+def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFICANCE, signed: bool = False,
+                      rounding: float = ROUNDING_TOLERANCE) -> Comparison:
+    """compare_batches on summaries (see there)."""
+    if test.pixel.mean.shape != reference.pixel.mean.shape or test.tile_size != reference.tile_size:
+        raise ValueError(f"images differ in size: {test.pixel.mean.shape} and {reference.pixel.mean.shape}")
+    h, w = test.pixel.mean.shape[:2]
+    per_scale = sidak_level(alpha, len(SCALES))
+    magnitude = float(np.mean(np.abs(reference.pixel.mean)))
+    scales = [
+        _scale_test("pixel", test.pixel, reference.pixel, per_scale, (h, w), 1, magnitude, rounding),
+        _scale_test("tile", test.tile, reference.tile, per_scale, (h, w), test.tile_size, magnitude, rounding),
+        _scale_test("image", test.image, reference.image, per_scale, (h, w), max(h, w), magnitude, rounding),
+    ]
+    # The image-mean bias found half of the time: |t| reaches the critical value when bias = t_crit * se.
+    _, _, se = welch_p_values(test.image, reference.image, magnitude, rounding)
+    dof = test.image.k + reference.image.k - 2
+    denominator = max(magnitude, 1e-12)
+    detectable = float(np.max(critical_t(scales[2].level, dof) * se) / denominator)
+    metrics = image_metrics(test.mean_image, reference.mean_image, signed=signed)
+    return Comparison(scales, metrics, detectable, (test.image.k, reference.image.k))
+
+
+def compare_batches(test: np.ndarray, reference: np.ndarray, alpha: float = SIGNIFICANCE,
+                    tile: int = TILE_SIZE, signed: bool = False,
+                    rounding: float = ROUNDING_TOLERANCE) -> Comparison:
+    """Compare (K1, H, W, 3) test batches against (K2, H, W, 3) reference batches.
+
+    Fails if any scale rejects at the false-alarm rate `alpha`. `signed` marks images
+    with negative values (normals), for the metrics; `rounding` is the relative
+    precision of the values (float32 by default).
+    """
+    t, r = np.asarray(test), np.asarray(reference)
+    if t.shape[1:] != r.shape[1:]:
+        raise ValueError(f"expected two (K, H, W, 3) arrays of one image size, got {t.shape} and {r.shape}")
+    return compare_summaries(summarize(t, tile), summarize(r, tile), alpha, signed, rounding)

@@ -1,0 +1,22 @@
+"""What an image run leaves behind: report.html, junit.xml and the images part of results.json."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from harness.image_run import ImageResult
+from harness.regression import compare_runs, load_baseline
+from harness.report.image_html import report_html
+from harness.report.junit import junit_xml
+from harness.results import write_atomic
+
+
+def write_image_outputs(run_dir: Path, results: list[ImageResult], alpha: float, warps: dict | None,
+                        meta: dict, baseline_path: Path | None) -> dict:
+    """Writes report.html and junit.xml; returns the results.json fields (images, regression)."""
+    images = [r.to_json() for r in results]
+    baseline = load_baseline(baseline_path) if baseline_path else None
+    regression = compare_runs(images, baseline) if baseline else None
+    baseline_name = baseline.get("run") if baseline else None
+    write_atomic(run_dir / "report.html", report_html(results, alpha, warps, meta, regression, baseline_name))
+    write_atomic(run_dir / "junit.xml", junit_xml(results, warps["warps"] if warps else None))
+    return {"images": images, "image_alpha": alpha, "regression": regression, "baseline": baseline_name}

@@ -1,0 +1,50 @@
+"""What changed since an earlier run: verdicts, image means and times, flagged only beyond noise."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+#: A change of the image mean is flagged beyond this many standard errors (both runs' combined).
+MEAN_SIGMAS = 4.0
+#: A time is flagged when it changes by more than this factor (and by more than TIME_FLOOR seconds):
+#: this machine is shared and noisy.
+TIME_FACTOR = 1.5
+TIME_FLOOR = 0.05
+
+
+def load_baseline(path: Path) -> dict | None:
+    """The results.json of an earlier run, or None if there is none or it has no images."""
+    try:
+        data = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return None
+    return data if data.get("images") else None
+
+
+def compare_runs(current: list[dict], baseline: dict) -> list[dict]:
+    """Per (integrator, scene) of the current run: the flags raised against the baseline."""
+    before = {(e["integrator"], e["scene"]): e for e in baseline["images"]}
+    out = []
+    for e in current:
+        old = before.get((e["integrator"], e["scene"]))
+        flags = []
+        if old is None:
+            flags.append("new case")
+        else:
+            if old["pass"] != e["pass"]:
+                flags.append(f"verdict {'PASS' if old['pass'] else 'FAIL'} -> {'PASS' if e['pass'] else 'FAIL'}")
+            m0, m1 = np.array(old["image_mean"]), np.array(e["image_mean"])
+            se = np.sqrt(np.array(old["image_mean_se"]) ** 2 + np.array(e["image_mean_se"]) ** 2)
+            z = np.abs(m1 - m0) / np.maximum(se, 1e-12)
+            if np.any(z > MEAN_SIGMAS) and np.any(m1 != m0):
+                flags.append(f"image mean moved {float(np.max(z)):.1f} standard errors "
+                             f"({float(np.mean(m1) / max(np.mean(m0), 1e-12)) - 1:+.2%})")
+            t0, t1 = old["seconds"]["mcval"]["total"], e["seconds"]["mcval"]["total"]
+            if abs(t1 - t0) > TIME_FLOOR and not (1 / TIME_FACTOR < t1 / max(t0, 1e-9) < TIME_FACTOR):
+                flags.append(f"time {t0:.2f}s -> {t1:.2f}s")
+        out.append({"integrator": e["integrator"], "scene": e["scene"], "flags": flags,
+                    "relmse_before": None if old is None else old["metrics"]["relmse"],
+                    "relmse_now": e["metrics"]["relmse"]})
+    return out

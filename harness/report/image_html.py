@@ -1,0 +1,100 @@
+"""The main report page: warps summary, regression since the last run, and every image comparison."""
+from __future__ import annotations
+
+import base64
+import html
+
+from harness.image_run import ImageResult
+from harness.image_suite import INTEGRATORS
+from harness.report.image_plots import comparison_png
+from harness.report.style import CSS
+
+
+def _esc(x) -> str:
+    return html.escape(str(x))
+
+
+def _verdict(ok: bool) -> str:
+    return f'<span class="{"pass" if ok else "fail"}">{"PASS" if ok else "FAIL"}</span>'
+
+
+def reproduce_command(result: ImageResult) -> str:
+    return f"python -m harness images --only {result.case.key} --seed {result.run_seed}"
+
+
+def _entry(r: ImageResult) -> str:
+    parts = [f'<h3 id="{_esc(r.case.key)}">{_esc(r.case.scene)} — {_esc(r.case.integrator)}: {_verdict(r.passed)}</h3>']
+    if r.note:
+        parts.append(f'<p class="fail">{_esc(r.note)}</p>')
+    if not r.passed:
+        parts.append(f"<p>Reproduce: <code>{_esc(reproduce_command(r))}</code></p>")
+    ours = r.ours.mean
+    for name, comparison in r.comparisons.items():
+        ref = r.references[name]
+        png = comparison_png(ours, ref.summary.mean_image, comparison, r.case.integrator == "normals",
+                             "Mitsuba" if name == "mitsuba" else "closed form")
+        rows = "".join(f"<tr><td>{s.scale}</td><td>{s.tests}</td><td>{s.level:.2g}</td><td>{s.min_p:.2g}</td>"
+                       f"<td>{s.failures}</td><td>{s.worst}</td><td>{_verdict(s.passed)}</td></tr>"
+                       for s in comparison.scales)
+        metrics = "".join(f"<tr><td>{_esc(k)}</td><td>{v:.4g}</td></tr>" for k, v in comparison.metrics.items())
+        parts.append(
+            f"<p class='meta'>against {_esc(name)} ({ref.spp} spp × {ref.summary.image.k} batches"
+            f"{', ' + _esc(r.reference_source) if name == 'mitsuba' else ''}); ours {r.ours.spp} spp × "
+            f"{len(r.ours.batches)} batches, seed {r.seed}; smallest detectable bias of the image mean "
+            f"{comparison.detectable_bias:.2%}</p>"
+            f'<img alt="{_esc(r.case.key)} against {_esc(name)}" src="data:image/png;base64,'
+            f'{base64.b64encode(png).decode()}">'
+            f"<div style='display:flex;gap:2em'><table><tr><th>scale</th><th>tests</th><th>level</th><th>min p</th>"
+            f"<th>fails</th><th>worst (row, col)</th><th></th></tr>{rows}</table>"
+            f"<table><tr><th>metric</th><th>value</th></tr>{metrics}</table>"
+            f"<table><tr><th>seconds</th><th>ours</th><th>{_esc(name)}</th></tr>"
+            + "".join(f"<tr><td>{_esc(k)}</td><td>{r.ours.seconds.get(k, float('nan')):.3f}</td>"
+                      f"<td>{ref.seconds.get(k, float('nan')):.3f}</td></tr>"
+                      for k in ("load", "build", "first", "render", "total"))
+            + "</table></div>")
+    return "".join(parts)
+
+
+def _regression_html(regression: list[dict] | None, baseline: str | None) -> str:
+    if regression is None:
+        return "<p class='meta'>No earlier run to compare with.</p>"
+    flagged = [r for r in regression if r["flags"]]
+    if not flagged:
+        return f"<p>Since {_esc(baseline)}: no change beyond noise in verdict, image mean or time.</p>"
+    rows = "".join(f"<tr><td>{_esc(r['scene'])}</td><td>{_esc(r['integrator'])}</td>"
+                   f"<td class='fail'>{_esc('; '.join(r['flags']))}</td></tr>" for r in flagged)
+    return (f"<p>Since {_esc(baseline)}, changes beyond noise:</p>"
+            f"<table><tr><th>scene</th><th>integrator</th><th>change</th></tr>{rows}</table>")
+
+
+def report_html(results: list[ImageResult], alpha: float, warps: dict | None, meta: dict,
+                regression: list[dict] | None, baseline: str | None) -> str:
+    """The whole page. Within each integrator's section, failures come first."""
+    failed = sum(not r.passed for r in results)
+    summary = [f"<li>Images: {len(results) - failed} of {len(results)} comparisons pass "
+               f"(per-comparison α {alpha:.2g}, family-wise 0.01 over the run)</li>"]
+    if warps is not None:
+        n_pass = sum(w["pass"] for w in warps["warps"])
+        summary.append(f'<li><a href="warps.html">Warp conformance</a>: {n_pass} of {len(warps["warps"])} warps '
+                       f'pass {_verdict(warps["pass"])}</li>')
+    summary += [f"<li>{_esc(k)}: {_esc(v)}</li>" for k, v in meta.items()]
+    sections = []
+    for integrator in INTEGRATORS:
+        mine = sorted((r for r in results if r.case.integrator == integrator), key=lambda r: r.passed)
+        if not mine:
+            continue
+        n_ok = sum(r.passed for r in mine)
+        links = " ".join(f'<a href="#{_esc(r.case.key)}">{_esc(r.case.scene)}</a> {_verdict(r.passed)}' for r in mine)
+        sections.append(f"<h2>{_esc(integrator)}: {n_ok} of {len(mine)} scenes pass</h2><p>{links}</p>"
+                        + "".join(_entry(r) for r in mine))
+    return f"""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>mcval report</title><style>{CSS}</style></head>
+<body><h1>mcval validation report: {_verdict(failed == 0 and (warps is None or warps["pass"]))}</h1>
+<ul class="meta">{''.join(summary)}</ul>
+<h2>Regression</h2>{_regression_html(regression, baseline)}
+<p>Each engine renders independent batches; Welch's t-test compares them per pixel, per 8×8 tile and for
+the whole image. The p-value map shows log10(p / level) at the pixel and tile scales: red pixels are where a
+difference is beyond noise.</p>
+{''.join(sections)}
+</body></html>
+"""

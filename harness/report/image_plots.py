@@ -1,0 +1,56 @@
+"""The row of pictures for one comparison: ours, Mitsuba, signed difference, p-value map, FLIP map."""
+from __future__ import annotations
+
+import io
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from harness.compare import Comparison  # noqa: E402
+from harness.metrics import flip_map  # noqa: E402
+
+
+def display(img: np.ndarray, signed: bool) -> np.ndarray:
+    """What a person should see: normals as (n + 1) / 2, radiance clipped and sRGB-encoded."""
+    if signed:
+        return np.clip((img + 1) / 2, 0, 1)
+    x = np.clip(img, 0, 1)
+    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
+
+
+def rejection_map(comparison: Comparison) -> np.ndarray:
+    """log10(p / level) at the pixel and tile scales, whichever is lower: below 0 is rejected."""
+    maps = [np.log10(np.maximum(s.p_map, 1e-300) / s.level) for s in comparison.scales if s.scale != "image"]
+    return np.minimum(*maps)
+
+
+def comparison_png(ours: np.ndarray, reference: np.ndarray, comparison: Comparison, signed: bool,
+                   reference_name: str = "Mitsuba") -> bytes:
+    """PNG of five panels, each with its own scale bar where it has one."""
+    diff = (ours - reference).mean(axis=-1)
+    limit = float(np.percentile(np.abs(diff), 99.5)) or 1e-6
+    flip, _ = flip_map(ours, reference, signed)
+    fig, axes = plt.subplots(1, 5, figsize=(13, 2.9), constrained_layout=True)
+    axes[0].imshow(display(ours, signed), interpolation="nearest")
+    axes[0].set_title("ours", fontsize=9)
+    axes[1].imshow(display(reference, signed), interpolation="nearest")
+    axes[1].set_title(reference_name, fontsize=9)
+    im = axes[2].imshow(diff, cmap="RdBu_r", vmin=-limit, vmax=limit, interpolation="nearest")
+    axes[2].set_title("ours − reference (mean of RGB)", fontsize=9)
+    fig.colorbar(im, ax=axes[2], shrink=0.8)
+    im = axes[3].imshow(rejection_map(comparison), cmap="RdYlGn", vmin=-3, vmax=3, interpolation="nearest")
+    axes[3].set_title("log10(p / level): red rejects", fontsize=9)
+    fig.colorbar(im, ax=axes[3], shrink=0.8)
+    im = axes[4].imshow(flip, cmap="magma", vmin=0, vmax=1, interpolation="nearest")
+    axes[4].set_title("FLIP", fontsize=9)
+    fig.colorbar(im, ax=axes[4], shrink=0.8)
+    for ax in axes:
+        ax.set_xticks([])
+        ax.set_yticks([])
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=72)
+    plt.close(fig)
+    return buf.getvalue()

@@ -1,0 +1,33 @@
+"""JUnit XML, so CI systems show one test case per warp and per (scene, integrator)."""
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+
+from harness.image_run import ImageResult
+
+
+def junit_xml(images: list[ImageResult], warps: list[dict] | None) -> str:
+    """A <testsuites> document: suite "warps" (if given) and one suite per integrator."""
+    root = ET.Element("testsuites", name="mcval")
+
+    def suite(name: str, cases: list[tuple[str, bool, str, float]]) -> None:
+        el = ET.SubElement(root, "testsuite", name=name, tests=str(len(cases)),
+                           failures=str(sum(not ok for _, ok, _, _ in cases)))
+        for case_name, ok, message, seconds in cases:
+            tc = ET.SubElement(el, "testcase", classname=f"mcval.{name}", name=case_name, time=f"{seconds:.3f}")
+            if not ok:
+                ET.SubElement(tc, "failure", message=message).text = message
+
+    if warps is not None:
+        suite("warps", [(w["warp"] + (f" {w['params']}" if w["params"] else ""), w["pass"],
+                         "; ".join(f"{k}: {c['summary']}" for k, c in w["checks"].items() if c["pass"] is False),
+                         w["seconds"]) for w in warps])
+    for integrator in sorted({r.case.integrator for r in images}):
+        cases = []
+        for r in (r for r in images if r.case.integrator == integrator):
+            failed = {name: c.failed_scales for name, c in r.comparisons.items() if not c.passed}
+            message = "; ".join(f"against {n}: {', '.join(s)} scale(s) reject" for n, s in failed.items())
+            cases.append((r.case.scene, r.passed, (r.note + "; " if r.note else "") + message,
+                          r.ours.seconds.get("total", 0.0)))
+        suite(integrator, cases)
+    return ET.tostring(root, encoding="unicode", xml_declaration=True)

@@ -1,0 +1,94 @@
+"""The image run end to end: references with provenance, results.json, junit.xml, and a report
+that renders in headless Chromium."""
+import json
+import shutil
+import subprocess
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+
+import harness.references as refs
+from harness.cli import main
+from harness.image_suite import ImageCase, select_cases
+
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+
+
+def test_references_are_reused_only_while_their_provenance_matches(mitsuba, tmp_path, monkeypatch):
+    monkeypatch.setattr(refs, "REFERENCES_DIR", tmp_path)
+    case = ImageCase("plane_point", "normals")
+    fresh = refs.render_reference(case, mitsuba)
+    refs.write_reference(case, mitsuba, fresh)
+    stored, why = refs.load_reference(case, mitsuba)
+    assert why == "stored reference"
+    assert np.allclose(stored.summary.pixel.mean, fresh.summary.pixel.mean)
+    assert np.allclose(stored.summary.tile.var_of_mean, fresh.summary.tile.var_of_mean)
+    provenance = json.loads((tmp_path / "plane_point" / "normals.json").read_text())["provenance"]
+    assert {"scene_sha256", "engine", "spp", "batches", "seed"} <= set(provenance)
+    monkeypatch.setattr(refs, "scene_hash", lambda path: "edited")
+    stale, why = refs.load_reference(case, mitsuba)
+    assert stale is None and "scene_sha256 changed" in why
+
+
+def test_select_cases():
+    assert [c.key for c in select_cases(["cornell:ao"])] == ["cornell:ao"]
+    assert {c.integrator for c in select_cases(["plane_point"])} == {"normals", "simple", "ao"}
+    with pytest.raises(ValueError, match="unknown scene"):
+        select_cases(["atlantis"])
+
+
+@pytest.fixture(scope="module")
+def image_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("results")
+    code = main(["images", "--only", "plane_point", "cornell:normals", "--out", str(out)])
+    return code, (out / "latest").resolve()
+
+
+def test_images_command_writes_results_and_junit(image_run):
+    code, run = image_run
+    assert code == 0
+    data = json.loads((run / "results.json").read_text())
+    assert data["pass"] is True
+    entries = {(e["scene"], e["integrator"]): e for e in data["images"]}
+    assert set(entries) == {("plane_point", i) for i in ("normals", "simple", "ao")} | {("cornell", "normals")}
+    e = entries[("plane_point", "simple")]
+    assert {"integrator", "scene", "pass", "tests", "metrics", "seconds"} <= set(e)
+    assert set(e["tests"]) == {"mitsuba", "analytic"}  # the closed form is a second reference
+    assert {t["scale"] for t in e["tests"]["mitsuba"]["tests"]} == {"pixel", "tile", "image"}
+    assert {"mse", "rmse", "relmse", "smape", "psnr", "ssim", "flip_mean", "flip_p95", "ciede2000_mean",
+            "mean_ratio"} <= set(e["metrics"])
+    suites = ET.parse(run / "junit.xml").getroot()
+    assert sum(int(s.get("tests")) for s in suites) == 4
+    assert not any(s.get("failures") != "0" for s in suites)
+
+
+def test_a_second_run_compares_itself_with_the_first(image_run, tmp_path):
+    code, run = image_run
+    out = run.parent
+    assert main(["images", "--only", "cornell:normals", "--out", str(out)]) == 0
+    data = json.loads((out / "latest" / "results.json").read_text())
+    assert data["baseline"] == run.name
+    assert data["regression"][0]["flags"] == []  # same code, same seed: nothing moved
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="needs Debian's chromium (make test installs it)")
+def test_report_renders_in_headless_chromium(image_run, tmp_path):
+    _, run = image_run
+    flags = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+             "--disable-background-networking", "--disable-component-update", "--disable-sync",
+             f"--user-data-dir={tmp_path / 'profile'}"]
+    page = (run / "report.html").resolve().as_uri()
+    shot = tmp_path / "report.png"
+    subprocess.run([CHROMIUM, *flags, "--window-size=1280,1600", f"--screenshot={shot}", page],
+                   capture_output=True, timeout=120, check=True)
+    dom = subprocess.run([CHROMIUM, *flags, "--dump-dom", page], capture_output=True, text=True, timeout=120,
+                         check=True).stdout
+    assert "mcval validation report" in dom and dom.count("<img") >= 5
+    from PIL import Image
+    pixels = np.asarray(Image.open(shot).convert("RGB"), dtype=float)
+    assert pixels.shape[:2] == (1600, 1280)
+    assert pixels.std() > 20  # not a blank page
+    # The PASS badges' green is on the page.
+    green = (np.abs(pixels - [227, 246, 227]).sum(axis=-1) < 10).mean()
+    assert green > 1e-4
