@@ -124,8 +124,12 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
     meta = {"engine": ours.version(), "reference": mitsuba.version(), "seed": args.seed,
             "image seconds": round(seconds, 1)}
     payload = write_image_outputs(run_dir, results, alpha, warps, meta, baseline)
-    for entry in payload["regression"] or []:
-        if entry["flags"]:
+    regression = payload["regression"] or []
+    new = [e for e in regression if e["flags"] == ["new case"]]
+    if new:
+        console.print(f"{len(new)} case(s) new since {payload['baseline']}")
+    for entry in regression:
+        if entry["flags"] and entry not in new:
             console.print(f"[yellow]changed[/] {entry['scene']}:{entry['integrator']}: {'; '.join(entry['flags'])}")
     failed = [r for r in results if not r.passed]
     console.print(f"{len(results) - len(failed)} of {len(results)} image comparisons pass, in {seconds:.1f} s. "

@@ -49,8 +49,14 @@ class MitsubaEngine(Engine):
     def version(self) -> str:
         return f"mitsuba {self._mi.__version__} ({self.variant}), drjit {self._dr.__version__}"
 
+    def _activate(self):
+        """Mitsuba's variant is process-wide: make sure ours is the one in force."""
+        if self._mi.variant() != self.variant:
+            self._mi.set_variant(self.variant)
+        return self._mi
+
     def warp(self, name: str, alpha: float | None = None) -> WarpFunctions | None:
-        mi, dr = self._mi, self._dr
+        mi, dr = self._activate(), self._dr
         if not self.variant.startswith("llvm"):
             return None  # scalar variants take one sample per call: no array warps
         sample_fn = getattr(mi.warp, name, None)
@@ -60,10 +66,12 @@ class MitsubaEngine(Engine):
         extra = () if alpha is None else (float(alpha),)
 
         def sample(u: np.ndarray) -> np.ndarray:
+            self._activate()
             out = sample_fn(mi.Point2f(np.asarray(u, np.float32).T), *extra)
             return np.array(out, dtype=np.float64).T
 
         def pdf(p: np.ndarray) -> np.ndarray:
+            self._activate()
             p = np.asarray(p, np.float32).T
             arg = mi.Point2f(p) if p.shape[0] == 2 else mi.Vector3f(p)
             values = np.array(pdf_fn(arg, *extra), dtype=np.float64).reshape(-1)
@@ -71,6 +79,7 @@ class MitsubaEngine(Engine):
             return np.broadcast_to(values, (p.shape[1],)).copy()
 
         def native_run(n: int):
+            self._activate()
             u = mi.Point2f(np.random.default_rng(1).random((2, n), dtype=np.float32))
             dr.eval(u)
 
@@ -85,7 +94,7 @@ class MitsubaEngine(Engine):
                params: dict[str, str] | None = None) -> RenderResult:
         """Seconds: "load" (parse, build the scene and its BVH), "first" (the first batch, with the
         JIT compilation of an llvm variant), "render" (all batches), "total"."""
-        mi = self._mi
+        mi = self._activate()
         start = time.perf_counter()
         loaded = load_scene(scene, integrator, **(params or {}))
         seconds = {"load": time.perf_counter() - start}

@@ -36,7 +36,8 @@ inline bool traceCamera(const EmbreeScene &embree, const Ray &ray, Hit &hit, Ray
     return embree.intersect(ray, hit);
 }
 
-/// A ray leaving `hit` in direction d without re-hitting its surface.
+/// A ray leaving `hit` in direction d without re-hitting its surface: its origin moves off the
+/// surface, along the geometric normal, by an offset that scales with the position's magnitude.
 inline Ray spawnRay(const Hit &hit, const Vec3f &d, float tfar) {
     const Vec3f side = dot(hit.ng, d) >= 0.f ? hit.ng : -hit.ng;
     Ray r;
