@@ -25,6 +25,8 @@ from harness.stats import ROUNDING_TOLERANCE, SIGNIFICANCE, TILE_SIZE, sidak_lev
 from harness.welch import BatchStats, critical_t, welch_p_values
 
 SCALES = ("pixel", "tile", "image")
+#: Bumped whenever `summarize` changes what it stores, so stored references are made again.
+SUMMARY_FORMAT = 1
 
 
 @dataclass

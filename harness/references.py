@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from harness.compare import Summary, summarize
+from harness.compare import SUMMARY_FORMAT, Summary, summarize
 from harness.engines.base import Engine
 from harness.image_suite import REFERENCE_SPP, ROOT, ImageCase
 from harness.results import write_atomic
@@ -59,7 +59,8 @@ def expected_provenance(case: ImageCase, engine: Engine) -> dict:
     """What a reference for `case` must have been made from to be reused."""
     return {"scene": case.mitsuba_path.name, "scene_sha256": scene_hash(case.mitsuba_path),
             "integrator": case.integrator, "engine": engine.version(), "spp": REFERENCE_SPP[case.integrator],
-            "batches": REFERENCE_BATCHES, "seed": REFERENCE_SEED, "resolution": RESOLUTION, "tile": TILE_SIZE}
+            "batches": REFERENCE_BATCHES, "seed": REFERENCE_SEED, "resolution": RESOLUTION, "tile": TILE_SIZE,
+            "summary_format": SUMMARY_FORMAT}
 
 
 def reference_path(case: ImageCase) -> Path:
