@@ -29,10 +29,11 @@ test: build
 references: build
 	$(PY) -m harness references
 
-## bench: rays per second of each integrator beside a raw Embree loop (high-poly scene)
+## bench: speed against error for every case and engine, and ray rates beside a raw Embree loop
 bench: build
 	@mkdir -p results
 	$(BUILD)/bench_rays scenes/highpoly.xml --json results/bench_rays.json
+	$(PY) -m harness bench --rays-json results/bench_rays.json
 
 ## build: Debian packages, the .venv, the C++ renderer (`render` in .venv/bin) and the scenes' meshes
 build: deps $(VENV)/.installed

@@ -60,6 +60,20 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--scenes", "--only", dest="scenes", nargs="+", metavar="CASE", help="as for `images`")
     r.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant (default: llvm_ad_rgb)")
 
+    b = sub.add_parser("bench", help="speed against error: convergence curves and efficiency ratios",
+                       description="Render every case at a ladder of sample counts with our renderer and Mitsuba "
+                                   "(llvm and scalar), several runs per step, one job at a time; write bench.html.")
+    common(b)
+    b.add_argument("--scenes", "--only", dest="scenes", nargs="+", metavar="CASE",
+                   help="as for `images` (default: the simple and ao cases of every scene)")
+    b.add_argument("--engines", nargs="+", default=["mcval", "mitsuba", "mitsuba-scalar"],
+                   choices=["mcval", "mitsuba", "mitsuba-scalar"], help="engines to run (default: all three)")
+    b.add_argument("--max-spp", type=int, default=256, help="top of the ladder 1, 2, 4, ... (default 256)")
+    b.add_argument("--runs", type=int, default=3, help="independent runs per step (default 3)")
+    b.add_argument("--rays-json", type=Path, help="figures written by build/bench_rays --json, to include")
+    b.add_argument("--seed-runs", type=int, default=3,
+                   help="runs at the seed document's settings (768x768; 0 skips them; default 3)")
+
     v = sub.add_parser("validate", help="everything: what `make validate` runs",
                        description="Warp conformance and image validation; writes results/<run>/report.html.")
     common(v)
@@ -157,6 +171,48 @@ def _references(args) -> int:
     return 0
 
 
+def _bench(args, run_dir: Path) -> tuple[bool, dict]:
+    from harness.bench_run import ray_rates, run_bench, seed_comparison
+    from harness.engines.mitsuba import MitsubaEngine
+    from harness.engines.ours import OurEngine
+    from harness.image_suite import select_cases
+    from harness.report.bench_html import bench_html
+
+    cases = [c for c in select_cases(args.scenes) if args.scenes or c.integrator != "normals"]
+    reference = MitsubaEngine()
+    factories = {"mcval": OurEngine, "mitsuba": lambda: reference, "mitsuba-scalar": lambda: MitsubaEngine("scalar_rgb")}
+    engines = [factories[name]() for name in args.engines]
+    ladder = tuple(2**k for k in range(args.max_spp.bit_length()) if 2**k <= args.max_spp)
+    start = time.perf_counter()
+    with _progress("bench") as progress:
+        task = progress.add_task("", total=len(cases) * len(engines) * len(ladder))
+        benches = run_bench(cases, engines, reference, args.seed, ladder, args.runs,
+                            on_step=lambda m: progress.update(task, advance=1, description=m))
+        seed = seed_comparison(engines[0], args.seed_runs, lambda m: progress.console.print(m)) \
+            if args.seed_runs > 0 and "mcval" in args.engines else None
+    rays = ray_rates(args.rays_json)
+    meta = {"engines": ", ".join(e.version() for e in engines), "ladder": ladder, "runs per step": args.runs,
+            "seconds": round(time.perf_counter() - start, 1)}
+    write_atomic(run_dir / "bench.html", bench_html(benches, rays, seed, meta))
+    from rich.table import Table
+    table = Table(title="Speed against error", header_style="bold")
+    for col in ("scene", "integrator", "efficiency ours/mitsuba", *[f"slope {e.name}" for e in engines]):
+        table.add_column(col)
+    for bch in benches:
+        ratio = bch.efficiency_ratio()
+        table.add_row(bch.case.scene, bch.case.integrator, f"[{'green' if ratio >= 2 else 'red'}]{ratio:.2f}[/]",
+                      *[f"{c.fit('spp')[0]:.2f}" for c in bch.curves.values()])
+    console.print(table)
+    payload = {"speed": [bch.to_json() for bch in benches], "seed_comparison": seed, "ray_rates": rays}
+    if rays:
+        payload["ray_rate_ratio"] = min(v["ratio"] for v in rays["integrators"].values())
+    if seed:
+        for name, v in seed.items():
+            console.print(f"seed settings, {name}: ours {v['seconds']:.2f} s (seed document {v['seed_seconds']} s)")
+    console.print(f"Page: {run_dir / 'bench.html'}")
+    return True, payload
+
+
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     from harness.image_suite import select_cases
@@ -164,6 +220,13 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if args.command == "references":
             return _references(args)
+        if args.command == "bench":
+            run_dir = new_run_dir(args.out)
+            ok, payload = _bench(args, run_dir)
+            write_json(run_dir / "results.json", {"run": run_dir.name, "pass": ok, **payload})
+            write_atomic(run_dir / "report.html", '<!DOCTYPE html><meta charset="utf-8">'
+                                                  '<a href="bench.html">Speed against error</a>')
+            return 0
         specs = select(getattr(args, "only", None)) if args.command in ("warps", "validate") else []
         cases = select_cases(args.scenes) if args.command in ("images", "validate") else []
         # Resolved now: `latest` moves to the new run below.

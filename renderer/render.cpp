@@ -96,6 +96,7 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
                 for (int x = tile.x0; x < tile.x0 + tile.width; ++x) {
                     Sampler sampler(options.seed, static_cast<uint64_t>(b), static_cast<uint64_t>(y) * width + x);
                     for (int s = 0; s < spp; ++s) {
+                        sampler.startSample(static_cast<uint32_t>(s));
                         const Vec2f jitter = sampler.next2D();
                         const float fx = static_cast<float>(x) + jitter.x, fy = static_cast<float>(y) + jitter.y;
                         blocks[ti].put(fx, fy, integrator->Li(camera.generateRay(fx, fy), sampler, local));

@@ -1,4 +1,10 @@
-// Random numbers: PCG32 streams, one per pixel and batch, so results do not depend on threads.
+// Sample values: Owen-scrambled Sobol points, one independent randomisation per pixel and batch.
+//
+// Each sample of a pixel draws 2D points from a (0,2)-sequence (the first two Sobol dimensions),
+// one independently scrambled sequence per 2D dimension pair (pixel jitter, then each AO
+// direction). Stratification lowers the variance of every batch; the scrambles are random, so each
+// batch stays an unbiased estimate, independent of the others (what the harness's tests need).
+// Burley, "Practical Hash-based Owen Scrambling", JCGT 2020.
 #pragma once
 
 #include <cstdint>
@@ -7,51 +13,76 @@
 
 namespace mcr {
 
-/// PCG32 (O'Neill 2014): 64-bit state, selectable stream.
-class Pcg32 {
-public:
-    Pcg32(uint64_t seed, uint64_t stream) {
-        m_inc = (stream << 1u) | 1u;
-        m_state = 0;
-        nextUInt();
-        m_state += seed;
-        nextUInt();
-    }
+namespace detail {
 
-    uint32_t nextUInt() {
-        const uint64_t old = m_state;
-        m_state = old * 6364136223846793005ULL + m_inc;
-        const auto xorshifted = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
-        const auto rot = static_cast<uint32_t>(old >> 59u);
-        return (xorshifted >> rot) | (xorshifted << ((-rot) & 31));
-    }
+inline uint32_t reverseBits(uint32_t x) {
+    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+    x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
+    x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
+    return (x >> 16) | (x << 16);
+}
 
-    /// Uniform in [0, 1): 24 random mantissa bits.
-    float nextFloat() { return static_cast<float>(nextUInt() >> 8) * 0x1p-24f; }
+/// Laine and Karras' hash, a permutation that only lets bits affect higher bits.
+inline uint32_t laineKarras(uint32_t x, uint32_t seed) {
+    x += seed;
+    x ^= x * 0x6c50b47cu;
+    x ^= x * 0xb82f1e52u;
+    x ^= x * 0xc7afe638u;
+    x ^= x * 0x8d22f6e6u;
+    return x;
+}
 
-private:
-    uint64_t m_state, m_inc;
-};
+/// Owen scrambling of the bits of x (most significant first), keyed by seed.
+inline uint32_t owenScramble(uint32_t x, uint32_t seed) { return reverseBits(laineKarras(reverseBits(x), seed)); }
 
-/// Independent uniform samples for one pixel of one batch.
+/// The second Sobol dimension (the first is the bit reversal of the index).
+inline uint32_t sobolSecond(uint32_t index) {
+    uint32_t result = 0;
+    for (uint32_t v = 1u << 31; index != 0; index >>= 1, v ^= v >> 1)
+        if (index & 1u) result ^= v;
+    return result;
+}
+
+/// A 64-bit mix (SplitMix64 finaliser) folded to 32 bits.
+inline uint32_t hash(uint64_t a, uint64_t b) {
+    uint64_t z = a * 0x9E3779B97F4A7C15ULL + b + 0x632BE59BD9B4E019ULL;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    return static_cast<uint32_t>(z ^ (z >> 32));
+}
+
+/// [0, 1) from the top 24 bits.
+inline float toUnit(uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; }
+
+}  // namespace detail
+
+/// Sample values for one pixel of one batch: call startSample(i) for sample i, then next2D()
+/// for each 2D dimension pair the integrator needs.
 class Sampler {
 public:
-    Sampler(uint64_t seed, uint64_t batch, uint64_t pixel) : m_rng(mix(seed, batch), pixel) {}
-    float next1D() { return m_rng.nextFloat(); }
+    Sampler(uint64_t seed, uint64_t batch, uint64_t pixel)
+        : m_key(detail::hash(detail::hash(seed, batch), pixel)) {}
+
+    void startSample(uint32_t index) {
+        m_index = index;
+        m_dimension = 0;
+    }
+
     Vec2f next2D() {
-        const float a = m_rng.nextFloat();
-        return {a, m_rng.nextFloat()};
+        const uint32_t pairSeed = detail::hash(m_key, m_dimension++);
+        // Shuffle the order of the points, then scramble each coordinate (Burley 2020).
+        const uint32_t i = detail::owenScramble(m_index, pairSeed);
+        const uint32_t x = detail::owenScramble(detail::reverseBits(i), pairSeed ^ 0xA511E9B3u);
+        const uint32_t y = detail::owenScramble(detail::sobolSecond(i), pairSeed ^ 0x63D83595u);
+        return {detail::toUnit(x), detail::toUnit(y)};
     }
 
 private:
-    /// SplitMix64 finaliser: distinct (seed, batch) pairs give unrelated states.
-    static uint64_t mix(uint64_t seed, uint64_t batch) {
-        uint64_t z = seed * 0x9E3779B97F4A7C15ULL + batch + 0x632BE59BD9B4E019ULL;
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-        return z ^ (z >> 31);
-    }
-    Pcg32 m_rng;
+    uint32_t m_key;
+    uint32_t m_index = 0;
+    uint32_t m_dimension = 0;
 };
 
 }  // namespace mcr

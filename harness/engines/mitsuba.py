@@ -40,8 +40,12 @@ class MitsubaEngine(Engine):
 
     name = "mitsuba"
 
+    render_timing = ("render only (scene load and BVH build are timed apart); with an llvm variant the first "
+                     "render of each sample count also JIT-compiles, so medians of several runs are warm")
+
     def __init__(self, variant: str = DEFAULT_VARIANT) -> None:
         self.variant = variant
+        self.name = "mitsuba" if variant == DEFAULT_VARIANT else f"mitsuba-{variant.split('_')[0]}"
         self._mi = load_mitsuba(variant)
         import drjit
         self._dr = drjit

@@ -21,6 +21,7 @@ class OurEngine(Engine):
     """The C++ renderer under test."""
 
     name = "mcval"
+    render_timing = "render only (scene load and BVH build are timed apart)"
 
     def __init__(self) -> None:
         self._m = _load_module()

@@ -1,0 +1,62 @@
+"""The speed-against-error page."""
+from __future__ import annotations
+
+import base64
+import html
+
+from harness.bench_run import CaseBench
+from harness.report.bench_plots import convergence_png, equal_time_png
+from harness.report.style import CSS
+
+
+def _img(png: bytes, alt: str) -> str:
+    return f'<img alt="{html.escape(alt)}" src="data:image/png;base64,{base64.b64encode(png).decode()}">'
+
+
+def _f(x: float, fmt: str = ".3g") -> str:
+    return "—" if x != x else format(x, fmt)  # NaN shows as a dash
+
+
+def bench_html(benches: list[CaseBench], rays: dict | None, seed: dict | None, meta: dict) -> str:
+    rows = "".join(
+        f"<tr><td><a href='#{b.case.key}'>{b.case.scene}</a></td><td>{b.case.integrator}</td>"
+        f"<td class='{'pass' if b.efficiency_ratio() >= 2 else 'fail'}'>{_f(b.efficiency_ratio())}</td>"
+        + "".join(f"<td>{_f(c.fit('spp')[0], '.2f')}</td><td>{_f(c.efficiency())}</td><td>{_f(c.time_to())}</td>"
+                  for c in b.curves.values()) + "</tr>" for b in benches)
+    engines = list(benches[0].curves) if benches else []
+    head = "".join(f"<th>{e} slope</th><th>{e} efficiency</th><th>{e} s to 1e-3</th>" for e in engines)
+    sections = []
+    for b in benches:
+        timing = "; ".join(f"{name}: {c.timing}; first render {c.first_seconds:.2f} s" for name, c in b.curves.items())
+        sections.append(f"<h3 id='{b.case.key}'>{b.case.scene} — {b.case.integrator}: efficiency ratio "
+                        f"{_f(b.efficiency_ratio())}</h3><p class='meta'>{html.escape(timing)}</p>"
+                        + _img(convergence_png(b), f"convergence of {b.case.key}")
+                        + "<p>Equal time (the step of each engine closest to ours at 64 spp):</p>"
+                        + _img(equal_time_png(b), f"equal-time images of {b.case.key}"))
+    rays_html = "<p>No ray-throughput figures (run <code>make bench</code>).</p>"
+    if rays:
+        rrows = "".join(f"<tr><td>{k}</td><td>{v['ours_rays_per_second'] / 1e6:.2f}</td>"
+                        f"<td>{v['raw_rays_per_second'] / 1e6:.2f}</td><td>{v['ratio']:.2f}</td></tr>"
+                        for k, v in rays["integrators"].items())
+        rays_html = (f"<p>{html.escape(rays['scene'])}, {rays['spp']} spp; raw = Embree tracing the same rays "
+                     f"with no shading.</p><table><tr><th>integrator</th><th>ours Mrays/s</th><th>raw Mrays/s</th>"
+                     f"<th>ratio</th></tr>{rrows}</table>")
+    seed_html = ""
+    if seed:
+        srows = "".join(f"<tr><td>{k}</td><td>{v['resolution']}², {v['spp']} spp</td><td>{v['seed_seconds']:.1f}</td>"
+                        f"<td>{v['seconds']:.2f}</td></tr>" for k, v in seed.items())
+        seed_html = ("<h2>The seed document's settings</h2><table><tr><th>integrator</th><th>setting</th>"
+                     f"<th>seed document (s)</th><th>ours, median (s)</th></tr>{srows}</table>")
+    meta_html = "".join(f"<li>{html.escape(str(k))}: {html.escape(str(v))}</li>" for k, v in meta.items())
+    return f"""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>mcval speed against error</title><style>{CSS}</style></head>
+<body><h1>Speed against error</h1><ul class="meta">{meta_html}</ul>
+<p>relMSE is measured against the stored Mitsuba reference with the reference's own variance subtracted.
+Efficiency is 1 / (relMSE × seconds), the median over steps of 16 spp and more; the ratio is ours over
+Mitsuba llvm_ad_rgb (target: 2 or more). Slopes near −1 mean an unbiased estimator converging at the usual rate.</p>
+<table><tr><th>scene</th><th>integrator</th><th>efficiency ratio</th>{head}</tr>{rows}</table>
+<h2>Ray throughput</h2>{rays_html}
+{seed_html}
+<h2>Per scene</h2>{''.join(sections)}
+</body></html>
+"""
