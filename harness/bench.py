@@ -62,9 +62,10 @@ class Curve:
         return float(slope), float(intercept)
 
     def efficiency(self) -> float:
-        """1 / (relMSE * seconds), the median over steps of 16 spp and more (where the fit is linear)."""
+        """1 / (relMSE * seconds), the median over steps of 16 spp and more (where the fit is linear;
+        all steps for a shorter ladder)."""
         spp, sec, err = self.arrays()
-        ok = (spp >= 16) & (err > 0)
+        ok = ((spp >= 16) | (spp.max() < 16)) & (err > 0)
         return float(np.median(1.0 / (err[ok] * sec[ok]))) if ok.any() else float("nan")
 
     def time_to(self, target: float = TARGET_RELMSE) -> float:

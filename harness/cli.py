@@ -9,7 +9,7 @@ from pathlib import Path
 from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
-from harness.results import new_run_dir, write_atomic, write_json
+from harness.results import new_run_dir, point_link, write_atomic, write_json
 from harness.stats import WARP_SAMPLES
 
 # Logs (CI, pipes) get a wide table rather than a truncated one.
@@ -200,7 +200,8 @@ def _bench(args, run_dir: Path) -> tuple[bool, dict]:
         table.add_column(col)
     for bch in benches:
         ratio = bch.efficiency_ratio()
-        table.add_row(bch.case.scene, bch.case.integrator, f"[{'green' if ratio >= 2 else 'red'}]{ratio:.2f}[/]",
+        shown = "below ref. noise" if ratio != ratio else f"[{'green' if ratio >= 2 else 'red'}]{ratio:.2f}[/]"
+        table.add_row(bch.case.scene, bch.case.integrator, shown,
                       *[f"{c.fit('spp')[0]:.2f}" for c in bch.curves.values()])
     console.print(table)
     payload = {"speed": [bch.to_json() for bch in benches], "seed_comparison": seed, "ray_rates": rays}
@@ -226,6 +227,7 @@ def main(argv: list[str] | None = None) -> int:
             write_json(run_dir / "results.json", {"run": run_dir.name, "pass": ok, **payload})
             write_atomic(run_dir / "report.html", '<!DOCTYPE html><meta charset="utf-8">'
                                                   '<a href="bench.html">Speed against error</a>')
+            point_link(args.out / "bench-latest", run_dir)
             return 0
         specs = select(getattr(args, "only", None)) if args.command in ("warps", "validate") else []
         cases = select_cases(args.scenes) if args.command in ("images", "validate") else []

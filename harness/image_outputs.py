@@ -17,6 +17,9 @@ def write_image_outputs(run_dir: Path, results: list[ImageResult], alpha: float,
     baseline = load_baseline(baseline_path) if baseline_path else None
     regression = compare_runs(images, baseline) if baseline else None
     baseline_name = baseline.get("run") if baseline else None
-    write_atomic(run_dir / "report.html", report_html(results, alpha, warps, meta, regression, baseline_name))
+    bench = run_dir.parent / "bench-latest" / "bench.html"
+    bench_href = "../bench-latest/bench.html" if bench.exists() else None
+    write_atomic(run_dir / "report.html",
+                 report_html(results, alpha, warps, meta, regression, baseline_name, bench_href))
     write_atomic(run_dir / "junit.xml", junit_xml(results, warps["warps"] if warps else None))
     return {"images": images, "image_alpha": alpha, "regression": regression, "baseline": baseline_name}

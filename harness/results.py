@@ -11,6 +11,14 @@ from typing import Any
 import numpy as np
 
 
+def point_link(link: Path, target: Path) -> None:
+    """Make `link` a symlink to `target` (a sibling folder), replacing any older link atomically."""
+    tmp = link.with_name(f".{link.name}-{os.getpid()}")
+    tmp.unlink(missing_ok=True)
+    tmp.symlink_to(target.name)
+    os.replace(tmp, link)
+
+
 def new_run_dir(root: str | Path = "results") -> Path:
     """A fresh folder results/<date>-<time>[-n], and results/latest pointing at it."""
     root = Path(root)
@@ -21,11 +29,7 @@ def new_run_dir(root: str | Path = "results") -> Path:
         n += 1
         run = root / f"{stamp}-{n}"
     run.mkdir()
-    latest = root / "latest"
-    tmp = root / f".latest-{os.getpid()}"
-    tmp.unlink(missing_ok=True)
-    tmp.symlink_to(run.name)
-    os.replace(tmp, latest)
+    point_link(root / "latest", run)
     return run
 
 

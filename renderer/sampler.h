@@ -19,8 +19,7 @@ inline uint32_t reverseBits(uint32_t x) {
     x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
     x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
     x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
-    x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
-    return (x >> 16) | (x << 16);
+    return __builtin_bswap32(x);  // the byte swap does the last two steps at once
 }
 
 /// Laine and Karras' hash, a permutation that only lets bits affect higher bits.
@@ -71,12 +70,14 @@ public:
     }
 
     Vec2f next2D() {
-        const uint32_t pairSeed = detail::hash(m_key, m_dimension++);
-        // Shuffle the order of the points, then scramble each coordinate (Burley 2020).
-        const uint32_t i = detail::owenScramble(m_index, pairSeed);
-        const uint32_t x = detail::owenScramble(detail::reverseBits(i), pairSeed ^ 0xA511E9B3u);
-        const uint32_t y = detail::owenScramble(detail::sobolSecond(i), pairSeed ^ 0x63D83595u);
-        return {detail::toUnit(x), detail::toUnit(y)};
+        using namespace detail;
+        const uint32_t pairSeed = hash(m_key, m_dimension++);
+        // Shuffle the order of the points, then scramble each coordinate (Burley 2020). The first
+        // Sobol dimension is the bit reversal of the index, so its scramble needs no reversal in.
+        const uint32_t i = owenScramble(m_index, pairSeed);
+        const uint32_t x = reverseBits(laineKarras(i, pairSeed ^ 0xA511E9B3u));
+        const uint32_t y = owenScramble(sobolSecond(i), pairSeed ^ 0x63D83595u);
+        return {toUnit(x), toUnit(y)};
     }
 
 private:

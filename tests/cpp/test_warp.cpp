@@ -104,3 +104,24 @@ TEST(Warp, BeckmannPdfIntegratesToOne) {
         EXPECT_NEAR(2.0 * M_PI * sum / n, 1.0, 2e-3) << "alpha = " << alpha;
     }
 }
+
+#include "sampler.h"
+
+TEST(Sampler, EachPairIsStratifiedAndBatchesDiffer) {
+    // 16 samples of one pair: exactly one in each of the 4 x 4 strata (a (0,2)-net).
+    Sampler sampler(3, 0, 42);
+    int counts[16] = {0};
+    for (uint32_t i = 0; i < 16; ++i) {
+        sampler.startSample(i);
+        const Vec2f u = sampler.next2D();
+        ASSERT_TRUE(u.x >= 0.f && u.x < 1.f && u.y >= 0.f && u.y < 1.f);
+        ++counts[int(u.x * 4) * 4 + int(u.y * 4)];
+    }
+    for (int c : counts) EXPECT_EQ(c, 1);
+    Sampler other(3, 1, 42);
+    sampler.startSample(0);
+    other.startSample(0);
+    EXPECT_NE(sampler.next2D().x, other.next2D().x);
+    EXPECT_EQ(detail::reverseBits(1u), 0x80000000u);
+    EXPECT_EQ(detail::reverseBits(0x12345678u), 0x1E6A2C48u);
+}
