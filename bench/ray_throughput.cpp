@@ -1,5 +1,5 @@
 // Rays per second of each integrator on a scene, beside a raw Embree loop that traces the
-// same rays with no shading: the physical limit of this machine for those rays.
+// same rays, in the same packets, with no shading: the physical limit of this machine for them.
 //
 //   build/bench_rays scenes/highpoly.xml [--spp N] [--repeats R] [--json PATH]
 #include <algorithm>
@@ -46,6 +46,7 @@ RaySet collectRays(const SceneDescription &scene, const EmbreeScene &embree, con
                 const Vec2f j = sampler.next2D();
                 const Ray ray = camera.generateRay(float(x) + j.x, float(y) + j.y);
                 rays.closest.push_back(ray);
+                sampler.startSample(static_cast<uint32_t>(s), 1);
                 Hit hit;
                 if (integrator == "normals" || !embree.intersect(ray, hit) || dot(hit.ns, ray.d) >= 0.f) continue;
                 if (integrator == "simple") {
@@ -65,12 +66,17 @@ RaySet collectRays(const SceneDescription &scene, const EmbreeScene &embree, con
     return rays;
 }
 
-/// Seconds to trace every ray of the set in parallel, doing nothing with the answers.
-double traceRaw(const EmbreeScene &embree, const RaySet &rays) {
+/// Seconds to trace every ray of the set in parallel, doing nothing with the answers. Camera rays
+/// go in the renderer's packets of 8 (the samples of one pixel), the others one at a time.
+double traceRaw(const EmbreeScene &embree, const RaySet &rays, int spp) {
     const auto start = std::chrono::steady_clock::now();
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.closest.size(), 1024), [&](const auto &r) {
-        Hit hit;
-        for (size_t i = r.begin(); i != r.end(); ++i) embree.intersect(rays.closest[i], hit);
+    const size_t pixels = rays.closest.size() / static_cast<size_t>(spp);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, 64), [&](const auto &r) {
+        Hit hits[8];
+        bool found[8];
+        for (size_t p = r.begin(); p != r.end(); ++p)
+            for (int first = 0; first < spp; first += 8)
+                embree.intersect8(&rays.closest[p * spp + first], std::min(8, spp - first), hits, found);
     });
     tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.occlusion.size(), 1024), [&](const auto &r) {
         for (size_t i = r.begin(); i != r.end(); ++i) embree.occluded(rays.occlusion[i]);
@@ -112,7 +118,7 @@ int main(int argc, char **argv) {
         }
         const RaySet rays = collectRays(scene, embree, name, spp);
         const double rawCount = double(rays.closest.size() + rays.occlusion.size());
-        for (int r = 0; r < repeats; ++r) raw.push_back(rawCount / traceRaw(embree, rays));
+        for (int r = 0; r < repeats; ++r) raw.push_back(rawCount / traceRaw(embree, rays, spp));
         const double o = median(ours), w = median(raw);
         std::printf("%-10s %14.2f %14.2f %8.2f   (%llu rays; raw set %.0f)\n", name, o / 1e6, w / 1e6, o / w,
                     static_cast<unsigned long long>(rayCount), rawCount);

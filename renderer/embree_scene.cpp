@@ -79,11 +79,43 @@ bool EmbreeScene::intersect(const Ray &ray, Hit &hit) const {
     rtcIntersect1(m_scene, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
 
-    const Mesh &mesh = m_meshes[rh.hit.geomID];
-    const uint32_t *tri = &mesh.indices[3 * rh.hit.primID];
+    fillHit(rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, hit);
+    return true;
+}
+
+void EmbreeScene::intersect8(const Ray *rays, int count, Hit *hits, bool *found) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(32) int valid[8];
+    alignas(32) RTCRayHit8 rh;
+    for (int i = 0; i < 8; ++i) {
+        valid[i] = i < count ? -1 : 0;
+        const Ray &r = rays[i < count ? i : 0];
+        rh.ray.org_x[i] = r.o.x; rh.ray.org_y[i] = r.o.y; rh.ray.org_z[i] = r.o.z;
+        rh.ray.dir_x[i] = r.d.x; rh.ray.dir_y[i] = r.d.y; rh.ray.dir_z[i] = r.d.z;
+        rh.ray.tnear[i] = r.tnear;
+        rh.ray.tfar[i] = r.tfar;
+        rh.ray.time[i] = 0.f;
+        rh.ray.mask[i] = std::numeric_limits<unsigned>::max();
+        rh.ray.id[i] = 0;
+        rh.ray.flags[i] = 0;
+        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect8(valid, m_scene, &context, &rh);
+    for (int i = 0; i < count; ++i) {
+        found[i] = rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+        if (found[i]) fillHit(rh.hit.geomID[i], rh.hit.primID[i], rh.hit.u[i], rh.hit.v[i], rh.ray.tfar[i], hits[i]);
+    }
+}
+
+void EmbreeScene::fillHit(unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const {
+    const Mesh &mesh = m_meshes[geom];
+    const uint32_t *tri = &mesh.indices[3 * prim];
     const Vec3f &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
-    const float u = rh.hit.u, v = rh.hit.v, w = 1.f - u - v;
-    hit.t = rh.ray.tfar;
+    const float w = 1.f - u - v;
+    hit.t = t;
     hit.p = w * p0 + u * p1 + v * p2;
     hit.ng = normalize(cross(p1 - p0, p2 - p0));
     if (mesh.normals.empty()) {
@@ -93,9 +125,8 @@ bool EmbreeScene::intersect(const Ray &ray, Hit &hit) const {
         const float len2 = squaredNorm(n);
         hit.ns = len2 > 0.f ? n / std::sqrt(len2) : hit.ng;
     }
-    hit.mesh = rh.hit.geomID;
-    hit.prim = rh.hit.primID;
-    return true;
+    hit.mesh = geom;
+    hit.prim = prim;
 }
 
 bool EmbreeScene::occluded(const Ray &ray) const {

@@ -20,12 +20,18 @@ public:
 
     /// Closest hit along the ray, with position and normals filled in.
     bool intersect(const Ray &ray, Hit &hit) const;
+    /// Closest hits of up to 8 rays traced as one packet (coherent rays, such as the samples of
+    /// one pixel, traverse the BVH together); found[i] tells whether ray i hit.
+    void intersect8(const Ray *rays, int count, Hit *hits, bool *found) const;
     /// Whether anything lies on the ray in [tnear, tfar].
     bool occluded(const Ray &ray) const;
 
     const std::vector<Mesh> &meshes() const { return m_meshes; }
 
 private:
+    /// Position and normals of a hit on triangle prim of mesh geom at barycentrics (u, v).
+    void fillHit(unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const;
+
     const std::vector<Mesh> &m_meshes;
     RTCDevice m_device = nullptr;
     RTCScene m_scene = nullptr;

@@ -20,6 +20,7 @@ namespace mcr {
 namespace {
 
 constexpr int kTileSize = 32;
+constexpr int kPacket = 8;  ///< camera rays traced together
 
 struct Tile {
     int x0, y0, width, height;
@@ -95,11 +96,26 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
             for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
                 for (int x = tile.x0; x < tile.x0 + tile.width; ++x) {
                     Sampler sampler(options.seed, static_cast<uint64_t>(b), static_cast<uint64_t>(y) * width + x);
-                    for (int s = 0; s < spp; ++s) {
-                        sampler.startSample(static_cast<uint32_t>(s));
-                        const Vec2f jitter = sampler.next2D();
-                        const float fx = static_cast<float>(x) + jitter.x, fy = static_cast<float>(y) + jitter.y;
-                        blocks[ti].put(fx, fy, integrator->Li(camera.generateRay(fx, fy), sampler, local));
+                    // The samples of one pixel are coherent: trace their camera rays 8 at a time.
+                    for (int first = 0; first < spp; first += kPacket) {
+                        const int count = std::min(kPacket, spp - first);
+                        Ray rays[kPacket];
+                        Vec2f film[kPacket];
+                        for (int i = 0; i < count; ++i) {
+                            sampler.startSample(static_cast<uint32_t>(first + i));
+                            const Vec2f jitter = sampler.next2D();
+                            film[i] = {static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y};
+                            rays[i] = camera.generateRay(film[i].x, film[i].y);
+                        }
+                        Hit hits[kPacket];
+                        bool found[kPacket];
+                        embree.intersect8(rays, count, hits, found);
+                        local.camera += static_cast<uint64_t>(count);
+                        for (int i = 0; i < count; ++i) {
+                            sampler.startSample(static_cast<uint32_t>(first + i), 1);
+                            blocks[ti].put(film[i].x, film[i].y,
+                                           integrator->Li(rays[i], found[i] ? &hits[i] : nullptr, sampler, local));
+                        }
                     }
                 }
             }

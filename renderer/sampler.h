@@ -64,9 +64,10 @@ public:
     Sampler(uint64_t seed, uint64_t batch, uint64_t pixel)
         : m_key(detail::hash(detail::hash(seed, batch), pixel)) {}
 
-    void startSample(uint32_t index) {
+    /// Starts sample `index` at 2D dimension pair `pair` (1 to skip the pixel jitter already drawn).
+    void startSample(uint32_t index, uint32_t pair = 0) {
         m_index = index;
-        m_dimension = 0;
+        m_dimension = pair;
     }
 
     Vec2f next2D() {

@@ -8,11 +8,10 @@ namespace mcr {
 AoIntegrator::AoIntegrator(const SceneDescription &scene, const EmbreeScene &embree, int samples)
     : m_embree(embree), m_environment(scene.environment.value_or(Color(1.f, 1.f, 1.f))), m_samples(samples) {}
 
-Color AoIntegrator::Li(const Ray &ray, Sampler &sampler, RayCounts &counts) const {
-    Hit hit;
-    // A camera ray that escapes returns 0: the environment itself is hidden.
-    if (!traceCamera(m_embree, ray, hit, counts)) return {0.f, 0.f, 0.f};
-    if (dot(hit.ns, ray.d) >= 0.f) return {0.f, 0.f, 0.f};
+Color AoIntegrator::Li(const Ray &ray, const Hit *camHit, Sampler &sampler, RayCounts &counts) const {
+    // A camera ray that escapes returns 0 (the environment itself is hidden); so does a back face.
+    if (!camHit || dot(camHit->ns, ray.d) >= 0.f) return {0.f, 0.f, 0.f};
+    const Hit &hit = *camHit;
     const Frame frame(hit.ns);
     int visible = 0;
     for (int i = 0; i < m_samples; ++i) {

@@ -9,7 +9,7 @@ namespace mcr {
 class AoIntegrator final : public Integrator {
 public:
     AoIntegrator(const SceneDescription &scene, const EmbreeScene &embree, int samples);
-    Color Li(const Ray &ray, Sampler &sampler, RayCounts &counts) const override;
+    Color Li(const Ray &ray, const Hit *hit, Sampler &sampler, RayCounts &counts) const override;
 
 private:
     const EmbreeScene &m_embree;

@@ -7,7 +7,7 @@ namespace mcr {
 
 std::unique_ptr<Integrator> createIntegrator(const IntegratorSpec &spec, const SceneDescription &scene,
                                              const EmbreeScene &embree) {
-    if (spec.type == "normals") return std::make_unique<NormalsIntegrator>(embree);
+    if (spec.type == "normals") return std::make_unique<NormalsIntegrator>();
     if (spec.type == "simple") return std::make_unique<SimpleIntegrator>(scene, embree);
     if (spec.type == "ao") return std::make_unique<AoIntegrator>(scene, embree, spec.aoSamples);
     if (spec.type.empty())

@@ -18,23 +18,19 @@ struct RayCounts {
     uint64_t total() const { return camera + shadow; }
 };
 
-/// Estimates the radiance arriving along a camera ray.
+/// Estimates the radiance arriving along a camera ray. The renderer traces camera rays itself
+/// (in packets: the samples of a pixel are coherent) and hands each integrator the first hit.
 class Integrator {
 public:
     virtual ~Integrator() = default;
-    /// One sample of the radiance along `ray` (RGB); counts the rays it traces.
-    virtual Color Li(const Ray &ray, Sampler &sampler, RayCounts &counts) const = 0;
+    /// One sample of the radiance along camera ray `ray`, whose first hit is `hit` (nullptr if it
+    /// escaped); counts the rays it traces beyond the camera ray.
+    virtual Color Li(const Ray &ray, const Hit *hit, Sampler &sampler, RayCounts &counts) const = 0;
 };
 
 /// The integrator `spec.type` (normals, simple or ao) over the given scene; throws SceneError otherwise.
 std::unique_ptr<Integrator> createIntegrator(const IntegratorSpec &spec, const SceneDescription &scene,
                                              const EmbreeScene &embree);
-
-/// The shared first step: trace the camera ray; false on a miss.
-inline bool traceCamera(const EmbreeScene &embree, const Ray &ray, Hit &hit, RayCounts &counts) {
-    ++counts.camera;
-    return embree.intersect(ray, hit);
-}
 
 /// A ray leaving `hit` in direction d without re-hitting its surface: its origin moves off the
 /// surface, along the geometric normal, by an offset that scales with the position's magnitude.

@@ -4,10 +4,8 @@
 
 namespace mcr {
 
-Color NormalsIntegrator::Li(const Ray &ray, Sampler &, RayCounts &counts) const {
-    Hit hit;
-    if (!traceCamera(m_embree, ray, hit, counts)) return {0.f, 0.f, 0.f};
-    return hit.ns;
+Color NormalsIntegrator::Li(const Ray &, const Hit *hit, Sampler &, RayCounts &) const {
+    return hit ? hit->ns : Color(0.f, 0.f, 0.f);
 }
 
 }  // namespace mcr

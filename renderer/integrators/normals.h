@@ -7,11 +7,8 @@ namespace mcr {
 /// Shading normal at the first hit; 0 where the ray escapes.
 class NormalsIntegrator final : public Integrator {
 public:
-    explicit NormalsIntegrator(const EmbreeScene &embree) : m_embree(embree) {}
-    Color Li(const Ray &ray, Sampler &sampler, RayCounts &counts) const override;
-
-private:
-    const EmbreeScene &m_embree;
+    NormalsIntegrator() = default;
+    Color Li(const Ray &ray, const Hit *hit, Sampler &sampler, RayCounts &counts) const override;
 };
 
 }  // namespace mcr

@@ -6,11 +6,10 @@
 
 namespace mcr {
 
-Color SimpleIntegrator::Li(const Ray &ray, Sampler &, RayCounts &counts) const {
-    Hit hit;
-    if (!traceCamera(m_embree, ray, hit, counts)) return {0.f, 0.f, 0.f};
+Color SimpleIntegrator::Li(const Ray &ray, const Hit *camHit, Sampler &, RayCounts &counts) const {
     // One-sided diffuse, as Mitsuba's: black seen from behind the shading normal.
-    if (dot(hit.ns, ray.d) >= 0.f) return {0.f, 0.f, 0.f};
+    if (!camHit || dot(camHit->ns, ray.d) >= 0.f) return {0.f, 0.f, 0.f};
+    const Hit &hit = *camHit;
     const Color &rho = m_embree.meshes()[hit.mesh].reflectance;
     Color sum{0.f, 0.f, 0.f};
     for (const PointLight &light : m_scene.pointLights) {

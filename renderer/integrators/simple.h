@@ -9,7 +9,7 @@ namespace mcr {
 class SimpleIntegrator final : public Integrator {
 public:
     SimpleIntegrator(const SceneDescription &scene, const EmbreeScene &embree) : m_scene(scene), m_embree(embree) {}
-    Color Li(const Ray &ray, Sampler &sampler, RayCounts &counts) const override;
+    Color Li(const Ray &ray, const Hit *hit, Sampler &sampler, RayCounts &counts) const override;
 
 private:
     const SceneDescription &m_scene;
