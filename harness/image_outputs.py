@@ -7,13 +7,26 @@ from harness.image_run import ImageResult
 from harness.regression import compare_runs, load_baseline
 from harness.report.image_html import report_html
 from harness.report.junit import junit_xml
-from harness.results import write_atomic
+from harness.results import write_atomic, write_json, write_npz
 
 
 def write_image_outputs(run_dir: Path, results: list[ImageResult], alpha: float, warps: dict | None,
                         meta: dict, baseline_path: Path | None) -> dict:
     """Writes report.html and junit.xml; returns the results.json fields (images, regression)."""
     images = [r.to_json() for r in results]
+    for r, entry in zip(results, images):
+        if not r.passed:
+            # What is needed to see why: both means, the variances and the p-value maps.
+            stem = run_dir / "images" / f"{r.case.scene}_{r.case.integrator}"
+            arrays = {"ours_mean": r.ours.mean, "ours_batches": r.ours.batches}
+            for name, ref in r.references.items():
+                arrays[f"{name}_mean"] = ref.summary.pixel.mean
+                arrays[f"{name}_var_of_mean"] = ref.summary.pixel.var_of_mean
+                for scale in r.comparisons[name].scales:
+                    arrays[f"{name}_p_{scale.scale}"] = scale.p_map
+            write_npz(stem.with_suffix(".npz"), **arrays)
+            write_json(stem.with_suffix(".json"), entry)
+            entry["data"] = str(stem.relative_to(run_dir)) + ".npz"
     baseline = load_baseline(baseline_path) if baseline_path else None
     regression = compare_runs(images, baseline) if baseline else None
     baseline_name = baseline.get("run") if baseline else None

@@ -59,14 +59,14 @@ def skipped(reason: str) -> CheckResult:
     return CheckResult(None, None, f"skipped: {reason}", skipped=True)
 
 
-def _as_points(x: Any, n: int, name: str) -> np.ndarray:
+def as_points(x: Any, n: int, name: str) -> np.ndarray:
     a = np.asarray(x, dtype=np.float64)
     if a.ndim != 2 or a.shape[0] != n:
         raise ValueError(f"{name} returned shape {a.shape}, expected ({n}, 2) or ({n}, 3)")
     return a
 
 
-def _as_values(x: Any, n: int, name: str) -> np.ndarray:
+def as_values(x: Any, n: int, name: str) -> np.ndarray:
     a = np.asarray(x, dtype=np.float64).reshape(-1)
     if a.shape[0] != n:
         raise ValueError(f"{name} returned {a.shape[0]} values for {n} points")
@@ -84,7 +84,7 @@ def histogram(domain: Domain, points: np.ndarray, res: int = HISTOGRAM_RES) -> n
 def expected_probabilities(domain: Domain, pdf: Pdf, res: int = HISTOGRAM_RES):
     """Probability of each parameter cell under pdf, integrated adaptively."""
     def density(s: np.ndarray, t: np.ndarray) -> np.ndarray:
-        return _as_values(pdf(domain.from_param(s, t)), len(s), "pdf") * domain.measure
+        return as_values(pdf(domain.from_param(s, t)), len(s), "pdf") * domain.measure
     return integrate_cells(density, res)
 
 
@@ -121,12 +121,12 @@ def normalisation_check(integral: float, error: float) -> CheckResult:
 def domain_check(domain: Domain, points: np.ndarray, pdf: Pdf, rng: np.random.Generator) -> CheckResult:
     """Samples lie in the domain, the pdf is finite and >= 0 at them, and 0 outside the domain."""
     outside = int(np.count_nonzero(~domain.contains(points)))
-    pdf_at_samples = _as_values(pdf(points), len(points), "pdf")
+    pdf_at_samples = as_values(pdf(points), len(points), "pdf")
     bad_pdf = int(np.count_nonzero(~np.isfinite(pdf_at_samples) | (pdf_at_samples < 0)))
     leak = 0
     if domain.outside is not None:
         probes = domain.outside(rng, 10_000)
-        leak = int(np.count_nonzero(_as_values(pdf(probes), len(probes), "pdf") != 0))
+        leak = int(np.count_nonzero(as_values(pdf(probes), len(probes), "pdf") != 0))
     violations = outside + bad_pdf + leak
     summary = "ok" if not violations else ", ".join(
         f"{k} {v}" for k, v in (("outside", outside), ("bad pdf", bad_pdf), ("pdf>0 off domain", leak)) if v)
@@ -142,14 +142,14 @@ def _rounding_sensitivity(points: np.ndarray, pdf: Pdf) -> np.ndarray:
     to its input's rounding, so no implementation can be asked to agree with it
     more closely than that.
     """
-    base = _as_values(pdf(points), len(points), "pdf")
+    base = as_values(pdf(points), len(points), "pdf")
     worst = np.zeros(len(points))
     p32 = points.astype(np.float32)
     for axis in range(points.shape[1]):
         for direction in (-np.inf, np.inf):
             moved = p32.copy()
             moved[:, axis] = np.nextafter(p32[:, axis], np.float32(direction))
-            diff = np.abs(_as_values(pdf(moved.astype(np.float64)), len(points), "pdf") - base)
+            diff = np.abs(as_values(pdf(moved.astype(np.float64)), len(points), "pdf") - base)
             worst = np.maximum(worst, np.nan_to_num(diff))
     return worst
 
@@ -160,10 +160,10 @@ def pdf_agreement_check(points: np.ndarray, pdf: Pdf, reference_pdf: Pdf) -> Che
     Allowed difference per point: PDF_RELATIVE_TOLERANCE of the reference value,
     plus twice the reference's own change under one-ulp moves of the point.
     """
-    ref = _as_values(reference_pdf(points), len(points), "reference pdf")
+    ref = as_values(reference_pdf(points), len(points), "reference pdf")
     inside = ref > 0
     points, ref = points[inside], ref[inside]
-    ours = _as_values(pdf(points), len(points), "pdf")
+    ours = as_values(pdf(points), len(points), "pdf")
     slack = 2.0 * _rounding_sensitivity(points, reference_pdf)
     excess = np.abs(ours - ref) - slack
     rel = np.where(np.isfinite(ours), np.maximum(excess, 0.0) / ref, np.inf)
@@ -212,10 +212,10 @@ def hard_inputs_check(domain: Domain, variants: dict[str, tuple[Sampler, Pdf]]) 
     nonfinite = outside = bad_pdf = 0
     failing: list[str] = []
     for label, (sample, pdf) in variants.items():
-        points = _as_points(sample(u), len(u), "sample")
+        points = as_points(sample(u), len(u), "sample")
         finite = np.all(np.isfinite(points), axis=1)
         inside = finite & domain.contains(np.where(finite[:, None], points, 0.0))
-        values = _as_values(pdf(points), len(points), "pdf")
+        values = as_values(pdf(points), len(points), "pdf")
         good = inside & np.isfinite(values) & (values > 0)
         nonfinite += int(np.count_nonzero(~finite))
         outside += int(np.count_nonzero(finite & ~inside))

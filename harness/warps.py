@@ -76,7 +76,7 @@ def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "
     dom = get_domain(domain)
     rng = np.random.default_rng(seed)
     u = rng.random((samples, 2))
-    points = wc._as_points(sample(u), samples, "sample")
+    points = wc.as_points(sample(u), samples, "sample")
     if points.shape[1] != dom.dim:
         raise ValueError(f"sample returned {points.shape[1]}D points; the {domain} domain is {dom.dim}D")
     inside = np.all(np.isfinite(points), axis=1) & dom.contains(np.nan_to_num(points))
@@ -97,7 +97,7 @@ def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "
         grid = dom.from_param(*[a.ravel() for a in np.meshgrid(
             (np.arange(51) + 0.5) / 51, (np.arange(51) + 0.5) / 51, indexing="ij")])
         checks["pdf_vs_mitsuba"] = wc.pdf_agreement_check(np.concatenate([probe, grid]), pdf, reference.pdf)
-        ref_points = wc._as_points(reference.sample(np.random.default_rng([seed, 1]).random((samples, 2))),
+        ref_points = wc.as_points(reference.sample(np.random.default_rng([seed, 1]).random((samples, 2))),
                                    samples, "reference sample")
         reference_observed = wc.histogram(dom, ref_points[dom.contains(ref_points)])
         checks["samples_vs_mitsuba"] = wc.homogeneity_check(observed, reference_observed)

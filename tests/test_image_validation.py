@@ -92,3 +92,25 @@ def test_report_renders_in_headless_chromium(image_run, tmp_path):
     # The PASS badges' green is on the page.
     green = (np.abs(pixels - [227, 246, 227]).sum(axis=-1) < 10).mean()
     assert green > 1e-4
+
+
+def test_a_failing_comparison_leaves_its_data(tmp_path, ours, mitsuba, monkeypatch):
+    """A renderer that is 2% too bright fails, and the run keeps the arrays that show where."""
+    import harness.engines.ours as ours_module
+
+    original = ours_module.OurEngine.render
+
+    def too_bright(self, *args, **kwargs):
+        result = original(self, *args, **kwargs)
+        result.batches = result.batches * 1.02
+        return result
+
+    monkeypatch.setattr(ours_module.OurEngine, "render", too_bright)
+    assert main(["images", "--only", "plane_point:simple", "--out", str(tmp_path)]) == 1
+    run = (tmp_path / "latest").resolve()
+    data = json.loads((run / "results.json").read_text())
+    assert data["pass"] is False and data["images"][0]["data"] == "images/plane_point_simple.npz"
+    arrays = np.load(run / "images" / "plane_point_simple.npz")
+    assert {"ours_mean", "mitsuba_mean", "mitsuba_p_pixel", "analytic_p_image"} <= set(arrays.files)
+    suites = ET.parse(run / "junit.xml").getroot()
+    assert any(s.get("failures") == "1" for s in suites)

@@ -18,6 +18,11 @@ def _verdict(ok: bool) -> str:
     return f'<span class="{"pass" if ok else "fail"}">{"PASS" if ok else "FAIL"}</span>'
 
 
+def _seconds(timings: dict, key: str) -> str:
+    """A phase's seconds, or a dash where an engine has no such phase."""
+    return f"{timings[key]:.3f}" if key in timings else "—"
+
+
 def reproduce_command(result: ImageResult) -> str:
     return f"python -m harness images --only {result.case.key} --seed {result.run_seed}"
 
@@ -44,12 +49,12 @@ def _entry(r: ImageResult) -> str:
             f"{comparison.detectable_bias:.2%}</p>"
             f'<img alt="{_esc(r.case.key)} against {_esc(name)}" src="data:image/png;base64,'
             f'{base64.b64encode(png).decode()}">'
-            f"<div style='display:flex;gap:2em'><table><tr><th>scale</th><th>tests</th><th>level</th><th>min p</th>"
+            f"<div style='display:flex;gap:2em;align-items:flex-start'><table><tr><th>scale</th><th>tests</th><th>level</th><th>min p</th>"
             f"<th>fails</th><th>worst (row, col)</th><th></th></tr>{rows}</table>"
             f"<table><tr><th>metric</th><th>value</th></tr>{metrics}</table>"
             f"<table><tr><th>seconds</th><th>ours</th><th>{_esc(name)}</th></tr>"
-            + "".join(f"<tr><td>{_esc(k)}</td><td>{r.ours.seconds.get(k, float('nan')):.3f}</td>"
-                      f"<td>{ref.seconds.get(k, float('nan')):.3f}</td></tr>"
+            + "".join(f"<tr><td>{_esc(k)}</td><td>{_seconds(r.ours.seconds, k)}</td>"
+                      f"<td>{_seconds(ref.seconds, k)}</td></tr>"
                       for k in ("load", "build", "first", "render", "total"))
             + "</table></div>")
     return "".join(parts)
