@@ -124,6 +124,7 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
     from harness.engines.ours import OurEngine
     from harness.image_outputs import write_image_outputs
     from harness.image_run import run_images
+    from harness.report.image_html import reproduce_command
     from harness.report.image_table import image_table
 
     ours, mitsuba = OurEngine(), MitsubaEngine(args.variant)
@@ -149,7 +150,6 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
     console.print(f"{len(results) - len(failed)} of {len(results)} image comparisons pass, in {seconds:.1f} s. "
                   f"Report: {run_dir / 'report.html'}")
     for r in failed:
-        from harness.report.image_html import reproduce_command
         console.print(f"[red]FAIL[/] {r.case.key}{' — ' + r.note if r.note else ''}: {reproduce_command(r)}")
     return not failed, payload
 
@@ -247,7 +247,7 @@ def main(argv: list[str] | None = None) -> int:
             payload.update(images)
         elif warps is not None:
             write_atomic(run_dir / "report.html",
-                         f'<!DOCTYPE html><meta charset="utf-8"><a href="warps.html">Warp conformance</a>')
+                         '<!DOCTYPE html><meta charset="utf-8"><a href="warps.html">Warp conformance</a>')
         payload["pass"] = ok
         write_json(run_dir / "results.json", payload)
         if getattr(args, "json", None):

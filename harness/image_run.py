@@ -56,10 +56,6 @@ def case_seed(case: ImageCase, seed: int) -> int:
     return (zlib.crc32(case.key.encode()) + 7919 * seed) % 2**31
 
 
-def count_comparisons(cases: list[ImageCase]) -> int:
-    return sum(1 + AnalyticEngine.supports(str(c.path), {"res": str(RESOLUTION)}) for c in cases)
-
-
 def run_images(cases: list[ImageCase], ours: Engine, mitsuba: Engine, seed: int = 0,
                on_progress: Callable[[ImageCase], None] | None = None,
                on_message: Callable[[str], None] | None = None) -> tuple[list[ImageResult], float]:
@@ -67,7 +63,8 @@ def run_images(cases: list[ImageCase], ours: Engine, mitsuba: Engine, seed: int 
     (Sidak). Returns the results and the per-comparison alpha."""
     analytic = AnalyticEngine()
     params = {"res": str(RESOLUTION)}
-    alpha = sidak_level(SIGNIFICANCE, count_comparisons(cases))
+    has_closed_form = {c: analytic.supports(str(c.path), params) for c in cases}
+    alpha = sidak_level(SIGNIFICANCE, len(cases) + sum(has_closed_form.values()))
     geometry_failed: set[str] = set()
     results = []
     for case in cases:
@@ -82,7 +79,7 @@ def run_images(cases: list[ImageCase], ours: Engine, mitsuba: Engine, seed: int 
         summary = summarize(mine.batches)
         signed = case.integrator == "normals"
         references = {"mitsuba": reference}
-        if analytic.supports(str(case.path), params):
+        if has_closed_form[case]:
             exact = analytic.render(str(case.path), case.integrator, OUR_SPP[case.integrator], IMAGE_BATCHES,
                                     s + 1, params)
             references["analytic"] = Reference(summarize(exact.batches), exact.spp, exact.seconds, "closed form")

@@ -21,7 +21,7 @@ import numpy as np
 from harness import warp_checks as wc
 from harness.domains import get_domain
 from harness.engines.base import WarpFunctions
-from harness.stats import SIGNIFICANCE, WARP_SAMPLES, sidak_level
+from harness.stats import HISTOGRAM_RES, SIGNIFICANCE, WARP_SAMPLES, sidak_level
 
 #: The checks, in the order reports show them.
 CHECK_NAMES = ("chi2", "normalisation", "domain", "pdf_vs_mitsuba", "samples_vs_mitsuba",
@@ -94,8 +94,8 @@ def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "
         checks["samples_vs_mitsuba"] = wc.skipped("no reference implementation")
     else:
         probe = points[inside][:100_000]
-        grid = dom.from_param(*[a.ravel() for a in np.meshgrid(
-            (np.arange(51) + 0.5) / 51, (np.arange(51) + 0.5) / 51, indexing="ij")])
+        centres = (np.arange(HISTOGRAM_RES) + 0.5) / HISTOGRAM_RES  # the histogram's cell centres
+        grid = dom.from_param(*[a.ravel() for a in np.meshgrid(centres, centres, indexing="ij")])
         checks["pdf_vs_mitsuba"] = wc.pdf_agreement_check(np.concatenate([probe, grid]), pdf, reference.pdf)
         ref_points = wc.as_points(reference.sample(np.random.default_rng([seed, 1]).random((samples, 2))),
                                    samples, "reference sample")

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "error.h"
+
 namespace mcr {
 
 namespace {
@@ -84,6 +86,7 @@ bool EmbreeScene::intersect(const Ray &ray, Hit &hit) const {
 }
 
 void EmbreeScene::intersect8(const Ray *rays, int count, Hit *hits, bool *found) const {
+    MCR_ASSERT(count > 0 && count <= 8);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;

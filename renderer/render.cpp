@@ -11,7 +11,6 @@
 
 #include "camera.h"
 #include "embree_scene.h"
-#include "error.h"
 #include "film.h"
 #include "integrators/integrator.h"
 

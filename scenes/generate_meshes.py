@@ -154,7 +154,7 @@ def cube_sphere(n: int):
     Shared vertices (6 n^2 + 2), 12 n^2 triangles wound outward.
     """
     t = np.tan(np.pi / 4 * (2 * np.arange(n + 1) / n - 1))      # equal-angle grid on [-1, 1]
-    keys, pts, quads = [], [], []
+    keys, quads = [], []
     base = 0
     # Each cube face: fixed axis `ax` at sign `s`, grid over the two other axes.
     for ax in range(3):
