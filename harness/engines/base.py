@@ -45,6 +45,18 @@ class RenderResult:
         return self.batches.mean(axis=0)
 
 
+class RenderFailed(RuntimeError):
+    """A render that gave no usable image: the engine crashed, was killed, hung or reported an error.
+
+    `reason` is one line for reports, e.g. "killed by signal SIGSEGV (11)", "timed out after 600 s",
+    "exited with status 1: <last line of its error output>", "wrote no image".
+    """
+
+    def __init__(self, reason: str) -> None:
+        super().__init__(reason)
+        self.reason = reason
+
+
 class Engine(ABC):
     """A renderer the harness can drive."""
 
@@ -54,7 +66,8 @@ class Engine(ABC):
     def render(self, scene: str, integrator: str, spp: int, batches: int, seed: int,
                params: dict[str, str] | None = None) -> RenderResult:
         """Render `scene` with our integrator `integrator` (normals, simple, ao), `batches`
-        independent times at `spp` samples per pixel; `params` override the scene's <default>s."""
+        independent times at `spp` samples per pixel; `params` override the scene's <default>s.
+        Raises RenderFailed when the engine crashes, hangs or fails to produce the image."""
         raise NotImplementedError(f"engine {self.name} does not render images")
 
     def warp(self, name: str, alpha: float | None = None) -> WarpFunctions | None:

@@ -1,11 +1,14 @@
-"""Our renderer, through its Python module `mcrender` (built by CMake, see the Makefile)."""
+"""Our renderer: images through the `render` CLI in a child process (see render_process), warps through
+its Python module `mcrender` (both built by CMake, see the Makefile)."""
 from __future__ import annotations
 
 import time
+from pathlib import Path
 
 import numpy as np
 
 from harness.engines.base import Engine, RenderResult, WarpFunctions
+from harness.engines.render_process import render_binary, run_render
 
 
 def _load_module():
@@ -18,16 +21,23 @@ def _load_module():
 
 
 class OurEngine(Engine):
-    """The C++ renderer under test."""
+    """The C++ renderer under test.
+
+    binary: the `render` CLI (default: $MCVAL_RENDER, else build/render); timeout: seconds per render
+    (default: $MCVAL_RENDER_TIMEOUT, else 600 s plus a share per sample, see render_process).
+    """
 
     name = "mcval"
     render_timing = "render only (scene load and BVH build are timed apart)"
 
-    def __init__(self) -> None:
+    def __init__(self, binary: str | Path | None = None, timeout: float | None = None) -> None:
         self._m = _load_module()
+        self.binary = binary
+        self.timeout = timeout
 
     def version(self) -> str:
-        return "mcrender (this repository)"
+        return f"this repository's renderer (images: {self.binary or render_binary()} as a child process; " \
+               "warps: the mcrender module)"
 
     def warp(self, name: str, alpha: float | None = None) -> WarpFunctions | None:
         sample_fn = getattr(self._m, name, None)
@@ -50,12 +60,11 @@ class OurEngine(Engine):
 
     def render(self, scene: str, integrator: str, spp: int, batches: int, seed: int,
                params: dict[str, str] | None = None) -> RenderResult:
-        """Seconds: "load" (parse the scene, read meshes), "build" (BVH), "render" (all batches), "total"."""
+        """Seconds: "load" (parse the scene, read meshes), "build" (BVH), "render" (all batches), as timed
+        inside the renderer; "total" (wall clock, with process start and EXR write and read).
+        Raises RenderFailed if the child crashes, is killed, times out, exits non-zero or writes no image."""
         start = time.perf_counter()
-        out = self._m.render(str(scene), spp=spp, seed=seed, batches=batches, integrator=integrator,
-                             params={k: str(v) for k, v in (params or {}).items()})
-        total = time.perf_counter() - start
-        stats = out["stats"]
-        seconds = {"load": stats["load_seconds"], "build": stats["bvh_seconds"],
-                   "render": stats["render_seconds"], "total": total}
-        return RenderResult(self.name, str(scene), integrator, spp, seed, np.asarray(out["batches"]), seconds)
+        out = run_render(str(scene), integrator, spp, batches, seed, {k: str(v) for k, v in (params or {}).items()},
+                         self.timeout, self.binary)
+        seconds = {**out.seconds, "total": time.perf_counter() - start}
+        return RenderResult(self.name, str(scene), integrator, spp, seed, out.batches, seconds)

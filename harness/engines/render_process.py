@@ -1,0 +1,145 @@
+"""Our renderer as a child process: the `render` CLI writes an EXR into a temporary folder, we read it back.
+
+A crash (SIGSEGV, an Embree abort), a kill or a hang of the renderer then ends only that render,
+as a RenderFailed with a one-line reason, and never the harness.
+
+Environment:
+
+* MCVAL_RENDER: the `render` binary to run (default: build/render under the repository root);
+* MCVAL_RENDER_TIMEOUT: seconds after which a render is ended (default: `default_timeout`).
+"""
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from harness.engines.base import RenderFailed
+
+ROOT = Path(__file__).resolve().parents[2]
+RENDER_ENV = "MCVAL_RENDER"
+TIMEOUT_ENV = "MCVAL_RENDER_TIMEOUT"
+#: Seconds every render is allowed, whatever its size.
+BASE_TIMEOUT = 600.0
+#: Further seconds allowed per camera sample (spp x batches x pixels): 100x what the slowest
+#: integrator needs on the 530k-triangle mesh.
+SECONDS_PER_SAMPLE = 1e-5
+#: Pixels assumed when the scene's resolution is not given as the `res` parameter.
+DEFAULT_PIXELS = 512 * 512
+
+
+@dataclass
+class ChildRender:
+    """What one run of the `render` CLI produced.
+
+    batches: (K, H, W, 3) float32, exactly as the renderer wrote them.
+    seconds: "load", "build" (BVH) and "render", as measured inside the renderer (from the EXR header).
+    """
+
+    batches: np.ndarray
+    seconds: dict[str, float]
+
+
+def render_binary() -> Path:
+    """The `render` binary: $MCVAL_RENDER if set, else build/render under the repository root."""
+    return Path(os.environ.get(RENDER_ENV) or ROOT / "build" / "render")
+
+
+def default_timeout(spp: int, batches: int, params: dict[str, str] | None = None) -> float:
+    """Seconds a render may take: $MCVAL_RENDER_TIMEOUT if set, else BASE_TIMEOUT (600 s) plus
+    SECONDS_PER_SAMPLE per camera sample."""
+    if os.environ.get(TIMEOUT_ENV):
+        return float(os.environ[TIMEOUT_ENV])
+    try:
+        pixels = int((params or {})["res"]) ** 2
+    except (KeyError, ValueError):
+        pixels = DEFAULT_PIXELS
+    return BASE_TIMEOUT + SECONDS_PER_SAMPLE * spp * max(batches, 1) * pixels
+
+
+def _kill_group(proc: subprocess.Popen) -> None:
+    """SIGKILL the child and everything it started (its own session), then reap it."""
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+    proc.wait()
+
+
+def _signal_name(number: int) -> str:
+    try:
+        return signal.Signals(number).name
+    except ValueError:
+        return "an unknown signal"
+
+
+def _last_line(path: Path) -> str:
+    lines = [line.strip() for line in path.read_text(errors="replace").splitlines() if line.strip()]
+    return lines[-1] if lines else "(no error message)"
+
+
+def read_render_exr(path: Path, batches: int) -> ChildRender:
+    """The batches (`batch<k>.R/G/B` layers, or `R,G,B` for one batch) and timings of a `render` EXR."""
+    import OpenEXR
+
+    try:
+        with OpenEXR.File(str(path)) as f:
+            header, layers = f.header(), f.channels()
+            names = [f"batch{k}" for k in range(batches)] if "batch0" in layers or batches > 1 else ["RGB"]
+            missing = [n for n in names if n not in layers]
+            if missing:
+                raise RenderFailed(f"wrote an image without the layer(s) {', '.join(missing)}")
+            images = np.stack([np.asarray(layers[n].pixels, dtype=np.float32) for n in names])
+            seconds = {key: float(np.ravel(header[f"mcval.{name}"])[0])
+                       for key, name in (("load", "loadSeconds"), ("build", "bvhSeconds"),
+                                         ("render", "renderSeconds"))}
+    except RenderFailed:
+        raise
+    except Exception as e:  # OpenEXR raises plain exceptions for truncated or foreign files
+        raise RenderFailed(f"wrote an unreadable image ({type(e).__name__}: {e})") from e
+    return ChildRender(images, seconds)
+
+
+def run_render(scene: str, integrator: str, spp: int, batches: int, seed: int,
+               params: dict[str, str] | None = None, timeout: float | None = None,
+               binary: str | Path | None = None) -> ChildRender:
+    """Run `render SCENE --integrator I --spp N --batches K --seed S -D name=value ... -q -o TMP.exr` in a
+    temporary folder (deleted afterwards) and read the EXR. `timeout` in seconds (default:
+    `default_timeout`); `binary` defaults to `render_binary()`. Raises RenderFailed on a crash, a kill,
+    a timeout, a non-zero exit or a missing image; RuntimeError if the binary does not exist."""
+    binary = Path(binary) if binary is not None else render_binary()
+    if not os.access(binary, os.X_OK):
+        raise RuntimeError(f"the renderer {binary} does not exist or is not executable: run `make build`, "
+                           f"or point {RENDER_ENV} at a `render` binary")
+    timeout = default_timeout(spp, batches, params) if timeout is None else timeout
+    with tempfile.TemporaryDirectory(prefix="mcval-render-") as tmp:
+        out, log = Path(tmp) / "render.exr", Path(tmp) / "output.txt"
+        command = [str(binary), str(Path(scene).resolve()), "--integrator", integrator, "--spp", str(spp),
+                   "--batches", str(batches), "--seed", str(seed)]
+        for name, value in (params or {}).items():
+            command += ["-D", f"{name}={value}"]
+        command += ["-q", "-o", str(out)]
+        with open(log, "wb") as log_file:
+            # Its own session: a timeout or Ctrl-C ends the renderer and anything it started.
+            proc = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log_file,
+                                    stderr=subprocess.STDOUT, cwd=tmp, start_new_session=True)
+            try:
+                code = proc.wait(timeout=timeout)
+            except subprocess.TimeoutExpired:
+                _kill_group(proc)
+                raise RenderFailed(f"timed out after {timeout:g} s") from None
+            except BaseException:
+                _kill_group(proc)
+                raise
+        if code < 0:
+            raise RenderFailed(f"killed by signal {_signal_name(-code)} ({-code})")
+        if code > 0:
+            raise RenderFailed(f"exited with status {code}: {_last_line(log)}")
+        if not out.exists():
+            raise RenderFailed("wrote no image")
+        return read_render_exr(out, batches)
