@@ -15,7 +15,7 @@ def write_image_outputs(run_dir: Path, results: list[ImageResult], alpha: float,
     """Writes report.html and junit.xml; returns the results.json fields (images, regression)."""
     images = [r.to_json() for r in results]
     for r, entry in zip(results, images):
-        if not r.passed:
+        if not r.passed and r.error is None:  # (a failed render has no arrays; its entry says why)
             # What is needed to see why: both means, the variances and the p-value maps.
             stem = run_dir / "images" / f"{r.case.scene}_{r.case.integrator}"
             arrays = {"ours_mean": r.ours.mean, "ours_batches": r.ours.batches}

@@ -9,7 +9,7 @@ import numpy as np
 
 from harness.compare import Comparison, compare_summaries, summarize
 from harness.engines.analytic import AnalyticEngine
-from harness.engines.base import Engine, RenderResult
+from harness.engines.base import Engine, RenderFailed, RenderResult
 from harness.image_suite import OUR_SPP, ImageCase
 from harness.references import RESOLUTION, Reference, load_reference, render_reference
 from harness.stats import IMAGE_BATCHES, SIGNIFICANCE, sidak_level
@@ -19,10 +19,14 @@ GEOMETRY_NOTE = "camera or geometry mismatch (normals failed on this scene)"
 
 @dataclass
 class ImageResult:
-    """One (scene, integrator): our batches against each reference, and the verdicts."""
+    """One (scene, integrator): our batches against each reference, and the verdicts.
+
+    `error` (one line) says why a render failed (crashed, killed, timed out, reported an error); the case
+    then fails without comparisons, and `ours` is None if our render was the one that failed.
+    """
 
     case: ImageCase
-    ours: RenderResult
+    ours: RenderResult | None
     references: dict[str, Reference]
     comparisons: dict[str, Comparison]
     reference_source: str
@@ -30,12 +34,19 @@ class ImageResult:
     note: str | None = None
     alpha: float = SIGNIFICANCE
     run_seed: int = 0
+    error: str | None = None
 
     @property
     def passed(self) -> bool:
-        return all(c.passed for c in self.comparisons.values())
+        return self.error is None and all(c.passed for c in self.comparisons.values())
 
     def to_json(self) -> dict:
+        if self.error is not None or self.ours is None:
+            seconds = {k: r.seconds for k, r in self.references.items()}
+            return {"integrator": self.case.integrator, "scene": self.case.scene, "pass": False,
+                    "error": self.error, "tests": {}, "metrics": {},
+                    "seconds": {**({"mcval": self.ours.seconds} if self.ours else {}), **seconds},
+                    "reference": self.reference_source, "note": self.note, "seed": self.seed, "alpha": self.alpha}
         mitsuba = self.comparisons.get("mitsuba")
         batch_means = self.ours.batches.mean(axis=(1, 2))
         return {
@@ -43,8 +54,8 @@ class ImageResult:
             "tests": {name: c.to_json() for name, c in self.comparisons.items()},
             "metrics": mitsuba.metrics if mitsuba else next(iter(self.comparisons.values())).metrics,
             "seconds": {"mcval": self.ours.seconds, **{k: r.seconds for k, r in self.references.items()}},
-            "reference": self.reference_source, "note": self.note, "seed": self.seed, "alpha": self.alpha,
-            "spp": {"mcval": self.ours.spp, **{k: r.spp for k, r in self.references.items()}},
+            "reference": self.reference_source, "note": self.note, "error": None, "seed": self.seed,
+            "alpha": self.alpha, "spp": {"mcval": self.ours.spp, **{k: r.spp for k, r in self.references.items()}},
             "batches": {"mcval": len(self.ours.batches), **{k: r.summary.image.k for k, r in self.references.items()}},
             "image_mean": batch_means.mean(axis=0).tolist(),
             "image_mean_se": (batch_means.std(axis=0, ddof=1) / np.sqrt(len(batch_means))).tolist(),
@@ -56,11 +67,20 @@ def case_seed(case: ImageCase, seed: int) -> int:
     return (zlib.crc32(case.key.encode()) + 7919 * seed) % 2**31
 
 
+def _reason(e: Exception) -> str:
+    """One line saying why a render failed."""
+    if isinstance(e, RenderFailed):
+        return e.reason
+    text = str(e).strip().splitlines()
+    return f"{type(e).__name__}: {text[0]}" if text else type(e).__name__
+
+
 def run_images(cases: list[ImageCase], ours: Engine, mitsuba: Engine, seed: int = 0,
                on_progress: Callable[[ImageCase], None] | None = None,
                on_message: Callable[[str], None] | None = None) -> tuple[list[ImageResult], float]:
     """Every case; all comparisons of the run share a family-wise false-alarm rate of SIGNIFICANCE
-    (Sidak). Returns the results and the per-comparison alpha."""
+    (Sidak). Returns the results and the per-comparison alpha. A render that fails (our RenderFailed, or any
+    exception of a reference engine) fails its case with the reason, and the run goes on."""
     analytic = AnalyticEngine()
     params = {"res": str(RESOLUTION)}
     has_closed_form = {c: analytic.supports(str(c.path), params) for c in cases}
@@ -68,29 +88,56 @@ def run_images(cases: list[ImageCase], ours: Engine, mitsuba: Engine, seed: int 
     geometry_failed: set[str] = set()
     results = []
     for case in cases:
+        s = case_seed(case, seed)
+        result = _run_case(case, ours, mitsuba, analytic if has_closed_form[case] else None, params, s, alpha,
+                           seed, on_message)
+        if case.scene in geometry_failed:
+            result.note = GEOMETRY_NOTE
+        if case.integrator == "normals" and result.error is None and not result.passed:
+            geometry_failed.add(case.scene)
+            result.note = GEOMETRY_NOTE
+        if result.error is not None and on_message:
+            on_message(f"{case.key}: {result.error}")
+        results.append(result)
+        if on_progress:
+            on_progress(case)
+    return results, alpha
+
+
+def _run_case(case: ImageCase, ours: Engine, mitsuba: Engine, analytic: AnalyticEngine | None,
+              params: dict[str, str], s: int, alpha: float, run_seed: int,
+              on_message: Callable[[str], None] | None) -> ImageResult:
+    """One case: the Mitsuba reference, our batches, the closed form if there is one (`analytic`), and
+    the comparisons; a failed render gives a failed result carrying the reason."""
+    source = "none"
+    references: dict[str, Reference] = {}
+
+    def failed(reason: str, mine: RenderResult | None = None) -> ImageResult:
+        return ImageResult(case, mine, references, {}, source, s, None, alpha, run_seed, reason)
+
+    try:
         reference, source = load_reference(case, mitsuba)
         if reference is None:
             if on_message:
                 on_message(f"{case.key}: {source}; rendering it now (`make references` stores it)")
             reference = render_reference(case, mitsuba)
             source = f"rendered now ({source})"
-        s = case_seed(case, seed)
+    except Exception as e:
+        return failed(f"Mitsuba reference: {_reason(e)}")
+    references["mitsuba"] = reference
+    try:
         mine = ours.render(str(case.path), case.integrator, OUR_SPP[case.integrator], IMAGE_BATCHES, s, params)
-        summary = summarize(mine.batches)
-        signed = case.integrator == "normals"
-        references = {"mitsuba": reference}
-        if has_closed_form[case]:
+    except RenderFailed as e:
+        return failed(f"our render: {e.reason}")
+    if analytic is not None:
+        try:
             exact = analytic.render(str(case.path), case.integrator, OUR_SPP[case.integrator], IMAGE_BATCHES,
                                     s + 1, params)
-            references["analytic"] = Reference(summarize(exact.batches), exact.spp, exact.seconds, "closed form")
-        comparisons = {name: compare_summaries(summary, ref.summary, alpha, signed=signed)
-                       for name, ref in references.items()}
-        note = GEOMETRY_NOTE if case.scene in geometry_failed else None
-        result = ImageResult(case, mine, references, comparisons, source, s, note, alpha, seed)
-        if case.integrator == "normals" and not result.passed:
-            geometry_failed.add(case.scene)
-            result.note = GEOMETRY_NOTE
-        results.append(result)
-        if on_progress:
-            on_progress(case)
-    return results, alpha
+        except Exception as e:
+            return failed(f"closed form: {_reason(e)}", mine)
+        references["analytic"] = Reference(summarize(exact.batches), exact.spp, exact.seconds, "closed form")
+    summary = summarize(mine.batches)
+    signed = case.integrator == "normals"
+    comparisons = {name: compare_summaries(summary, ref.summary, alpha, signed=signed)
+                   for name, ref in references.items()}
+    return ImageResult(case, mine, references, comparisons, source, s, None, alpha, run_seed)

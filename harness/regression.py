@@ -35,6 +35,11 @@ def compare_runs(current: list[dict], baseline: dict) -> list[dict]:
         else:
             if old["pass"] != e["pass"]:
                 flags.append(f"verdict {'PASS' if old['pass'] else 'FAIL'} -> {'PASS' if e['pass'] else 'FAIL'}")
+            if e.get("error") and e["error"] != old.get("error"):
+                flags.append(f"render failed: {e['error']}")
+            if "image_mean" not in old or "image_mean" not in e:  # a render failed: nothing to measure
+                out.append(_entry(e, old, flags))
+                continue
             m0, m1 = np.array(old["image_mean"]), np.array(e["image_mean"])
             se = np.sqrt(np.array(old["image_mean_se"]) ** 2 + np.array(e["image_mean_se"]) ** 2)
             z = np.abs(m1 - m0) / np.maximum(se, 1e-12)
@@ -44,7 +49,11 @@ def compare_runs(current: list[dict], baseline: dict) -> list[dict]:
             t0, t1 = old["seconds"]["mcval"]["total"], e["seconds"]["mcval"]["total"]
             if abs(t1 - t0) > TIME_FLOOR and not (1 / TIME_FACTOR < t1 / max(t0, 1e-9) < TIME_FACTOR):
                 flags.append(f"time {t0:.2f}s -> {t1:.2f}s")
-        out.append({"integrator": e["integrator"], "scene": e["scene"], "flags": flags,
-                    "relmse_before": None if old is None else old["metrics"]["relmse"],
-                    "relmse_now": e["metrics"]["relmse"]})
+        out.append(_entry(e, old, flags))
     return out
+
+
+def _entry(e: dict, old: dict | None, flags: list[str]) -> dict:
+    return {"integrator": e["integrator"], "scene": e["scene"], "flags": flags,
+            "relmse_before": None if old is None else old["metrics"].get("relmse"),
+            "relmse_now": e["metrics"].get("relmse")}

@@ -33,6 +33,9 @@ def _entry(r: ImageResult) -> str:
         parts.append(f'<p class="fail">{_esc(r.note)}</p>')
     if not r.passed:
         parts.append(f"<p>Reproduce: <code>{_esc(reproduce_command(r))}</code></p>")
+    if r.error is not None or r.ours is None:
+        parts.append(f'<p class="fail">Render failed: {_esc(r.error)}; nothing to compare.</p>')
+        return "".join(parts)
     ours = r.ours.mean
     for name, comparison in r.comparisons.items():
         ref = r.references[name]

@@ -21,7 +21,11 @@ def image_table(results: list[ImageResult], alpha: float) -> Table:
     for name in ("scene", "integrator", "verdict", "mean ratio", "relMSE", "FLIP", "min bias", "s ours", "s mi"):
         table.add_column(name, no_wrap=True)
     for r in results:
-        m = r.comparisons["mitsuba"]
+        m = r.comparisons.get("mitsuba")
+        if r.error is not None or m is None:  # a render failed: no comparison (the CLI prints why)
+            table.add_row(r.case.scene, r.case.integrator, "[bold red]FAIL[/] render failed", "—", "—", "—", "—",
+                          f"{r.ours.seconds['total']:.2f}" if r.ours else "—", "—")
+            continue
         verdicts = _cell(r) + (" (+exact)" if "analytic" in r.comparisons else "")
         table.add_row(r.case.scene, r.case.integrator, verdicts, f"{m.metrics['mean_ratio']:.4f}",
                       f"{m.metrics['relmse']:.1e}", f"{m.metrics['flip_mean']:.3f}", f"{m.detectable_bias:.1e}",

@@ -27,7 +27,9 @@ def junit_xml(images: list[ImageResult], warps: list[dict] | None) -> str:
         for r in (r for r in images if r.case.integrator == integrator):
             failed = {name: c.failed_scales for name, c in r.comparisons.items() if not c.passed}
             message = "; ".join(f"against {n}: {', '.join(s)} scale(s) reject" for n, s in failed.items())
+            if r.error is not None:
+                message = r.error
             cases.append((r.case.scene, r.passed, (r.note + "; " if r.note else "") + message,
-                          r.ours.seconds.get("total", 0.0)))
+                          r.ours.seconds.get("total", 0.0) if r.ours else 0.0))
         suite(integrator, cases)
     return ET.tostring(root, encoding="unicode", xml_declaration=True)
