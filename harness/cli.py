@@ -7,9 +7,10 @@ import time
 from pathlib import Path
 
 from rich.console import Console
+from rich.markup import escape
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
-from harness.results import new_run_dir, point_link, write_atomic, write_json
+from harness.results import latest_run, new_run_dir, point_link, write_atomic, write_json
 from harness.stats import WARP_SAMPLES
 
 # Logs (CI, pipes) get a wide table rather than a truncated one.
@@ -21,8 +22,12 @@ def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="python -m harness",
         description="mcval: validate a Monte Carlo renderer against its pdfs and against Mitsuba 3.",
-        epilog="Each command but `references` writes results/<run>/ (results.json, HTML pages, junit.xml) "
-               "and exits 1 if any check fails, 2 on bad input.")
+        epilog="Each command but `references` writes results/<run>/ (results.json, HTML pages, junit.xml); "
+               "results/latest moves to it once the run is complete. Exit status: 1 if any check fails, 2 on "
+               "bad input or an error, 130 if interrupted. Our renderer runs as a child process, one per "
+               "render: a crash, kill or hang fails that case only. Environment: MCVAL_RENDER, the `render` "
+               "binary (default: build/render); MCVAL_RENDER_TIMEOUT, seconds per render (default: 600 plus "
+               "a share per sample).")
     sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     def common(q: argparse.ArgumentParser) -> None:
@@ -150,7 +155,8 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
     console.print(f"{len(results) - len(failed)} of {len(results)} image comparisons pass, in {seconds:.1f} s. "
                   f"Report: {run_dir / 'report.html'}")
     for r in failed:
-        console.print(f"[red]FAIL[/] {r.case.key}{' — ' + r.note if r.note else ''}: {reproduce_command(r)}")
+        why = "; ".join(x for x in (r.error, r.note) if x)
+        console.print(f"[red]FAIL[/] {r.case.key}{' — ' + escape(why) if why else ''}: {reproduce_command(r)}")
     return not failed, payload
 
 
@@ -214,49 +220,76 @@ def _bench(args, run_dir: Path) -> tuple[bool, dict]:
     return True, payload
 
 
-def main(argv: list[str] | None = None) -> int:
-    args = _parser().parse_args(argv)
+def _unfinished(what: str, out: Path, run_dir: Path | None, previous: str | None) -> str:
+    """One line: where an unfinished run's partial output is, and that `latest` did not move."""
+    if run_dir is None:
+        return what
+    kept = f"{out / 'latest'} still points at {previous}" if previous else f"{out / 'latest'} was not created"
+    return f"{what}: partial output in {run_dir}/; {kept}"
+
+
+def _run(args, out: Path, started: list[Path]) -> int:
+    """The command; its run folder goes into `started` as soon as it exists."""
     from harness.image_suite import select_cases
     from harness.warp_suite import select
+    if args.command == "references":
+        return _references(args)
+    if args.command == "bench":
+        started.append(run_dir := new_run_dir(out))
+        ok, payload = _bench(args, run_dir)
+        write_json(run_dir / "results.json", {"run": run_dir.name, "pass": ok, **payload})
+        write_atomic(run_dir / "report.html", '<!DOCTYPE html><meta charset="utf-8">'
+                                              '<a href="bench.html">Speed against error</a>')
+        point_link(out / "bench-latest", run_dir)
+        point_link(out / "latest", run_dir)
+        return 0
+    specs = select(getattr(args, "only", None)) if args.command in ("warps", "validate") else []
+    cases = select_cases(args.scenes) if args.command in ("images", "validate") else []
+    # `latest` is the newest complete run; it moves to this run only once this run is complete.
+    baseline = getattr(args, "baseline", None) or ((out / "latest").resolve() / "results.json")
+    started.append(run_dir := new_run_dir(out))
+    payload: dict = {"run": run_dir.name}
+    ok = True
+    warps = None
+    if specs:
+        warps_ok, warps = _run_warps(args, specs, run_dir)
+        ok &= warps_ok
+        payload.update(warps=warps["warps"], warp_level=warps["level"])
+    if cases:
+        images_ok, images = _run_images(args, cases, run_dir, warps, baseline)
+        ok &= images_ok
+        payload.update(images)
+    elif warps is not None:
+        write_atomic(run_dir / "report.html",
+                     '<!DOCTYPE html><meta charset="utf-8"><a href="warps.html">Warp conformance</a>')
+    payload["pass"] = ok
+    write_json(run_dir / "results.json", payload)
+    if getattr(args, "json", None):
+        write_json(args.json, payload)
+    point_link(out / "latest", run_dir)
+    console.print(f"Results: {run_dir / 'results.json'} — {'PASS' if ok else 'FAIL'}")
+    return 0 if ok else 1
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Exit status: 0 all pass, 1 a check failed, 2 bad input or an error, 130 interrupted (Ctrl-C).
+    An unfinished run leaves its partial folder and does not move results/latest."""
+    args = _parser().parse_args(argv)
+    out: Path = getattr(args, "out", Path("results"))
+    previous = latest_run(out)
+    run: list[Path] = []
     try:
-        if args.command == "references":
-            return _references(args)
-        if args.command == "bench":
-            run_dir = new_run_dir(args.out)
-            ok, payload = _bench(args, run_dir)
-            write_json(run_dir / "results.json", {"run": run_dir.name, "pass": ok, **payload})
-            write_atomic(run_dir / "report.html", '<!DOCTYPE html><meta charset="utf-8">'
-                                                  '<a href="bench.html">Speed against error</a>')
-            point_link(args.out / "bench-latest", run_dir)
-            return 0
-        specs = select(getattr(args, "only", None)) if args.command in ("warps", "validate") else []
-        cases = select_cases(args.scenes) if args.command in ("images", "validate") else []
-        # Resolved now: `latest` moves to the new run below.
-        baseline = getattr(args, "baseline", None) or ((args.out / "latest").resolve() / "results.json")
-        run_dir = new_run_dir(args.out)
-        payload: dict = {"run": run_dir.name}
-        ok = True
-        warps = None
-        if specs:
-            warps_ok, warps = _run_warps(args, specs, run_dir)
-            ok &= warps_ok
-            payload.update(warps=warps["warps"], warp_level=warps["level"])
-        if cases:
-            images_ok, images = _run_images(args, cases, run_dir, warps, baseline)
-            ok &= images_ok
-            payload.update(images)
-        elif warps is not None:
-            write_atomic(run_dir / "report.html",
-                         '<!DOCTYPE html><meta charset="utf-8"><a href="warps.html">Warp conformance</a>')
-        payload["pass"] = ok
-        write_json(run_dir / "results.json", payload)
-        if getattr(args, "json", None):
-            write_json(args.json, payload)
-        console.print(f"Results: {run_dir / 'results.json'} — {'PASS' if ok else 'FAIL'}")
-        return 0 if ok else 1
+        return _run(args, out, run)
+    except KeyboardInterrupt:
+        err.print(escape(_unfinished("interrupted", out, run[0] if run else None, previous)), soft_wrap=True)
+        return 130
     except (RuntimeError, ValueError) as e:
-        err.print(f"[bold red]error:[/] {e}")
-        return 2
+        err.print(f"[bold red]error:[/] {escape(str(e))}", soft_wrap=True)
+    except Exception:
+        err.print_exception()
+    if run:
+        err.print(escape(_unfinished("stopped", out, run[0], previous)), soft_wrap=True)
+    return 2
 
 
 if __name__ == "__main__":

@@ -19,8 +19,15 @@ def point_link(link: Path, target: Path) -> None:
     os.replace(tmp, link)
 
 
+def latest_run(root: str | Path = "results") -> str | None:
+    """The name of the run results/latest points at (the newest complete run), or None if there is none."""
+    link = Path(root) / "latest"
+    return os.readlink(link) if link.is_symlink() else None
+
+
 def new_run_dir(root: str | Path = "results") -> Path:
-    """A fresh folder results/<date>-<time>[-n], and results/latest pointing at it."""
+    """A fresh folder results/<date>-<time>[-n]. results/latest is left alone: it is moved to a run
+    (`point_link`) only once that run has written its results."""
     root = Path(root)
     root.mkdir(parents=True, exist_ok=True)
     stamp = datetime.now().strftime("%Y%m%d-%H%M%S")
@@ -29,7 +36,6 @@ def new_run_dir(root: str | Path = "results") -> Path:
         n += 1
         run = root / f"{stamp}-{n}"
     run.mkdir()
-    point_link(root / "latest", run)
     return run
 
 

@@ -1,0 +1,58 @@
+"""results/latest moves to a run only once it is complete; an interrupted or failed run leaves it, and
+its partial folder, and says so in one line."""
+import json
+import os
+
+from harness.cli import main
+from harness.engines.ours import OurEngine
+from harness.results import latest_run, new_run_dir
+
+CASE = ["images", "--only", "plane_point:normals"]
+
+
+def test_new_run_dir_leaves_latest_alone(tmp_path):
+    first = new_run_dir(tmp_path)
+    assert latest_run(tmp_path) is None and not (tmp_path / "latest").exists()
+    os.symlink(first.name, tmp_path / "latest")
+    assert new_run_dir(tmp_path) != first and latest_run(tmp_path) == first.name
+
+
+def test_an_interrupted_run_leaves_latest_at_the_previous_complete_run(tmp_path, monkeypatch, capsys):
+    out = tmp_path / "results"
+    assert main([*CASE, "--out", str(out)]) == 0
+    complete = latest_run(out)
+    assert complete and (out / complete / "results.json").exists()
+
+    def interrupt(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    with monkeypatch.context() as m:
+        m.setattr(OurEngine, "render", interrupt)
+        capsys.readouterr()
+        assert main([*CASE, "--out", str(out)]) == 130
+    message = capsys.readouterr().err.strip().splitlines()[-1]
+    partial = sorted(p.name for p in out.iterdir() if p.name not in (complete, "latest"))
+    assert len(partial) == 1 and not (out / partial[0] / "results.json").exists()
+    assert message == (f"interrupted: partial output in {out / partial[0]}/; "
+                       f"{out / 'latest'} still points at {complete}")
+    assert latest_run(out) == complete
+
+    # The next complete run compares with the last complete one, and moves `latest`.
+    assert main([*CASE, "--out", str(out)]) == 0
+    newest = latest_run(out)
+    assert newest not in (complete, partial[0])
+    assert json.loads((out / newest / "results.json").read_text())["baseline"] == complete
+
+
+def test_a_run_that_dies_of_an_error_exits_2_and_leaves_latest(tmp_path, monkeypatch, capsys):
+    out = tmp_path / "results"
+
+    def broken(*args, **kwargs):
+        raise TypeError("a bug in the harness")
+
+    monkeypatch.setattr(OurEngine, "render", broken)
+    assert main([*CASE, "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "a bug in the harness" in err
+    assert "stopped: partial output in " in err and f"{out / 'latest'} was not created" in err
+    assert latest_run(out) is None
