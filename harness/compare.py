@@ -12,14 +12,21 @@ Hanika, Dachsbacher, JCGT 2020). The false-alarm rate `alpha` is split evenly
 (Sidak) over the three scales, then over the tests within a scale, so a global
 bias (a missing 1/pi) and a local one (a shadow in the wrong place) are both
 caught. A render can be reduced to its `Summary` first (what references store).
+
+Before any statistics, both sides are checked for NaN, +Inf and -Inf, and for
+negative values unless the image is signed (normals): any such pixel fails the
+comparison through its own check (`Comparison.finite`), and the statistics treat
+a non-finite input as a certain rejection, never as agreement.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cache
 
 import numpy as np
 from scipy.ndimage import maximum_filter
 
+from harness.finite import FiniteCheck, damage_of_batches, damage_of_summary
 from harness.metrics import image_metrics
 from harness.stats import ROUNDING_TOLERANCE, SIGNIFICANCE, TILE_SIZE, sidak_level
 from harness.welch import BatchStats, critical_t, welch_p_values
@@ -44,12 +51,17 @@ class Summary:
 
 
 def tile_means(x: np.ndarray, tile: int) -> np.ndarray:
-    """(K, H, W, C) -> (K, ceil(H/tile), ceil(W/tile), C) means; edge tiles average what they hold."""
+    """(K, H, W, C) -> (K, ceil(H/tile), ceil(W/tile), C) means; edge tiles average what they hold.
+
+    A NaN or infinite pixel makes its tile's mean non-finite (it is not skipped)."""
     k, h, w, c = x.shape
     th, tw = -(-h // tile), -(-w // tile)
-    padded = np.full((k, th * tile, tw * tile, c), np.nan)
+    padded = np.zeros((k, th * tile, tw * tile, c))
     padded[:, :h, :w] = x
-    return np.nanmean(padded.reshape(k, th, tile, tw, tile, c), axis=(2, 4))
+    inside = np.zeros((th * tile, tw * tile))
+    inside[:h, :w] = 1.0
+    counts = inside.reshape(th, tile, tw, tile).sum(axis=(1, 3))
+    return padded.reshape(k, th, tile, tw, tile, c).sum(axis=(2, 4)) / counts[None, :, :, None]
 
 
 def summarize(batches: np.ndarray, tile: int = TILE_SIZE) -> Summary:
@@ -59,7 +71,9 @@ def summarize(batches: np.ndarray, tile: int = TILE_SIZE) -> Summary:
         raise ValueError(f"expected (K, H, W, 3) batches, got shape {b.shape}")
     if b.shape[0] < 2:
         raise ValueError("at least 2 batches are needed to estimate a variance")
-    return Summary(BatchStats.of(b), BatchStats.of(tile_means(b, tile)), BatchStats.of(b.mean(axis=(1, 2))), tile)
+    with np.errstate(invalid="ignore", over="ignore"):  # NaN and Inf propagate; the finite check reports them
+        return Summary(BatchStats.of(b), BatchStats.of(tile_means(b, tile)), BatchStats.of(b.mean(axis=(1, 2))),
+                       tile)
 
 
 @dataclass
@@ -94,23 +108,32 @@ class Comparison:
     #: Smallest bias of the image mean, relative to the mean magnitude, detected half of the time.
     detectable_bias: float
     batches: tuple[int, int]
+    #: NaN, Inf and (unless signed) negative pixels of either side; any fails the comparison.
+    finite: FiniteCheck
 
     @property
     def passed(self) -> bool:
-        return all(s.passed for s in self.scales)
+        return self.finite.passed and all(s.passed for s in self.scales)
 
     @property
     def failed_scales(self) -> list[str]:
         return [s.scale for s in self.scales if not s.passed]
 
+    @property
+    def failed_checks(self) -> list[str]:
+        """"finite" (if it failed) then the failed scales."""
+        return ([] if self.finite.passed else ["finite"]) + self.failed_scales
+
     def to_json(self) -> dict:
-        return {"pass": self.passed, "tests": [s.to_json() for s in self.scales], "metrics": self.metrics,
-                "detectable_bias": self.detectable_bias, "batches": list(self.batches)}
+        return {"pass": self.passed, "finite": self.finite.to_json(), "tests": [s.to_json() for s in self.scales],
+                "metrics": self.metrics, "detectable_bias": self.detectable_bias, "batches": list(self.batches)}
 
 
 def _scale_test(name: str, a: BatchStats, b: BatchStats, level_family: float, shape: tuple[int, int],
                 upsample: int, scale: float, rounding: float) -> ScaleTest:
     p, _, _ = welch_p_values(a, b, scale, rounding)
+    # A NaN p-value (a non-finite input) is no evidence of agreement: it counts as a certain rejection.
+    p = np.where(np.isnan(p), 0.0, p)
     level = sidak_level(level_family, p.size)
     pmin = p.min(axis=-1) if p.ndim == 3 else np.full((1, 1), p.min())
     idx = np.unravel_index(int(np.argmin(pmin)), pmin.shape)
@@ -128,18 +151,44 @@ def _robust(stats: BatchStats) -> BatchStats:
     stratum of 32 that catches a grazing light), most of K batches miss it, or all
     catch it by chance, and the element's own estimate falls far below the truth,
     which would make Welch's t-test reject a correct renderer at its extreme levels.
+    A non-finite variance stays as it is and does not raise its neighbours' floor.
     """
-    return BatchStats(stats.mean, maximum_filter(stats.var_of_mean, size=(3, 3, 1), mode="nearest"), stats.k)
+    v = stats.var_of_mean
+    finite = np.isfinite(v)
+    floored = maximum_filter(np.where(finite, v, 0.0), size=(3, 3, 1), mode="nearest")
+    return BatchStats(stats.mean, np.where(finite, floored, v), stats.k)
+
+
+@cache
+def _metric_names() -> tuple[str, ...]:
+    return tuple(image_metrics(np.ones((8, 8, 3)), np.ones((8, 8, 3))))
+
+
+def _metrics(test: np.ndarray, reference: np.ndarray, signed: bool) -> dict[str, float]:
+    """image_metrics, or NaN for every metric where they mean nothing or cannot be computed: a mean
+    image with a non-finite pixel, or a radiance reference with no positive value (FLIP's HDR mode
+    cannot place its exposures there and ends the process)."""
+    if not (np.isfinite(test).all() and np.isfinite(reference).all()) or (not signed and not reference.max() > 0):
+        return dict.fromkeys(_metric_names(), float("nan"))
+    return image_metrics(test, reference, signed=signed)
 
 
 def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFICANCE, signed: bool = False,
                       rounding: float = ROUNDING_TOLERANCE) -> Comparison:
-    """compare_batches on summaries (see there)."""
+    """compare_batches on summaries (see there). The finite check then looks at the summaries: a
+    non-finite mean or variance, a negative variance, a negative mean unless `signed`."""
     if test.pixel.mean.shape != reference.pixel.mean.shape or test.tile_size != reference.tile_size:
         raise ValueError(f"images differ in size: {test.pixel.mean.shape} and {reference.pixel.mean.shape}")
+    finite = FiniteCheck(damage_of_summary(test, signed), damage_of_summary(reference, signed), signed)
+    return _compare(test, reference, finite, alpha, signed, rounding)
+
+
+def _compare(test: Summary, reference: Summary, finite: FiniteCheck, alpha: float, signed: bool,
+             rounding: float) -> Comparison:
     h, w = test.pixel.mean.shape[:2]
     per_scale = sidak_level(alpha, len(SCALES))
-    magnitude = float(np.mean(np.abs(reference.pixel.mean)))
+    ref = reference.pixel.mean[np.isfinite(reference.pixel.mean)]
+    magnitude = float(np.mean(np.abs(ref))) if ref.size else 0.0
     scales = [
         _scale_test("pixel", _robust(test.pixel), _robust(reference.pixel), per_scale, (h, w), 1, magnitude,
                     rounding),
@@ -152,8 +201,8 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     dof = test.image.k + reference.image.k - 2
     denominator = max(magnitude, 1e-12)
     detectable = float(np.max(critical_t(scales[2].level, dof) * se) / denominator)
-    metrics = image_metrics(test.mean_image, reference.mean_image, signed=signed)
-    return Comparison(scales, metrics, detectable, (test.image.k, reference.image.k))
+    metrics = _metrics(test.mean_image, reference.mean_image, signed)
+    return Comparison(scales, metrics, detectable, (test.image.k, reference.image.k), finite)
 
 
 def compare_batches(test: np.ndarray, reference: np.ndarray, alpha: float = SIGNIFICANCE,
@@ -161,11 +210,13 @@ def compare_batches(test: np.ndarray, reference: np.ndarray, alpha: float = SIGN
                     rounding: float = ROUNDING_TOLERANCE) -> Comparison:
     """Compare (K1, H, W, 3) test batches against (K2, H, W, 3) reference batches.
 
-    Fails if any scale rejects at the false-alarm rate `alpha`. `signed` marks images
-    with negative values (normals), for the metrics; `rounding` is the relative
-    precision of the values (float32 by default).
+    Fails if any scale rejects at the false-alarm rate `alpha`, or if either side holds
+    a NaN, +Inf or -Inf in any batch, or a negative value unless `signed`. `signed`
+    marks images with negative values (normals), for that check and the metrics;
+    `rounding` is the relative precision of the values (float32 by default).
     """
     t, r = np.asarray(test), np.asarray(reference)
-    if t.shape[1:] != r.shape[1:]:
+    if t.ndim != 4 or t.shape[1:] != r.shape[1:]:
         raise ValueError(f"expected two (K, H, W, 3) arrays of one image size, got {t.shape} and {r.shape}")
-    return compare_summaries(summarize(t, tile), summarize(r, tile), alpha, signed, rounding)
+    finite = FiniteCheck(damage_of_batches(t, signed), damage_of_batches(r, signed), signed)
+    return _compare(summarize(t, tile), summarize(r, tile), finite, alpha, signed, rounding)

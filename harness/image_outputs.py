@@ -3,6 +3,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
+
 from harness.image_run import ImageResult
 from harness.regression import compare_runs, load_baseline
 from harness.report.image_html import report_html
@@ -24,6 +26,9 @@ def write_image_outputs(run_dir: Path, results: list[ImageResult], alpha: float,
                 arrays[f"{name}_var_of_mean"] = ref.summary.pixel.var_of_mean
                 for scale in r.comparisons[name].scales:
                     arrays[f"{name}_p_{scale.scale}"] = scale.p_map
+                finite = r.comparisons[name].finite
+                if not finite.passed:  # 1: NaN, Inf or negative in ours, 2: in the reference, 3: both
+                    arrays[f"{name}_bad_pixels"] = (finite.test.mask + 2 * finite.reference.mask).astype(np.uint8)
             write_npz(stem.with_suffix(".npz"), **arrays)
             write_json(stem.with_suffix(".json"), entry)
             entry["data"] = str(stem.relative_to(run_dir)) + ".npz"

@@ -32,13 +32,17 @@ def welch_p_values(a: BatchStats, b: BatchStats, scale: float = 0.0,
     times the values' magnitude plus `scale` (the image's typical magnitude), so
     two engines that agree to float32 rounding on a noiseless pixel (a flat normal,
     a component that is 0 in one and 3e-8 in the other) are not told apart; where
-    both sides are constant and equal the p-value is 1.
+    both sides are constant and equal the p-value is 1. Where any input (either
+    mean or variance, or `scale`) is NaN or infinite, t and p are NaN: such a pixel is no
+    evidence of agreement.
     """
     va, vb = a.var_of_mean, b.var_of_mean
     floor = rounding * (0.5 * (np.abs(a.mean) + np.abs(b.mean)) + scale)
-    se = np.sqrt(va + vb + floor**2)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t = np.where(se > 0, (a.mean - b.mean) / se, 0.0)
+    finite = np.isfinite(a.mean) & np.isfinite(b.mean) & np.isfinite(va) & np.isfinite(vb) & np.isfinite(floor)
+    with np.errstate(invalid="ignore", over="ignore"):
+        se = np.sqrt(va + vb + floor**2)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        t = np.where(finite, np.where(se > 0, (a.mean - b.mean) / se, 0.0), np.nan)
         # Welch-Satterthwaite degrees of freedom; the pooled count where both variances vanish.
         dof_den = va**2 / (a.k - 1) + vb**2 / (b.k - 1)
         dof = np.where(dof_den > 0, (va + vb) ** 2 / dof_den, a.k + b.k - 2.0)

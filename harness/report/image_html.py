@@ -4,6 +4,10 @@ from __future__ import annotations
 import base64
 import html
 
+import numpy as np
+
+from harness.compare import Comparison
+from harness.finite import SIDES
 from harness.image_run import ImageResult
 from harness.image_suite import INTEGRATORS
 from harness.report.image_plots import comparison_png
@@ -27,6 +31,33 @@ def reproduce_command(result: ImageResult) -> str:
     return f"python -m harness images --only {result.case.key} --seed {result.run_seed}"
 
 
+def _bad_pixels(comparison: Comparison) -> str:
+    """E.g. "non-finite pixels: 12 in the test image at (3, 7), (3, 8), …": every kind and side, the
+    locations (row, column) the check kept; empty when the check passed."""
+    lines = []
+    for side in SIDES:
+        d = getattr(comparison.finite, side)
+        for kind, n, at in (("non-finite", d.nonfinite, d.nonfinite_at), ("negative", d.negative, d.negative_at)):
+            if n:
+                more = f", … ({n - len(at)} more)" if n > len(at) else ""
+                lines.append(f"{kind} pixels: {n} in the {side} image at {', '.join(map(str, at))}{more}")
+    return "".join(f"<p class='fail'>{_esc(line)}</p>" for line in lines)
+
+
+def _picture(r: ImageResult, name: str, comparison: Comparison) -> str:
+    """The row of panels; NaN and Inf shown as 0 (the bad pixels are red on the p-value map, which
+    counts them as certain rejections, and listed above it)."""
+    signed = r.case.integrator == "normals"
+    ours = np.nan_to_num(r.ours.mean, nan=0.0, posinf=0.0, neginf=0.0)
+    ref = np.nan_to_num(r.references[name].summary.mean_image, nan=0.0, posinf=0.0, neginf=0.0)
+    if not signed and not ref.max() > 0:
+        # FLIP's HDR mode cannot place its exposures on an all-black reference and ends the process.
+        return "<p class='meta'>No pictures: the reference holds no positive value.</p>"
+    png = comparison_png(ours, ref, comparison, signed, "Mitsuba" if name == "mitsuba" else "closed form")
+    return (f'<img alt="{_esc(r.case.key)} against {_esc(name)}" src="data:image/png;base64,'
+            f'{base64.b64encode(png).decode()}">')
+
+
 def _entry(r: ImageResult) -> str:
     parts = [f'<h3 id="{_esc(r.case.key)}">{_esc(r.case.scene)} — {_esc(r.case.integrator)}: {_verdict(r.passed)}</h3>']
     if r.note:
@@ -36,22 +67,21 @@ def _entry(r: ImageResult) -> str:
     if r.error is not None or r.ours is None:
         parts.append(f'<p class="fail">Render failed: {_esc(r.error)}; nothing to compare.</p>')
         return "".join(parts)
-    ours = r.ours.mean
     for name, comparison in r.comparisons.items():
         ref = r.references[name]
-        png = comparison_png(ours, ref.summary.mean_image, comparison, r.case.integrator == "normals",
-                             "Mitsuba" if name == "mitsuba" else "closed form")
-        rows = "".join(f"<tr><td>{s.scale}</td><td>{s.tests}</td><td>{s.level:.2g}</td><td>{s.min_p:.2g}</td>"
-                       f"<td>{s.failures}</td><td>{s.worst}</td><td>{_verdict(s.passed)}</td></tr>"
-                       for s in comparison.scales)
+        finite = comparison.finite
+        rows = (f"<tr><td>finite</td><td colspan='5'>{_esc(finite.summary)}</td>"
+                f"<td>{_verdict(finite.passed)}</td></tr>")
+        rows += "".join(f"<tr><td>{s.scale}</td><td>{s.tests}</td><td>{s.level:.2g}</td><td>{s.min_p:.2g}</td>"
+                        f"<td>{s.failures}</td><td>{s.worst}</td><td>{_verdict(s.passed)}</td></tr>"
+                        for s in comparison.scales)
         metrics = "".join(f"<tr><td>{_esc(k)}</td><td>{v:.4g}</td></tr>" for k, v in comparison.metrics.items())
         parts.append(
             f"<p class='meta'>against {_esc(name)} ({ref.spp} spp × {ref.summary.image.k} batches"
             f"{', ' + _esc(r.reference_source) if name == 'mitsuba' else ''}); ours {r.ours.spp} spp × "
             f"{len(r.ours.batches)} batches, seed {r.seed}; smallest detectable bias of the image mean "
             f"{comparison.detectable_bias:.2%}</p>"
-            f'<img alt="{_esc(r.case.key)} against {_esc(name)}" src="data:image/png;base64,'
-            f'{base64.b64encode(png).decode()}">'
+            + _bad_pixels(comparison) + _picture(r, name, comparison) +
             f"<div style='display:flex;gap:2em;align-items:flex-start'><table><tr><th>scale</th><th>tests</th><th>level</th><th>min p</th>"
             f"<th>fails</th><th>worst (row, col)</th><th></th></tr>{rows}</table>"
             f"<table><tr><th>metric</th><th>value</th></tr>{metrics}</table>"

@@ -2,14 +2,20 @@
 from __future__ import annotations
 
 from rich import box
+from rich.markup import escape
 from rich.table import Table
 
 from harness.image_run import ImageResult
 
 
 def _cell(result: ImageResult) -> str:
+    """PASS, or FAIL with what failed: the finite check's summary (NaN, Inf or negative pixels, which
+    make the scales meaningless) if it failed, else the failing scales."""
     if result.passed:
         return "[green]PASS[/]"
+    bad_pixels = dict.fromkeys(c.finite.summary for c in result.comparisons.values() if not c.finite.passed)
+    if bad_pixels:
+        return f"[bold red]FAIL[/] {escape('; '.join(bad_pixels))}"
     failed = sorted({s for c in result.comparisons.values() for s in c.failed_scales})
     return f"[bold red]FAIL[/] {','.join(failed)}"
 

@@ -3,7 +3,16 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 
+from harness.compare import Comparison
 from harness.image_run import ImageResult
+
+
+def _failure(c: Comparison) -> str:
+    """Why a comparison failed: its bad pixels (NaN, Inf, negative), then the scales that reject."""
+    parts = [] if c.finite.passed else [c.finite.summary]
+    if c.failed_scales:
+        parts.append(f"{', '.join(c.failed_scales)} scale(s) reject")
+    return "; ".join(parts)
 
 
 def junit_xml(images: list[ImageResult], warps: list[dict] | None) -> str:
@@ -25,8 +34,7 @@ def junit_xml(images: list[ImageResult], warps: list[dict] | None) -> str:
     for integrator in sorted({r.case.integrator for r in images}):
         cases = []
         for r in (r for r in images if r.case.integrator == integrator):
-            failed = {name: c.failed_scales for name, c in r.comparisons.items() if not c.passed}
-            message = "; ".join(f"against {n}: {', '.join(s)} scale(s) reject" for n, s in failed.items())
+            message = "; ".join(f"against {n}: {_failure(c)}" for n, c in r.comparisons.items() if not c.passed)
             if r.error is not None:
                 message = r.error
             cases.append((r.case.scene, r.passed, (r.note + "; " if r.note else "") + message,
