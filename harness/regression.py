@@ -40,8 +40,9 @@ def compare_runs(current: list[dict], baseline: dict) -> list[dict]:
             if "image_mean" not in old or "image_mean" not in e:  # a render failed: nothing to measure
                 out.append(_entry(e, old, flags))
                 continue
-            m0, m1 = np.array(old["image_mean"]), np.array(e["image_mean"])
-            se = np.sqrt(np.array(old["image_mean_se"]) ** 2 + np.array(e["image_mean_se"]) ** 2)
+            # dtype=float: results.json holds a NaN or Inf as the string "nan" or "inf".
+            m0, m1 = np.array(old["image_mean"], dtype=float), np.array(e["image_mean"], dtype=float)
+            se = np.hypot(np.array(old["image_mean_se"], dtype=float), np.array(e["image_mean_se"], dtype=float))
             z = np.abs(m1 - m0) / np.maximum(se, 1e-12)
             if np.any(z > MEAN_SIGMAS) and np.any(m1 != m0):
                 flags.append(f"image mean moved {float(np.max(z)):.1f} standard errors "

@@ -182,3 +182,6 @@ def test_a_nan_render_fails_in_every_output(tmp_path, monkeypatch, capsys):
     assert f"{expected} at (5, 9)" in (run / "report.html").read_text()
     bad = np.load(run / "images" / "plane_point_normals.npz")["mitsuba_bad_pixels"]
     assert bad[5, 9] == 1 and bad.sum() == 1
+    # The next run reads this one (NaN stored as "nan") as its baseline without trouble.
+    assert main(["images", "--only", "plane_point:normals", "--out", str(tmp_path)]) == 1
+    assert json.loads((tmp_path / "latest" / "results.json").read_text())["baseline"] == run.name
