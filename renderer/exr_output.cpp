@@ -12,6 +12,8 @@
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
 
+#include "error.h"
+
 namespace mcr {
 
 namespace {
@@ -48,19 +50,41 @@ void writeExr(const std::string &path, const RenderOutput &output, const OutputI
     for (size_t k = 0; k < output.batches.size(); ++k)
         addLayer(header, fb, "batch" + std::to_string(k) + ".", output.batches[k]);
 
+    requireWritableOutput(path);
     namespace fs = std::filesystem;
     const fs::path target(path);
     const fs::path tmp = target.parent_path() /
                          ("." + target.filename().string() + ".tmp" + std::to_string(std::random_device{}()));
     try {
-        Imf::OutputFile file(tmp.string().c_str(), header);
-        file.setFrameBuffer(fb);
-        file.writePixels(output.mean.height);
-    } catch (...) {
+        {
+            Imf::OutputFile file(tmp.string().c_str(), header);
+            file.setFrameBuffer(fb);
+            file.writePixels(output.mean.height);
+        }
+        requireWritableOutput(path);  // still a regular file (or nothing) just before the rename
+        std::error_code ec;
+        fs::rename(tmp, target, ec);
+        if (ec) throw SceneError(path, 0, "cannot write the output: " + ec.message());
+    } catch (const SceneError &) {
         std::remove(tmp.string().c_str());
         throw;
+    } catch (const std::exception &e) {
+        std::remove(tmp.string().c_str());
+        throw SceneError(path, 0, std::string("cannot write the output: ") + e.what());
     }
-    fs::rename(tmp, target);
+}
+
+void requireWritableOutput(const std::string &path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path target(path);
+    const fs::file_status status = fs::status(target, ec);
+    if (ec && status.type() != fs::file_type::not_found)
+        throw SceneError(path, 0, "cannot use as output: " + ec.message());
+    if (fs::exists(status) && !fs::is_regular_file(status))
+        throw SceneError(path, 0, "output exists and is not a regular file (a folder, FIFO or device?)");
+    const fs::path parent = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+    if (!fs::is_directory(parent, ec)) throw SceneError(path, 0, "the output's folder does not exist");
 }
 
 }  // namespace mcr

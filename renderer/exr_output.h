@@ -16,6 +16,11 @@ struct OutputInfo {
 /// Writes R, G, B (mean), variance.R/G/B and, for K > 1 batches, batch<k>.R/G/B. Header attributes
 /// mcval.* hold the integrator, spp, seed, timings and ray counts. Written to a temporary file in
 /// the same folder, then renamed: a reader never sees half a file.
+/// Throws SceneError (and leaves no temporary file) if the path cannot take the image.
 void writeExr(const std::string &path, const RenderOutput &output, const OutputInfo &info);
+
+/// Throws SceneError unless `path` names a regular file or nothing, in an existing folder: the
+/// output never replaces a folder, FIFO or device.
+void requireWritableOutput(const std::string &path);
 
 }  // namespace mcr

@@ -13,6 +13,7 @@
 #include "progress.h"
 #include "render.h"
 #include "scene.h"
+#include "scene_limits.h"
 
 using namespace mcr;
 
@@ -27,11 +28,11 @@ int main(int argc, char **argv) {
     app.add_option("scene", scenePath, "scene file (.xml)")->required()->check(CLI::ExistingFile);
     app.add_option("-o,--output", outPath, "output .exr (default: the scene's name, .exr, in the current folder)");
     app.add_option("--spp", spp, "samples per pixel (per batch; default: the scene's sample_count)")
-        ->check(CLI::PositiveNumber);
+        ->check(CLI::Range(1, kMaxSampleCount));
     app.add_option("--seed", seed, "random seed (default 0)");
     app.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
     app.add_option("--batches", batches, "independent images to render, each with --spp samples (default 1)")
-        ->check(CLI::PositiveNumber);
+        ->check(CLI::Range(1, kMaxBatches));
     app.add_option("--integrator", integrator, "normals, simple or ao (default: the scene's)")
         ->check(CLI::IsMember({"normals", "simple", "ao"}));
     app.add_option("-D,--define", defines, "set a scene parameter: -D name=value (overrides its <default>)");
@@ -46,6 +47,7 @@ int main(int argc, char **argv) {
             params[d.substr(0, eq)] = d.substr(eq + 1);
         }
         if (outPath.empty()) outPath = std::filesystem::path(scenePath).stem().string() + ".exr";
+        requireWritableOutput(outPath);  // before the work, not after it
         const auto start = std::chrono::steady_clock::now();
         const SceneDescription scene = loadScene(scenePath, params);
         OutputInfo info{scenePath, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};

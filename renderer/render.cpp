@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <mutex>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -11,8 +12,10 @@
 
 #include "camera.h"
 #include "embree_scene.h"
+#include "error.h"
 #include "film.h"
 #include "integrators/integrator.h"
+#include "scene_limits.h"
 
 namespace mcr {
 
@@ -53,6 +56,17 @@ void combineBatches(const std::vector<Image> &batches, Image &mean, Image &varia
     }
 }
 
+/// Throws if any value of the image is NaN or infinite: such a render is never returned.
+void requireFinite(const Image &image, const std::string &what) {
+    for (size_t i = 0; i < image.rgb.size(); ++i) {
+        if (std::isfinite(image.rgb[i])) continue;
+        const size_t pixel = i / 3;
+        throw SceneError("the " + what + " has a non-finite value at pixel (" + std::to_string(pixel % image.width) +
+                         ", " + std::to_string(pixel / image.width) +
+                         "): the scene's magnitudes overflow float32 (a light almost touching a surface?)");
+    }
+}
+
 }  // namespace
 
 RenderOutput render(const SceneDescription &scene, const RenderOptions &options) {
@@ -60,6 +74,15 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
     if (!options.integrator.empty()) spec.type = options.integrator;
     const int spp = options.spp > 0 ? options.spp : scene.sampleCount;
     const int batches = std::max(1, options.batches);
+    if (spp > kMaxSampleCount) throw SceneError("spp must be at most " + std::to_string(kMaxSampleCount));
+    if (batches > kMaxBatches) throw SceneError("batches must be at most " + std::to_string(kMaxBatches));
+    // Film sums (11 doubles) and the mean, variance and batch images (3 floats each) per pixel.
+    const double bytes = double(scene.film.width) * scene.film.height * (11 * 8 + 12 * (2 + batches));
+    if (bytes > kMaxImageBytes)
+        throw SceneError(scene.file, 0, "a " + std::to_string(scene.film.width) + "x" + std::to_string(scene.film.height) +
+                                            " film with " + std::to_string(batches) + " batches needs " +
+                                            std::to_string(int(bytes / (1 << 20))) + " MiB; the limit is " +
+                                            std::to_string(int(kMaxImageBytes / (1 << 20))) + " MiB");
     const int width = scene.film.width, height = scene.film.height;
 
     std::unique_ptr<tbb::global_control> limit;
@@ -140,6 +163,9 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
         out.variance = out.mean;
         combineBatches(out.batches, out.mean, out.variance);
     }
+    requireFinite(out.mean, "image");
+    requireFinite(out.variance, "variance image");
+    for (size_t k = 0; k < out.batches.size(); ++k) requireFinite(out.batches[k], "batch " + std::to_string(k));
     out.stats.renderSeconds = secondsSince(start);
     for (const RayCounts &c : counts) {
         out.stats.cameraRays += c.camera;

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "error.h"
+#include "scene_limits.h"
 #include "mesh.h"
 #include "scene.h"
 #include "xml_props.h"
@@ -17,12 +18,34 @@ namespace fs = std::filesystem;
 
 std::string typeOf(const XmlContext &ctx, const pugi::xml_node &node) { return ctx.attr(node, "type"); }
 
+bool inRange(const Vec3f &p, float bound) {
+    return std::abs(p.x) <= bound && std::abs(p.y) <= bound && std::abs(p.z) <= bound;  // false for NaN
+}
+
+void requirePosition(const XmlContext &ctx, const pugi::xml_node &node, const std::string &what, const Vec3f &p) {
+    if (inRange(p, kMaxCoordinate)) return;
+    std::ostringstream msg;
+    msg << what << " lies at (" << p.x << ", " << p.y << ", " << p.z << "): coordinates must be finite and within "
+        << kMaxCoordinate;
+    ctx.fail(node, msg.str());
+}
+
+/// Positions finite and bounded, normals unit length, after to_world: what Embree and the
+/// integrators can trace without producing NaN.
+void requireFiniteMesh(const XmlContext &ctx, const pugi::xml_node &node, const Mesh &mesh) {
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+        requirePosition(ctx, node, "vertex " + std::to_string(i) + " (after to_world)", mesh.positions[i]);
+    for (size_t i = 0; i < mesh.normals.size(); ++i)
+        if (!(std::abs(squaredNorm(mesh.normals[i]) - 1.f) < 1e-3f))
+            ctx.fail(node, "the normal of vertex " + std::to_string(i) + " is zero or not finite (after to_world)");
+}
+
 void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene) {
     if (typeOf(ctx, node) != "perspective") ctx.fail(node, "unsupported sensor type: expected \"perspective\"");
     XmlProps props(ctx, node);
     CameraSpec &cam = scene.camera;
     cam.fov = props.getFloatRequired("fov");
-    if (!(cam.fov > 0.f && cam.fov < 180.f)) ctx.fail(node, "fov must be in (0, 180) degrees");
+    props.requireRange("fov", cam.fov, kMinFov, kMaxFov);
     cam.fovAxis = props.getString("fov_axis", "x");
     if (cam.fovAxis != "x" && cam.fovAxis != "y" && cam.fovAxis != "diagonal" && cam.fovAxis != "smaller" &&
         cam.fovAxis != "larger")
@@ -31,6 +54,7 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
     cam.farClip = props.getFloat("far_clip", 1e4f);
     if (!(cam.nearClip > 0.f && cam.farClip > cam.nearClip)) ctx.fail(node, "need 0 < near_clip < far_clip");
     cam.toWorld = props.getTransform("to_world");
+    requirePosition(ctx, node, "the camera (its to_world)", cam.toWorld.point({0.f, 0.f, 0.f}));
     props.finish("fov, fov_axis, near_clip, far_clip, to_world");
     for (const auto &child : props.objects()) {
         const std::string tag = child.name();
@@ -39,8 +63,8 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
             XmlProps fp(ctx, child);
             scene.film.width = fp.getInt("width", 768);
             scene.film.height = fp.getInt("height", 576);
-            if (scene.film.width < 1 || scene.film.height < 1 || scene.film.width > 16384 || scene.film.height > 16384)
-                ctx.fail(child, "width and height must be in 1..16384");
+            fp.requireRange("width", scene.film.width, 1, kMaxFilmSide);
+            fp.requireRange("height", scene.film.height, 1, kMaxFilmSide);
             fp.finish("width, height");
             for (const auto &f : fp.objects()) {
                 if (std::string(f.name()) != "rfilter") ctx.fail(f, "unsupported element in <film>: expected <rfilter>");
@@ -52,7 +76,7 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
                 } else if (type == "gaussian") {
                     scene.film.filter.type = FilterSpec::Type::Gaussian;
                     scene.film.filter.stddev = rp.getFloat("stddev", 0.5f);
-                    if (!(scene.film.filter.stddev > 0.f)) ctx.fail(f, "stddev must be positive");
+                    rp.requireRange("stddev", scene.film.filter.stddev, kMinFilterStddev, kMaxFilterStddev);
                     rp.finish("stddev");
                 } else {
                     ctx.fail(f, "unsupported rfilter type \"" + type + "\": expected box or gaussian");
@@ -63,7 +87,7 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
             if (typeOf(ctx, child) != "independent") ctx.fail(child, "unsupported sampler type: expected \"independent\"");
             XmlProps sp(ctx, child);
             scene.sampleCount = sp.getInt("sample_count", 4);
-            if (scene.sampleCount < 1) ctx.fail(child, "sample_count must be at least 1");
+            sp.requireRange("sample_count", scene.sampleCount, 1, kMaxSampleCount);
             sp.finish("sample_count");
             if (!sp.objects().empty()) ctx.fail(sp.objects()[0], "unexpected element inside <sampler>");
         } else {
@@ -76,8 +100,7 @@ Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node) {
     if (typeOf(ctx, node) != "diffuse") ctx.fail(node, "unsupported bsdf type: expected \"diffuse\"");
     XmlProps props(ctx, node);
     const Color rho = props.getColor("reflectance", {0.5f, 0.5f, 0.5f});
-    if (rho.x < 0.f || rho.y < 0.f || rho.z < 0.f || rho.x > 1.f || rho.y > 1.f || rho.z > 1.f)
-        ctx.fail(node, "reflectance must lie in [0, 1]");
+    props.requireRange("reflectance", rho, 0.f, 1.f);
     props.finish("reflectance");
     if (!props.objects().empty()) ctx.fail(props.objects()[0], "unexpected element inside <bsdf>");
     return rho;
@@ -94,7 +117,6 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const std::map
         const bool faceNormals = props.getBool("face_normals", false);
         props.finish("filename, face_normals, to_world");
         const fs::path path = fs::path(ctx.file).parent_path() / filename;
-        if (!fs::exists(path)) ctx.fail(node, "mesh file not found: " + path.string());
         try {
             mesh = loadMeshFile(path.string(), toWorld, faceNormals);
         } catch (const SceneError &e) {
@@ -106,6 +128,7 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const std::map
     } else {
         ctx.fail(node, "unsupported shape type \"" + type + "\": expected obj, ply, rectangle or cube");
     }
+    requireFiniteMesh(ctx, node, mesh);
     mesh.name = node.attribute("id") ? ctx.attr(node, "id") : type + " at line " + std::to_string(ctx.line(node));
     bool hasBsdf = false;
     for (const auto &child : props.objects()) {
@@ -132,12 +155,15 @@ void loadEmitter(const XmlContext &ctx, const pugi::xml_node &node, SceneDescrip
     if (type == "point") {
         PointLight light;
         light.position = props.getPoint("position", {0.f, 0.f, 0.f});
+        props.requireRange("position", light.position, -kMaxCoordinate, kMaxCoordinate);
         light.intensity = props.getColor("intensity", {1.f, 1.f, 1.f});
+        props.requireRange("intensity", light.intensity, 0.f, kMaxEmission);
         props.finish("position, intensity");
         scene.pointLights.push_back(light);
     } else if (type == "constant") {
         if (scene.environment) ctx.fail(node, "only one constant emitter is supported");
         scene.environment = props.getColor("radiance", {1.f, 1.f, 1.f});
+        props.requireRange("radiance", *scene.environment, 0.f, kMaxEmission);
         props.finish("radiance");
     } else {
         ctx.fail(node, "unsupported emitter type \"" + type + "\": expected point or constant");
@@ -150,7 +176,7 @@ void loadIntegrator(const XmlContext &ctx, const pugi::xml_node &node, SceneDesc
     XmlProps props(ctx, node);
     if (type == "ao") {
         scene.integrator.aoSamples = props.getInt("samples", 1);
-        if (scene.integrator.aoSamples < 1) ctx.fail(node, "samples must be at least 1");
+        props.requireRange("samples", scene.integrator.aoSamples, 1, kMaxAoSamples);
         props.finish("samples");
     } else if (type == "normals" || type == "simple") {
         props.finish("no properties");
@@ -160,16 +186,28 @@ void loadIntegrator(const XmlContext &ctx, const pugi::xml_node &node, SceneDesc
     scene.integrator.type = type;
 }
 
+/// The whole file, refusing what is not a regular file (a FIFO would block) or is too large.
+std::string readSceneFile(const std::string &path) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (ec) throw SceneError(path, 0, "cannot open scene file: " + ec.message());
+    if (!fs::is_regular_file(status)) throw SceneError(path, 0, "not a regular file");
+    const auto size = fs::file_size(path, ec);
+    if (ec || size > static_cast<uintmax_t>(kMaxSceneFileBytes))
+        throw SceneError(path, 0, "scene file larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw SceneError(path, 0, "cannot open scene file");
+    std::stringstream buf;
+    buf << in.rdbuf();
+    return buf.str();
+}
+
 }  // namespace
 
 SceneDescription loadScene(const std::string &path, const std::map<std::string, std::string> &params) {
     XmlContext ctx;
     ctx.file = path;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw SceneError(path, 0, "cannot open scene file");
-    std::stringstream buf;
-    buf << in.rdbuf();
-    ctx.text = buf.str();
+    ctx.text = readSceneFile(path);
 
     pugi::xml_document doc;
     const pugi::xml_parse_result parsed = doc.load_buffer(ctx.text.data(), ctx.text.size());

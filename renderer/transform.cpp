@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "error.h"
+#include <stdexcept>
 
 namespace mcr {
 
@@ -47,7 +47,12 @@ Transform::Transform() {
 Transform::Transform(const float a[16]) {
     for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 4; ++j) m[i][j] = a[4 * i + j];
-    if (!invert(m, inv)) throw SceneError("transform matrix is singular");
+    for (int i = 0; i < 16; ++i)
+        if (!std::isfinite(a[i])) throw std::domain_error("transform is not finite (it overflows float32)");
+    if (!invert(m, inv)) throw std::domain_error("transform matrix is singular");
+    for (const auto &row : inv)
+        for (float x : row)
+            if (!std::isfinite(x)) throw std::domain_error("transform is too close to singular to invert in float32");
 }
 
 Transform Transform::translate(const Vec3f &t) {

@@ -9,6 +9,7 @@ namespace mcr {
 class Transform {
 public:
     Transform();  ///< identity
+    /// Throws std::domain_error if m is not finite or not invertible in float32.
     explicit Transform(const float m[16]);
 
     static Transform translate(const Vec3f &t);

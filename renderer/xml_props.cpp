@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <sstream>
 
@@ -75,8 +76,11 @@ float XmlProps::parseFloat(const pugi::xml_node &node, const std::string &text) 
     errno = 0;
     char *end = nullptr;
     const float v = std::strtof(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || errno == ERANGE)
-        m_ctx.fail(node, "expected a number, got \"" + text + "\"");
+    if (text.empty() || *end != '\0') m_ctx.fail(node, "expected a number, got \"" + text + "\"");
+    // strtof reads "nan", "inf" and "infinity": none of them is a scene quantity.
+    if (!std::isfinite(v) || (errno == ERANGE && v != 0.f && std::abs(v) >= 1.f))
+        m_ctx.fail(node, "expected a finite number, got \"" + text + "\"");
+    if (errno == ERANGE) return 0.f;  // below float precision: a denormal or zero
     return v;
 }
 
@@ -163,51 +167,74 @@ Transform XmlProps::parseTransform(const pugi::xml_node &node) const {
     Transform result;
     for (pugi::xml_node step : node.children()) {
         if (step.type() != pugi::node_element) continue;
-        const std::string tag = step.name();
-        const auto triple = [&](const char *attr, float def) {
-            if (step.attribute("value")) return parseTriple(step, m_ctx.attr(step, "value"));
-            const auto c = [&](const char *a) { return step.attribute(a) ? parseFloat(step, m_ctx.attr(step, a)) : def; };
-            (void)attr;
-            return Vec3f(c("x"), c("y"), c("z"));
-        };
-        Transform t;
-        if (tag == "translate") {
-            t = Transform::translate(triple("value", 0.f));
-        } else if (tag == "scale") {
-            t = Transform::scale(triple("value", 1.f));
-        } else if (tag == "rotate") {
-            if (!step.attribute("angle")) m_ctx.fail(step, "missing angle=\"degrees\"");
-            const Vec3f axis = triple("value", 0.f);
-            if (squaredNorm(axis) == 0.f) m_ctx.fail(step, "rotation axis is zero: give x, y or z");
-            t = Transform::rotate(axis, parseFloat(step, m_ctx.attr(step, "angle")));
-        } else if (tag == "matrix") {
-            const auto parts = splitNumbers(m_ctx.attr(step, "value"));
-            if (parts.size() != 16) m_ctx.fail(step, "expected 16 numbers in value");
-            float a[16];
-            for (int i = 0; i < 16; ++i) a[i] = parseFloat(step, parts[i]);
-            try {
-                t = Transform(a);
-            } catch (const SceneError &e) {
-                m_ctx.fail(step, e.what());
-            }
-        } else if (tag == "lookat") {
-            const auto vec = [&](const char *a, bool required) {
-                if (!step.attribute(a)) {
-                    if (required) m_ctx.fail(step, std::string("missing ") + a + "=\"x, y, z\"");
-                    return Vec3f(0.f, 1.f, 0.f);
-                }
-                return parseTriple(step, m_ctx.attr(step, a));
-            };
-            const Vec3f origin = vec("origin", true), target = vec("target", true), up = vec("up", false);
-            if (squaredNorm(target - origin) == 0.f) m_ctx.fail(step, "origin and target coincide");
-            if (squaredNorm(cross(up, target - origin)) == 0.f) m_ctx.fail(step, "up is parallel to the view direction");
-            t = Transform::lookAt(origin, target, up);
-        } else {
-            m_ctx.fail(step, "unsupported transform step: expected translate, scale, rotate, matrix or lookat");
+        try {
+            result = parseTransformStep(step) * result;  // later steps apply after earlier ones
+        } catch (const std::domain_error &e) {
+            m_ctx.fail(step, e.what());  // singular or overflowing: Transform knows no file or line
         }
-        result = t * result;  // later steps apply after earlier ones
     }
     return result;
+}
+
+Transform XmlProps::parseTransformStep(const pugi::xml_node &step) const {
+    const std::string tag = step.name();
+    const auto triple = [&](float def) {
+        if (step.attribute("value")) return parseTriple(step, m_ctx.attr(step, "value"));
+        const auto c = [&](const char *a) { return step.attribute(a) ? parseFloat(step, m_ctx.attr(step, a)) : def; };
+        return Vec3f(c("x"), c("y"), c("z"));
+    };
+    if (tag == "translate") return Transform::translate(triple(0.f));
+    if (tag == "scale") return Transform::scale(triple(1.f));
+    if (tag == "rotate") {
+        if (!step.attribute("angle")) m_ctx.fail(step, "missing angle=\"degrees\"");
+        const Vec3f axis = triple(0.f);
+        if (squaredNorm(axis) == 0.f) m_ctx.fail(step, "rotation axis is zero: give x, y or z");
+        return Transform::rotate(axis, parseFloat(step, m_ctx.attr(step, "angle")));
+    }
+    if (tag == "matrix") {
+        const auto parts = splitNumbers(m_ctx.attr(step, "value"));
+        if (parts.size() != 16) m_ctx.fail(step, "expected 16 numbers in value");
+        float a[16];
+        for (int i = 0; i < 16; ++i) a[i] = parseFloat(step, parts[i]);
+        return Transform(a);
+    }
+    if (tag == "lookat") {
+        const auto vec = [&](const char *a, bool required) {
+            if (!step.attribute(a)) {
+                if (required) m_ctx.fail(step, std::string("missing ") + a + "=\"x, y, z\"");
+                return Vec3f(0.f, 1.f, 0.f);
+            }
+            return parseTriple(step, m_ctx.attr(step, a));
+        };
+        const Vec3f origin = vec("origin", true), target = vec("target", true), up = vec("up", false);
+        const Vec3f dir = target - origin;
+        if (!std::isfinite(squaredNorm(dir))) m_ctx.fail(step, "origin and target are too far apart for float32");
+        if (!(squaredNorm(dir) > 0.f)) m_ctx.fail(step, "origin and target coincide");
+        if (!(squaredNorm(cross(normalize(up), normalize(dir))) > 1e-12f))
+            m_ctx.fail(step, "up is zero or parallel to the view direction");
+        return Transform::lookAt(origin, target, up);
+    }
+    m_ctx.fail(step, "unsupported transform step: expected translate, scale, rotate, matrix or lookat");
+}
+
+void XmlProps::requireRange(const std::string &name, const Vec3f &value, float lo, float hi) const {
+    for (int i = 0; i < 3; ++i) {
+        if (value[i] >= lo && value[i] <= hi) continue;
+        std::ostringstream msg;
+        msg << name << " must lie in [" << lo << ", " << hi << "], got " << value[i];
+        failAt(name, msg.str());
+    }
+}
+
+void XmlProps::requireRange(const std::string &name, int value, int lo, int hi) const {
+    if (value < lo || value > hi)
+        failAt(name, name + " must be in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " +
+                         std::to_string(value));
+}
+
+void XmlProps::failAt(const std::string &name, const std::string &message) const {
+    const auto it = m_props.find(name);
+    m_ctx.fail(it != m_props.end() ? it->second : m_element, message);
 }
 
 void XmlProps::finish(const std::string &expected) const {

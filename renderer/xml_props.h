@@ -43,6 +43,14 @@ public:
     Vec3f getPoint(const std::string &name, const Vec3f &def);
     Transform getTransform(const std::string &name);
 
+    /// Throws at the property's line (the element's if it was not given) unless every component of
+    /// `value` lies in [lo, hi]; NaN never does.
+    void requireRange(const std::string &name, const Vec3f &value, float lo, float hi) const;
+    void requireRange(const std::string &name, float value, float lo, float hi) const {
+        requireRange(name, Vec3f(value, value, value), lo, hi);
+    }
+    void requireRange(const std::string &name, int value, int lo, int hi) const;
+
     /// Child elements that are objects (film, sampler, bsdf, ref, ...), for the caller to handle.
     const std::vector<pugi::xml_node> &objects() const { return m_objects; }
     /// Throws if a property was given that nothing asked for.
@@ -50,9 +58,12 @@ public:
 
 private:
     pugi::xml_node find(const std::string &name, const char *tag);
+    /// Throws at the line of property `name` (the element's if it was not given).
+    [[noreturn]] void failAt(const std::string &name, const std::string &message) const;
     float parseFloat(const pugi::xml_node &node, const std::string &text) const;
     Vec3f parseTriple(const pugi::xml_node &node, const std::string &text) const;
     Transform parseTransform(const pugi::xml_node &node) const;
+    Transform parseTransformStep(const pugi::xml_node &step) const;
 
     const XmlContext &m_ctx;
     pugi::xml_node m_element;

@@ -101,7 +101,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "  <integrator type=\"$integrator\"/>\n" + kShape + "</scene>\n", "parameter $integrator", 3},
         BadCase{"missing_mesh", std::string(kHeader) + sensor() +
                 "  <shape type=\"ply\"><string name=\"filename\" value=\"nowhere.ply\"/></shape>\n</scene>\n",
-                "mesh file not found", 3},
+                "nowhere.ply", 3},
         BadCase{"bad_integrator", std::string(kHeader) + sensor() + kShape + "  <integrator type=\"path\"/>\n</scene>\n",
                 "expected normals, simple or ao", 4},
         BadCase{"bad_rfilter", std::string(kHeader) +
@@ -109,7 +109,49 @@ INSTANTIATE_TEST_SUITE_P(
                 "      <rfilter type=\"tent\"/></film></sensor>\n" + kShape + "</scene>\n",
                 "expected box or gaussian", 4},
         BadCase{"unknown_ref", std::string(kHeader) + sensor() + "  <shape type=\"cube\">\n    <ref id=\"gold\"/>\n"
-                "  </shape>\n</scene>\n", "no <bsdf id=\"gold\">", 4}),
+                "  </shape>\n</scene>\n", "no <bsdf id=\"gold\">", 4},
+        // Numbers: finite, in range, with bounded work; the error points at the property's line.
+        BadCase{"nan_reflectance", std::string(kHeader) + sensor() + "  <shape type=\"cube\"><bsdf type=\"diffuse\">\n"
+                "    <rgb name=\"reflectance\" value=\"nan\"/></bsdf></shape>\n</scene>\n",
+                "expected a finite number, got \"nan\"", 4},
+        BadCase{"negative_reflectance", std::string(kHeader) + sensor() + "  <shape type=\"cube\"><bsdf type=\"diffuse\">\n"
+                "    <float name=\"reflectance\" value=\"-0.5\"/></bsdf></shape>\n</scene>\n",
+                "reflectance must lie in [0, 1], got -0.5", 4},
+        BadCase{"infinite_light", std::string(kHeader) + sensor() + kShape +
+                "  <emitter type=\"point\">\n    <point name=\"position\" value=\"Infinity, 0, 0\"/></emitter>\n</scene>\n",
+                "expected a finite number, got \"Infinity\"", 5},
+        BadCase{"far_light", std::string(kHeader) + sensor() + kShape +
+                "  <emitter type=\"point\">\n    <point name=\"position\" value=\"1e20, 0, 0\"/></emitter>\n</scene>\n",
+                "position must lie in", 5},
+        BadCase{"negative_intensity", std::string(kHeader) + sensor() + kShape +
+                "  <emitter type=\"point\">\n    <rgb name=\"intensity\" value=\"1, -1, 1\"/></emitter>\n</scene>\n",
+                "intensity must lie in", 5},
+        BadCase{"overflowing_float", std::string(kHeader) + sensor() + kShape +
+                "  <emitter type=\"constant\">\n    <rgb name=\"radiance\" value=\"1e39\"/></emitter>\n</scene>\n",
+                "expected a finite number, got \"1e39\"", 5},
+        BadCase{"singular_scale", std::string(kHeader) + sensor() + "  <shape type=\"cube\"><transform name=\"to_world\">\n"
+                "    <scale value=\"0\"/></transform></shape>\n</scene>\n", "transform matrix is singular", 4},
+        BadCase{"overflowing_transform", std::string(kHeader) + sensor() + "  <shape type=\"cube\"><transform "
+                "name=\"to_world\"><scale value=\"1e30\"/>\n    <scale value=\"1e30\"/></transform></shape>\n</scene>\n",
+                "not finite", 4},
+        BadCase{"far_vertices", std::string(kHeader) + sensor() + "  <shape type=\"cube\">\n    <transform "
+                "name=\"to_world\"><scale value=\"1e16\"/></transform></shape>\n</scene>\n",
+                "coordinates must be finite and within", 3},
+        BadCase{"zero_up", std::string(kHeader) + sensor("<transform name=\"to_world\">\n<lookat origin=\"0, 0, 5\" "
+                "target=\"0, 0, 0\" up=\"0, 0, 0\"/></transform>") + kShape + "</scene>\n", "up is zero or parallel", 3},
+        BadCase{"huge_filter", std::string(kHeader) + "  <sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n"
+                "    <film type=\"hdrfilm\"><rfilter type=\"gaussian\">\n      <float name=\"stddev\" value=\"1e6\"/>"
+                "</rfilter></film></sensor>\n" + kShape + "</scene>\n", "stddev must lie in [0.05, 4]", 4},
+        BadCase{"endless_ao", std::string(kHeader) + sensor() + kShape + "  <integrator type=\"ao\">\n    <integer "
+                "name=\"samples\" value=\"2147483647\"/></integrator>\n</scene>\n", "samples must be in 1..1024", 5},
+        BadCase{"huge_sample_count", std::string(kHeader) + "  <sensor type=\"perspective\"><float name=\"fov\" "
+                "value=\"40\"/>\n    <sampler type=\"independent\"><integer name=\"sample_count\" value=\"2000000000\"/>"
+                "</sampler></sensor>\n" + kShape + "</scene>\n", "sample_count must be in 1..", 3},
+        BadCase{"huge_film", std::string(kHeader) + "  <sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n"
+                "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"16385\"/></film></sensor>\n" + kShape +
+                "</scene>\n", "width must be in 1..16384", 3},
+        BadCase{"zero_fov", std::string(kHeader) + "  <sensor type=\"perspective\">\n    <float name=\"fov\" value=\"0\"/>"
+                "</sensor>\n" + kShape + "</scene>\n", "fov must lie in", 3}),
     [](const auto &info) { return std::string(info.param.name); });
 
 TEST(SceneLoader, EveryShippedSceneLoads) {

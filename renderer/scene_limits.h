@@ -1,0 +1,29 @@
+// The ranges every scene number must lie in: finite, meaningful, and with bounded work.
+#pragma once
+
+namespace mcr {
+
+/// Largest |coordinate| of a world-space position or light: far inside Embree's limit (1.8e18),
+/// with room for the differences and squared distances the integrators take.
+constexpr float kMaxCoordinate = 1e15f;
+/// Largest emitted intensity (W/sr) or radiance: products with 1/r^2 stay finite in float32.
+constexpr float kMaxEmission = 1e15f;
+/// Largest film side in pixels.
+constexpr int kMaxFilmSide = 16384;
+/// Largest memory the film and the output images of one render may take, in bytes.
+constexpr double kMaxImageBytes = 8.0 * (1ll << 30);
+/// Largest samples per pixel (per batch), from the scene or the command line.
+constexpr int kMaxSampleCount = 1 << 20;
+/// Largest number of independent batches of one render.
+constexpr int kMaxBatches = 4096;
+/// Largest number of occlusion rays per `ao` camera sample.
+constexpr int kMaxAoSamples = 1024;
+/// Range of a gaussian filter's standard deviation, in pixels: narrower underflows its weights,
+/// wider splats each sample over thousands of pixels (Mitsuba's default is 0.5).
+constexpr float kMinFilterStddev = 0.05f, kMaxFilterStddev = 4.f;
+/// Range of the field of view, in degrees.
+constexpr float kMinFov = 1e-3f, kMaxFov = 179.9f;
+/// Largest scene file read, in bytes.
+constexpr long long kMaxSceneFileBytes = 64ll << 20;
+
+}  // namespace mcr
