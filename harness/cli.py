@@ -138,7 +138,8 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
         task = progress.add_task("", total=len(cases))
         results, alpha = run_images(cases, ours, mitsuba, args.seed,
                                     on_progress=lambda c: progress.update(task, advance=1, description=c.key),
-                                    on_message=lambda m: progress.console.print(f"[yellow]{m}[/]"))
+                                    on_message=lambda m: progress.console.print(f"[yellow]{escape(m)}[/]",
+                                                                                soft_wrap=True))
     seconds = time.perf_counter() - start
     console.print(image_table(results, alpha))
     meta = {"engine": ours.version(), "reference": mitsuba.version(), "seed": args.seed,
