@@ -1,16 +1,83 @@
 #include "mesh.h"
 
+#include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 
-#include <assimp/Importer.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "error.h"
+#include "obj_reader.h"
+#include "ply_reader.h"
 
 namespace mcr {
 
 namespace {
+
+namespace fs = std::filesystem;
+
+constexpr uint64_t kMaxMeshFileBytes = uint64_t(2) << 30;  // 2 GiB: far above any scene's mesh
+
+/// What a path that is not a regular file is, for the message.
+const char *kindOf(fs::file_type type) {
+    switch (type) {
+    case fs::file_type::not_found: return "not found";
+    case fs::file_type::directory: return "is a directory";
+    case fs::file_type::fifo: return "is a FIFO";
+    case fs::file_type::socket: return "is a socket";
+    case fs::file_type::block:
+    case fs::file_type::character: return "is a device";
+    default: return "is not a regular file";
+    }
+}
+
+/// Closes a file descriptor on every path out.
+struct FdGuard {
+    int fd;
+    ~FdGuard() {
+        if (fd >= 0) ::close(fd);
+    }
+};
+
+/// The whole content of a regular file (a symlink to one is fine). Anything else is refused
+/// before it is opened, so a FIFO or a device can never block the reader.
+std::string readRegularFile(const std::string &path) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);  // follows symlinks; no exception on a bad path
+    if (ec && status.type() != fs::file_type::not_found)
+        throw SceneError(path, 0, "cannot read mesh file: " + ec.message());
+    if (status.type() != fs::file_type::regular) throw SceneError(path, 0, std::string("mesh file ") + kindOf(status.type()));
+    // O_NONBLOCK and fstat on the open file: the path may have been swapped for a FIFO since status().
+    const FdGuard file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+    if (file.fd < 0) throw SceneError(path, 0, std::string("cannot open mesh file: ") + std::strerror(errno));
+    struct stat st {};
+    if (::fstat(file.fd, &st) != 0 || !S_ISREG(st.st_mode)) throw SceneError(path, 0, "mesh file is not a regular file");
+    if (uint64_t(st.st_size) > kMaxMeshFileBytes)
+        throw SceneError(path, 0, "mesh file has " + std::to_string(st.st_size) + " bytes; at most 2 GiB are supported");
+    std::string bytes(size_t(st.st_size), '\0');
+    size_t done = 0;
+    while (done < bytes.size()) {  // a file that shrinks meanwhile ends early; one that grows is cut
+        const ssize_t n = ::read(file.fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) throw SceneError(path, 0, std::string("cannot read mesh file: ") + std::strerror(errno));
+        if (n == 0) break;
+        done += size_t(n);
+    }
+    bytes.resize(done);
+    return bytes;
+}
+
+/// True if path ends with ext, ignoring case.
+bool hasExtension(const std::string &path, const std::string &ext) {
+    if (path.size() < ext.size()) return false;
+    for (size_t i = 0; i < ext.size(); ++i)
+        if (std::tolower(static_cast<unsigned char>(path[path.size() - ext.size() + i])) != ext[i]) return false;
+    return true;
+}
 
 /// Applies toWorld; a mirroring transform gets its winding reversed so the front side stays
 /// where the transformed normal points (as Mitsuba's analytic shapes do).
@@ -56,44 +123,29 @@ Mesh makeCube(const Transform &toWorld) {
 }
 
 Mesh loadMeshFile(const std::string &path, const Transform &toWorld, bool faceNormals) {
-    Assimp::Importer importer;
-    // Vertices as Mitsuba has them: a PLY's own list; for an OBJ, one per distinct corner (Assimp
-    // gives one per face corner, so join the identical ones). This decides the vertex normals.
-    const bool isObj = path.size() >= 4 && (path.compare(path.size() - 4, 4, ".obj") == 0 ||
-                                            path.compare(path.size() - 4, 4, ".OBJ") == 0);
-    const unsigned flags = aiProcess_Triangulate | (isObj ? aiProcess_JoinIdenticalVertices : 0u);
-    const aiScene *scene = importer.ReadFile(path, flags);
-    if (!scene || !scene->mRootNode) throw SceneError(path, 0, std::string("cannot read mesh: ") + importer.GetErrorString());
-    Mesh mesh;
-    bool allHaveNormals = true;
-    for (unsigned k = 0; k < scene->mNumMeshes; ++k) allHaveNormals &= scene->mMeshes[k]->HasNormals();
-    for (unsigned k = 0; k < scene->mNumMeshes; ++k) {
-        const aiMesh *am = scene->mMeshes[k];
-        const auto base = static_cast<uint32_t>(mesh.positions.size());
-        for (unsigned i = 0; i < am->mNumVertices; ++i) {
-            const aiVector3D &p = am->mVertices[i];
-            mesh.positions.emplace_back(p.x, p.y, p.z);
-            if (allHaveNormals && !faceNormals) {
-                const aiVector3D &n = am->mNormals[i];
-                mesh.normals.emplace_back(n.x, n.y, n.z);
-            }
-        }
-        for (unsigned f = 0; f < am->mNumFaces; ++f) {
-            const aiFace &face = am->mFaces[f];
-            if (face.mNumIndices != 3) continue;  // points and lines carry no surface
-            for (int j = 0; j < 3; ++j) mesh.indices.push_back(base + face.mIndices[j]);
-        }
-    }
+    // Vertices as Mitsuba has them: a PLY's own list; for an OBJ, one per distinct corner. This
+    // decides the vertex normals.
+    const std::string bytes = readRegularFile(path);
+    // The extension decides; a file named otherwise is a PLY if it starts like one.
+    const bool isObj = hasExtension(path, ".obj");
+    const bool isPly = hasExtension(path, ".ply") || (!isObj && bytes.compare(0, 3, "ply") == 0);
+    if (!isObj && !isPly) throw SceneError(path, 0, "unknown mesh format: expected a .obj file or a PLY file");
+    Mesh mesh = isObj ? readObj(path, bytes) : readPly(path, bytes);
     if (mesh.indices.empty()) throw SceneError(path, 0, "mesh has no triangles");
+    if (faceNormals) mesh.normals.clear();
+    const bool fileHasNormals = !mesh.normals.empty();
     mesh = transformed(std::move(mesh), toWorld);
-    if (!allHaveNormals && !faceNormals) computeVertexNormals(mesh);
+    if (!fileHasNormals && !faceNormals) computeVertexNormals(mesh);
     return mesh;
 }
 
 void computeVertexNormals(Mesh &mesh) {
+    MCR_ASSERT(mesh.indices.size() % 3 == 0);
     std::vector<Vec3f> sum(mesh.positions.size());
     for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
         const uint32_t idx[3] = {mesh.indices[i], mesh.indices[i + 1], mesh.indices[i + 2]};
+        // The readers check every index; a bad one here is a bug, not bad input.
+        MCR_ASSERT(idx[0] < mesh.positions.size() && idx[1] < mesh.positions.size() && idx[2] < mesh.positions.size());
         const Vec3f v[3] = {mesh.positions[idx[0]], mesh.positions[idx[1]], mesh.positions[idx[2]]};
         Vec3f n = cross(v[1] - v[0], v[2] - v[0]);
         const float len2 = squaredNorm(n);

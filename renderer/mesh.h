@@ -1,4 +1,4 @@
-// Triangle meshes: read from files (Assimp), or Mitsuba's built-in rectangle and cube.
+// Triangle meshes: read from PLY or OBJ files, or Mitsuba's built-in rectangle and cube.
 #pragma once
 
 #include <string>
