@@ -33,7 +33,7 @@ from harness.welch import BatchStats, critical_t, welch_p_values
 
 SCALES = ("pixel", "tile", "image")
 #: Bumped whenever `summarize` changes what it stores, so stored references are made again.
-SUMMARY_FORMAT = 2
+SUMMARY_FORMAT = 3
 
 
 @dataclass

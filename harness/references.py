@@ -8,6 +8,13 @@ only when its provenance (the hash of the scene file and every mesh it names,
 Mitsuba's version and variant, samples, batches, seed, resolution) matches what
 the run asks for; otherwise the run renders a fresh one and says so. Only
 `python -m harness references` (make references) writes them.
+
+Every file is checked when read. The .json records the size and SHA-256 of the
+.exr (so damaged bytes never reach the EXR decoder) and `content_sha256`, the
+SHA-256 of every array of the summary as stored; anything wrong (a file that
+does not parse, a field missing or of the wrong shape, a missing layer, a wrong
+size, a non-finite value, a hash that does not match) makes `load_reference`
+return None with one line naming the file, and the run renders a fresh one.
 """
 from __future__ import annotations
 
@@ -67,30 +74,138 @@ def reference_path(case: ImageCase) -> Path:
     return REFERENCES_DIR / case.scene / f"{case.integrator}.exr"
 
 
-def _stats(d: dict, k: int) -> BatchStats:
-    return BatchStats(np.array(d["mean"]), np.array(d["var_of_mean"]), k)
+def summary_sha256(summary: Summary) -> str:
+    """SHA-256 of the arrays a reference stores, as stored: the pixel mean and variance as float32, the
+    tile and image statistics as float64 (each array's name and shape included)."""
+    h = hashlib.sha256()
+    for name, stats, dtype in (("pixel", summary.pixel, "<f4"), ("tile", summary.tile, "<f8"),
+                               ("image", summary.image, "<f8")):
+        for part in ("mean", "var_of_mean"):
+            a = np.ascontiguousarray(getattr(stats, part), dtype=dtype)
+            h.update(f"{name}.{part}{a.shape}".encode())
+            h.update(a.tobytes())
+    return h.hexdigest()
+
+
+class _Damaged(Exception):
+    """A stored reference file that cannot be used; the message is one line naming the file."""
+
+    def __init__(self, path: Path | str, what: str) -> None:
+        super().__init__(f"{path}: {' '.join(str(what).split())}")
+
+
+def _read_meta(meta_path: Path) -> dict:
+    """The .json as an object with a `provenance` object, or _Damaged."""
+    try:
+        meta = json.loads(meta_path.read_bytes())
+    except OSError as e:
+        raise _Damaged(meta_path, f"unreadable ({e.strerror or e})") from None
+    except ValueError as e:  # JSONDecodeError, UnicodeDecodeError
+        raise _Damaged(meta_path, f"not valid JSON, truncated or damaged ({e})") from None
+    if not isinstance(meta, dict):
+        raise _Damaged(meta_path, f"not a JSON object but a {type(meta).__name__}")
+    if not isinstance(meta.get("provenance"), dict):
+        raise _Damaged(meta_path, "no 'provenance' object")
+    return meta
+
+
+def _check_values(path: Path, what: str, mean: np.ndarray, var: np.ndarray) -> None:
+    bad = int((~np.isfinite(mean)).sum() + (~np.isfinite(var)).sum())
+    if bad:
+        raise _Damaged(path, f"{what}: non-finite values: {bad}")
+    if (var < 0).any():
+        raise _Damaged(path, f"{what}: negative variances: {int((var < 0).sum())}")
+
+
+def _json_stats(meta: dict, name: str, shape: tuple[int, ...], k: int, meta_path: Path) -> BatchStats:
+    """The `name` statistics of the .json, checked: numbers, of `shape`, finite, variances >= 0."""
+    d = meta.get(name)
+    if not isinstance(d, dict) or "mean" not in d or "var_of_mean" not in d:
+        raise _Damaged(meta_path, f"no '{name}' object with 'mean' and 'var_of_mean'")
+    try:
+        mean, var = np.array(d["mean"], dtype=np.float64), np.array(d["var_of_mean"], dtype=np.float64)
+    except (TypeError, ValueError):
+        raise _Damaged(meta_path, f"'{name}' statistics are not arrays of numbers") from None
+    if mean.shape != shape or var.shape != shape:
+        raise _Damaged(meta_path, f"'{name}' statistics have shapes {mean.shape} and {var.shape}, not {shape}")
+    _check_values(meta_path, f"'{name}' statistics", mean, var)
+    return BatchStats(mean, var, k)
+
+
+def _read_exr(path: Path, meta: dict, meta_path: Path) -> tuple[np.ndarray, np.ndarray]:
+    """The mean and variance layers, after the file's size and SHA-256 matched those the .json records."""
+    import OpenEXR
+
+    size, digest = meta.get("exr_bytes"), meta.get("exr_sha256")
+    if not isinstance(size, int) or not isinstance(digest, str):
+        raise _Damaged(meta_path, "no 'exr_bytes' and 'exr_sha256' of the .exr")
+    data = path.read_bytes()
+    if len(data) < size:
+        raise _Damaged(path, f"truncated or replaced ({len(data)} of the {size} bytes written)")
+    if len(data) != size or hashlib.sha256(data).hexdigest() != digest:
+        raise _Damaged(path, f"not the file written ({len(data)} bytes, {size} written; SHA-256 differs from "
+                             f"the one in {meta_path.name}): damaged or edited")
+    try:
+        with OpenEXR.File(str(path)) as f:
+            layers = f.channels()
+            missing = [name for name in ("RGB", "variance") if name not in layers]
+            if missing:
+                raise _Damaged(path, f"no {' or '.join(missing)} layer (has {', '.join(layers) or 'none'})")
+            mean = np.asarray(layers["RGB"].pixels, dtype=np.float64)
+            var = np.asarray(layers["variance"].pixels, dtype=np.float64)
+    except _Damaged:
+        raise
+    except Exception as e:  # the decoder's own errors: RuntimeError, ValueError, ...
+        raise _Damaged(path, f"not a readable EXR ({e})") from None
+    expected = (RESOLUTION, RESOLUTION, 3)
+    if mean.shape != expected or var.shape != expected:
+        raise _Damaged(path, f"layers of shapes {mean.shape} and {var.shape}, not {expected} "
+                             f"(every scene is validated at {RESOLUTION}x{RESOLUTION})")
+    _check_values(path, "pixels", mean, var)
+    return mean, var
+
+
+def _read_summary(path: Path, meta_path: Path, meta: dict) -> tuple[Summary, dict]:
+    """The stored summary and seconds, every array checked and the content hash compared."""
+    provenance = meta["provenance"]
+    k, tile = provenance["batches"], provenance["tile"]
+    seconds = meta.get("seconds")
+    if not isinstance(seconds, dict) or not all(isinstance(v, (int, float)) for v in seconds.values()):
+        raise _Damaged(meta_path, "no 'seconds' object of numbers")
+    if not isinstance(meta.get("content_sha256"), str):
+        raise _Damaged(meta_path, "no 'content_sha256'")
+    mean, var = _read_exr(path, meta, meta_path)
+    tiles = (-(-RESOLUTION // tile), -(-RESOLUTION // tile), 3)
+    summary = Summary(BatchStats(mean, var, k), _json_stats(meta, "tile", tiles, k, meta_path),
+                      _json_stats(meta, "image", (3,), k, meta_path), tile)
+    if summary_sha256(summary) != meta["content_sha256"]:
+        raise _Damaged(f"{path} and {meta_path}", "summary does not match its stored arrays (edited or damaged: "
+                                                  "content_sha256 differs)")
+    return summary, seconds
 
 
 def load_reference(case: ImageCase, engine: Engine) -> tuple[Reference | None, str]:
-    """The stored reference if its provenance matches, else None; and why."""
-    import OpenEXR
-
+    """The stored reference if its provenance matches and its files are sound, else None; and why, in
+    one line ("<path>: <what is wrong>" for a damaged file). Never raises for a bad file."""
     path = reference_path(case)
     meta_path = path.with_suffix(".json")
-    if not path.exists() or not meta_path.exists():
+    if not path.exists() and not meta_path.exists():
         return None, "no stored reference"
-    meta = json.loads(meta_path.read_text())
     expected = expected_provenance(case, engine)
-    changed = [k for k, v in expected.items() if meta["provenance"].get(k) != v]
-    if changed:
-        return None, f"stored reference is stale ({', '.join(changed)} changed)"
-    with OpenEXR.File(str(path)) as f:
-        layers = f.channels()
-        mean = layers["RGB"].pixels.astype(np.float64)
-        var = layers["variance"].pixels.astype(np.float64)
-    k = meta["provenance"]["batches"]
-    summary = Summary(BatchStats(mean, var, k), _stats(meta["tile"], k), _stats(meta["image"], k), meta["provenance"]["tile"])
-    return Reference(summary, meta["provenance"]["spp"], meta["seconds"], "stored reference"), "stored reference"
+    try:
+        for p, other in ((path, meta_path), (meta_path, path)):
+            if not p.exists():
+                raise _Damaged(p, f"missing (while {other.name} is there)")
+        meta = _read_meta(meta_path)
+        changed = [k for k, v in expected.items() if meta["provenance"].get(k) != v]
+        if changed:
+            return None, f"stored reference is stale ({', '.join(changed)} changed)"
+        summary, seconds = _read_summary(path, meta_path, meta)
+    except _Damaged as e:
+        return None, str(e)
+    except Exception as e:  # whatever else a damaged file may cause, still one line naming it
+        return None, str(_Damaged(path, f"unreadable ({type(e).__name__}: {e})"))
+    return Reference(summary, expected["spp"], seconds, "stored reference"), "stored reference"
 
 
 def render_reference(case: ImageCase, engine: Engine) -> Reference:
@@ -105,19 +220,25 @@ def write_reference(case: ImageCase, engine: Engine, reference: Reference) -> Pa
     import OpenEXR
 
     s = reference.summary
-    channels = {"RGB": s.pixel.mean.astype(np.float32), "variance": s.pixel.var_of_mean.astype(np.float32)}
+    # Exactly what will be read back: float32 pixels, tile means rounded to 7 decimals.
+    stored = Summary(BatchStats(s.pixel.mean.astype(np.float32), s.pixel.var_of_mean.astype(np.float32), s.pixel.k),
+                     BatchStats(s.tile.mean.round(7), s.tile.var_of_mean, s.tile.k), s.image, s.tile_size)
+    channels = {"RGB": stored.pixel.mean, "variance": stored.pixel.var_of_mean}
     header = {"compression": OpenEXR.ZIP_COMPRESSION, "type": OpenEXR.scanlineimage}
     path = reference_path(case)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.stem}.tmp.exr")
     with OpenEXR.File(header, channels) as f:
         f.write(str(tmp))
-    write_atomic(path, tmp.read_bytes())
+    exr = tmp.read_bytes()
+    write_atomic(path, exr)
     tmp.unlink()
     meta = {"provenance": expected_provenance(case, engine),
             "date": datetime.now(timezone.utc).isoformat(timespec="seconds"),
             "seconds": reference.seconds,
-            "tile": {"mean": s.tile.mean.round(7).tolist(), "var_of_mean": s.tile.var_of_mean.tolist()},
-            "image": {"mean": s.image.mean.tolist(), "var_of_mean": s.image.var_of_mean.tolist()}}
+            "exr_bytes": len(exr), "exr_sha256": hashlib.sha256(exr).hexdigest(),
+            "content_sha256": summary_sha256(stored),
+            "tile": {"mean": stored.tile.mean.tolist(), "var_of_mean": stored.tile.var_of_mean.tolist()},
+            "image": {"mean": stored.image.mean.tolist(), "var_of_mean": stored.image.var_of_mean.tolist()}}
     write_atomic(path.with_suffix(".json"), json.dumps(meta) + "\n")
     return path
