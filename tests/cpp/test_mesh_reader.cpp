@@ -36,6 +36,16 @@ fs::path tempDir() {
     return dir;
 }
 
+/// Removes the folder after the last test.
+class TempDirCleanup : public ::testing::Environment {
+public:
+    void TearDown() override {
+        std::error_code ec;
+        fs::remove_all(tempDir(), ec);
+    }
+};
+[[maybe_unused]] ::testing::Environment *const kCleanup = ::testing::AddGlobalTestEnvironment(new TempDirCleanup);
+
 std::string writeFile(const std::string &name, const std::string &bytes) {
     const fs::path path = tempDir() / name;
     std::ofstream(path, std::ios::binary) << bytes;
