@@ -44,6 +44,9 @@ class Summary:
     tile: BatchStats      # (H/tile, W/tile, 3)
     image: BatchStats     # (3,)
     tile_size: int
+    #: (H, W, 3) smallest batch value per pixel, for the finite check (a negative value in one batch);
+    #: None for stored summaries, which keep only means and variances.
+    minimum: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def mean_image(self) -> np.ndarray:
@@ -73,7 +76,7 @@ def summarize(batches: np.ndarray, tile: int = TILE_SIZE) -> Summary:
         raise ValueError("at least 2 batches are needed to estimate a variance")
     with np.errstate(invalid="ignore", over="ignore"):  # NaN and Inf propagate; the finite check reports them
         return Summary(BatchStats.of(b), BatchStats.of(tile_means(b, tile)), BatchStats.of(b.mean(axis=(1, 2))),
-                       tile)
+                       tile, b.min(axis=0))
 
 
 @dataclass

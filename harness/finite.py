@@ -70,13 +70,15 @@ def damage_of_batches(batches: np.ndarray, signed: bool = False) -> Damage:
 
 def damage_of_summary(summary: Summary, signed: bool = False) -> Damage:
     """Bad pixels of a summary: a non-finite pixel mean or variance, a negative variance, or (unless
-    `signed`) a negative pixel mean. A tile or image statistic that is non-finite while the pixels are
-    not (a damaged stored summary) marks the tile's top-left pixel, or pixel (0, 0) for the image."""
+    `signed`) a negative value in any batch (`summary.minimum`; the pixel mean where a stored summary
+    has no minimum). A tile or image statistic that is non-finite while the pixels are not (a damaged
+    stored summary) marks the tile's top-left pixel, or pixel (0, 0) for the image."""
     mean, var = summary.pixel.mean, summary.pixel.var_of_mean
     finite = np.isfinite(mean) & np.isfinite(var)
     nonfinite = ~finite.all(axis=-1)
     bad_var = (np.where(finite, var, 0.0) < 0).any(axis=-1)
-    negative = bad_var if signed else bad_var | (np.where(finite, mean, 0.0) < 0).any(axis=-1)
+    low = mean if summary.minimum is None else summary.minimum
+    negative = bad_var if signed else bad_var | (np.where(finite & np.isfinite(low), low, 0.0) < 0).any(axis=-1)
     if not nonfinite.any():
         t = summary.tile
         tiles = ~(np.isfinite(t.mean) & np.isfinite(t.var_of_mean)).all(axis=-1)

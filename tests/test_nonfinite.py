@@ -152,6 +152,12 @@ def test_a_render_with_one_nan_pixel_fails_the_image_run_path(ours):
     result = compare_summaries(summarize(mine), summarize(reference))
     assert not result.passed and result.failed_checks[0] == "finite"
     assert result.finite.summary == "non-finite pixels: 1 in the test image, first at (16, 9)"
+    # A negative value in one batch is seen too, though the pixel's mean stays positive.
+    mine = np.nan_to_num(mine)
+    mine[2, 20, 4, 1] = -1e-4
+    assert mine[:, 20, 4, 1].mean() > 0
+    result = compare_summaries(summarize(mine), summarize(reference))
+    assert not result.passed and result.finite.test.negative_at == [(20, 4)]
 
 
 def test_a_nan_render_fails_in_every_output(tmp_path, monkeypatch, capsys):
@@ -170,7 +176,8 @@ def test_a_nan_render_fails_in_every_output(tmp_path, monkeypatch, capsys):
     monkeypatch.setattr(ours_module.OurEngine, "render", one_nan)
     assert main(["images", "--only", "plane_point:normals", "--out", str(tmp_path)]) == 1
     expected = "non-finite pixels: 1 in the test image"
-    assert f"{expected}, first at (5, 9)" in capsys.readouterr().out
+    terminal = " ".join(capsys.readouterr().out.split())
+    assert "FAIL 1 NaN/Inf (test)" in terminal and f"{expected}, first at (5, 9)" in terminal
     run = (tmp_path / "latest").resolve()
     entry = json.loads((run / "results.json").read_text())["images"][0]
     assert entry["pass"] is False

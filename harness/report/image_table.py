@@ -5,17 +5,30 @@ from rich import box
 from rich.markup import escape
 from rich.table import Table
 
+from harness.finite import SIDES
 from harness.image_run import ImageResult
 
 
+def _bad_pixels(result: ImageResult) -> list[str]:
+    """E.g. ["16 NaN/Inf, 1 negative (test)"] (pixels), one entry per damaged side of every comparison."""
+    found = {}
+    for c in result.comparisons.values():
+        for side in SIDES:
+            d = getattr(c.finite, side)
+            kinds = [f"{n} {kind}" for kind, n in (("NaN/Inf", d.nonfinite), ("negative", d.negative)) if n]
+            if kinds:
+                found[f"{', '.join(kinds)} ({side})"] = None
+    return list(found)
+
+
 def _cell(result: ImageResult) -> str:
-    """PASS, or FAIL with what failed: the finite check's summary (NaN, Inf or negative pixels, which
-    make the scales meaningless) if it failed, else the failing scales."""
+    """PASS, or FAIL with what failed: the bad pixels (NaN, Inf or negative, which make the scales
+    meaningless; their locations are in the report) if any, else the failing scales."""
     if result.passed:
         return "[green]PASS[/]"
-    bad_pixels = dict.fromkeys(c.finite.summary for c in result.comparisons.values() if not c.finite.passed)
+    bad_pixels = _bad_pixels(result)
     if bad_pixels:
-        return f"[bold red]FAIL[/] {escape('; '.join(bad_pixels))}"
+        return f"[bold red]FAIL[/] {escape(', '.join(bad_pixels))}"
     failed = sorted({s for c in result.comparisons.values() for s in c.failed_scales})
     return f"[bold red]FAIL[/] {','.join(failed)}"
 
@@ -38,4 +51,11 @@ def image_table(results: list[ImageResult], alpha: float) -> Table:
                       f"{r.ours.seconds['total']:.2f}", f"{r.references['mitsuba'].seconds.get('total', 0):.2f}")
     table.caption = ("mean ratio: ours / Mitsuba image mean; min bias: smallest relative bias of the image mean "
                      "detected half of the time; +exact: also compared with the closed form")
+    for r in results:  # where the bad pixels are: one line per case and distinct finding
+        found: dict[str, list[str]] = {}
+        for name, c in r.comparisons.items():
+            if not c.finite.passed:
+                found.setdefault(c.finite.summary, []).append(name)
+        for summary, names in found.items():
+            table.caption += f"\n{escape(r.case.key)} (against {', '.join(names)}): {escape(summary)}"
     return table
