@@ -26,7 +26,7 @@ from functools import cache
 import numpy as np
 from scipy.ndimage import maximum_filter
 
-from harness.finite import FiniteCheck, damage_of_batches, damage_of_summary
+from harness.finite import FiniteCheck, damage_of_summary
 from harness.metrics import image_metrics
 from harness.stats import ROUNDING_TOLERANCE, SIGNIFICANCE, TILE_SIZE, sidak_level
 from harness.welch import BatchStats, critical_t, welch_p_values
@@ -178,16 +178,12 @@ def _metrics(test: np.ndarray, reference: np.ndarray, signed: bool) -> dict[str,
 
 def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFICANCE, signed: bool = False,
                       rounding: float = ROUNDING_TOLERANCE) -> Comparison:
-    """compare_batches on summaries (see there). The finite check then looks at the summaries: a
-    non-finite mean or variance, a negative variance, a negative mean unless `signed`."""
+    """compare_batches on summaries (see there). The finite check looks at the summaries: a non-finite
+    mean or variance, a negative variance, and unless `signed` a negative value in any batch (the
+    summary's minimum; the mean for a stored summary, which keeps no minimum)."""
     if test.pixel.mean.shape != reference.pixel.mean.shape or test.tile_size != reference.tile_size:
         raise ValueError(f"images differ in size: {test.pixel.mean.shape} and {reference.pixel.mean.shape}")
     finite = FiniteCheck(damage_of_summary(test, signed), damage_of_summary(reference, signed), signed)
-    return _compare(test, reference, finite, alpha, signed, rounding)
-
-
-def _compare(test: Summary, reference: Summary, finite: FiniteCheck, alpha: float, signed: bool,
-             rounding: float) -> Comparison:
     h, w = test.pixel.mean.shape[:2]
     per_scale = sidak_level(alpha, len(SCALES))
     ref = reference.pixel.mean[np.isfinite(reference.pixel.mean)]
@@ -221,5 +217,4 @@ def compare_batches(test: np.ndarray, reference: np.ndarray, alpha: float = SIGN
     t, r = np.asarray(test), np.asarray(reference)
     if t.ndim != 4 or t.shape[1:] != r.shape[1:]:
         raise ValueError(f"expected two (K, H, W, 3) arrays of one image size, got {t.shape} and {r.shape}")
-    finite = FiniteCheck(damage_of_batches(t, signed), damage_of_batches(r, signed), signed)
-    return _compare(summarize(t, tile), summarize(r, tile), finite, alpha, signed, rounding)
+    return compare_summaries(summarize(t, tile), summarize(r, tile), alpha, signed, rounding)

@@ -7,7 +7,7 @@ Radiance, irradiance and occlusion are never negative; only `normals` is signed.
 
 Public API::
 
-    check = FiniteCheck(damage_of_batches(test, signed), damage_of_batches(reference, signed), signed)
+    check = FiniteCheck(damage_of_summary(test, signed), damage_of_summary(reference, signed), signed)
     check.passed, check.summary, check.to_json()
 """
 from __future__ import annotations
@@ -57,15 +57,6 @@ def _locations(mask: np.ndarray) -> list[tuple[int, int]]:
 def _damage(nonfinite: np.ndarray, negative: np.ndarray) -> Damage:
     return Damage(int(nonfinite.sum()), int(negative.sum()), _locations(nonfinite), _locations(negative),
                   nonfinite | negative)
-
-
-def damage_of_batches(batches: np.ndarray, signed: bool = False) -> Damage:
-    """Bad pixels of (K, H, W, C) batches: non-finite anywhere, or negative unless `signed`."""
-    b = np.asarray(batches)
-    finite = np.isfinite(b)
-    nonfinite = ~finite.all(axis=(0, 3))
-    negative = np.zeros_like(nonfinite) if signed else ((b < 0) & finite).any(axis=(0, 3))
-    return _damage(nonfinite, negative)
 
 
 def damage_of_summary(summary: Summary, signed: bool = False) -> Damage:
