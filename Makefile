@@ -14,16 +14,37 @@ APT_PACKAGES := build-essential cmake ninja-build python3 python3-venv python3-d
 # Mitsuba's llvm variants need LLVM 19 (Debian's libllvm19; 15 and 16 crash).
 export DRJIT_LIBLLVM_PATH ?= $(firstword $(wildcard /usr/lib/*/libLLVM.so.19* /usr/lib/*/libLLVM-19.so))
 
-.PHONY: validate test references bench build deps clean
+SANITIZE_BUILD := build-sanitize
+FUZZ_RUNS ?= 2000
+FUZZ_SEED ?= 1
+
+.PHONY: validate test references bench build deps clean sanitize sanitize-build fuzz
 
 ## validate: run the whole validation; writes results/<run>/ and fails on any FAIL
 validate: build
 	$(PY) -m harness validate
 
-## test: the C++ unit tests (ctest), then the Python suites (pytest)
+## test: the C++ unit tests (ctest), the Python suites (pytest), then the sanitizer run and a short fuzz pass
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure
 	$(PY) -m pytest
+	$(MAKE) --no-print-directory sanitize
+	$(MAKE) --no-print-directory fuzz FUZZ_RUNS=300
+
+## sanitize: an ASan+UBSan build; the C++ tests, every scene x integrator and the fuzz corpus run under it
+sanitize: sanitize-build
+	ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 $(SANITIZE_BUILD)/test_renderer --gtest_brief=1
+	$(PY) tests/fuzz/replay.py --render $(SANITIZE_BUILD)/render
+
+sanitize-build: build
+	@[ -f $(SANITIZE_BUILD)/build.ninja ] || cmake -S . -B $(SANITIZE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+		-DMCVAL_SANITIZE=ON -DPython_EXECUTABLE=$(abspath $(PY))
+	cmake --build $(SANITIZE_BUILD) --target render test_renderer
+
+## fuzz: a bounded mutation-fuzz campaign of the sanitized renderer (FUZZ_RUNS variants, seed FUZZ_SEED);
+## each finding is saved as a reproducer under tests/fuzz/crashes/ and fails the target
+fuzz: sanitize-build
+	$(PY) tests/fuzz/fuzz_scenes.py --runs $(FUZZ_RUNS) --seed $(FUZZ_SEED) --render $(SANITIZE_BUILD)/render
 
 ## references: render and store the Mitsuba references (the only command that writes references/)
 references: build
@@ -61,4 +82,4 @@ $(VENV)/.installed: pyproject.toml | deps
 	touch $@
 
 clean:
-	rm -rf $(BUILD) $(VENV) results
+	rm -rf $(BUILD) $(SANITIZE_BUILD) $(VENV) results .fuzz

@@ -57,11 +57,11 @@ void combineBatches(const std::vector<Image> &batches, Image &mean, Image &varia
 }
 
 /// Throws if any value of the image is NaN or infinite: such a render is never returned.
-void requireFinite(const Image &image, const std::string &what) {
+void requireFinite(const Image &image, const std::string &what, const std::string &file) {
     for (size_t i = 0; i < image.rgb.size(); ++i) {
         if (std::isfinite(image.rgb[i])) continue;
         const size_t pixel = i / 3;
-        throw SceneError("the " + what + " has a non-finite value at pixel (" + std::to_string(pixel % image.width) +
+        throw SceneError(file, 0, "the " + what + " has a non-finite value at pixel (" + std::to_string(pixel % image.width) +
                          ", " + std::to_string(pixel / image.width) +
                          "): the scene's magnitudes overflow float32 (a light almost touching a surface?)");
     }
@@ -163,9 +163,10 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
         out.variance = out.mean;
         combineBatches(out.batches, out.mean, out.variance);
     }
-    requireFinite(out.mean, "image");
-    requireFinite(out.variance, "variance image");
-    for (size_t k = 0; k < out.batches.size(); ++k) requireFinite(out.batches[k], "batch " + std::to_string(k));
+    requireFinite(out.mean, "image", scene.file);
+    requireFinite(out.variance, "variance image", scene.file);
+    for (size_t k = 0; k < out.batches.size(); ++k)
+        requireFinite(out.batches[k], "batch " + std::to_string(k), scene.file);
     out.stats.renderSeconds = secondsSince(start);
     for (const RayCounts &c : counts) {
         out.stats.cameraRays += c.camera;

@@ -49,6 +49,29 @@ if hit:
 if hit:
     sys.exit(0)
 """,
+    # Exit successfully with an image whose every pixel is NaN (or -1 for "negative_image").
+    "nan_image": """
+if hit:
+    import numpy, OpenEXR
+    out = args[args.index("-o") + 1]
+    OpenEXR.File({"type": OpenEXR.scanlineimage}, {"RGB": numpy.full((4, 4, 3), numpy.nan, numpy.float32)}).write(out)
+    sys.exit(0)
+""",
+    "negative_image": """
+if hit:
+    import numpy, OpenEXR
+    out = args[args.index("-o") + 1]
+    OpenEXR.File({"type": OpenEXR.scanlineimage}, {"RGB": numpy.full((4, 4, 3), -1, numpy.float32)}).write(out)
+    sys.exit(0)
+""",
+    # Fail with a proper error line but leave a temporary output file behind.
+    "leftover": """
+if hit:
+    out = args[args.index("-o") + 1]
+    open(os.path.join(os.path.dirname(out), ".out.exr.tmp123"), "w").close()
+    print("error: " + args[0] + ": something failed", file=sys.stderr)
+    sys.exit(1)
+""",
 }
 
 

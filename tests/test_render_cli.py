@@ -74,3 +74,33 @@ def test_python_module_renders_numpy_arrays():
     assert out["stats"]["shadow_rays"] > 0
     with pytest.raises(ValueError, match="expected normals, simple or ao"):
         mcrender.render(str(SCENES[0]), integrator="path")
+
+
+@pytest.mark.parametrize("kind", ["fifo", "folder", "device", "missing_folder"])
+def test_the_output_is_only_ever_a_regular_file(tmp_path, kind):
+    """-o never renames over a FIFO, a folder or a device, and no temporary file is left."""
+    import os
+    target = {"fifo": tmp_path / "out.exr", "folder": tmp_path / "out.exr", "device": Path("/dev/null"),
+              "missing_folder": tmp_path / "nowhere" / "out.exr"}[kind]
+    if kind == "fifo":
+        os.mkfifo(target)
+    elif kind == "folder":
+        target.mkdir()
+    res = run(SCENES[0], "--spp", 1, "-D", "res=8", "-o", target, "-q")
+    assert res.returncode == 1, res.stderr
+    assert res.stderr.startswith(f"error: {target}:") and len(res.stderr.strip().splitlines()) == 1, res.stderr
+    leftovers = [p.name for p in tmp_path.rglob("*") if ".tmp" in p.name]
+    assert not leftovers
+    if kind == "fifo":
+        assert target.is_fifo()
+    if kind == "folder":
+        assert target.is_dir() and not any(target.iterdir())
+
+
+def test_a_scene_file_that_is_a_fifo_is_refused_without_blocking(tmp_path):
+    import os
+    fifo = tmp_path / "scene.xml"
+    os.mkfifo(fifo)
+    res = subprocess.run([RENDER, str(fifo), "-o", str(tmp_path / "o.exr"), "-q"], capture_output=True, text=True,
+                         timeout=30)
+    assert res.returncode != 0 and "not a regular file" in res.stderr, res.stderr
