@@ -17,6 +17,28 @@
 
 using namespace mcr;
 
+namespace {
+
+/// A message fit for one terminal line: control characters (from file names or values in the
+/// scene) escaped, and very long messages shortened in the middle.
+std::string oneLine(const std::string &message) {
+    constexpr size_t kMaxLength = 1000;
+    std::string out;
+    for (const unsigned char c : message) {
+        if (c >= 0x20 && c != 0x7f) {
+            out += static_cast<char>(c);
+        } else {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\x%02x", c);
+            out += buf;
+        }
+    }
+    if (out.size() > kMaxLength) out = out.substr(0, kMaxLength / 2) + " ... " + out.substr(out.size() - kMaxLength / 2);
+    return out;
+}
+
+}  // namespace
+
 int main(int argc, char **argv) {
     CLI::App app{"Render a scene file (a subset of Mitsuba 3 XML) with the normals, simple or ao integrator.\n"
                  "Writes OpenEXR: R,G,B (mean), variance.R/G/B, and batch<k>.R/G/B with --batches K."};
@@ -73,10 +95,10 @@ int main(int argc, char **argv) {
         }
         return 0;
     } catch (const SceneError &e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
+        std::fprintf(stderr, "error: %s\n", oneLine(e.what()).c_str());
         return 1;
     } catch (const std::exception &e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
+        std::fprintf(stderr, "error: %s\n", oneLine(e.what()).c_str());
         return 2;
     }
 }
