@@ -2,7 +2,9 @@
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -279,6 +281,10 @@ def main(argv: list[str] | None = None) -> int:
     out: Path = getattr(args, "out", Path("results"))
     previous = latest_run(out)
     run: list[Path] = []
+    # SIGTERM (a CI time-out, `kill`) ends the run as Ctrl-C does: the render child is stopped and
+    # the partial output is named.
+    in_main_thread = threading.current_thread() is threading.main_thread()
+    old_term = signal.signal(signal.SIGTERM, _raise_interrupt) if in_main_thread else None
     try:
         return _run(args, out, run)
     except KeyboardInterrupt:
@@ -288,9 +294,16 @@ def main(argv: list[str] | None = None) -> int:
         err.print(f"[bold red]error:[/] {escape(str(e))}", soft_wrap=True)
     except Exception:
         err.print_exception()
+    finally:
+        if in_main_thread:
+            signal.signal(signal.SIGTERM, old_term)
     if run:
         err.print(escape(_unfinished("stopped", out, run[0], previous)), soft_wrap=True)
     return 2
+
+
+def _raise_interrupt(signum: int, frame) -> None:
+    raise KeyboardInterrupt(signal.Signals(signum).name)
 
 
 if __name__ == "__main__":

@@ -56,3 +56,32 @@ def test_a_run_that_dies_of_an_error_exits_2_and_leaves_latest(tmp_path, monkeyp
     assert "a bug in the harness" in err
     assert "stopped: partial output in " in err and f"{out / 'latest'} was not created" in err
     assert latest_run(out) is None
+
+
+def test_sigterm_ends_a_run_like_ctrl_c(tmp_path):
+    """A CI time-out or `kill` (SIGTERM) stops the hung render and names the partial output."""
+    import signal
+    import subprocess
+    import sys
+    import time
+    from pathlib import Path
+
+    from tests.render_wrappers import write_wrapper
+
+    wrapper = write_wrapper(tmp_path, "hang", "normals")
+    out = tmp_path / "results"
+    root = Path(__file__).resolve().parent.parent
+    proc = subprocess.Popen([sys.executable, "-m", "harness", *CASE, "--out", str(out)], cwd=root,
+                            env={**os.environ, "MCVAL_RENDER": str(wrapper)}, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline:
+        if out.exists() and any(out.iterdir()):
+            break
+        time.sleep(0.2)
+    time.sleep(2)  # the render child is running (and hanging) by now
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err
+    assert "interrupted: partial output in" in err
+    assert latest_run(out) is None
