@@ -20,6 +20,12 @@ def flip_map(test: np.ndarray, reference: np.ndarray, signed: bool = False) -> t
         ref, tst, mode = _tonemapped(reference, True), _tonemapped(test, True), "LDR"
     else:
         ref, tst, mode = np.clip(reference, 0, None), np.clip(test, 0, None), "HDR"
+        # HDR-FLIP takes its exposures from the reference, so a common scale changes nothing; scaling
+        # to a peak of 1 keeps them in range (flip_evaluator exits the process on a reference of 1e-30).
+        peak = float(np.max(ref))
+        if not (np.isfinite(peak) and peak > 0):
+            return np.full(ref.shape[:2], np.nan), float("nan")
+        ref, tst = ref / peak, tst / peak
     error, mean, _ = flip.evaluate(np.ascontiguousarray(ref, np.float32), np.ascontiguousarray(tst, np.float32),
                                    mode, inputsRGB=not signed, applyMagma=False)
     return np.asarray(error)[..., 0], float(mean)
