@@ -3,6 +3,9 @@
 Every map is measure-preserving up to a constant (`measure`), so a density p on
 the domain is the density p * measure on the parameter square. Directions use
 (s, t) = (cos theta mapped to [0,1], phi / 2 pi); the disk uses (r^2, phi / 2 pi).
+Each domain also tells which points lie on its boundary: the sides of the square
+and the tent, the rim of the disk, the horizon z = 0 of the hemisphere; the
+sphere has none.
 """
 from __future__ import annotations
 
@@ -29,6 +32,8 @@ class Domain:
     contains: Callable[[np.ndarray], np.ndarray]
     #: Points of the ambient space outside the domain, where the pdf must be 0 (None: there are none).
     outside: Callable[[np.random.Generator, int], np.ndarray] | None
+    #: on_boundary(points, tol): which points lie within distance tol of the domain's edge (see BOUNDARY_TOLERANCE).
+    on_boundary: Callable[[np.ndarray, float], np.ndarray]
 
 
 def _azimuth(x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -43,6 +48,17 @@ def _direction(z: np.ndarray, t: np.ndarray) -> np.ndarray:
 
 def _unit(p: np.ndarray) -> np.ndarray:
     return np.abs(np.linalg.norm(p, axis=-1) - 1.0) <= UNIT_TOLERANCE
+
+
+def _box_edge(lo: float, hi: float) -> Callable[[np.ndarray, float], np.ndarray]:
+    """Points with a coordinate within tol of lo or hi (a side or a corner of the box [lo, hi]^2)."""
+    def on_boundary(p: np.ndarray, tol: float) -> np.ndarray:
+        return np.any((np.abs(p - lo) <= tol) | (np.abs(p - hi) <= tol), axis=1)
+    return on_boundary
+
+
+def _no_boundary(p: np.ndarray, tol: float) -> np.ndarray:
+    return np.zeros(len(p), dtype=bool)
 
 
 def _box_outside(lo: float, hi: float) -> Callable[[np.random.Generator, int], np.ndarray]:
@@ -72,6 +88,7 @@ SQUARE = Domain(
     from_param=lambda s, t: np.stack([s, t], axis=-1),
     contains=lambda p: np.all((p >= 0.0) & (p <= 1.0), axis=1),
     outside=_box_outside(0.0, 1.0),
+    on_boundary=_box_edge(0.0, 1.0),
 )
 
 TENT = Domain(
@@ -80,6 +97,7 @@ TENT = Domain(
     from_param=lambda s, t: np.stack([2.0 * s - 1.0, 2.0 * t - 1.0], axis=-1),
     contains=lambda p: np.all(np.abs(p) <= 1.0, axis=1),
     outside=_box_outside(-1.0, 1.0),
+    on_boundary=_box_edge(-1.0, 1.0),
 )
 
 DISK = Domain(
@@ -88,6 +106,7 @@ DISK = Domain(
     from_param=lambda s, t: np.sqrt(s)[:, None] * np.stack([np.cos(TWO_PI * t), np.sin(TWO_PI * t)], axis=-1),
     contains=lambda p: np.sum(p * p, axis=1) <= 1.0 + UNIT_TOLERANCE,
     outside=_disk_outside,
+    on_boundary=lambda p, tol: np.abs(np.linalg.norm(p, axis=1) - 1.0) <= tol,
 )
 
 SPHERE = Domain(
@@ -96,6 +115,7 @@ SPHERE = Domain(
     from_param=lambda s, t: _direction(2.0 * s - 1.0, t),
     contains=_unit,
     outside=None,
+    on_boundary=_no_boundary,
 )
 
 HEMISPHERE = Domain(
@@ -104,6 +124,7 @@ HEMISPHERE = Domain(
     from_param=_direction,
     contains=lambda p: _unit(p) & (p[:, 2] >= 0.0),
     outside=_below_horizon,
+    on_boundary=lambda p, tol: np.abs(p[:, 2]) <= tol,
 )
 
 DOMAINS = {d.name: d for d in (SQUARE, TENT, DISK, SPHERE, HEMISPHERE)}

@@ -15,6 +15,11 @@ NORMALISATION_TOLERANCE = 1e-3
 PDF_RELATIVE_TOLERANCE = 1e-3
 #: Slack on "unit length" and "inside the unit disk" for points rounded to float32.
 UNIT_TOLERANCE = 1e-5
+#: A sample this many float32 ulps of 1 (the scale of every warp domain) from the edge of its domain is on the
+#: boundary: a pdf of 0 there is a warning (f/pdf is 0/0 on a set of measure zero), not a failure.
+BOUNDARY_ULPS = 4
+#: BOUNDARY_ULPS as a distance: 4 * 2^-23, about 4.8e-7 (coordinates, radii and z of unit vectors alike).
+BOUNDARY_TOLERANCE = BOUNDARY_ULPS * 2.0 ** -23
 
 
 def sidak_level(alpha: float, n_tests: int) -> float:

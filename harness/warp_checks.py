@@ -15,6 +15,7 @@ from harness.chi2 import goodness_of_fit, homogeneity
 from harness.cubature import integrate_cells
 from harness.domains import Domain
 from harness.stats import HISTOGRAM_RES, NORMALISATION_TOLERANCE, PDF_RELATIVE_TOLERANCE
+from harness.warp_findings import Finding, classify, count, describe, merge, off_domain, summarize
 
 Sampler = Callable[[np.ndarray], np.ndarray]
 Pdf = Callable[[np.ndarray], np.ndarray]
@@ -25,7 +26,8 @@ class CheckResult:
     """One check's verdict, its headline figure and the numbers behind it.
 
     passed is None for a check that was skipped, and for a statistical check
-    whose p-value has not been compared with the run's level yet.
+    whose p-value has not been compared with the run's level yet. A check that
+    passed with WARN findings (see warp_findings) has the verdict WARN.
     """
 
     passed: bool | None
@@ -36,6 +38,21 @@ class CheckResult:
     #: A failure that no significance level can excuse (samples outside the domain, NaN, ...).
     hard_failure: str | None = None
     skipped: bool = False
+    #: What the check found at individual samples, most serious first (failures, then warnings).
+    findings: list[Finding] = field(default_factory=list)
+
+    @property
+    def warnings(self) -> list[Finding]:
+        return [f for f in self.findings if f.severity == "WARN"]
+
+    @property
+    def verdict(self) -> str | None:
+        """"PASS", "WARN" (passed, with warnings), "FAIL", "SKIP", or None while undecided."""
+        if self.skipped:
+            return "SKIP"
+        if self.passed is None:
+            return None
+        return "FAIL" if not self.passed else "WARN" if self.warnings else "PASS"
 
     def decide(self, level: float) -> None:
         """Set `passed` for a statistical check from its p-value and the per-test level."""
@@ -44,13 +61,15 @@ class CheckResult:
             self.details["level"] = level
 
     def to_json(self) -> dict[str, Any]:
-        out = {"pass": self.passed, "figure": self.figure, "summary": self.summary}
+        out = {"pass": self.passed, "verdict": self.verdict, "figure": self.figure, "summary": self.summary}
         if self.p_value is not None:
             out["p_value"] = self.p_value
         if self.hard_failure:
             out["hard_failure"] = self.hard_failure
         if self.skipped:
             out["skipped"] = True
+        if self.findings:
+            out["findings"] = [f.to_json() for f in self.findings]
         out.update(self.details)
         return out
 
@@ -118,21 +137,33 @@ def normalisation_check(integral: float, error: float) -> CheckResult:
                        details={"tolerance": NORMALISATION_TOLERANCE, "integration_error": error})
 
 
-def domain_check(domain: Domain, points: np.ndarray, pdf: Pdf, rng: np.random.Generator) -> CheckResult:
-    """Samples lie in the domain, the pdf is finite and >= 0 at them, and 0 outside the domain."""
-    outside = int(np.count_nonzero(~domain.contains(points)))
-    pdf_at_samples = as_values(pdf(points), len(points), "pdf")
-    bad_pdf = int(np.count_nonzero(~np.isfinite(pdf_at_samples) | (pdf_at_samples < 0)))
+def domain_check(domain: Domain, points: np.ndarray, pdf: Pdf, rng: np.random.Generator,
+                 u: np.ndarray | None = None, input_dtype: Any = np.float64) -> CheckResult:
+    """Samples lie in the domain, the pdf is finite and > 0 at them, and 0 outside the domain.
+
+    A pdf of 0 at a sample on the domain's boundary is a warning, not a failure, and so is any failure
+    of a sample whose input u (N, 2), as the sampler received it (`input_dtype`), has a coordinate of 1.
+    The figure counts failures; `findings` lists them (then the warnings) with their inputs.
+    """
+    values = as_values(pdf(points), len(points), "pdf")
+    at_one = None if u is None else np.any(u.astype(input_dtype) == 1.0, axis=1)
+    codes, underlying = classify(domain, points, values, at_one)
+    groups = [describe(codes, underlying, points, values, u=u)]
     leak = 0
     if domain.outside is not None:
         probes = domain.outside(rng, 10_000)
-        leak = int(np.count_nonzero(as_values(pdf(probes), len(probes), "pdf") != 0))
-    violations = outside + bad_pdf + leak
-    summary = "ok" if not violations else ", ".join(
-        f"{k} {v}" for k, v in (("outside", outside), ("bad pdf", bad_pdf), ("pdf>0 off domain", leak)) if v)
-    return CheckResult(violations == 0, float(violations), summary,
-                       details={"samples_outside": outside, "bad_pdf_at_samples": bad_pdf,
-                                "pdf_nonzero_outside": leak})
+        probe_values = as_values(pdf(probes), len(probes), "pdf")
+        leak = int(np.count_nonzero(probe_values != 0))
+        groups.append(off_domain(probes, probe_values))
+    findings = merge(groups)
+    violations = sum(f.count for f in findings if f.severity == "FAIL")
+    return CheckResult(violations == 0, float(violations), summarize(findings, "ok"), findings=findings,
+                       details={"samples_outside": int(np.count_nonzero(~domain.contains(points))),
+                                "bad_pdf_at_samples": sum(count(codes, k) for k in
+                                                          ("nan_pdf", "negative_pdf", "zero_pdf_inside")),
+                                "pdf_nonzero_outside": leak,
+                                "zero_pdf_on_boundary": count(codes, "zero_pdf_boundary"),
+                                "failures_at_u_one": count(codes, "at_u_one")})
 
 
 def _rounding_sensitivity(points: np.ndarray, pdf: Pdf) -> np.ndarray:
@@ -206,28 +237,30 @@ def hard_input_grid() -> np.ndarray:
 def hard_inputs_check(domain: Domain, variants: dict[str, tuple[Sampler, Pdf]]) -> CheckResult:
     """On hard inputs every sample is finite and in the domain, and its pdf finite and positive.
 
-    `variants` maps a label (e.g. "alpha=1e-4") to a (sample, pdf) pair.
+    `variants` maps a label (e.g. "alpha=1e-4") to a (sample, pdf) pair. Warnings, not failures: a pdf
+    of 0 at a sample on the domain's boundary, and anything at an input with a coordinate u = 1 (outside
+    [0, 1)). A sampler with an `input_dtype` attribute (float32 for Dr.Jit functions, see warp_adapters)
+    is judged on u as it received it. `findings` come most serious first: NaN samples, naming their u.
+    The figure is the number of NaN/Inf samples at inputs in [0, 1).
     """
     u = hard_input_grid()
-    nonfinite = outside = bad_pdf = 0
-    failing: list[str] = []
+    groups = []
     for label, (sample, pdf) in variants.items():
         points = as_points(sample(u), len(u), "sample")
-        finite = np.all(np.isfinite(points), axis=1)
-        inside = finite & domain.contains(np.where(finite[:, None], points, 0.0))
         values = as_values(pdf(points), len(points), "pdf")
-        good = inside & np.isfinite(values) & (values > 0)
-        nonfinite += int(np.count_nonzero(~finite))
-        outside += int(np.count_nonzero(finite & ~inside))
-        bad_pdf += int(np.count_nonzero(inside & ~good))
-        failing += [f"{label} u={tuple(float(x) for x in u[k])}" for k in np.flatnonzero(~good)[:3]]
-    ok = nonfinite == outside == bad_pdf == 0
-    summary = f"NaN/Inf {nonfinite}" + ("" if ok else f", outside {outside}, bad pdf {bad_pdf}")
-    details = {"nan_inf": nonfinite, "outside": outside, "bad_pdf": bad_pdf,
+        seen = u.astype(getattr(sample, "input_dtype", np.float64))
+        codes, underlying = classify(domain, points, values, np.any(seen == 1.0, axis=1))
+        groups.append(describe(codes, underlying, points, values, u=u, seen=seen, label=label))
+    findings = merge(groups)
+    n = {f.kind.key: f.count for f in findings}
+    nonfinite = n.get("nan_sample", 0)
+    ok = not any(f.severity == "FAIL" for f in findings)
+    details = {"nan_inf": nonfinite, "outside": n.get("outside", 0),
+               "bad_pdf": sum(n.get(k, 0) for k in ("nan_pdf", "negative_pdf", "zero_pdf_inside")),
+               "zero_pdf_on_boundary": n.get("zero_pdf_boundary", 0), "failures_at_u_one": n.get("at_u_one", 0),
                "inputs": len(u) * len(variants), "variants": list(variants)}
-    if failing:
-        details["failing_inputs"] = failing[:10]
-    return CheckResult(ok, float(nonfinite), summary, details=details)
+    return CheckResult(ok, float(nonfinite), summarize(findings, f"NaN/Inf {nonfinite}"), details=details,
+                       findings=findings)
 
 
 def measure_rate(sample: Callable[[], Any], n: int, repeats: int = 5) -> float:

@@ -9,6 +9,9 @@ Public API::
 points, `pdf` maps such points to (N,) densities (w.r.t. area on 2D domains,
 solid angle on the sphere and hemisphere). Checks that need a reference
 implementation are skipped unless one is given.
+
+Each check is PASS, WARN (passed, with warnings such as a pdf of 0 on the
+domain's boundary, see warp_findings) or FAIL; a warp passes when no check fails.
 """
 from __future__ import annotations
 
@@ -52,12 +55,22 @@ class WarpResult:
         return all(bool(c.passed) for c in self.checks.values() if not c.skipped)
 
     @property
+    def warnings(self) -> int:
+        """How many checks passed with warnings."""
+        return sum(c.verdict == "WARN" for c in self.checks.values())
+
+    @property
+    def verdict(self) -> str:
+        """"FAIL" if a check fails, else "WARN" if one warns (the warp still passes), else "PASS"."""
+        return "FAIL" if not self.passed else "WARN" if self.warnings else "PASS"
+
+    @property
     def label(self) -> str:
         return self.warp if self.params is None else f"{self.warp} {format_params(self.params)}"
 
     def to_json(self) -> dict[str, Any]:
         return {"warp": self.warp, "params": self.params, "domain": self.domain, "pass": self.passed,
-                "seed": self.seed, "seconds": self.seconds,
+                "verdict": self.verdict, "warnings": self.warnings, "seed": self.seed, "seconds": self.seconds,
                 "checks": {k: c.to_json() for k, c in self.checks.items()}}
 
 
@@ -86,7 +99,7 @@ def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "
     checks = {
         "chi2": wc.chi2_check(observed, cells.values, int(np.count_nonzero(~inside))),
         "normalisation": wc.normalisation_check(float(cells.values.sum()), cells.error),
-        "domain": wc.domain_check(dom, points, pdf, rng),
+        "domain": wc.domain_check(dom, points, pdf, rng, u, getattr(sample, "input_dtype", np.float64)),
     }
     reference_observed = None
     if reference is None:

@@ -111,8 +111,11 @@ WRONG = {
 
 
 def _unguarded_beckmann(u):
+    # In float32, as a renderer computes it: u = 1 - 2^-53, inside [0, 1), rounds to 1 and log(1 - u) is -inf.
+    # (In float64 the log only breaks at u = 1 itself, which the checks forgive: it is outside [0, 1).)
+    u = u.astype(np.float32)
     with np.errstate(divide="ignore", invalid="ignore"):
-        tan2 = -0.09 * np.log(1 - u[:, 1])
+        tan2 = -np.float32(0.09) * np.log(np.float32(1) - u[:, 1])
         cos = 1 / np.sqrt(1 + tan2)
         sin = np.sqrt(tan2) * cos
     phi = TWO_PI * u[:, 0]
