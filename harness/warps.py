@@ -8,7 +8,8 @@ Public API::
 `sample` maps an (N, 2) array of uniforms in [0,1)^2 to (N, 2) or (N, 3)
 points, `pdf` maps such points to (N,) densities (w.r.t. area on 2D domains,
 solid angle on the sphere and hemisphere). Checks that need a reference
-implementation are skipped unless one is given.
+implementation are skipped unless one is given. check_warp also takes float32
+results, constant pdfs and Mitsuba/Dr.Jit functions (see warp_adapters).
 
 Each check is PASS, WARN (passed, with warnings such as a pdf of 0 on the
 domain's boundary, see warp_findings) or FAIL; a warp passes when no check fails.
@@ -17,7 +18,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 
@@ -25,6 +26,7 @@ from harness import warp_checks as wc
 from harness.domains import get_domain
 from harness.engines.base import WarpFunctions
 from harness.stats import HISTOGRAM_RES, SIGNIFICANCE, WARP_SAMPLES, sidak_level
+from harness.warp_adapters import NumpyPdf, NumpySampler
 
 #: The checks, in the order reports show them.
 CHECK_NAMES = ("chi2", "normalisation", "domain", "pdf_vs_mitsuba", "samples_vs_mitsuba",
@@ -151,15 +153,25 @@ def decide(results: list[WarpResult], alpha: float = SIGNIFICANCE) -> float:
     return level
 
 
-def check_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, params: Any = None, seed: int = 0,
-               *, samples: int = WARP_SAMPLES, reference: WarpFunctions | None = None,
+def check_warp(sample: Callable, pdf: Callable, domain: str, params: Any = None, seed: int = 0,
+               *, args: tuple = (), samples: int = WARP_SAMPLES, reference: WarpFunctions | None = None,
                name: str = "user warp") -> WarpResult:
-    """Check a warp given as Python functions over numpy arrays; see the module docstring.
+    """Check a warp given as Python functions; see the module docstring.
 
-    `domain` is "square" ([0,1]^2), "tent" ([-1,1]^2), "disk", "sphere" or
-    "hemisphere". `params` is only a label recorded in the result.
+    sample: (N, 2) uniforms in [0,1)^2 -> (N, 2) or (N, 3) points; pdf: points -> (N,) densities, or
+    one value for a constant density. Either may be a numpy function (float32 results are fine) or a
+    Mitsuba/Dr.Jit function passed as it is, e.g. mi.warp.square_to_beckmann (needs a vectorised
+    variant such as llvm_ad_rgb; see warp_adapters). Mitsuba's pdfs do not test the domain: pass
+    `warp_adapters.masked_to_domain(pdf, domain)` for them.
+    `domain` is "square" ([0,1]^2), "tent" ([-1,1]^2), "disk", "sphere" or "hemisphere".
+    `args`: extra positional arguments passed on to both functions after the array (default none),
+    e.g. args=(0.3,) for Beckmann's alpha. `params` is only a label recorded in the result (default:
+    `args`, if any). `samples`: samples for the statistical checks (default WARP_SAMPLES).
+    Raises ValueError when a function returns the wrong shape.
     """
-    result = evaluate_warp(sample, pdf, domain, name=name, params=params, seed=seed,
-                           samples=samples, reference=reference)
+    if params is None and args:
+        params = list(args)
+    result = evaluate_warp(NumpySampler(sample, args), NumpyPdf(pdf, args), domain, name=name, params=params,
+                           seed=seed, samples=samples, reference=reference)
     decide([result])
     return result
