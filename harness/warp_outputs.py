@@ -10,8 +10,11 @@ from harness.warps import WarpResult
 
 
 def warp_payload(results: list[WarpResult], level: float, meta: dict) -> dict:
-    """The warps part of results.json."""
-    return {"pass": all(r.passed for r in results), "level": level, "meta": meta,
+    """The warps part of results.json: "pass" (no warp fails), "verdict" (FAIL, else WARN if a warp warns,
+    else PASS), the per-test level, and each warp with its checks."""
+    verdicts = {r.verdict for r in results}
+    verdict = next((v for v in ("FAIL", "WARN") if v in verdicts), "PASS")
+    return {"pass": all(r.passed for r in results), "verdict": verdict, "level": level, "meta": meta,
             "warps": [r.to_json() for r in results]}
 
 

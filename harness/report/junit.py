@@ -15,22 +15,36 @@ def _failure(c: Comparison) -> str:
     return "; ".join(parts)
 
 
+def _warp_case(w: dict) -> str:
+    return w["warp"] + (f" {w['params']}" if w["params"] else "")
+
+
+def _warnings(w: dict) -> str:
+    """The WARN findings of a warp's checks (from results.json), one per line; "" when there are none."""
+    return "\n".join(f"{k}: {f['text']}" for k, c in w["checks"].items() if c.get("verdict") == "WARN"
+                     for f in c.get("findings", []) if f["severity"] == "WARN")
+
+
 def junit_xml(images: list[ImageResult], warps: list[dict] | None) -> str:
     """A <testsuites> document: suite "warps" (if given) and one suite per integrator."""
     root = ET.Element("testsuites", name="mcval")
 
-    def suite(name: str, cases: list[tuple[str, bool, str, float]]) -> None:
+    def suite(name: str, cases: list[tuple[str, bool, str, float]], notes: dict[str, str] | None = None) -> None:
+        """One <testsuite>; `notes` (by case name) become a passing case's <system-out>, e.g. its warnings."""
         el = ET.SubElement(root, "testsuite", name=name, tests=str(len(cases)),
                            failures=str(sum(not ok for _, ok, _, _ in cases)))
         for case_name, ok, message, seconds in cases:
             tc = ET.SubElement(el, "testcase", classname=f"mcval.{name}", name=case_name, time=f"{seconds:.3f}")
             if not ok:
                 ET.SubElement(tc, "failure", message=message).text = message
+            elif (notes or {}).get(case_name):
+                ET.SubElement(tc, "system-out").text = notes[case_name]
 
     if warps is not None:
-        suite("warps", [(w["warp"] + (f" {w['params']}" if w["params"] else ""), w["pass"],
+        suite("warps", [(_warp_case(w), w["pass"],
                          "; ".join(f"{k}: {c['summary']}" for k, c in w["checks"].items() if c["pass"] is False),
-                         w["seconds"]) for w in warps])
+                         w["seconds"]) for w in warps],
+              {_warp_case(w): _warnings(w) for w in warps})
     for integrator in sorted({r.case.integrator for r in images}):
         cases = []
         for r in (r for r in images if r.case.integrator == integrator):

@@ -9,10 +9,31 @@ from harness.report.style import CSS
 from harness.warps import CHECK_NAMES, WarpResult
 
 
-def _cell(passed: bool | None, text: str) -> str:
-    cls = {True: "pass", False: "fail", None: "na"}[passed]
-    word = {True: "PASS", False: "FAIL", None: "n/a"}[passed]
+#: A check that passed with warnings is yellow (the shared stylesheet has pass, fail and na).
+_WARN_CSS = ".warn { background: #fff3c4; } li.fail { color: #a00; } li.warn { color: #7a5b00; }"
+_ORDER = {"FAIL": 0, "WARN": 1, "PASS": 2}
+
+
+def _cell(verdict: str | None, text: str, word: str | None = None) -> str:
+    """A table cell for a verdict ("PASS", "WARN", "FAIL"; anything else: n/a) over a short text."""
+    cls = {"PASS": "pass", "WARN": "warn", "FAIL": "fail"}.get(verdict or "", "na")
+    word = word or (verdict if cls != "na" else "n/a")
     return f'<td class="{cls}">{word}<br><small>{html.escape(text)}</small></td>'
+
+
+def _warp_word(r: WarpResult) -> str:
+    return f"PASS ({r.warnings} warning{'s' if r.warnings > 1 else ''})" if r.verdict == "WARN" else r.verdict
+
+
+def _findings(r: WarpResult) -> str:
+    """Every finding of every check, failures first, each with its inputs and advice."""
+    items = sorted(((name, f) for name, c in r.checks.items() for f in c.findings),
+                   key=lambda item: _ORDER[item[1].severity])
+    if not items:
+        return ""
+    lis = "".join(f'<li class="{f.severity.lower()}">{html.escape(name)}: {html.escape(f.text())}</li>'
+                  for name, f in items)
+    return f"<p>Findings:</p><ul>{lis}</ul>"
 
 
 def _summary_table(results: list[WarpResult]) -> str:
@@ -22,10 +43,10 @@ def _summary_table(results: list[WarpResult]) -> str:
         cells = []
         for name in CHECK_NAMES:
             c = r.checks.get(name)
-            cells.append(_cell(None, c.summary if c else "") if c is None or c.skipped else _cell(c.passed, c.summary))
+            cells.append(_cell(None, c.summary if c else "") if c is None or c.skipped else _cell(c.verdict, c.summary))
         anchor = html.escape(r.label.replace(" ", "_"))
         rows.append(f'<tr><td><a href="#{anchor}">{html.escape(r.label)}</a></td>{"".join(cells)}'
-                    f'{_cell(r.passed, "")}</tr>')
+                    f'{_cell(r.verdict, "", _warp_word(r))}</tr>')
     return f"<table><tr>{head}</tr>{''.join(rows)}</table>"
 
 
@@ -34,7 +55,7 @@ def _section(r: WarpResult, reproduce: str, data_file: str | None) -> str:
     img = base64.b64encode(png).decode()
     rows = "".join(
         f"<tr><td>{html.escape(name)}</td>"
-        + (_cell(None, c.summary) if c.skipped else _cell(c.passed, c.summary))
+        + (_cell(None, c.summary) if c.skipped else _cell(c.verdict, c.summary))
         + f"<td><small>{html.escape(_details(c.to_json()))}</small></td></tr>"
         for name, c in r.checks.items())
     extra = ""
@@ -44,15 +65,15 @@ def _section(r: WarpResult, reproduce: str, data_file: str | None) -> str:
             extra += f"; histograms and failing data: <code>{html.escape(data_file)}</code>"
         extra += "</p>"
     anchor = html.escape(r.label.replace(" ", "_"))
-    verdict = "PASS" if r.passed else "FAIL"
-    return (f'<h2 id="{anchor}">{html.escape(r.label)} — {verdict}</h2>'
+    return (f'<h2 id="{anchor}">{html.escape(r.label)} — {_warp_word(r)}</h2>'
             f'<p class="meta">domain {html.escape(r.domain)}, seed {r.seed}, {r.seconds:.2f} s</p>{extra}'
+            f'{_findings(r)}'
             f'<img alt="histograms of {html.escape(r.label)}" src="data:image/png;base64,{img}">'
             f"<table><tr><th>check</th><th>verdict</th><th>details</th></tr>{rows}</table>")
 
 
 def _details(d: dict) -> str:
-    skip = {"pass", "summary", "figure"}
+    skip = {"pass", "summary", "figure", "verdict", "findings"}
     parts = []
     for k, v in d.items():
         if k in skip:
@@ -63,14 +84,16 @@ def _details(d: dict) -> str:
 
 def warp_report_html(results: list[WarpResult], level: float, meta: dict, reproduce: dict[str, str],
                      data_files: dict[str, str]) -> str:
-    """The whole page; failing warps first. `reproduce` and `data_files` are keyed by result label."""
-    ordered = sorted(results, key=lambda r: r.passed)
+    """The whole page; failing warps first, then those with warnings. `reproduce` and `data_files` are keyed
+    by result label."""
+    ordered = sorted(results, key=lambda r: _ORDER[r.verdict])
     failed = sum(not r.passed for r in results)
+    warned = sum(r.verdict == "WARN" for r in results)
     meta_html = "".join(f"<li>{html.escape(str(k))}: {html.escape(str(v))}</li>" for k, v in meta.items())
     sections = "".join(_section(r, reproduce[r.label], data_files.get(r.label)) for r in ordered)
     return f"""<!DOCTYPE html>
-<html lang="en"><head><meta charset="utf-8"><title>mcval warp conformance</title><style>{CSS}</style></head>
-<body><h1>Warp conformance: {len(results) - failed} of {len(results)} warps pass</h1>
+<html lang="en"><head><meta charset="utf-8"><title>mcval warp conformance</title><style>{CSS}{_WARN_CSS}</style></head>
+<body><h1>Warp conformance: {len(results) - failed} of {len(results)} warps pass{f" ({warned} with warnings)" if warned else ""}</h1>
 <ul class="meta">{meta_html}<li>per-test significance level: {level:.3g} (Sidak, family-wise 0.01)</li></ul>
 <p>Histograms are over each domain's parameter square (odd resolution); expected counts integrate the pdf
 adaptively over every cell. Residual panels show (O−E)/√E: a correct warp is noise; structure there is a bug.</p>

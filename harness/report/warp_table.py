@@ -5,7 +5,7 @@ from rich import box
 from rich.table import Table
 
 from harness.warp_checks import CheckResult
-from harness.warps import CHECK_NAMES, WarpResult
+from harness.warps import CHECK_NAMES, WarpResult, format_params
 
 #: Column headers, short enough for an 80-column terminal.
 _HEADERS = {"chi2": "χ² p", "normalisation": "∫pdf", "domain": "bad", "pdf_vs_mitsuba": "pdf≈mi",
@@ -31,6 +31,17 @@ def verdict_text(passed: bool | None) -> str:
     return {True: "[green]PASS[/]", False: "[bold red]FAIL[/]", None: "[dim]—[/]"}[passed]
 
 
+#: Rich styles of check verdicts: a check that passed with warnings is yellow.
+_STYLES = {"PASS": "green", "WARN": "yellow", "FAIL": "bold red"}
+
+
+def warp_verdict_text(r: WarpResult) -> str:
+    """PASS, PASS (n warnings) in yellow, or FAIL."""
+    if r.verdict == "WARN":
+        return f"[yellow]PASS ({r.warnings} warning{'s' if r.warnings > 1 else ''})[/]"
+    return verdict_text(r.passed)
+
+
 def warp_table(results: list[WarpResult], level: float) -> Table:
     """One row per warp, one column per check: verdict and figure."""
     table = Table(title=f"Warp conformance (per-test level {level:.2g}, Sidak over the run)", header_style="bold",
@@ -46,12 +57,15 @@ def warp_table(results: list[WarpResult], level: float) -> Table:
             if c is None or c.skipped:
                 cells.append("[dim]n/a[/]")
             else:
-                color = "green" if c.passed else "bold red"
+                color = _STYLES.get(c.verdict or "", "dim")
                 cells.append(f"[{color}]{_figure(name, c)}[/]")
         label = r.warp.removeprefix("square_to_")
-        if r.params:
+        if isinstance(r.params, dict):
             label += " " + " ".join(f"{'α' if k == 'alpha' else k}={v:g}" for k, v in r.params.items())
-        table.add_row(label, *cells, verdict_text(r.passed))
-    table.caption = ("green pass, red fail. χ² p, smp≈mi p: p-values; ∫pdf: integral; bad: domain violations; "
-                     "pdf≈mi: max rel. diff; NaN: NaN/Inf on hard inputs; M/s: ours (Mitsuba)")
+        elif r.params is not None:
+            label += f" {format_params(r.params)}"
+        table.add_row(label, *cells, warp_verdict_text(r))
+    table.caption = ("green pass, yellow pass with warnings (listed in warps.html), red fail. χ² p, smp≈mi p: "
+                     "p-values; ∫pdf: integral; bad: domain violations; pdf≈mi: max rel. diff; NaN: NaN/Inf on "
+                     "hard inputs in [0,1); M/s: ours (Mitsuba)")
     return table
