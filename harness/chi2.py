@@ -1,4 +1,7 @@
-"""Chi-square tests on histograms: goodness of fit to expected counts, and homogeneity of two samples."""
+"""Chi-square tests on histograms: goodness of fit to expected counts, and homogeneity of two samples.
+
+Each test also comes vectorised over replications (`*_batch`), for power simulations.
+"""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -20,20 +23,49 @@ class Chi2Result:
     pooled_cells: int
 
 
+@dataclass
+class Chi2Batch:
+    """Chi-square statistics of many replications of one test, their degrees of freedom and p-values."""
+
+    statistics: np.ndarray
+    dofs: np.ndarray
+    p_values: np.ndarray
+    #: Cells merged into one bin because their expected count was below MIN_EXPECTED (per replication).
+    pooled_cells: np.ndarray
+
+
 def _pool(observed: np.ndarray, expected: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
-    """Merge all cells expecting fewer than MIN_EXPECTED into one bin (kept only if it is large enough)."""
+    """Merge all cells expecting fewer than MIN_EXPECTED into one bin (kept only if it is large enough).
+
+    observed: (replications, cells); expected: (cells,). Returns the pooled observed and expected bins.
+    """
     low = expected < MIN_EXPECTED
-    obs, exp = list(observed[~low]), list(expected[~low])
-    pooled_obs, pooled_exp = observed[low].sum(), expected[low].sum()
+    obs, exp = observed[:, ~low], expected[~low]
+    pooled_obs, pooled_exp = observed[:, low].sum(axis=1), expected[low].sum()
     if pooled_exp >= MIN_EXPECTED:
-        obs.append(pooled_obs)
-        exp.append(pooled_exp)
-    elif low.any() and exp:
+        obs = np.concatenate([obs, pooled_obs[:, None]], axis=1)
+        exp = np.append(exp, pooled_exp)
+    elif low.any() and len(exp):
         # Too little to stand alone: fold it into the smallest regular bin.
         i = int(np.argmin(exp))
-        obs[i] += pooled_obs
+        obs, exp = obs.copy(), exp.copy()
+        obs[:, i] += pooled_obs
         exp[i] += pooled_exp
-    return np.asarray(obs, float), np.asarray(exp, float), int(low.sum())
+    return obs, exp, int(low.sum())
+
+
+def goodness_of_fit_batch(observed: np.ndarray, expected: np.ndarray) -> Chi2Batch:
+    """Pearson's test of each row of observed counts (replications, cells) against one row of expected counts.
+
+    As `goodness_of_fit`, vectorised over replications (power simulations).
+    """
+    obs, exp, pooled = _pool(np.asarray(observed, dtype=float), np.ravel(expected).astype(float))
+    n = len(obs)
+    if len(exp) < 2:
+        return Chi2Batch(np.zeros(n), np.zeros(n, int), np.ones(n), np.full(n, pooled))
+    statistics = np.sum((obs - exp) ** 2 / exp, axis=1)
+    dof = len(exp) - 1
+    return Chi2Batch(statistics, np.full(n, dof), sps.chi2.sf(statistics, dof), np.full(n, pooled))
 
 
 def goodness_of_fit(observed: np.ndarray, expected: np.ndarray) -> Chi2Result:
@@ -42,12 +74,34 @@ def goodness_of_fit(observed: np.ndarray, expected: np.ndarray) -> Chi2Result:
     The expected counts are not rescaled to the observed total: a pdf that does
     not integrate to one fails here as it should.
     """
-    obs, exp, pooled = _pool(np.ravel(observed).astype(float), np.ravel(expected).astype(float))
-    if len(exp) < 2:
-        return Chi2Result(0.0, 0, 1.0, pooled)
-    statistic = float(np.sum((obs - exp) ** 2 / exp))
-    dof = len(exp) - 1
-    return Chi2Result(statistic, dof, float(sps.chi2.sf(statistic, dof)), pooled)
+    res = goodness_of_fit_batch(np.ravel(observed)[None, :], expected)
+    return Chi2Result(float(res.statistics[0]), int(res.dofs[0]), float(res.p_values[0]), int(res.pooled_cells[0]))
+
+
+def homogeneity_batch(counts_a: np.ndarray, counts_b: np.ndarray) -> Chi2Batch:
+    """Test each pair of rows of counts_a and counts_b (replications, cells) for one common distribution.
+
+    As `homogeneity` (the 2 x k contingency table without continuity correction), vectorised over replications.
+    """
+    a, b = np.atleast_2d(np.asarray(counts_a, dtype=float)), np.atleast_2d(np.asarray(counts_b, dtype=float))
+    total_a, total_b = a.sum(axis=1, keepdims=True), b.sum(axis=1, keepdims=True)
+    total = total_a + total_b
+    share = total_a / np.where(total > 0, total, 1.0)
+    low = np.minimum(share, 1.0 - share) * (a + b) < MIN_EXPECTED
+    col = np.where(low, 0.0, a + b)
+    # Regular columns, then one pooled column of the low cells; columns with no counts are dropped.
+    cols = np.concatenate([col, np.where(low, a + b, 0.0).sum(axis=1, keepdims=True)], axis=1)
+    col_a = np.concatenate([np.where(low, 0.0, a), np.where(low, a, 0.0).sum(axis=1, keepdims=True)], axis=1)
+    used = cols > 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d = col_a - total_a * cols / total
+        terms = np.where(used, d * d * total * total / (total_a * total_b * np.where(used, cols, 1.0)), 0.0)
+    statistics = np.nan_to_num(terms.sum(axis=1))
+    dofs = used.sum(axis=1) - 1
+    ok = (dofs >= 1) & (total_a[:, 0] > 0) & (total_b[:, 0] > 0)
+    statistics = np.where(ok, statistics, 0.0)
+    p_values = np.where(ok, sps.chi2.sf(statistics, np.maximum(dofs, 1)), 1.0)
+    return Chi2Batch(statistics, np.where(ok, dofs, 0), p_values, low.sum(axis=1))
 
 
 def homogeneity(counts_a: np.ndarray, counts_b: np.ndarray) -> Chi2Result:
@@ -56,15 +110,5 @@ def homogeneity(counts_a: np.ndarray, counts_b: np.ndarray) -> Chi2Result:
     Cells whose expected count under the pooled distribution falls below
     MIN_EXPECTED in either row are merged first.
     """
-    a = np.ravel(counts_a).astype(float)
-    b = np.ravel(counts_b).astype(float)
-    share_a = a.sum() / (a.sum() + b.sum())
-    low = np.minimum(share_a, 1.0 - share_a) * (a + b) < MIN_EXPECTED
-    table = np.stack([a[~low], b[~low]])
-    if low.any():
-        table = np.concatenate([table, [[a[low].sum()], [b[low].sum()]]], axis=1)
-    table = table[:, table.sum(axis=0) > 0]
-    if table.shape[1] < 2:
-        return Chi2Result(0.0, 0, 1.0, int(low.sum()))
-    res = sps.chi2_contingency(table, correction=False)
-    return Chi2Result(float(res.statistic), int(res.dof), float(res.pvalue), int(low.sum()))
+    res = homogeneity_batch(np.ravel(counts_a)[None, :], np.ravel(counts_b)[None, :])
+    return Chi2Result(float(res.statistics[0]), int(res.dofs[0]), float(res.p_values[0]), int(res.pooled_cells[0]))

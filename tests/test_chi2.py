@@ -79,3 +79,52 @@ def test_cell_integrals_of_smooth_and_peaked_densities():
     width = 1e-4
     res = integrate_cells(lambda s, t: np.exp(-(1 - s) / width) / width, 51)
     assert res.values.sum() == pytest.approx(1.0, abs=1e-6)
+
+
+def test_batch_tests_agree_with_single_ones_and_with_scipy():
+    from harness.chi2 import goodness_of_fit_batch, homogeneity_batch
+    rng = np.random.default_rng(11)
+    for _ in range(100):
+        k = int(rng.integers(2, 40))
+        p = rng.dirichlet(np.full(k, 0.3))  # many sparse cells: pooling and empty columns
+        a = rng.multinomial(int(rng.integers(5, 2000)), p, size=3).astype(float)
+        b = rng.multinomial(int(rng.integers(5, 2000)), p, size=3).astype(float)
+        batch = homogeneity_batch(a, b)
+        for i in range(3):
+            share = a[i].sum() / (a[i].sum() + b[i].sum())
+            low = np.minimum(share, 1 - share) * (a[i] + b[i]) < 5
+            table = np.stack([a[i][~low], b[i][~low]])
+            if low.any():
+                table = np.concatenate([table, [[a[i][low].sum()], [b[i][low].sum()]]], axis=1)
+            table = table[:, table.sum(axis=0) > 0]
+            if table.shape[1] < 2:
+                assert batch.p_values[i] == 1.0 and batch.dofs[i] == 0
+                continue
+            ref = sps.chi2_contingency(table, correction=False)
+            assert batch.statistics[i] == pytest.approx(ref.statistic, rel=1e-9, abs=1e-12)
+            assert batch.dofs[i] == ref.dof and batch.p_values[i] == pytest.approx(ref.pvalue, rel=1e-9)
+            assert homogeneity(a[i], b[i]).p_value == pytest.approx(batch.p_values[i], rel=1e-9)
+        expected = 500 * p
+        gof = goodness_of_fit_batch(a, expected)
+        for i in range(3):
+            single = goodness_of_fit(a[i], expected)
+            assert gof.statistics[i] == pytest.approx(single.statistic, rel=1e-12) and gof.dofs[i] == single.dof
+            assert gof.p_values[i] == pytest.approx(single.p_value, rel=1e-9)
+
+
+def test_cell_integrals_on_uneven_edges_and_thin_spikes():
+    s_edges = np.array([0.0, 0.1, 0.15, 0.6, 0.999, 1.0])
+    t_edges = np.array([0.0, 0.3, 1.0])
+    res = integrate_cells(lambda s, t: 6 * s * t * t, s_edges, t_edges)
+    assert res.values.shape == (5, 2)
+    assert np.allclose(res.values, np.outer(np.diff(s_edges**2), np.diff(t_edges**3)), rtol=1e-9, atol=1e-14)
+    # Beckmann at alpha 0.001 in cos theta: all of the lowest equal-probability cell's mass (1/51) lies within
+    # 1e-5 of its upper edge, between the Gauss nodes of every coarse estimate; the corner check finds it.
+    a2, res_ = 1e-6, 51
+    top = 1 / np.sqrt(1 - a2 * np.log(1 / res_))
+
+    def density(s, t):
+        with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+            return np.where(s > 0, 2 / (a2 * s**3) * np.exp(-(1 / s**2 - 1) / a2), 0.0)
+    res = integrate_cells(density, np.array([0.0, top, 1.0]), np.array([0.0, 1.0]))
+    assert res.values.ravel() == pytest.approx([1 / res_, 1 - 1 / res_], rel=1e-6)
