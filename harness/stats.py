@@ -9,6 +9,16 @@ MIN_EXPECTED = 5.0
 WARP_SAMPLES = 1_000_000
 #: Histogram resolution per axis of a warp's parameter square (odd: no cell edge on a symmetry axis).
 HISTOGRAM_RES = 51
+#: Spacing of float32 coordinates just above 1 (2^-23), the scale of every warp domain: a float32 sampler's
+#: samples sit up to half of it away from where exact arithmetic would put them.
+FLOAT32_QUANTUM = 2.0 ** -23
+#: Histogram cells are coarsened until the rounding of float32 samples across their edges (uniform within
+#: +-FLOAT32_QUANTUM/2) adds at most this much expected noncentrality to the chi-square statistic.
+ROUNDING_NONCENTRALITY = 1.0
+#: Power figures: the smallest planted defect a check detects in this fraction of replications.
+POWER_TARGET = 0.9
+#: Monte Carlo replications per candidate defect size when power is simulated.
+POWER_REPLICATIONS = 200
 #: How far the integral of a pdf over its domain may be from 1.
 NORMALISATION_TOLERANCE = 1e-3
 #: Relative agreement required between two implementations of the same pdf (float32 both).

@@ -12,9 +12,10 @@ from typing import Any, Callable
 import numpy as np
 
 from harness.chi2 import goodness_of_fit, homogeneity
-from harness.cubature import integrate_cells
+from harness.cubature import CellIntegrals, integrate_cells
 from harness.domains import Domain
 from harness.stats import HISTOGRAM_RES, NORMALISATION_TOLERANCE, PDF_RELATIVE_TOLERANCE
+from harness.warp_bins import Bins, bin_indices, uniform_bins
 from harness.warp_findings import Finding, classify, count, describe, merge, off_domain, summarize
 
 Sampler = Callable[[np.ndarray], np.ndarray]
@@ -92,23 +93,46 @@ def as_values(x: Any, n: int, name: str) -> np.ndarray:
     return a
 
 
-def histogram(domain: Domain, points: np.ndarray, res: int = HISTOGRAM_RES) -> np.ndarray:
-    """Counts of points (assumed inside the domain) per cell of the res x res parameter grid."""
-    s, t = domain.to_param(points)
-    i = np.clip((np.asarray(s) * res).astype(np.int64), 0, res - 1)
-    j = np.clip((np.asarray(t) * res).astype(np.int64), 0, res - 1)
-    return np.bincount(i * res + j, minlength=res * res).reshape(res, res).astype(float)
-
-
-def expected_probabilities(domain: Domain, pdf: Pdf, res: int = HISTOGRAM_RES):
-    """Probability of each parameter cell under pdf, integrated adaptively."""
+def parameter_density(domain: Domain, pdf: Pdf) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
+    """pdf as a density over the domain's parameter square: pdf(from_param(s, t)) * measure."""
     def density(s: np.ndarray, t: np.ndarray) -> np.ndarray:
         return as_values(pdf(domain.from_param(s, t)), len(s), "pdf") * domain.measure
-    return integrate_cells(density, res)
+    return density
 
 
-def chi2_check(observed: np.ndarray, probabilities: np.ndarray, outside: int) -> CheckResult:
-    """Goodness of fit of the histogram of samples against the pdf's cell probabilities."""
+#: Domains whose t is an azimuth: undefined at x = y = 0 (the poles, the disk's centre).
+_AZIMUTHAL = ("disk", "sphere", "hemisphere")
+
+
+def histogram(domain: Domain, points: np.ndarray, bins: Bins | int = HISTOGRAM_RES) -> np.ndarray:
+    """Counts of points (assumed inside the domain) per cell: `bins`' cells, or a res x res uniform grid.
+
+    A point where the azimuth is undefined (x = y = 0 on the disk, sphere, hemisphere: a float32 sampler
+    rounds directions within about 2e-4 rad of the pole onto it) counts 1/cols in every cell of its row,
+    as the directions it stands for are spread over all azimuths; binning it at t = 0 would pile them up.
+    """
+    bins = uniform_bins(bins) if isinstance(bins, (int, np.integer)) else bins
+    s, t = domain.to_param(points)
+    i, j = bin_indices(bins.s_edges, np.asarray(s)), bin_indices(bins.t_edges, np.asarray(t))
+    rows, cols = bins.shape
+    pole = (points[:, 0] == 0) & (points[:, 1] == 0) if domain.name in _AZIMUTHAL else np.zeros(len(i), bool)
+    counts = np.bincount(i[~pole] * cols + j[~pole], minlength=rows * cols).reshape(rows, cols).astype(float)
+    counts += (np.bincount(i[pole], minlength=rows) / cols)[:, None]
+    return counts
+
+
+def expected_probabilities(domain: Domain, pdf: Pdf, bins: Bins | int = HISTOGRAM_RES) -> CellIntegrals:
+    """Probability of each cell under pdf (`bins`' cells, or a res x res uniform grid), integrated adaptively."""
+    bins = uniform_bins(bins) if isinstance(bins, (int, np.integer)) else bins
+    return integrate_cells(parameter_density(domain, pdf), bins.s_edges, bins.t_edges)
+
+
+def chi2_check(observed: np.ndarray, probabilities: np.ndarray, outside: int, bins: Bins | None = None) -> CheckResult:
+    """Goodness of fit of the histogram of samples against the pdf's cell probabilities.
+
+    Expected counts are N * (cell integral of the pdf), N counting the samples outside the domain too;
+    `bins` (the cells, if given) are described in the details.
+    """
     n = observed.sum() + outside
     expected = probabilities * n
     hard = None
@@ -127,7 +151,8 @@ def chi2_check(observed: np.ndarray, probabilities: np.ndarray, outside: int) ->
     res = goodness_of_fit(observed, expected)
     return CheckResult(None, res.p_value, f"p = {res.p_value:.3g}", p_value=res.p_value,
                        details={"statistic": res.statistic, "dof": res.dof,
-                                "pooled_cells": res.pooled_cells, "samples": int(n)})
+                                "pooled_cells": res.pooled_cells, "samples": int(n),
+                                **(bins.to_json() if bins is not None else {})})
 
 
 def normalisation_check(integral: float, error: float) -> CheckResult:

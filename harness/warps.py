@@ -27,6 +27,7 @@ from harness.domains import get_domain
 from harness.engines.base import WarpFunctions
 from harness.stats import HISTOGRAM_RES, SIGNIFICANCE, WARP_SAMPLES, sidak_level
 from harness.warp_adapters import NumpyPdf, NumpySampler
+from harness.warp_bins import Bins, equal_probability_bins, sample_quantum
 
 #: The checks, in the order reports show them.
 CHECK_NAMES = ("chi2", "normalisation", "domain", "pdf_vs_mitsuba", "samples_vs_mitsuba",
@@ -51,6 +52,8 @@ class WarpResult:
     reference_observed: np.ndarray | None
     seconds: float
     seed: int
+    #: The histograms' cells (equal-probability in the pdf's marginals; see warp_bins).
+    bins: Bins | None = None
 
     @property
     def passed(self) -> bool:
@@ -95,11 +98,16 @@ def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "
     if points.shape[1] != dom.dim:
         raise ValueError(f"sample returned {points.shape[1]}D points; the {domain} domain is {dom.dim}D")
     inside = np.all(np.isfinite(points), axis=1) & dom.contains(np.nan_to_num(points))
-    observed = wc.histogram(dom, points[inside])
-    cells = wc.expected_probabilities(dom, pdf)
+    ref_points = None if reference is None else wc.as_points(
+        reference.sample(np.random.default_rng([seed, 1]).random((samples, 2))), samples, "reference sample")
+    # Equal-probability cells of the pdf, as fine as the samples' precision allows (see warp_bins).
+    quantum = sample_quantum(points[inside], *(() if ref_points is None else (ref_points,)))
+    bins = equal_probability_bins(wc.parameter_density(dom, pdf), HISTOGRAM_RES, samples, quantum)
+    observed = wc.histogram(dom, points[inside], bins)
+    cells = wc.expected_probabilities(dom, pdf, bins)
 
     checks = {
-        "chi2": wc.chi2_check(observed, cells.values, int(np.count_nonzero(~inside))),
+        "chi2": wc.chi2_check(observed, cells.values, int(np.count_nonzero(~inside)), bins),
         "normalisation": wc.normalisation_check(float(cells.values.sum()), cells.error),
         "domain": wc.domain_check(dom, points, pdf, rng, u, getattr(sample, "input_dtype", np.float64)),
     }
@@ -109,17 +117,15 @@ def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "
         checks["samples_vs_mitsuba"] = wc.skipped("no reference implementation")
     else:
         probe = points[inside][:100_000]
-        centres = (np.arange(HISTOGRAM_RES) + 0.5) / HISTOGRAM_RES  # the histogram's cell centres
+        centres = (np.arange(HISTOGRAM_RES) + 0.5) / HISTOGRAM_RES  # a uniform grid over the parameter square
         grid = dom.from_param(*[a.ravel() for a in np.meshgrid(centres, centres, indexing="ij")])
         checks["pdf_vs_mitsuba"] = wc.pdf_agreement_check(np.concatenate([probe, grid]), pdf, reference.pdf)
-        ref_points = wc.as_points(reference.sample(np.random.default_rng([seed, 1]).random((samples, 2))),
-                                   samples, "reference sample")
-        reference_observed = wc.histogram(dom, ref_points[dom.contains(ref_points)])
+        reference_observed = wc.histogram(dom, ref_points[dom.contains(ref_points)], bins)
         checks["samples_vs_mitsuba"] = wc.homogeneity_check(observed, reference_observed)
     checks["hard_inputs"] = wc.hard_inputs_check(dom, hard_variants or {"": (sample, pdf)})
     checks["throughput"] = throughput_check(sample, native_run, reference)
     return WarpResult(name, params, domain, checks, observed, cells.values * samples,
-                      reference_observed, time.perf_counter() - start, seed)
+                      reference_observed, time.perf_counter() - start, seed, bins)
 
 
 def throughput_check(sample: wc.Sampler, native_run, reference: WarpFunctions | None,

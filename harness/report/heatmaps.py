@@ -18,7 +18,7 @@ _AXES = {"square": ("x", "y"), "tent": ("(x+1)/2", "(y+1)/2"), "disk": ("r²", "
 
 def warp_heatmaps_png(observed: np.ndarray, expected: np.ndarray, reference: np.ndarray | None,
                       domain: str, title: str) -> bytes:
-    """A row of heat maps over the parameter square, as PNG bytes.
+    """A row of heat maps over the parameter square's cells (equal-probability ones, drawn equally large), as PNG.
 
     Panels: our samples, the pdf's expected counts, Mitsuba's samples (if any),
     and the Pearson residual (O - E) / sqrt(E), which shows where a fit fails.
@@ -29,7 +29,7 @@ def warp_heatmaps_png(observed: np.ndarray, expected: np.ndarray, reference: np.
         panels.append(("observed (Mitsuba)", reference))
     vmax = max(float(np.max(p)) for _, p in panels) or 1.0
     fig, axes = plt.subplots(1, len(panels) + 1, figsize=(3.1 * (len(panels) + 1), 3.2), constrained_layout=True)
-    xlabel, ylabel = _AXES[domain]
+    xlabel, ylabel = (f"{axis}, equal-prob. cells" for axis in _AXES[domain])
     for ax, (name, data) in zip(axes, panels):
         im = ax.imshow(data.T, origin="lower", extent=(0, 1, 0, 1), cmap="viridis", vmin=0, vmax=vmax,
                        aspect="auto", interpolation="nearest")
