@@ -2,12 +2,15 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Callable
 
 import numpy as np
 
 from harness.engines.base import Engine
 from harness.stats import SIGNIFICANCE, WARP_SAMPLES
+from harness.warp_power import CACHE_PATH as POWER_CACHE
+from harness.warp_power import attach_power
 from harness.warps import WarpResult, decide, evaluate_warp
 
 #: Beckmann roughnesses in the matrix; small ones are where careless cell integrals fail.
@@ -76,14 +79,21 @@ def check_spec(spec: WarpSpec, ours: Engine, reference: Engine | None, seed: int
 
 def run_matrix(ours: Engine, reference: Engine | None, specs: list[WarpSpec], seed: int = 0,
                samples: int = WARP_SAMPLES,
-               on_progress: Callable[[WarpSpec], None] | None = None) -> tuple[list[WarpResult], float]:
-    """Check every spec; decide all statistical tests together (Sidak). Returns results and the per-test level."""
+               on_progress: Callable[[WarpSpec], None] | None = None,
+               power_cache: Path | None = POWER_CACHE) -> tuple[list[WarpResult], float]:
+    """Check every spec; decide all statistical tests together (Sidak). Returns results and the per-test level.
+
+    Each check then gets its power at that level (details["power"], see warp_power), cached in `power_cache`
+    (default results/.cache/warp_power.json; None: no cache).
+    """
     results = []
     for spec in specs:
         results.append(check_spec(spec, ours, reference, seed, samples))
         if on_progress:
             on_progress(spec)
-    return results, decide(results, SIGNIFICANCE)
+    level = decide(results, SIGNIFICANCE)
+    attach_power(results, [s.key for s in specs], samples, level, power_cache)
+    return results, level
 
 
 def reproduce_command(spec_key: str, seed: int) -> str:

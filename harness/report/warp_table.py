@@ -4,6 +4,7 @@ from __future__ import annotations
 from rich import box
 from rich.table import Table
 
+from harness.report.warp_power_text import POWER_CAPTION, power_cell
 from harness.warp_checks import CheckResult
 from harness.warps import CHECK_NAMES, WarpResult, format_params
 
@@ -49,6 +50,7 @@ def warp_table(results: list[WarpResult], level: float) -> Table:
     table.add_column("warp", no_wrap=True)
     for name in CHECK_NAMES:
         table.add_column(_HEADERS[name], no_wrap=True)
+    table.add_column("power", no_wrap=True)
     table.add_column("all", no_wrap=True)
     for r in results:
         cells = []
@@ -64,8 +66,8 @@ def warp_table(results: list[WarpResult], level: float) -> Table:
             label += " " + " ".join(f"{'α' if k == 'alpha' else k}={v:g}" for k, v in r.params.items())
         elif r.params is not None:
             label += f" {format_params(r.params)}"
-        table.add_row(label, *cells, warp_verdict_text(r))
+        table.add_row(label, *cells, power_cell(r), warp_verdict_text(r))
     table.caption = ("green pass, yellow pass with warnings (listed in warps.html), red fail. χ² p, smp≈mi p: "
                      "p-values; ∫pdf: integral; bad: domain violations; pdf≈mi: max rel. diff; NaN: NaN/Inf on "
-                     "hard inputs in [0,1); M/s: ours (Mitsuba)")
+                     "hard inputs in [0,1); M/s: ours (Mitsuba); " + POWER_CAPTION)
     return table
