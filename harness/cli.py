@@ -81,6 +81,21 @@ def _parser() -> argparse.ArgumentParser:
     b.add_argument("--seed-runs", type=int, default=3,
                    help="runs at the seed document's settings (768x768; 0 skips them; default 3)")
 
+    c = sub.add_parser("calibrate", help="measure the false-alarm rate of every statistical warp check",
+                       description="Run every correct warp of the matrix at many seeds and count how often each "
+                                   "statistical check (chi-square, homogeneity with Mitsuba) rejects: the observed "
+                                   "false-alarm rate with an exact interval beside the nominal level. Writes "
+                                   "calibration.html and calibration.json; results/calibration-latest points at "
+                                   "the newest, and the warp page links to it. Exits 1 if a rate is off.")
+    common(c)
+    c.add_argument("--warps", action="store_true", help="calibrate the warp checks (the default, and for now the only)")
+    c.add_argument("--only", nargs="+", metavar="WARP", help="only these warps, e.g. tent beckmann:0.01")
+    c.add_argument("--seeds", type=int, default=200, help="null runs per warp (default 200)")
+    c.add_argument("--samples", type=int, default=WARP_SAMPLES,
+                   help=f"samples per run, as in the matrix (default {WARP_SAMPLES})")
+    c.add_argument("--json", type=Path, metavar="PATH", help="also write the figures as JSON to PATH")
+    c.add_argument("--no-mitsuba", action="store_true", help="skip the homogeneity test against Mitsuba")
+
     v = sub.add_parser("validate", help="everything: what `make validate` runs",
                        description="Warp conformance and image validation; writes results/<run>/report.html.")
     common(v)
@@ -223,6 +238,35 @@ def _bench(args, run_dir: Path) -> tuple[bool, dict]:
     return True, payload
 
 
+def _calibrate(args, run_dir: Path) -> bool:
+    from harness.engines.ours import OurEngine
+    from harness.report.calibration_html import warp_calibration_html
+    from harness.report.calibration_table import calibration_table
+    from harness.warp_calibration import calibrate_warps
+    from harness.warp_suite import select
+
+    specs = select(args.only)
+    ours = OurEngine()
+    reference = None
+    if not args.no_mitsuba:
+        from harness.engines.mitsuba import MitsubaEngine
+        reference = MitsubaEngine()
+    with _progress("calibrate") as progress:
+        task = progress.add_task("", total=len(specs) * args.seeds)
+        cal = calibrate_warps(ours, reference, specs, args.seeds, args.samples,
+                              on_seed=lambda: progress.update(task, advance=1))
+    meta = {"engine": ours.version(), "reference": reference.version() if reference else "none",
+            "seeds per warp": args.seeds, "samples": args.samples, "seconds": round(cal.seconds, 1)}
+    write_atomic(run_dir / "calibration.html", warp_calibration_html(cal, meta))
+    payload = {"run": run_dir.name, "pass": cal.within, "warps": cal.to_json(), "meta": meta}
+    write_json(run_dir / "calibration.json", payload)
+    if args.json:
+        write_json(args.json, payload)
+    console.print(calibration_table(cal))
+    console.print(f"{len(specs)} warps x {args.seeds} seeds in {cal.seconds:.0f} s. Page: {run_dir / 'calibration.html'}")
+    return cal.within
+
+
 def _unfinished(what: str, out: Path, run_dir: Path | None, previous: str | None) -> str:
     """One line: where an unfinished run's partial output is, and that `latest` did not move."""
     if run_dir is None:
@@ -246,6 +290,11 @@ def _run(args, out: Path, started: list[Path]) -> int:
         point_link(out / "bench-latest", run_dir)
         point_link(out / "latest", run_dir)
         return 0
+    if args.command == "calibrate":
+        started.append(run_dir := new_run_dir(out))
+        ok = _calibrate(args, run_dir)
+        point_link(out / "calibration-latest", run_dir)
+        return 0 if ok else 1
     specs = select(getattr(args, "only", None)) if args.command in ("warps", "validate") else []
     cases = select_cases(args.scenes) if args.command in ("images", "validate") else []
     # `latest` is the newest complete run; it moves to this run only once this run is complete.

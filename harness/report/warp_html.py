@@ -103,7 +103,9 @@ the pdf's own marginals (fewer rows where float32 rounding of the samples would 
 panels draw each cell the same size, so they show the cells' coordinates, not the domain's (a correct warp's
 expected panel is flat). Expected counts integrate the pdf adaptively over every cell. Residual panels show
 (O−E)/√E: a correct warp is noise; structure there is a bug. Power: the smallest planted defect each check
-detects in 90 % of simulated runs at this budget and level (hover for the defect).</p>
+detects in 90 % of simulated runs at this budget and level (hover for the defect). Whether each statistical
+check rejects correct warps as often as its level says, and no more, is measured by
+<code>python -m harness calibrate</code>: <a href="../calibration-latest/calibration.html">its latest page</a>.</p>
 {_summary_table(results)}
 {sections}
 </body></html>

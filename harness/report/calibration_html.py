@@ -1,0 +1,73 @@
+"""The calibration page: each statistical check's observed false-alarm rate beside its nominal level."""
+from __future__ import annotations
+
+import base64
+import html
+import io
+
+import numpy as np
+
+from harness.calibration_stats import Rate
+from harness.report.style import CSS
+
+
+def _png(fig) -> str:
+    import matplotlib.pyplot as plt
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=90, bbox_inches="tight")
+    plt.close(fig)
+    return f'<img alt="p-value histograms" src="data:image/png;base64,{base64.b64encode(buf.getvalue()).decode()}">'
+
+
+def p_value_histograms(panels: list[tuple[str, np.ndarray]], columns: int = 4) -> str:
+    """One histogram of null p-values per panel (uniform on [0, 1] for a calibrated test)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rows = max(1, -(-len(panels) // columns))
+    fig, axes = plt.subplots(rows, columns, figsize=(3.2 * columns, 2.2 * rows), squeeze=False)
+    for ax, (title, p) in zip(axes.ravel(), panels):
+        ax.hist(p, bins=20, range=(0, 1), color="#4a7ab0")
+        ax.axhline(len(p) / 20, color="k", lw=0.8, ls="--")
+        ax.set_title(title, fontsize=8)
+        ax.tick_params(labelsize=7)
+    for ax in axes.ravel()[len(panels):]:
+        ax.axis("off")
+    fig.tight_layout()
+    return _png(fig)
+
+
+def rate_cells(rates: list[Rate]) -> str:
+    """Table cells: observed rate and interval per level, red where the nominal level lies outside."""
+    return "".join(
+        f"<td class='{'pass' if r.within else 'fail'}' title='{r.rejections} of {r.count}; interval "
+        f"[{r.low:.3f}, {r.high:.3f}]'>{r.observed:.3f} <span class='meta'>[{r.low:.3f}, {r.high:.3f}]</span></td>"
+        for r in rates)
+
+
+def calibration_page(title: str, intro: str, sections: list[str], meta: dict) -> str:
+    meta_html = "".join(f"<li>{html.escape(str(k))}: {html.escape(str(v))}</li>" for k, v in meta.items())
+    return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{html.escape(title)}</title>"
+            f"<style>{CSS}</style></head><body><h1>{html.escape(title)}</h1><p>{intro}</p>"
+            f"<ul class='meta'>{meta_html}</ul>{''.join(sections)}</body></html>")
+
+
+def warp_calibration_html(cal, meta: dict) -> str:
+    """The warp part of the calibration page: the table (pooled rows first) and the p-value histograms."""
+    from harness.calibration_stats import CALIBRATION_LEVELS
+    head = "".join(f"<th>rate at {level:g}</th>" for level in CALIBRATION_LEVELS)
+    rows = "".join(
+        f"<tr><td>{html.escape(e.warp)}</td><td>{e.check}</td><td>{len(e.p_values)}</td>{rate_cells(e.rates)}"
+        f"<td>{e.uniformity:.3g}</td></tr>" for e in cal.pooled + cal.entries)
+    table = (f"<table><tr><th>warp</th><th>check</th><th>null tests</th>{head}<th>KS p (uniform p-values)</th></tr>"
+             f"{rows}</table>")
+    panels = [(f"{e.warp}: {e.check}", e.p_values) for e in cal.pooled + cal.entries]
+    verdict = ("every observed rate is within its interval of the nominal level" if cal.within else
+               "<b>some observed rates are outside their interval: the check's stated level is not what it does</b>")
+    intro = (f"Every correct warp of the matrix at {cal.seeds} seeds ({cal.samples:,} samples each, the matrix's "
+             "budget and cells): each rejection is a false alarm. A cell shows the observed rate and its exact "
+             "(Clopper-Pearson) interval, simultaneous at 95 % over all the intervals of the page; green where the "
+             f"nominal level lies inside it. Result: {verdict}.")
+    return calibration_page("Calibration of the warp checks", intro,
+                            ["<h2>False-alarm rates</h2>", table, "<h2>Null p-values</h2>", p_value_histograms(panels)],
+                            meta)

@@ -1,0 +1,120 @@
+"""The warp checks' false-alarm rates, measured: every correct warp at many seeds, p-values counted.
+
+For each warp of the matrix the seed-independent part of its statistical checks
+(the cells, the expected probabilities) is tabulated once, then each seed draws
+fresh samples from our warp and from Mitsuba's and runs the chi-square
+goodness-of-fit and homogeneity tests exactly as the matrix does. The warps are
+correct, so every rejection is a false alarm; `rates` states how often that
+happens at each nominal level, with exact intervals.
+"""
+from __future__ import annotations
+
+import time
+import zlib
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from harness import warp_checks as wc
+from harness.calibration_stats import CALIBRATION_LEVELS, Rate, rates, uniformity_p
+from harness.domains import get_domain
+from harness.engines.base import Engine
+from harness.stats import HISTOGRAM_RES, WARP_SAMPLES
+from harness.warp_bins import equal_probability_bins, sample_quantum
+from harness.warp_suite import WarpSpec
+
+#: The warp checks that carry a p-value (the others are deterministic).
+STATISTICAL_CHECKS = ("chi2", "samples_vs_mitsuba")
+
+
+@dataclass
+class CheckCalibration:
+    """Null p-values of one check (of one warp, or pooled over all), and the rates they give."""
+
+    warp: str
+    check: str
+    p_values: np.ndarray
+    rates: list[Rate]
+    uniformity: float
+
+    @property
+    def within(self) -> bool:
+        return all(r.within for r in self.rates)
+
+    def to_json(self) -> dict:
+        return {"warp": self.warp, "check": self.check, "comparisons": len(self.p_values),
+                "false_alarm_rate": self.rates[-1].observed, "nominal_level": self.rates[-1].level,
+                "rates": [r.to_json() for r in self.rates], "uniformity_p": self.uniformity,
+                "within": self.within}
+
+
+@dataclass
+class WarpCalibration:
+    """Every warp and check, and each check pooled over the warps."""
+
+    entries: list[CheckCalibration]
+    pooled: list[CheckCalibration]
+    seeds: int
+    samples: int
+    seconds: float
+
+    @property
+    def within(self) -> bool:
+        return all(e.within for e in self.entries + self.pooled)
+
+    def to_json(self) -> dict:
+        return {"seeds": self.seeds, "samples": self.samples, "seconds": self.seconds, "within": self.within,
+                "levels": list(CALIBRATION_LEVELS), "pooled": [e.to_json() for e in self.pooled],
+                "warps": [e.to_json() for e in self.entries]}
+
+
+def spec_seed(spec: WarpSpec, seed: int) -> list[int]:
+    """A seed per warp, so that warps with the same parameter-space image (the uniform ones) draw
+    independent samples and their p-values are independent."""
+    return [zlib.crc32(spec.key.encode()), seed]
+
+
+def null_p_values(spec: WarpSpec, ours: Engine, reference: Engine | None, seeds: range,
+                  samples: int = WARP_SAMPLES, on_seed: Callable[[], None] | None = None) -> dict[str, np.ndarray]:
+    """p-values of each statistical check of `spec` at every seed (the matrix's cells and tests)."""
+    functions = ours.warp(spec.name, spec.alpha)
+    ref = reference.warp(spec.name, spec.alpha) if reference is not None else None
+    dom = get_domain(spec.domain)
+    draws = lambda f, rng: wc.as_points(f.sample(rng.random((samples, 2))), samples, "sample")  # noqa: E731
+    # The cells come from the pdf; the samples only say whether they are float32 (see warp_bins).
+    pilot = [draws(f, np.random.default_rng([*spec_seed(spec, 0), 1])) for f in (functions, ref) if f is not None]
+    bins = equal_probability_bins(wc.parameter_density(dom, functions.pdf), HISTOGRAM_RES, samples,
+                                  sample_quantum(*pilot))
+    probabilities = wc.expected_probabilities(dom, functions.pdf, bins).values
+    out: dict[str, list[float]] = {"chi2": []} | ({"samples_vs_mitsuba": []} if ref is not None else {})
+    for seed in seeds:
+        rng = np.random.default_rng(spec_seed(spec, seed))
+        points = draws(functions, rng)
+        inside = np.all(np.isfinite(points), axis=1) & dom.contains(np.nan_to_num(points))
+        observed = wc.histogram(dom, points[inside], bins)
+        out["chi2"].append(wc.chi2_check(observed, probabilities, int(np.count_nonzero(~inside))).p_value)
+        if ref is not None:
+            ref_points = draws(ref, rng)
+            ref_observed = wc.histogram(dom, ref_points[dom.contains(ref_points)], bins)
+            out["samples_vs_mitsuba"].append(wc.homogeneity_check(observed, ref_observed).p_value)
+        if on_seed:
+            on_seed()
+    return {k: np.asarray(v) for k, v in out.items()}
+
+
+def calibrate_warps(ours: Engine, reference: Engine | None, specs: list[WarpSpec], seeds: int = 200,
+                    samples: int = WARP_SAMPLES, on_seed: Callable[[], None] | None = None) -> WarpCalibration:
+    """Every spec at `seeds` seeds; rates per warp and check, and pooled per check over the warps."""
+    start = time.perf_counter()
+    p_values = {spec.key: null_p_values(spec, ours, reference, range(seeds), samples, on_seed) for spec in specs}
+    checks = [c for c in STATISTICAL_CHECKS if any(c in v for v in p_values.values())]
+    intervals = (sum(len(v) for v in p_values.values()) + len(checks)) * len(CALIBRATION_LEVELS)
+
+    def entry(warp: str, check: str, p: np.ndarray) -> CheckCalibration:
+        return CheckCalibration(warp, check, p, rates(p, intervals), uniformity_p(p))
+
+    entries = [entry(key, check, p) for key, v in p_values.items() for check, p in v.items()]
+    pooled = [entry("all warps", check, np.concatenate([v[check] for v in p_values.values() if check in v]))
+              for check in checks]
+    return WarpCalibration(entries, pooled, seeds, samples, time.perf_counter() - start)
