@@ -1,0 +1,200 @@
+"""The harness's statistics against independent implementations and their definitions.
+
+Welch's t-test and the chi-square tests against scipy, the Sidak levels (and their split in
+`compare_batches`) against 1 - (1 - alpha)^(1/n), PSNR against 10 log10(peak^2 / MSE), the
+efficiency ratio on a bench with a known answer. Fast: these run for every mutant in `make mutate`.
+"""
+import numpy as np
+import pytest
+from scipy import stats as sps
+
+from harness.bench import Curve, Step
+from harness.bench_run import CaseBench
+from harness.chi2 import goodness_of_fit, goodness_of_fit_batch, homogeneity
+from harness.compare import compare_batches
+from harness.metrics import image_metrics
+from harness.stats import MIN_EXPECTED, SIGNIFICANCE, sidak_level
+from harness.welch import BatchStats, critical_t, welch_p_values
+
+
+def definition_sidak(alpha, n):
+    return 1.0 - (1.0 - alpha) ** (1.0 / n)
+
+
+# --- Welch ------------------------------------------------------------------------------------------
+
+WELCH_CASES = [  # (seed, K1, K2, sigma1, sigma2, shift)
+    (0, 4, 12, 1.0, 3.0, 0.0),
+    (1, 8, 8, 0.2, 2.0, 0.5),
+    (2, 16, 5, 5.0, 0.5, 1.0),
+    (3, 3, 30, 1.0, 1.0, 0.3),
+    (4, 6, 9, 0.01, 0.03, 0.02),
+]
+
+
+@pytest.mark.parametrize("seed, k1, k2, s1, s2, shift", WELCH_CASES)
+def test_welch_p_values_match_scipy(seed, k1, k2, s1, s2, shift):
+    rng = np.random.default_rng(seed)
+    a = rng.normal(shift, s1, (k1, 50))
+    b = rng.normal(0.0, s2, (k2, 50))
+    p, t, se = welch_p_values(BatchStats.of(a), BatchStats.of(b), scale=0.0, rounding=0.0)
+    ref = sps.ttest_ind(a, b, equal_var=False, axis=0)
+    np.testing.assert_allclose(t, ref.statistic, rtol=1e-10)
+    np.testing.assert_allclose(p, ref.pvalue, rtol=1e-8, atol=1e-300)
+    np.testing.assert_allclose(se, np.sqrt(a.var(0, ddof=1) / k1 + b.var(0, ddof=1) / k2), rtol=1e-12)
+    # Two-sided: twice the smaller one-sided p-value, never the one-sided one.
+    greater = sps.ttest_ind(a, b, equal_var=False, axis=0, alternative="greater").pvalue
+    less = sps.ttest_ind(a, b, equal_var=False, axis=0, alternative="less").pvalue
+    np.testing.assert_allclose(p, 2 * np.minimum(greater, less), rtol=1e-8)
+    assert np.all(p > np.minimum(greater, less))
+
+
+def test_welch_uses_satterthwaite_dof_and_t_tails():
+    # Very unequal K and variances: the Welch-Satterthwaite dof (about 3) is far from the pooled one (32),
+    # and the t tail far from the normal one.
+    a = np.array([[0.0], [1.0], [2.0], [3.0]]) * 3.0
+    b = np.linspace(-0.1, 0.1, 30)[:, None] + 1.0
+    p, t, _ = welch_p_values(BatchStats.of(a), BatchStats.of(b), scale=0.0, rounding=0.0)
+    ref = sps.ttest_ind(a, b, equal_var=False, axis=0)
+    va, vb = a.var(0, ddof=1) / 4, b.var(0, ddof=1) / 30
+    dof = (va + vb) ** 2 / (va**2 / 3 + vb**2 / 29)
+    assert dof[0] < 4
+    assert p[0] == pytest.approx(float(ref.pvalue[0]), rel=1e-9)
+    assert p[0] == pytest.approx(float(2 * sps.t.sf(abs(t[0]), dof[0])), rel=1e-9)
+    assert p[0] != pytest.approx(float(2 * sps.norm.sf(abs(t[0]))), rel=0.05)
+    assert p[0] != pytest.approx(float(2 * sps.t.sf(abs(t[0]), 32)), rel=0.05)
+
+
+def test_critical_t_is_the_two_sided_quantile():
+    for level, dof in [(0.01, 14), (1e-5, 5), (0.3, 30)]:
+        c = critical_t(level, dof)
+        assert 2 * sps.t.sf(c, dof) == pytest.approx(level, rel=1e-9)
+
+
+# --- chi-square -------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("seed, cells", [(0, 10), (1, 51 * 51), (2, 3)])
+def test_goodness_of_fit_matches_scipy(seed, cells):
+    rng = np.random.default_rng(seed)
+    probs = rng.uniform(0.5, 2.0, cells)
+    probs /= probs.sum()
+    n = 200 * cells
+    observed = rng.multinomial(n, probs)
+    expected = probs * n
+    ours = goodness_of_fit(observed, expected)
+    ref = sps.chisquare(observed, expected)
+    assert ours.dof == cells - 1
+    assert ours.pooled_cells == 0
+    assert ours.statistic == pytest.approx(ref.statistic, rel=1e-10)
+    assert ours.p_value == pytest.approx(ref.pvalue, rel=1e-8)
+
+
+def test_goodness_of_fit_pools_small_cells_by_hand():
+    assert MIN_EXPECTED == 5.0
+    # Cells expecting 2, 1.5 and 3 (< 5) are merged into one bin expecting 6.5 (which stands alone);
+    # the cell expecting 5 exactly is not pooled.
+    expected = np.array([40.0, 2.0, 30.0, 1.5, 5.0, 3.0, 18.5])
+    observed = np.array([35, 6, 33, 4, 2, 1, 19])
+    ours = goodness_of_fit(observed, expected)
+    merged_o = np.array([35, 33, 2, 19, 6 + 4 + 1])
+    merged_e = np.array([40.0, 30.0, 5.0, 18.5, 6.5])
+    ref = sps.chisquare(merged_o, merged_e)
+    assert ours.pooled_cells == 3
+    assert ours.dof == 4
+    assert ours.statistic == pytest.approx(ref.statistic, rel=1e-12)
+    assert ours.p_value == pytest.approx(ref.pvalue, rel=1e-10)
+
+
+def test_goodness_of_fit_folds_a_too_small_pool_into_the_smallest_bin():
+    # Pooled cells expect 1 + 2 = 3 < 5: folded into the smallest regular bin (expecting 7).
+    expected = np.array([50.0, 1.0, 7.0, 2.0, 40.0])
+    observed = np.array([52, 3, 4, 1, 40])
+    ours = goodness_of_fit(observed, expected)
+    ref = sps.chisquare(np.array([52, 4 + 3 + 1, 40]), np.array([50.0, 10.0, 40.0]))
+    assert (ours.pooled_cells, ours.dof) == (2, 2)
+    assert ours.statistic == pytest.approx(ref.statistic, rel=1e-12)
+    assert ours.p_value == pytest.approx(ref.pvalue, rel=1e-10)
+
+
+def test_goodness_of_fit_batch_rows_match_scipy():
+    rng = np.random.default_rng(7)
+    probs = np.full(20, 1 / 20)
+    observed = rng.multinomial(2000, probs, size=5)
+    batch = goodness_of_fit_batch(observed, probs * 2000)
+    for row, stat, p in zip(observed, batch.statistics, batch.p_values):
+        ref = sps.chisquare(row, probs * 2000)
+        assert stat == pytest.approx(ref.statistic, rel=1e-10)
+        assert p == pytest.approx(ref.pvalue, rel=1e-8)
+    assert set(batch.dofs) == {19}
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_homogeneity_matches_scipy_contingency(seed):
+    rng = np.random.default_rng(seed)
+    probs = rng.uniform(0.5, 2.0, 30)
+    probs /= probs.sum()
+    a = rng.multinomial(10_000, probs)
+    b = rng.multinomial(7_000, probs * (1 + 0.05 * (np.arange(30) % 2)) / np.sum(probs * (1 + 0.05 * (np.arange(30) % 2))))
+    ours = homogeneity(a, b)
+    stat, p, dof, _ = sps.chi2_contingency(np.stack([a, b]), correction=False)
+    assert ours.dof == dof == 29
+    assert ours.statistic == pytest.approx(stat, rel=1e-9)
+    assert ours.p_value == pytest.approx(p, rel=1e-7)
+
+
+# --- Sidak ------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("alpha, n", [(0.01, 1), (0.01, 3), (0.05, 768), (0.3, 10**6), (0.01, 2)])
+def test_sidak_level_is_its_definition(alpha, n):
+    assert sidak_level(alpha, n) == pytest.approx(definition_sidak(alpha, n), rel=1e-12)
+    # The family-wise rate of n independent tests at that level is alpha.
+    assert 1 - (1 - sidak_level(alpha, n)) ** n == pytest.approx(alpha, rel=1e-9)
+
+
+def test_compare_splits_alpha_over_scales_then_pixels_and_channels():
+    rng = np.random.default_rng(0)
+    h, w, k = 16, 24, 4
+    a = 0.5 + 0.01 * rng.standard_normal((k, h, w, 3))
+    b = 0.5 + 0.01 * rng.standard_normal((k, h, w, 3))
+    result = compare_batches(a, b, tile=8)
+    per_scale = definition_sidak(SIGNIFICANCE, 3)
+    counts = {"pixel": h * w * 3, "tile": (h // 8) * (w // 8) * 3, "image": 3}
+    assert [s.scale for s in result.scales] == ["pixel", "tile", "image"]
+    for s in result.scales:
+        assert s.tests == counts[s.scale], s.scale
+        assert s.level == pytest.approx(definition_sidak(per_scale, counts[s.scale]), rel=1e-9), s.scale
+    # Same levels with another alpha: they follow it.
+    result = compare_batches(a, b, alpha=0.05, tile=8)
+    assert result.scales[2].level == pytest.approx(definition_sidak(definition_sidak(0.05, 3), 3), rel=1e-9)
+
+
+# --- metrics and efficiency ------------------------------------------------------------------------
+
+def test_psnr_is_its_definition():
+    rng = np.random.default_rng(3)
+    reference = rng.uniform(0.0, 2.0, (16, 16, 3))
+    test = reference + rng.normal(0.0, 0.05, reference.shape)
+    m = image_metrics(test, reference)
+    mse = np.mean((test - reference) ** 2)
+    assert m["mse"] == pytest.approx(mse, rel=1e-12)
+    assert m["rmse"] == pytest.approx(np.sqrt(mse), rel=1e-12)
+    assert m["psnr"] == pytest.approx(10 * np.log10(np.max(np.abs(reference)) ** 2 / mse), rel=1e-12)
+    assert m["mean_ratio"] == pytest.approx(np.mean(test) / np.mean(reference), rel=1e-12)
+    assert image_metrics(reference, reference)["psnr"] == float("inf")
+
+
+def _curve(name, error_constant, seconds_per_spp):
+    """relMSE = error_constant / spp and seconds = seconds_per_spp * spp: efficiency 1/(c * s)."""
+    steps = [Step(s, [seconds_per_spp * s] * 3, [error_constant / s] * 3, [0.1] * 3) for s in (4, 8, 16, 32, 64)]
+    return Curve(name, "render only", steps, 0.1)
+
+
+def test_efficiency_ratio_has_its_known_answer():
+    ours = _curve("mcval", 0.5, 0.01)       # efficiency 1 / (0.5 * 0.01) = 200
+    other = _curve("mitsuba", 2.0, 0.02)    # efficiency 1 / (2 * 0.02) = 25
+    assert ours.efficiency() == pytest.approx(200.0)
+    assert other.efficiency() == pytest.approx(25.0)
+    bench = CaseBench(None, {"mcval": ours, "mitsuba": other}, np.zeros(3))
+    assert bench.efficiency_ratio() == pytest.approx(8.0)  # ours is 8x as efficient
+    assert bench.efficiency_ratio("mitsuba", "mcval") == pytest.approx(1 / 8.0)
+    assert np.isnan(CaseBench(None, {"mcval": ours}, np.zeros(3)).efficiency_ratio())
