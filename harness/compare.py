@@ -24,12 +24,12 @@ from dataclasses import dataclass, field
 from functools import cache
 
 import numpy as np
-from scipy.ndimage import maximum_filter
+from scipy import stats as sps
 
 from harness.finite import FiniteCheck, damage_of_summary
 from harness.metrics import image_metrics
-from harness.stats import ROUNDING_TOLERANCE, SIGNIFICANCE, TILE_SIZE, sidak_level
-from harness.welch import BatchStats, critical_t, welch_p_values
+from harness.stats import IMAGE_POWER_TARGET, ROUNDING_TOLERANCE, SIGNIFICANCE, TILE_SIZE, sidak_level
+from harness.welch import BatchStats, critical_t, moderate, welch_dof, welch_p_values
 
 SCALES = ("pixel", "tile", "image")
 #: Bumped whenever `summarize` changes what it stores, so stored references are made again.
@@ -108,11 +108,15 @@ class Comparison:
 
     scales: list[ScaleTest]
     metrics: dict[str, float]
-    #: Smallest bias of the image mean, relative to the mean magnitude, detected half of the time.
+    #: Relative bias b of the image mean (the test image scaled by 1 + b) that the image scale detects half
+    #: of the time (in at least one channel), at this comparison's noise and level.
     detectable_bias: float
     batches: tuple[int, int]
     #: NaN, Inf and (unless signed) negative pixels of either side; any fails the comparison.
     finite: FiniteCheck
+    #: The same for one 8x8 tile alone (the tile's values scaled by 1 + b, relative to its own mean), detected
+    #: half of the time by the tile scale: the median over tiles with a non-zero mean (inf if there are none).
+    detectable_tile_bias: float = float("inf")
 
     @property
     def passed(self) -> bool:
@@ -129,7 +133,8 @@ class Comparison:
 
     def to_json(self) -> dict:
         return {"pass": self.passed, "finite": self.finite.to_json(), "tests": [s.to_json() for s in self.scales],
-                "metrics": self.metrics, "detectable_bias": self.detectable_bias, "batches": list(self.batches)}
+                "metrics": self.metrics, "detectable_bias": self.detectable_bias,
+                "detectable_tile_bias": self.detectable_tile_bias, "batches": list(self.batches)}
 
 
 def _scale_test(name: str, a: BatchStats, b: BatchStats, level_family: float, shape: tuple[int, int],
@@ -147,19 +152,27 @@ def _scale_test(name: str, a: BatchStats, b: BatchStats, level_family: float, sh
                      (int(idx[0]) * upsample, int(idx[1]) * upsample), full)
 
 
-def _robust(stats: BatchStats) -> BatchStats:
-    """Variances floored by the largest in their 3x3 neighbourhood (of pixels or of tiles).
+def _half_power_bias(reference: BatchStats, se: np.ndarray, dof: np.ndarray, level: float) -> np.ndarray:
+    """Per element of (..., C) statistics: the relative bias b (the test scaled by 1 + b) that makes the
+    test at `level` reject in at least one of the C channels with probability IMAGE_POWER_TARGET.
 
-    Where a contribution is rare (a crevice that sees the sky in 1% of samples, one
-    stratum of 32 that catches a grazing light), most of K batches miss it, or all
-    catch it by chance, and the element's own estimate falls far below the truth,
-    which would make Welch's t-test reject a correct renderer at its extreme levels.
-    A non-finite variance stays as it is and does not raise its neighbours' floor.
-    """
-    v = stats.var_of_mean
-    finite = np.isfinite(v)
-    floored = maximum_filter(np.where(finite, v, 0.0), size=(3, 3, 1), mode="nearest")
-    return BatchStats(stats.mean, np.where(finite, floored, v), stats.k)
+    Channel c's t is noncentral with noncentrality b |mean_c| / se_c and the Welch degrees of freedom;
+    the channels are taken as independent. Infinite where no channel has a non-zero mean."""
+    scale = np.where(np.isfinite(reference.mean) & (se > 0), np.abs(reference.mean) / np.where(se > 0, se, 1.0), 0.0)
+    scale = np.atleast_2d(scale)
+    dof = np.broadcast_to(np.atleast_2d(dof), scale.shape)
+    crit = critical_t(level, dof)
+    best = scale.max(axis=-1, keepdims=True)
+    live = best[..., 0] > 0
+    lo = np.zeros(best.shape)
+    hi = np.where(best > 0, (2.0 * crit.max(axis=-1, keepdims=True) + 8.0) / np.where(best > 0, best, 1.0), 1.0)
+    for _ in range(48):
+        mid = 0.5 * (lo + hi)
+        nc = mid * scale
+        power = sps.nct.sf(crit, dof, nc) + sps.nct.cdf(-crit, dof, nc)
+        found = 1.0 - np.prod(1.0 - power, axis=-1, keepdims=True) >= IMAGE_POWER_TARGET
+        hi, lo = np.where(found, mid, hi), np.where(found, lo, mid)
+    return np.where(live, 0.5 * (lo + hi)[..., 0], np.inf)
 
 
 @cache
@@ -188,20 +201,23 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     per_scale = sidak_level(alpha, len(SCALES))
     ref = reference.pixel.mean[np.isfinite(reference.pixel.mean)]
     magnitude = float(np.mean(np.abs(ref))) if ref.size else 0.0
+    test_tile, ref_tile = moderate(test.tile), moderate(reference.tile)
     scales = [
-        _scale_test("pixel", _robust(test.pixel), _robust(reference.pixel), per_scale, (h, w), 1, magnitude,
+        _scale_test("pixel", moderate(test.pixel), moderate(reference.pixel), per_scale, (h, w), 1, magnitude,
                     rounding),
-        _scale_test("tile", _robust(test.tile), _robust(reference.tile), per_scale, (h, w), test.tile_size,
-                    magnitude, rounding),
+        _scale_test("tile", test_tile, ref_tile, per_scale, (h, w), test.tile_size, magnitude, rounding),
         _scale_test("image", test.image, reference.image, per_scale, (h, w), max(h, w), magnitude, rounding),
     ]
-    # The image-mean bias found half of the time: |t| reaches the critical value when bias = t_crit * se.
+    # The image-mean bias found half of the time, and the same for one tile (median over tiles).
     _, _, se = welch_p_values(test.image, reference.image, magnitude, rounding)
-    dof = test.image.k + reference.image.k - 2
-    denominator = max(magnitude, 1e-12)
-    detectable = float(np.max(critical_t(scales[2].level, dof) * se) / denominator)
+    detectable = float(_half_power_bias(reference.image, se, welch_dof(test.image, reference.image),
+                                        scales[2].level)[0])
+    _, _, tile_se = welch_p_values(test_tile, ref_tile, magnitude, rounding)
+    per_tile = _half_power_bias(ref_tile, tile_se, welch_dof(test_tile, ref_tile), scales[1].level)
+    per_tile = per_tile[np.isfinite(per_tile)]
+    detectable_tile = float(np.median(per_tile)) if per_tile.size else float("inf")
     metrics = _metrics(test.mean_image, reference.mean_image, signed)
-    return Comparison(scales, metrics, detectable, (test.image.k, reference.image.k), finite)
+    return Comparison(scales, metrics, detectable, (test.image.k, reference.image.k), finite, detectable_tile)
 
 
 def compare_batches(test: np.ndarray, reference: np.ndarray, alpha: float = SIGNIFICANCE,

@@ -1,27 +1,99 @@
-"""Welch's t-test on batch statistics, vectorised over every pixel, tile or channel at once."""
+"""Welch's t-test on batch statistics, vectorised over every pixel, tile or channel at once, and the
+empirical-Bayes moderation of their variances (Smyth 2004) over a neighbourhood."""
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 import numpy as np
 from scipy import stats as sps
+from scipy.ndimage import uniform_filter
+from scipy.optimize import brentq
+from scipy.special import polygamma
 
-from harness.stats import ROUNDING_TOLERANCE
+from harness.stats import MODERATION_WINDOW, ROUNDING_TOLERANCE
 
 
 @dataclass
 class BatchStats:
-    """Means over K independent batches and the variance of those means, per element."""
+    """Means over K independent batches and the variance of those means, per element.
+
+    `dof` is the degrees of freedom of each variance: K - 1 when None (a plain sample
+    variance), more once moderated (`moderate`)."""
 
     mean: np.ndarray
     var_of_mean: np.ndarray
     k: int
+    dof: np.ndarray | None = None
 
     @classmethod
     def of(cls, batches: np.ndarray) -> "BatchStats":
         """From (K, ...) batch values."""
         b = np.asarray(batches, np.float64)
         return cls(b.mean(axis=0), b.var(axis=0, ddof=1) / b.shape[0], b.shape[0])
+
+    @property
+    def var_dof(self) -> np.ndarray | float:
+        """Degrees of freedom of `var_of_mean`, per element (K - 1 unless moderated)."""
+        return float(self.k - 1) if self.dof is None else self.dof
+
+
+def _trigamma(x):
+    return polygamma(1, x)
+
+
+def prior_dof(log_ratio: np.ndarray, dof: float, cap: float) -> float:
+    """Method-of-moments prior degrees of freedom d0 (Smyth 2004): the spread of log(s^2 / s0^2) beyond
+    what sampling with `dof` degrees of freedom explains is trigamma(d0 / 2); capped at `cap`, 0 when
+    fewer than 10 ratios are given."""
+    if log_ratio.size < 10:
+        return 0.0
+    excess = float(np.var(log_ratio)) - float(_trigamma(dof / 2.0))
+    if excess <= _trigamma(cap / 2.0):
+        return float(cap)
+    return float(brentq(lambda d0: _trigamma(d0 / 2.0) - excess, 1e-6, cap))
+
+
+def moderate(stats: BatchStats, window: int = MODERATION_WINDOW) -> BatchStats:
+    """Variances of (H, W, C) statistics moderated towards their neighbours' (Smyth 2004, limma).
+
+    The prior s0^2 of an element is the mean variance of the finite elements in its `window` x `window`
+    neighbourhood (same channel, the element itself excluded); its weight d0 (prior degrees of freedom)
+    is estimated once per image from how much the variances scatter about their priors. The moderated
+    variance (d0 s0^2 + d s^2) / (d0 + d) has d0 + d degrees of freedom (d = K - 1). Where a contribution
+    is rare and all K batches miss it (s^2 = 0), the neighbours supply the variance; where the variance
+    field is smooth, d0 is large and the estimate nearly exact. Elements whose neighbours all have
+    zero variance, and non-finite ones, keep their own variance and K - 1 degrees of freedom.
+    """
+    v = np.asarray(stats.var_of_mean, np.float64)
+    d = float(stats.k - 1)
+    if v.ndim != 3 or min(v.shape[:2]) < 2:
+        return stats
+    finite = np.isfinite(v)
+    clean = np.where(finite, v, 0.0)
+    size = (window, window, 1)
+    n = window * window
+    with np.errstate(invalid="ignore", over="ignore"):
+        total = uniform_filter(clean, size=size, mode="nearest") * n - clean
+        count = uniform_filter(finite.astype(np.float64), size=size, mode="nearest") * n - finite
+        prior = np.where(count > 0.5, total / np.maximum(count, 1.0), 0.0)
+    usable = finite & (prior > 0) & np.isfinite(prior)
+    observed = usable & (v > 0)
+    d0 = prior_dof(np.log(v[observed] / prior[observed]), d, (n - 1) * d)
+    if d0 <= 0.0:
+        return stats
+    moderated = np.where(usable, (d0 * np.where(usable, prior, 0.0) + d * clean) / (d0 + d), v)
+    dof = np.where(usable, d + d0, d)
+    return BatchStats(stats.mean, moderated, stats.k, dof)
+
+
+def welch_dof(a: BatchStats, b: BatchStats) -> np.ndarray:
+    """Welch-Satterthwaite degrees of freedom; the summed variance dofs where both variances vanish."""
+    va, vb = a.var_of_mean, b.var_of_mean
+    da, db = a.var_dof, b.var_dof
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        dof_den = va**2 / da + vb**2 / db
+        dof = np.where(dof_den > 0, (va + vb) ** 2 / dof_den, da + db)
+    return np.clip(np.nan_to_num(np.asarray(dof, np.float64), nan=a.k + b.k - 2.0), 1.0, None)
 
 
 def welch_p_values(a: BatchStats, b: BatchStats, scale: float = 0.0,
@@ -34,7 +106,7 @@ def welch_p_values(a: BatchStats, b: BatchStats, scale: float = 0.0,
     a component that is 0 in one and 3e-8 in the other) are not told apart; where
     both sides are constant and equal the p-value is 1. Where any input (either
     mean or variance, or `scale`) is NaN or infinite, t and p are NaN: such a pixel is no
-    evidence of agreement.
+    evidence of agreement. Moderated variances (`moderate`) bring their own degrees of freedom.
     """
     va, vb = a.var_of_mean, b.var_of_mean
     floor = rounding * (0.5 * (np.abs(a.mean) + np.abs(b.mean)) + scale)
@@ -43,14 +115,11 @@ def welch_p_values(a: BatchStats, b: BatchStats, scale: float = 0.0,
         se = np.sqrt(va + vb + floor**2)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         t = np.where(finite, np.where(se > 0, (a.mean - b.mean) / se, 0.0), np.nan)
-        # Welch-Satterthwaite degrees of freedom; the pooled count where both variances vanish.
-        dof_den = va**2 / (a.k - 1) + vb**2 / (b.k - 1)
-        dof = np.where(dof_den > 0, (va + vb) ** 2 / dof_den, a.k + b.k - 2.0)
-    dof = np.clip(np.nan_to_num(dof, nan=a.k + b.k - 2.0), 1.0, None)
-    p = 2.0 * sps.t.sf(np.abs(t), dof)
+    p = 2.0 * sps.t.sf(np.abs(t), welch_dof(a, b))
     return p, t, se
 
 
-def critical_t(level: float, dof: float) -> float:
+def critical_t(level: float, dof: float | np.ndarray) -> float | np.ndarray:
     """|t| beyond which a two-sided test at `level` rejects."""
-    return float(sps.t.isf(level / 2.0, dof))
+    out = sps.t.isf(level / 2.0, dof)
+    return float(out) if np.ndim(out) == 0 else out
