@@ -142,6 +142,50 @@ def test_homogeneity_matches_scipy_contingency(seed):
     assert ours.p_value == pytest.approx(p, rel=1e-7)
 
 
+def test_goodness_of_fit_pool_of_exactly_min_expected_stands_alone():
+    expected = np.array([20.0, 2.0, 3.0, 30.0])  # the low cells expect exactly MIN_EXPECTED together
+    observed = np.array([22, 4, 4, 25])
+    ours = goodness_of_fit(observed, expected)
+    ref = sps.chisquare(np.array([22, 25, 8]), np.array([20.0, 30.0, 5.0]))
+    assert (ours.pooled_cells, ours.dof) == (2, 2)
+    assert ours.statistic == pytest.approx(ref.statistic, rel=1e-12)
+
+
+def test_goodness_of_fit_of_two_and_of_too_few_cells():
+    ours = goodness_of_fit(np.array([10, 14]), np.array([12.0, 12.0]))
+    ref = sps.chisquare([10, 14], [12.0, 12.0])
+    assert ours.dof == 1
+    assert ours.p_value == pytest.approx(ref.pvalue, rel=1e-10)
+    # One regular cell, or every cell too small to test: no test (p = 1, dof 0).
+    for observed, expected in [([7, 0], [7.0, 0.0]), ([1, 0, 1], [1.0, 1.0, 1.0])]:
+        res = goodness_of_fit(np.array(observed), np.array(expected))
+        assert (res.dof, res.p_value, res.statistic) == (0, 1.0, 0.0)
+    # Integer inputs give the same answer as floats.
+    a = goodness_of_fit(np.array([35, 6, 33, 4]), np.array([40, 2, 30, 2]))
+    b = goodness_of_fit(np.array([35.0, 6.0, 33.0, 4.0]), np.array([40.0, 2.0, 30.0, 2.0]))
+    assert (a.statistic, a.dof, a.p_value) == (b.statistic, b.dof, b.p_value)
+
+
+def test_homogeneity_pools_small_cells_by_hand():
+    a = np.array([400, 3, 300, 1, 250, 0])
+    b = np.array([380, 2, 330, 1, 260, 4])
+    # Cells 1, 3, 5 expect fewer than 5 in a row under the pooled distribution: merged into one column.
+    ours = homogeneity(a, b)
+    table = np.array([[400, 300, 250, 3 + 1 + 0], [380, 330, 260, 2 + 1 + 4]])
+    stat, p, dof, _ = sps.chi2_contingency(table, correction=False)
+    assert (ours.pooled_cells, ours.dof) == (3, dof)
+    assert ours.statistic == pytest.approx(stat, rel=1e-10)
+    assert ours.p_value == pytest.approx(p, rel=1e-8)
+    assert isinstance(ours.pooled_cells, int)
+
+
+def test_homogeneity_without_samples_on_one_side_is_no_test():
+    counts = np.array([50, 80, 20])
+    for a, b in [(np.zeros(3, int), counts), (counts, np.zeros(3, int))]:
+        res = homogeneity(a, b)
+        assert (res.statistic, res.dof, res.p_value) == (0.0, 0, 1.0)
+
+
 # --- Sidak ------------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("alpha, n", [(0.01, 1), (0.01, 3), (0.05, 768), (0.3, 10**6), (0.01, 2)])
