@@ -18,7 +18,7 @@ SANITIZE_BUILD := build-sanitize
 FUZZ_RUNS ?= 2000
 FUZZ_SEED ?= 1
 
-.PHONY: validate test references bench build deps clean sanitize sanitize-build fuzz
+.PHONY: validate test references bench build deps clean sanitize sanitize-build fuzz mutate
 
 ## validate: run the whole validation; writes results/<run>/ and fails on any FAIL
 validate: build
@@ -56,6 +56,16 @@ bench: build
 	$(BUILD)/bench_rays scenes/highpoly.xml --json results/bench_rays.json
 	$(PY) -m harness bench --rays-json results/bench_rays.json
 
+## mutate: mutation testing (mutmut, not in CI) of the statistics, checks and reports against the fast tests;
+## the kill rate per module and the survivors in results/mutation/ (MUTATE= narrows the modules)
+MUTATE ?= harness.welch* harness.chi2* harness.stats* harness.compare* harness.warp_checks* \
+	harness.regression* harness.metrics* harness.bench*
+mutate: $(VENV)/.installed
+	@$(VENV)/bin/mutmut --version >/dev/null 2>&1 || $(PY) -m pip install --quiet "mutmut>=3.8,<4"
+	@mkdir -p results/mutation
+	-$(VENV)/bin/mutmut run $(foreach m,$(MUTATE),'$(m)') > results/mutation/mutmut.log 2>&1
+	$(PY) tests/mutation_report.py --out results/mutation $(foreach m,$(MUTATE),'$(m)')
+
 ## build: Debian packages, the .venv, the C++ renderer (`render` in .venv/bin) and the scenes' meshes
 build: deps $(VENV)/.installed
 	@[ -f $(BUILD)/build.ninja ] || cmake -S . -B $(BUILD) -G Ninja -DPython_EXECUTABLE=$(abspath $(PY))
@@ -82,4 +92,4 @@ $(VENV)/.installed: pyproject.toml | deps
 	touch $@
 
 clean:
-	rm -rf $(BUILD) $(SANITIZE_BUILD) $(VENV) results .fuzz
+	rm -rf $(BUILD) $(SANITIZE_BUILD) $(VENV) results .fuzz mutants
