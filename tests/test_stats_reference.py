@@ -7,6 +7,8 @@ efficiency ratio on a bench with a known answer. Fast: these run for every mutan
 import numpy as np
 import pytest
 from scipy import stats as sps
+from scipy.optimize import brentq
+from scipy.special import polygamma
 
 from harness.bench import Curve, Step
 from harness.bench_run import CaseBench
@@ -14,7 +16,7 @@ from harness.chi2 import goodness_of_fit, goodness_of_fit_batch, homogeneity
 from harness.compare import compare_batches
 from harness.metrics import image_metrics
 from harness.stats import MIN_EXPECTED, SIGNIFICANCE, sidak_level
-from harness.welch import BatchStats, critical_t, welch_p_values
+from harness.welch import BatchStats, critical_t, moderate, welch_p_values
 
 
 def definition_sidak(alpha, n):
@@ -69,6 +71,96 @@ def test_critical_t_is_the_two_sided_quantile():
     for level, dof in [(0.01, 14), (1e-5, 5), (0.3, 30)]:
         c = critical_t(level, dof)
         assert 2 * sps.t.sf(c, dof) == pytest.approx(level, rel=1e-9)
+
+
+def test_welch_standard_error_floor_and_degenerate_inputs():
+    rng = np.random.default_rng(5)
+    a, b = rng.normal(1.0, 0.1, (6, 20)), rng.normal(-2.0, 0.3, (9, 20))
+    sa, sb = BatchStats.of(a), BatchStats.of(b)
+    rounding, scale = 1e-2, 3.0
+    p, t, se = welch_p_values(sa, sb, scale=scale, rounding=rounding)
+    floor = rounding * (0.5 * (np.abs(a.mean(0)) + np.abs(b.mean(0))) + scale)
+    expected_se = np.sqrt(a.var(0, ddof=1) / 6 + b.var(0, ddof=1) / 9 + floor**2)
+    np.testing.assert_allclose(se, expected_se, rtol=1e-12)
+    np.testing.assert_allclose(t, (a.mean(0) - b.mean(0)) / expected_se, rtol=1e-12)
+    va, vb = a.var(0, ddof=1) / 6, b.var(0, ddof=1) / 9
+    dof = (va + vb) ** 2 / (va**2 / 5 + vb**2 / 8)
+    np.testing.assert_allclose(p, 2 * sps.t.sf(np.abs(t), dof), rtol=1e-9)
+    # Both sides constant and equal: p = 1; constant and different (no floor): p = 0; NaN: NaN.
+    const = BatchStats(np.array([2.0, 2.0, np.nan]), np.zeros(3), 4)
+    other = BatchStats(np.array([2.0, 3.0, 2.0]), np.zeros(3), 4)
+    p, t, _ = welch_p_values(const, other, scale=0.0, rounding=0.0)
+    assert p[0] == 1.0 and t[0] == 0.0
+    assert np.isnan(p[2]) and np.isnan(t[2])
+    p, _, _ = welch_p_values(other, other, scale=np.inf, rounding=1e-5)
+    assert np.all(np.isnan(p))
+
+
+def test_welch_uses_the_variances_own_dof():
+    """Moderated variances carry their own degrees of freedom into Welch-Satterthwaite."""
+    mean_a, mean_b = np.array([1.0, 0.0, 5.0]), np.array([0.2, 0.5, 4.0])
+    va, vb = np.array([0.04, 0.01, 0.3]), np.array([0.02, 0.05, 0.1])
+    da, db = np.array([7.0, 30.0, 3.0]), np.array([40.0, 7.0, 3.0])
+    a, b = BatchStats(mean_a, va, 8, da), BatchStats(mean_b, vb, 8, db)
+    p, t, _ = welch_p_values(a, b, scale=0.0, rounding=0.0)
+    dof = (va + vb) ** 2 / (va**2 / da + vb**2 / db)
+    np.testing.assert_allclose(t, (mean_a - mean_b) / np.sqrt(va + vb), rtol=1e-12)
+    np.testing.assert_allclose(p, 2 * sps.t.sf(np.abs(t), dof), rtol=1e-9)
+    assert BatchStats(mean_a, va, 8).var_dof == 7.0
+
+
+def _moderate_by_definition(v, k, window=3):
+    """Smyth's moderation written out element by element (edges replicated, as scipy's 'nearest')."""
+    h, w, c = v.shape
+    d = k - 1.0
+    r = window // 2
+    padded = np.pad(v, ((r, r), (r, r), (0, 0)), mode="edge")
+    prior = np.zeros_like(v)
+    for i in range(h):
+        for j in range(w):
+            block = padded[i:i + window, j:j + window]
+            prior[i, j] = (block.sum(axis=(0, 1)) - v[i, j]) / (window * window - 1)
+    ratio = np.log(v / prior)
+    cap = (window * window - 1) * d
+    excess = np.var(ratio) - float(polygamma(1, d / 2))
+    if excess <= polygamma(1, cap / 2):
+        d0 = cap
+    else:
+        d0 = brentq(lambda x: polygamma(1, x / 2) - excess, 1e-6, cap)
+    return (d0 * prior + d * v) / (d0 + d), d + d0
+
+
+@pytest.mark.parametrize("spread", [0.0, 0.3, 1.5])
+def test_moderated_variances_follow_their_definition(spread):
+    rng = np.random.default_rng(11)
+    k = 8
+    true_var = 0.01 * np.exp(spread * rng.standard_normal((10, 12, 3)))
+    batches = rng.normal(0.0, np.sqrt(true_var), (k, 10, 12, 3)) + 1.0
+    stats = BatchStats.of(batches)
+    moderated = moderate(stats)
+    expected, dof = _moderate_by_definition(stats.var_of_mean, k)
+    np.testing.assert_allclose(moderated.var_of_mean, expected, rtol=1e-9)
+    np.testing.assert_allclose(moderated.var_dof, dof, rtol=1e-9)
+    np.testing.assert_array_equal(moderated.mean, stats.mean)
+
+
+def test_moderation_keeps_what_it_cannot_moderate():
+    v = np.full((6, 6, 3), 0.01)
+    v[2, 3, 1] = np.nan
+    stats = BatchStats(np.ones((6, 6, 3)), v, 8)
+    moderated = moderate(stats)
+    assert np.isnan(moderated.var_of_mean[2, 3, 1])
+    assert moderated.var_dof[2, 3, 1] == 7.0
+    # A missed contribution (variance 0 amid non-zero neighbours) gets its neighbours' variance.
+    v = np.full((6, 6, 3), 0.01)
+    v[3, 3, 0] = 0.0
+    moderated = moderate(BatchStats(np.ones((6, 6, 3)), v, 8))
+    assert moderated.var_of_mean[3, 3, 0] > 0.005
+    # An image-scale statistic (3,) and one-pixel-wide images are left alone.
+    image = BatchStats(np.ones(3), np.full(3, 0.01), 8)
+    assert moderate(image) is image
+    thin = BatchStats(np.ones((1, 9, 3)), np.full((1, 9, 3), 0.01), 8)
+    assert moderate(thin) is thin
 
 
 # --- chi-square -------------------------------------------------------------------------------------
