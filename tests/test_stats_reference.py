@@ -252,6 +252,8 @@ def test_goodness_of_fit_of_two_and_of_too_few_cells():
     for observed, expected in [([7, 0], [7.0, 0.0]), ([1, 0, 1], [1.0, 1.0, 1.0])]:
         res = goodness_of_fit(np.array(observed), np.array(expected))
         assert (res.dof, res.p_value, res.statistic) == (0, 1.0, 0.0)
+        batch = goodness_of_fit_batch(np.array([observed, observed]), np.array(expected))
+        assert batch.dofs.dtype.kind == "i" and list(batch.dofs) == [0, 0]
     # Integer inputs give the same answer as floats.
     a = goodness_of_fit(np.array([35, 6, 33, 4]), np.array([40, 2, 30, 2]))
     b = goodness_of_fit(np.array([35.0, 6.0, 33.0, 4.0]), np.array([40.0, 2.0, 30.0, 2.0]))
@@ -273,7 +275,7 @@ def test_homogeneity_pools_small_cells_by_hand():
 
 def test_homogeneity_without_samples_on_one_side_is_no_test():
     counts = np.array([50, 80, 20])
-    for a, b in [(np.zeros(3, int), counts), (counts, np.zeros(3, int))]:
+    for a, b in [(np.zeros(3, int), counts), (counts, np.zeros(3, int)), (np.zeros(3, int), np.zeros(3, int))]:
         res = homogeneity(a, b)
         assert (res.statistic, res.dof, res.p_value) == (0.0, 0, 1.0)
 
