@@ -1,0 +1,124 @@
+"""How often the image comparison rejects a correct renderer, and how often it finds `detectable_bias`.
+
+Measures, through `compare_summaries`, on pairs of null renders (two independent runs of one engine):
+the rejection rate per scale and of the whole comparison at a nominal `alpha`, with its Clopper-Pearson
+interval, and the rate at which a bias equal to the reported `detectable_bias` (the test scaled by
+1 + b) is found by the image scale. Pairs are synthetic (heteroscedastic Gaussian pixels) or real
+renders (an .npz of K1 and K2 batches per pair).
+
+    .venv/bin/python -m tests.image_calibration            # synthetic, then the renders in NULLS if present
+    .venv/bin/python -m tests.image_calibration PATH.npz   # renders: keys "scene:integrator:pair:a|b"
+"""
+from __future__ import annotations
+
+import sys
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from scipy import stats as sps
+
+from harness.compare import SCALES, compare_summaries, summarize
+
+NULLS = Path("/tmp/proto/nulls.npz")
+Pair = tuple[np.ndarray, np.ndarray]
+
+
+@dataclass
+class Rates:
+    """Rejections of `runs` null pairs at nominal `alpha`, per scale and for the whole comparison."""
+
+    alpha: float
+    runs: int
+    per_scale: dict[str, int]
+    whole: int
+
+    def interval(self, count: int, confidence: float = 0.95) -> tuple[float, float]:
+        """Clopper-Pearson interval of a rejection rate."""
+        lo = sps.beta.ppf((1 - confidence) / 2, count, self.runs - count + 1) if count else 0.0
+        hi = sps.beta.isf((1 - confidence) / 2, count + 1, self.runs - count) if count < self.runs else 1.0
+        return float(lo), float(hi)
+
+    def rate(self, scale: str | None = None) -> float:
+        return (self.whole if scale is None else self.per_scale[scale]) / self.runs
+
+    def __str__(self) -> str:
+        lo, hi = self.interval(self.whole)
+        scales = " ".join(f"{s} {self.rate(s):.3f}" for s in SCALES)
+        return f"alpha {self.alpha}: whole {self.rate():.3f} [{lo:.3f}, {hi:.3f}] of {self.runs}; {scales}"
+
+
+def null_rates(pairs: Iterable[Pair], alpha: float) -> Rates:
+    """Rejection rates of `compare_summaries` at `alpha` over null (test, reference) batch pairs."""
+    per_scale, whole, runs = dict.fromkeys(SCALES, 0), 0, 0
+    for test, reference in pairs:
+        result = compare_summaries(summarize(test), summarize(reference), alpha)
+        for s in result.scales:
+            per_scale[s.scale] += not s.passed
+        whole += not result.passed
+        runs += 1
+    return Rates(alpha, runs, per_scale, whole)
+
+
+def detection_rate(pairs: Iterable[Pair], fresh: Callable[[], Pair]) -> tuple[float, int, float]:
+    """(fraction found by the image scale, runs, median bias): each pair's `detectable_bias` is planted
+    (the test scaled by 1 + b) into a fresh independent pair from `fresh`."""
+    found, runs, biases = 0, 0, []
+    for test, reference in pairs:
+        bias = compare_summaries(summarize(test), summarize(reference)).detectable_bias
+        other_test, other_reference = fresh()
+        result = compare_summaries(summarize(other_test * (1 + bias)), summarize(other_reference))
+        found += not result.scales[2].passed
+        runs += 1
+        biases.append(bias)
+    return found / runs, runs, float(np.median(biases))
+
+
+def synthetic_pairs(seed: int, size: int = 32, k: tuple[int, int] = (8, 16)) -> Callable[[], Pair]:
+    """A source of null pairs: Gaussian pixels whose mean and standard deviation vary smoothly over the
+    image and by a random factor per pixel and channel (heteroscedastic); the reference side has
+    `k[1]` batches with a quarter of the noise (a bigger budget per batch)."""
+    rng = np.random.default_rng(seed)
+    yy, xx = np.mgrid[0:size, 0:size] / size
+    mean = (5.0 + np.sin(6 * xx) * np.cos(4 * yy))[..., None] * np.array([1.0, 0.8, 0.6])
+    sd = 0.3 * (0.2 + xx * yy)[..., None] * rng.lognormal(0.0, 0.5, (size, size, 3))
+
+    def draw() -> Pair:
+        return (mean + sd * rng.standard_normal((k[0], size, size, 3)),
+                mean + 0.25 * sd * rng.standard_normal((k[1], size, size, 3)))
+
+    return draw
+
+
+def render_pairs(path: Path = NULLS, case: str | None = None) -> list[Pair]:
+    """Null pairs stored in an .npz (keys "scene:integrator:pair:a" and ":b"), of one case or all."""
+    data = np.load(path)
+    names = sorted({key.rsplit(":", 1)[0] for key in data.files})
+    return [(data[f"{n}:a"].astype(np.float64), data[f"{n}:b"].astype(np.float64)) for n in names
+            if case is None or n.startswith(case + ":")]
+
+
+def main(argv: list[str]) -> None:
+    draw = synthetic_pairs(0)
+    for alpha, runs in ((0.3, 400), (0.05, 400), (0.01, 400)):
+        print("synthetic", null_rates((draw() for _ in range(runs)), alpha))
+    rate, runs, bias = detection_rate((draw() for _ in range(200)), draw)
+    print(f"synthetic detectable_bias (median {bias:.2e}) found {rate:.3f} of {runs}")
+    path = Path(argv[0]) if argv else NULLS
+    if not path.exists():
+        return
+    pairs = render_pairs(path)
+    for alpha in (0.3, 0.05, 0.01):
+        print("renders", null_rates(pairs, alpha))
+    cases = sorted({key.rsplit(":", 2)[0] for key in np.load(path).files})
+    for case in cases:
+        mine = render_pairs(path, case)
+        print(case, null_rates(mine, 0.3))
+        shifted = iter(mine[1:] + mine[:1])
+        rate, runs, bias = detection_rate(mine, lambda: next(shifted))
+        print(f"  {case} detectable_bias (median {bias:.2e}) found {rate:.3f} of {runs}")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
