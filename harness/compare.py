@@ -169,7 +169,9 @@ def _half_power_bias(reference: BatchStats, se: np.ndarray, dof: np.ndarray, lev
     for _ in range(48):
         mid = 0.5 * (lo + hi)
         nc = mid * scale
-        power = sps.nct.sf(crit, dof, nc) + sps.nct.cdf(-crit, dof, nc)
+        with np.errstate(all="ignore"):  # scipy's nct returns NaN for some far tails: 0 below, a step above
+            upper, lower = sps.nct.sf(crit, dof, nc), sps.nct.cdf(-crit, dof, nc)
+        power = np.where(np.isnan(upper), (nc > crit).astype(float), upper) + np.nan_to_num(lower, nan=0.0)
         found = 1.0 - np.prod(1.0 - power, axis=-1, keepdims=True) >= IMAGE_POWER_TARGET
         hi, lo = np.where(found, mid, hi), np.where(found, lo, mid)
     return np.where(live, 0.5 * (lo + hi)[..., 0], np.inf)
