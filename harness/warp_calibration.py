@@ -10,7 +10,6 @@ happens at each nominal level, with exact intervals.
 from __future__ import annotations
 
 import time
-import zlib
 from dataclasses import dataclass
 from typing import Callable
 
@@ -22,7 +21,7 @@ from harness.domains import get_domain
 from harness.engines.base import Engine
 from harness.stats import HISTOGRAM_RES, WARP_SAMPLES
 from harness.warp_bins import equal_probability_bins, sample_quantum
-from harness.warp_suite import WarpSpec
+from harness.warp_suite import WarpSpec, spec_seed
 
 #: The warp checks that carry a p-value (the others are deterministic).
 STATISTICAL_CHECKS = ("chi2", "samples_vs_mitsuba")
@@ -69,12 +68,6 @@ class WarpCalibration:
                 "warps": [e.to_json() for e in self.entries]}
 
 
-def spec_seed(spec: WarpSpec, seed: int) -> list[int]:
-    """A seed per warp, so that warps with the same parameter-space image (the uniform ones) draw
-    independent samples and their p-values are independent."""
-    return [zlib.crc32(spec.key.encode()), seed]
-
-
 def null_p_values(spec: WarpSpec, ours: Engine, reference: Engine | None, seeds: range,
                   samples: int = WARP_SAMPLES, on_seed: Callable[[], None] | None = None) -> dict[str, np.ndarray]:
     """p-values of each statistical check of `spec` at every seed (the matrix's cells and tests)."""
@@ -83,7 +76,7 @@ def null_p_values(spec: WarpSpec, ours: Engine, reference: Engine | None, seeds:
     dom = get_domain(spec.domain)
     draws = lambda f, rng: wc.as_points(f.sample(rng.random((samples, 2))), samples, "sample")  # noqa: E731
     # The cells come from the pdf; the samples only say whether they are float32 (see warp_bins).
-    pilot = [draws(f, np.random.default_rng([*spec_seed(spec, 0), 1])) for f in (functions, ref) if f is not None]
+    pilot = [draws(f, np.random.default_rng([spec_seed(spec, 0), 1])) for f in (functions, ref) if f is not None]
     bins = equal_probability_bins(wc.parameter_density(dom, functions.pdf), HISTOGRAM_RES, samples,
                                   sample_quantum(*pilot))
     probabilities = wc.expected_probabilities(dom, functions.pdf, bins).values
