@@ -1,7 +1,6 @@
 """The command line: `python -m harness {warps,images,references,validate}`. The only module that prints."""
 from __future__ import annotations
 
-import argparse
 import signal
 import sys
 import threading
@@ -12,95 +11,13 @@ from rich.console import Console
 from rich.markup import escape
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
+from harness.cli_args import build_parser
 from harness.results import latest_run, new_run_dir, point_link, write_atomic, write_json
 from harness.stats import WARP_SAMPLES
 
 # Logs (CI, pipes) get a wide table rather than a truncated one.
 console = Console(width=None if sys.stdout.isatty() else 120)
 err = Console(stderr=True)
-
-
-def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
-        prog="python -m harness",
-        description="mcval: validate a Monte Carlo renderer against its pdfs and against Mitsuba 3.",
-        epilog="Each command but `references` writes results/<run>/ (results.json, HTML pages, junit.xml); "
-               "results/latest moves to it once the run is complete. Exit status: 1 if any check fails, 2 on "
-               "bad input or an error, 130 if interrupted. Our renderer runs as a child process, one per "
-               "render: a crash, kill or hang fails that case only. Environment: MCVAL_RENDER, the `render` "
-               "binary (default: build/render); MCVAL_RENDER_TIMEOUT, seconds per render (default: 600 plus "
-               "a share per sample).")
-    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
-
-    def common(q: argparse.ArgumentParser) -> None:
-        q.add_argument("--out", type=Path, default=Path("results"), help="folder for run folders (default: results)")
-        q.add_argument("--seed", type=int, default=0, help="seed of every random choice (default: 0)")
-
-    def image_options(q: argparse.ArgumentParser) -> None:
-        q.add_argument("--scenes", "--only", dest="scenes", nargs="+", metavar="CASE",
-                       help="scenes, integrators or scene:integrator cases, e.g. cornell ao plane_point:simple "
-                            "(default: all)")
-        q.add_argument("--baseline", type=Path, metavar="RESULTS_JSON",
-                       help="compare with this run's results.json (default: the previous run's)")
-        q.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant (default: llvm_ad_rgb)")
-
-    w = sub.add_parser("warps", help="the warp conformance matrix alone",
-                       description="Check every warp of the renderer against its pdf (chi-square, normalisation, "
-                                   "domain, hard inputs) and against Mitsuba 3's implementation.")
-    common(w)
-    w.add_argument("--json", type=Path, metavar="PATH", help="also write the results as JSON to PATH")
-    w.add_argument("--only", nargs="+", metavar="WARP",
-                   help="check only these warps, e.g. tent beckmann:0.01 (default: all)")
-    w.add_argument("--samples", type=int, default=WARP_SAMPLES,
-                   help=f"samples per warp for the statistical tests (default: {WARP_SAMPLES})")
-    w.add_argument("--no-mitsuba", action="store_true", help="skip the checks against Mitsuba 3")
-
-    i = sub.add_parser("images", help="every scene with every integrator against Mitsuba 3",
-                       description="Render the scene suite with our renderer and compare with Mitsuba 3 "
-                                   "(stored references when their provenance matches) and closed forms.")
-    common(i)
-    image_options(i)
-
-    r = sub.add_parser("references", help="render and store Mitsuba references under references/",
-                       description="Render Mitsuba 3 references (K batches) for the scene suite and store them "
-                                   "with their provenance. The only command that writes references/.")
-    r.add_argument("--scenes", "--only", dest="scenes", nargs="+", metavar="CASE", help="as for `images`")
-    r.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant (default: llvm_ad_rgb)")
-
-    b = sub.add_parser("bench", help="speed against error: convergence curves and efficiency ratios",
-                       description="Render every case at a ladder of sample counts with our renderer and Mitsuba "
-                                   "(llvm and scalar), several runs per step, one job at a time; write bench.html.")
-    common(b)
-    b.add_argument("--scenes", "--only", dest="scenes", nargs="+", metavar="CASE",
-                   help="as for `images` (default: the simple and ao cases of every scene)")
-    b.add_argument("--engines", nargs="+", default=["mcval", "mitsuba", "mitsuba-scalar"],
-                   choices=["mcval", "mitsuba", "mitsuba-scalar"], help="engines to run (default: all three)")
-    b.add_argument("--max-spp", type=int, default=256, help="top of the ladder 1, 2, 4, ... (default 256)")
-    b.add_argument("--runs", type=int, default=3, help="independent runs per step (default 3)")
-    b.add_argument("--rays-json", type=Path, help="figures written by build/bench_rays --json, to include")
-    b.add_argument("--seed-runs", type=int, default=3,
-                   help="runs at the seed document's settings (768x768; 0 skips them; default 3)")
-
-    c = sub.add_parser("calibrate", help="measure the false-alarm rate of every statistical warp check",
-                       description="Run every correct warp of the matrix at many seeds and count how often each "
-                                   "statistical check (chi-square, homogeneity with Mitsuba) rejects: the observed "
-                                   "false-alarm rate with an exact interval beside the nominal level. Writes "
-                                   "calibration.html and calibration.json; results/calibration-latest points at "
-                                   "the newest, and the warp page links to it. Exits 1 if a rate is off.")
-    common(c)
-    c.add_argument("--warps", action="store_true", help="calibrate the warp checks (the default, and for now the only)")
-    c.add_argument("--only", nargs="+", metavar="WARP", help="only these warps, e.g. tent beckmann:0.01")
-    c.add_argument("--seeds", type=int, default=200, help="null runs per warp (default 200)")
-    c.add_argument("--samples", type=int, default=WARP_SAMPLES,
-                   help=f"samples per run, as in the matrix (default {WARP_SAMPLES})")
-    c.add_argument("--json", type=Path, metavar="PATH", help="also write the figures as JSON to PATH")
-    c.add_argument("--no-mitsuba", action="store_true", help="skip the homogeneity test against Mitsuba")
-
-    v = sub.add_parser("validate", help="everything: what `make validate` runs",
-                       description="Warp conformance and image validation; writes results/<run>/report.html.")
-    common(v)
-    image_options(v)
-    return p
 
 
 def _progress(label: str) -> Progress:
@@ -326,7 +243,7 @@ def _run(args, out: Path, started: list[Path]) -> int:
 def main(argv: list[str] | None = None) -> int:
     """Exit status: 0 all pass, 1 a check failed, 2 bad input or an error, 130 interrupted (Ctrl-C).
     An unfinished run leaves its partial folder and does not move results/latest."""
-    args = _parser().parse_args(argv)
+    args = build_parser().parse_args(argv)
     out: Path = getattr(args, "out", Path("results"))
     previous = latest_run(out)
     run: list[Path] = []
