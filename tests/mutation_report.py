@@ -43,7 +43,11 @@ def main(argv: list[str] | None = None) -> int:
     modules: dict[str, Counter] = {}
     survivors, no_tests, documented = [], [], []
     for meta in sorted((ROOT / "mutants").rglob("*.py.meta")):
-        codes = json.loads(meta.read_text()).get("exit_code_by_key", {})
+        try:
+            codes = json.loads(meta.read_text()).get("exit_code_by_key", {})
+        except ValueError:  # being written by a run in progress
+            print(f"skipped {meta} (unreadable)", file=sys.stderr)
+            continue
         for name, code in codes.items():
             if not any(fnmatch.fnmatch(name, p) for p in args.patterns):
                 continue

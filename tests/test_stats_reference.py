@@ -16,7 +16,7 @@ from harness.chi2 import goodness_of_fit, goodness_of_fit_batch, homogeneity
 from harness.compare import compare_batches
 from harness.metrics import image_metrics
 from harness.stats import MIN_EXPECTED, SIGNIFICANCE, sidak_level
-from harness.welch import BatchStats, critical_t, moderate, welch_p_values
+from harness.welch import BatchStats, critical_t, moderate, prior_dof, welch_dof, welch_p_values
 
 
 def definition_sidak(alpha, n):
@@ -109,6 +109,45 @@ def test_welch_uses_the_variances_own_dof():
     assert BatchStats(mean_a, va, 8).var_dof == 7.0
 
 
+def test_welch_dof_in_its_corner_cases():
+    m = np.zeros(1)
+    # Both variances 0: the summed variance dofs (K1 + K2 - 2 unless moderated).
+    assert welch_dof(BatchStats(m, np.zeros(1), 5), BatchStats(m, np.zeros(1), 9))[0] == 12.0
+    zero_a, zero_b = BatchStats(m, np.zeros(1), 8, np.array([20.0])), BatchStats(m, np.zeros(1), 8, np.array([30.0]))
+    assert welch_dof(zero_a, zero_b)[0] == 50.0
+    # A NaN variance: K1 + K2 - 2.
+    assert welch_dof(BatchStats(m, np.full(1, np.nan), 5), BatchStats(m, np.ones(1), 9))[0] == 12.0
+    # Between 1 and 2, kept; below 1, raised to 1.
+    one, tenth = BatchStats(m, np.ones(1), 2), BatchStats(m, np.full(1, 0.1), 2)
+    assert welch_dof(one, tenth)[0] == pytest.approx(1.1**2 / 1.01, rel=1e-12)
+    assert welch_dof(BatchStats(m, np.ones(1), 2, np.array([0.5])), BatchStats(m, np.zeros(1), 2))[0] == 1.0
+
+
+def test_critical_t_keeps_the_shape_of_its_dof():
+    assert type(critical_t(0.01, 14)) is float
+    c = critical_t(0.01, np.array([5.0, 14.0]))
+    assert c.shape == (2,)
+    np.testing.assert_allclose(c, sps.t.isf(0.005, [5.0, 14.0]), rtol=1e-12)
+
+
+def _log_ratios(variance, n=40):
+    return np.sqrt(variance) * np.where(np.arange(n) % 2, 1.0, -1.0)  # np.var of these is `variance`
+
+
+@pytest.mark.parametrize("d0", [0.5, 20.0, 40.0])
+def test_prior_dof_solves_its_moment_equation(d0):
+    d, cap = 7.0, 56.0
+    excess = float(polygamma(1, d0 / 2))
+    ratios = _log_ratios(excess + float(polygamma(1, d / 2)))
+    assert prior_dof(ratios, d, cap) == pytest.approx(d0, rel=1e-6)
+
+
+def test_prior_dof_needs_ten_ratios_and_caps():
+    assert prior_dof(_log_ratios(10.0, 9), 7.0, 56.0) == 0.0
+    assert prior_dof(_log_ratios(0.0, 10), 7.0, 56.0) == 56.0
+    assert prior_dof(_log_ratios(0.0, 10), 7.0, 30.0) == 30.0
+
+
 def _moderate_by_definition(v, k, window=3):
     """Smyth's moderation written out element by element (edges replicated, as scipy's 'nearest')."""
     h, w, c = v.shape
@@ -130,18 +169,30 @@ def _moderate_by_definition(v, k, window=3):
     return (d0 * prior + d * v) / (d0 + d), d + d0
 
 
-@pytest.mark.parametrize("spread", [0.0, 0.3, 1.5])
-def test_moderated_variances_follow_their_definition(spread):
+@pytest.mark.parametrize("spread, shape", [(0.0, (10, 12, 3)), (0.3, (10, 12, 3)), (1.5, (10, 12, 3)),
+                                           (0.3, (2, 9, 3)), (0.3, (6, 7, 1))])
+def test_moderated_variances_follow_their_definition(spread, shape):
     rng = np.random.default_rng(11)
     k = 8
-    true_var = 0.01 * np.exp(spread * rng.standard_normal((10, 12, 3)))
-    batches = rng.normal(0.0, np.sqrt(true_var), (k, 10, 12, 3)) + 1.0
+    true_var = 0.01 * np.exp(spread * rng.standard_normal(shape))
+    batches = rng.normal(0.0, np.sqrt(true_var), (k, *shape)) + 1.0
     stats = BatchStats.of(batches)
     moderated = moderate(stats)
     expected, dof = _moderate_by_definition(stats.var_of_mean, k)
     np.testing.assert_allclose(moderated.var_of_mean, expected, rtol=1e-9)
     np.testing.assert_allclose(moderated.var_dof, dof, rtol=1e-9)
     np.testing.assert_array_equal(moderated.mean, stats.mean)
+
+
+@pytest.mark.xfail(reason="harness bug: the box filter's round-off leaves a prior of ~1e-19, not 0, so the "
+                          "element is shrunk towards 0 instead of keeping its variance", strict=False)
+def test_moderation_keeps_a_variance_whose_neighbours_are_all_zero():
+    """As moderate's docstring says: its own variance and K - 1 degrees of freedom."""
+    v = np.random.default_rng(2).uniform(0.005, 0.02, (9, 9, 3))
+    v[2:7, 2:7, 0] = 0.0
+    v[4, 4, 0] = 0.01
+    moderated = moderate(BatchStats(np.ones((9, 9, 3)), v, 8))
+    assert moderated.var_of_mean[4, 4, 0] == 0.01 and moderated.var_dof[4, 4, 0] == 7.0
 
 
 def test_moderation_keeps_what_it_cannot_moderate():
@@ -156,6 +207,9 @@ def test_moderation_keeps_what_it_cannot_moderate():
     v[3, 3, 0] = 0.0
     moderated = moderate(BatchStats(np.ones((6, 6, 3)), v, 8))
     assert moderated.var_of_mean[3, 3, 0] > 0.005
+    # Too few variances to estimate the prior's weight (< 10): unchanged.
+    few = BatchStats(np.ones((2, 2, 2)), np.random.default_rng(3).uniform(0.01, 0.02, (2, 2, 2)), 8)
+    assert moderate(few) is few
     # An image-scale statistic (3,) and one-pixel-wide images are left alone.
     image = BatchStats(np.ones(3), np.full(3, 0.01), 8)
     assert moderate(image) is image
