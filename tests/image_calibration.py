@@ -82,7 +82,7 @@ def synthetic_pairs(seed: int, size: int = 32, k: tuple[int, int] = (8, 16)) -> 
     rng = np.random.default_rng(seed)
     yy, xx = np.mgrid[0:size, 0:size] / size
     mean = (5.0 + np.sin(6 * xx) * np.cos(4 * yy))[..., None] * np.array([1.0, 0.8, 0.6])
-    sd = 0.3 * (0.2 + xx * yy)[..., None] * rng.lognormal(0.0, 0.5, (size, size, 3))
+    sd = 0.1 * (0.2 + xx * yy)[..., None] * np.minimum(rng.lognormal(0.0, 0.5, (size, size, 3)), 3.0)
 
     def draw() -> Pair:
         return (mean + sd * rng.standard_normal((k[0], size, size, 3)),
