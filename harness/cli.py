@@ -215,7 +215,8 @@ def _run(args, out: Path, started: list[Path]) -> int:
     specs = select(getattr(args, "only", None)) if args.command in ("warps", "validate") else []
     cases = select_cases(args.scenes) if args.command in ("images", "validate") else []
     # `latest` is the newest complete run; it moves to this run only once this run is complete.
-    baseline = getattr(args, "baseline", None) or ((out / "latest").resolve() / "results.json")
+    # The regression baseline is the newest complete run with images (a warps-only run has none).
+    baseline = getattr(args, "baseline", None) or ((out / "images-latest").resolve() / "results.json")
     started.append(run_dir := new_run_dir(out))
     payload: dict = {"run": run_dir.name}
     ok = True
@@ -236,6 +237,8 @@ def _run(args, out: Path, started: list[Path]) -> int:
     if getattr(args, "json", None):
         write_json(args.json, payload)
     point_link(out / "latest", run_dir)
+    if cases:
+        point_link(out / "images-latest", run_dir)
     console.print(f"Results: {run_dir / 'results.json'} — {'PASS' if ok else 'FAIL'}")
     return 0 if ok else 1
 

@@ -31,7 +31,7 @@ def test_an_interrupted_run_leaves_latest_at_the_previous_complete_run(tmp_path,
         capsys.readouterr()
         assert main([*CASE, "--out", str(out)]) == 130
     message = capsys.readouterr().err.strip().splitlines()[-1]
-    partial = sorted(p.name for p in out.iterdir() if p.name not in (complete, "latest"))
+    partial = sorted(p.name for p in out.iterdir() if p.name != complete and not p.is_symlink())
     assert len(partial) == 1 and not (out / partial[0] / "results.json").exists()
     assert message == (f"interrupted: partial output in {out / partial[0]}/; "
                        f"{out / 'latest'} still points at {complete}")
@@ -85,3 +85,13 @@ def test_sigterm_ends_a_run_like_ctrl_c(tmp_path):
     assert proc.returncode == 130, err
     assert "interrupted: partial output in" in err
     assert latest_run(out) is None
+
+
+def test_a_warps_only_run_does_not_take_the_image_baseline(tmp_path):
+    out = tmp_path / "results"
+    assert main([*CASE, "--out", str(out)]) == 0
+    images_run = latest_run(out)
+    assert main(["warps", "--only", "tent", "--no-mitsuba", "--samples", "20000", "--out", str(out)]) in (0, 1)
+    assert latest_run(out) != images_run
+    assert main([*CASE, "--out", str(out)]) == 0
+    assert json.loads((out / latest_run(out) / "results.json").read_text())["baseline"] == images_run
