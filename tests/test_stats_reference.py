@@ -15,7 +15,7 @@ from harness.bench_run import CaseBench
 from harness.chi2 import goodness_of_fit, goodness_of_fit_batch, homogeneity
 from harness.compare import compare_batches
 from harness.metrics import image_metrics
-from harness.stats import MIN_EXPECTED, SIGNIFICANCE, sidak_level
+from harness.stats import MIN_EXPECTED, ROUNDING_TOLERANCE, SIGNIFICANCE, sidak_level
 from harness.welch import BatchStats, critical_t, moderate, prior_dof, welch_dof, welch_p_values
 
 
@@ -86,6 +86,12 @@ def test_welch_standard_error_floor_and_degenerate_inputs():
     va, vb = a.var(0, ddof=1) / 6, b.var(0, ddof=1) / 9
     dof = (va + vb) ** 2 / (va**2 / 5 + vb**2 / 8)
     np.testing.assert_allclose(p, 2 * sps.t.sf(np.abs(t), dof), rtol=1e-9)
+    # Defaults: no image scale, float32 rounding.
+    default = welch_p_values(sa, sb)
+    explicit = welch_p_values(sa, sb, scale=0.0, rounding=ROUNDING_TOLERANCE)
+    for x, y in zip(default, explicit):
+        np.testing.assert_array_equal(x, y)
+    assert not np.allclose(welch_p_values(sa, sb, scale=1.0)[2], explicit[2], rtol=1e-9, atol=0)
     # Both sides constant and equal: p = 1; constant and different (no floor): p = 0; NaN: NaN.
     const = BatchStats(np.array([2.0, 2.0, np.nan]), np.zeros(3), 4)
     other = BatchStats(np.array([2.0, 3.0, 2.0]), np.zeros(3), 4)
