@@ -9,7 +9,7 @@ from harness.compare import SCALES
 from harness.stats import sidak_level
 from tests.image_calibration import detection_rate, null_rates, synthetic_pairs
 
-RUNS = 150
+RUNS = 120
 
 
 @pytest.fixture(scope="module")
@@ -39,6 +39,6 @@ def test_few_false_alarms_at_the_validation_level(pairs):
 
 def test_detectable_bias_is_found_half_of_the_time():
     draw = synthetic_pairs(2, size=24)
-    rate, runs, bias = detection_rate((draw() for _ in range(100)), draw)
+    rate, runs, bias = detection_rate((draw() for _ in range(80)), draw)
     assert 0 < bias < 0.05
     assert 0.3 <= rate <= 0.7, rate
