@@ -11,7 +11,12 @@ t-test on them is valid whatever the filter or sampler correlation (Jung,
 Hanika, Dachsbacher, JCGT 2020). The false-alarm rate `alpha` is split evenly
 (Sidak) over the three scales, then over the tests within a scale, so a global
 bias (a missing 1/pi) and a local one (a shadow in the wrong place) are both
-caught. A render can be reduced to its `Summary` first (what references store).
+caught. At the pixel and tile scales each side's variances are moderated towards their 3x3
+neighbourhood's (empirical Bayes, `harness.welch.moderate`): a rare contribution that all K batches
+miss borrows its neighbours' variance, with no blanket inflation, so each scale rejects a correct
+renderer at its stated level (tests/test_calibration_images.py). `detectable_bias` and
+`detectable_tile_bias` are the relative biases found half of the time (noncentral t at the Welch dof).
+A render can be reduced to its `Summary` first (what references store).
 
 Before any statistics, both sides are checked for NaN, +Inf and -Inf, and for
 negative values unless the image is signed (normals): any such pixel fails the
