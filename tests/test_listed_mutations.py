@@ -82,9 +82,29 @@ def _run(harness_parent: Path, nodes: list[str]) -> subprocess.CompletedProcess:
                           cwd=harness_parent, env=env, capture_output=True, text=True, timeout=300)
 
 
-def _copy(tmp_path: Path) -> Path:
-    shutil.copytree(ROOT / "harness", tmp_path / "harness", ignore=shutil.ignore_patterns("__pycache__"))
-    return tmp_path
+def _copy(parent: Path) -> Path:
+    shutil.copytree(ROOT / "harness", parent / "harness", ignore=shutil.ignore_patterns("__pycache__"))
+    return parent
+
+
+def _mutant(name: str, parent: Path) -> tuple[str, subprocess.CompletedProcess | None]:
+    file, original, mutated, nodes = MUTATIONS[name]
+    path = _copy(parent) / "harness" / file
+    source = path.read_text()
+    if source.count(original) != 1:
+        return f"{file} no longer holds {original!r}: update the mutation", None
+    path.write_text(source.replace(original, mutated))
+    return "", _run(parent, nodes)
+
+
+@pytest.fixture(scope="module")
+def outcomes(tmp_path_factory):
+    """Every mutant's run, two at a time (each is a separate pytest process)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        futures = {name: pool.submit(_mutant, name, tmp_path_factory.mktemp("mutant")) for name in MUTATIONS}
+        return {name: f.result() for name, f in futures.items()}
 
 
 def test_the_targeted_tests_pass_on_the_unmutated_harness(tmp_path):
@@ -94,12 +114,7 @@ def test_the_targeted_tests_pass_on_the_unmutated_harness(tmp_path):
 
 
 @pytest.mark.parametrize("name", list(MUTATIONS))
-def test_listed_mutation_is_killed(name, tmp_path):
-    file, original, mutated, nodes = MUTATIONS[name]
-    parent = _copy(tmp_path)
-    path = parent / "harness" / file
-    source = path.read_text()
-    assert source.count(original) == 1, f"{file} no longer holds {original!r}: update the mutation"
-    path.write_text(source.replace(original, mutated))
-    res = _run(parent, nodes)
+def test_listed_mutation_is_killed(name, outcomes):
+    problem, res = outcomes[name]
+    assert not problem, problem
     assert res.returncode == 1, f"mutation survived (exit {res.returncode}):\n{res.stdout[-3000:]}"
