@@ -396,3 +396,68 @@ def test_efficiency_ratio_has_its_known_answer():
     assert bench.efficiency_ratio() == pytest.approx(8.0)  # ours is 8x as efficient
     assert bench.efficiency_ratio("mitsuba", "mcval") == pytest.approx(1 / 8.0)
     assert np.isnan(CaseBench(None, {"mcval": ours}, np.zeros(3)).efficiency_ratio())
+
+
+# --- regression report ------------------------------------------------------------------------------
+
+def _entry(scene="cornell", passed=True, mean=(0.5, 0.5, 0.5), se=(1e-3, 1e-3, 1e-3), seconds=1.0, relmse=1e-3,
+           error=None):
+    e = {"integrator": "simple", "scene": scene, "pass": passed, "seconds": {"mcval": {"total": seconds}},
+         "metrics": {"relmse": relmse}}
+    if mean is not None:
+        e.update(image_mean=list(mean), image_mean_se=list(se))
+    if error:
+        e["error"] = error
+    return e
+
+
+def test_regression_report_flags_each_change_by_its_rule():
+    from harness.regression import MEAN_SIGMAS, TIME_FACTOR, TIME_FLOOR, compare_runs
+
+    assert (MEAN_SIGMAS, TIME_FACTOR, TIME_FLOOR) == (4.0, 1.5, 0.05)
+    base = {"images": [_entry(relmse=2e-3), _entry("plane", passed=False)]}
+
+    def flags(*current):
+        return [(r["scene"], r["flags"]) for r in compare_runs(list(current), base)]
+
+    assert flags(_entry(), _entry("plane", passed=False)) == [("cornell", []), ("plane", [])]
+    (entry,) = compare_runs([_entry(relmse=5e-4)], base)
+    assert entry == {"integrator": "simple", "scene": "cornell", "flags": [], "relmse_before": 2e-3,
+                     "relmse_now": 5e-4}
+    (entry,) = compare_runs([_entry("new")], base)
+    assert entry["flags"] == ["new case"] and entry["relmse_before"] is None and entry["relmse_now"] == 1e-3
+    assert flags(_entry(passed=False)) == [("cornell", ["verdict PASS -> FAIL"])]
+    assert flags(_entry("plane")) == [("plane", ["verdict FAIL -> PASS"])]
+    # A failed render: its error, and nothing measured.
+    assert flags(_entry(passed=False, mean=None, error="timed out", seconds=50.0)) == \
+        [("cornell", ["verdict PASS -> FAIL", "render failed: timed out"])]
+    # Times: beyond a factor 1.5 and 0.05 s either way.
+    assert flags(_entry(seconds=1.6)) == [("cornell", ["time 1.00s -> 1.60s"])]
+    assert flags(_entry(seconds=0.6)) == [("cornell", ["time 1.00s -> 0.60s"])]
+    assert flags(_entry(seconds=1.45), _entry("plane", passed=False, seconds=0.7)) == [("cornell", []), ("plane", [])]
+    small = {"images": [_entry(seconds=0.02)]}
+    assert compare_runs([_entry(seconds=0.06)], small)[0]["flags"] == []
+    assert compare_runs([_entry(seconds=0.08)], small)[0]["flags"] == ["time 0.02s -> 0.08s"]
+    # The mean: its flag names the standard errors and the relative change.
+    moved = compare_runs([_entry(mean=(0.5, 0.5, 0.51))], base)[0]["flags"]
+    assert moved == [f"image mean moved {0.01 / np.hypot(1e-3, 1e-3):.1f} standard errors (+0.67%)"]
+    # NaN and Inf written as strings in results.json are read as numbers.
+    assert compare_runs([_entry(mean=("nan", 0.5, 0.5))], base)[0]["flags"] == []
+    # A baseline with no standard error (0): any change of the mean counts.
+    exact = {"images": [_entry(se=(0.0, 0.0, 0.0))]}
+    assert compare_runs([_entry(mean=(0.5, 0.5, 0.5), se=(0.0, 0.0, 0.0))], exact)[0]["flags"] == []
+    assert compare_runs([_entry(mean=(0.5, 0.5, 0.5001), se=(0.0, 0.0, 0.0))], exact)[0]["flags"]
+
+
+def test_regression_baseline_loading(tmp_path):
+    import json
+
+    from harness.regression import load_baseline
+
+    assert load_baseline(tmp_path / "missing.json") is None
+    (tmp_path / "bad.json").write_text("{not json")
+    assert load_baseline(tmp_path / "bad.json") is None
+    (tmp_path / "empty.json").write_text(json.dumps({"images": []}))
+    assert load_baseline(tmp_path / "empty.json") is None
+    (tmp_path / "ok.json").write_text(json.dumps({"images": [_entry()]}))
+    assert load_baseline(tmp_path / "ok.json")["images"][0]["scene"] == "cornell"
