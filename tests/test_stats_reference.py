@@ -461,3 +461,48 @@ def test_regression_baseline_loading(tmp_path):
     assert load_baseline(tmp_path / "empty.json") is None
     (tmp_path / "ok.json").write_text(json.dumps({"images": [_entry()]}))
     assert load_baseline(tmp_path / "ok.json")["images"][0]["scene"] == "cornell"
+
+
+# --- the other metrics ------------------------------------------------------------------------------
+
+def test_metrics_follow_their_definitions():
+    from skimage.metrics import structural_similarity
+
+    from harness.metrics import RELMSE_EPSILON, _tonemapped
+
+    rng = np.random.default_rng(4)
+    reference = rng.uniform(0.0, 2.0, (16, 16, 3))
+    reference[0, 0] = 0.0
+    test = reference + rng.normal(0.0, 0.05, reference.shape)
+    test[0, 0] = 0.0  # 0 against 0: a SMAPE term of 0
+    m = image_metrics(test, reference)
+    diff = test - reference
+    assert RELMSE_EPSILON == 1e-2
+    assert m["relmse"] == pytest.approx(np.mean(diff**2 / (reference**2 + 1e-2)), rel=1e-12)
+    denominator = np.abs(test) + np.abs(reference)
+    terms = np.where(denominator > 0, 2 * np.abs(diff) / np.where(denominator > 0, denominator, 1), 0.0)
+    assert m["smape"] == pytest.approx(np.mean(terms), rel=1e-12)
+    data_range = reference.max() - reference.min()
+    assert m["ssim"] == pytest.approx(structural_similarity(test, reference, channel_axis=-1, data_range=data_range),
+                                      rel=1e-12)
+    assert 0 < m["flip_mean"] <= m["flip_p95"] < 1
+    assert m["ciede2000_mean"] > 0
+    identical = image_metrics(reference, reference)
+    assert identical["ssim"] == pytest.approx(1.0) and identical["flip_mean"] == 0.0
+    assert identical["ciede2000_mean"] == pytest.approx(0.0, abs=1e-9) and identical["smape"] == 0.0
+    # Tone mapping: radiance clipped to [0, 1], normals mapped from [-1, 1].
+    x = np.array([-2.0, -1.0, 0.0, 0.5, 1.0, 3.0])
+    np.testing.assert_allclose(_tonemapped(x, False), [0, 0, 0, 0.5, 1, 1])
+    np.testing.assert_allclose(_tonemapped(x, True), [0, 0, 0.5, 0.75, 1, 1])
+    # A black reference: PSNR against a peak of 1, a mean ratio that is NaN.
+    black = np.zeros((16, 16, 3))
+    m = image_metrics(black + 0.1, black)
+    assert m["psnr"] == pytest.approx(10 * np.log10(1 / 0.01), rel=1e-12)
+    assert np.isnan(m["mean_ratio"])
+    # Normals: the signed metrics see (x + 1) / 2; a constant image has SSIM's data range of 1.
+    normals = np.clip(reference - 1.0, -1, 1)
+    m = image_metrics(normals, normals, signed=True)
+    assert m["ciede2000_mean"] == pytest.approx(0.0, abs=1e-9) and m["flip_mean"] == 0.0
+    flat = np.full((16, 16, 3), 0.5)
+    assert image_metrics(flat + 0.01, flat)["ssim"] == pytest.approx(
+        structural_similarity(flat + 0.01, flat, channel_axis=-1, data_range=1.0), rel=1e-12)
