@@ -166,13 +166,6 @@ def test_regression_flags_a_mean_moved_by_five_sigma_and_not_one(seed):
 
 # --- detectable bias --------------------------------------------------------------------------------
 
-#: scipy's nct.cdf returns NaN far in its lower tail (e.g. nct.cdf(-4.2, 14, 7.5)); compare._half_power_bias
-#: adds that tail to the power, so its bisection treats every large candidate as undetected and the
-#: reported detectable_bias comes out several times too large. These tests hold the definition.
-NCT_NAN = pytest.mark.xfail(reason="harness bug: NaN power from scipy.stats.nct.cdf in _half_power_bias",
-                            strict=False)
-
-
 def _definition_bias(test, ref, level):
     """The relative bias b (test scaled by 1 + b) that the image-scale test at `level` detects in at
     least one channel with probability IMAGE_POWER_TARGET, channels independent, Welch dof."""
@@ -190,7 +183,6 @@ def _definition_bias(test, ref, level):
     return brentq(excess, 0.0, 10.0 / scale.max(), xtol=1e-12)
 
 
-@NCT_NAN
 @pytest.mark.parametrize("seed", [0, 1])
 def test_detectable_bias_is_its_definition(seed):
     rng = np.random.default_rng(seed)
@@ -201,7 +193,6 @@ def test_detectable_bias_is_its_definition(seed):
     assert result.detectable_bias == pytest.approx(expected, rel=1e-3)
 
 
-@NCT_NAN
 def test_a_bias_of_the_detectable_size_is_found_about_half_of_the_time():
     """Comparison.detectable_bias is the relative bias of the image mean (the test scaled by 1 + b) found
     in IMAGE_POWER_TARGET of the runs: planted in replications, the image scale rejects about that often
