@@ -121,8 +121,9 @@ def test_welch_dof_in_its_corner_cases():
     assert welch_dof(BatchStats(m, np.zeros(1), 5), BatchStats(m, np.zeros(1), 9))[0] == 12.0
     zero_a, zero_b = BatchStats(m, np.zeros(1), 8, np.array([20.0])), BatchStats(m, np.zeros(1), 8, np.array([30.0]))
     assert welch_dof(zero_a, zero_b)[0] == 50.0
-    # A NaN variance: K1 + K2 - 2.
+    # A NaN variance, or an infinite one (inf / inf): K1 + K2 - 2.
     assert welch_dof(BatchStats(m, np.full(1, np.nan), 5), BatchStats(m, np.ones(1), 9))[0] == 12.0
+    assert welch_dof(BatchStats(m, np.full(1, np.inf), 5, np.array([30.0])), BatchStats(m, np.ones(1), 9))[0] == 12.0
     # Between 1 and 2, kept; below 1, raised to 1.
     one, tenth = BatchStats(m, np.ones(1), 2), BatchStats(m, np.full(1, 0.1), 2)
     assert welch_dof(one, tenth)[0] == pytest.approx(1.1**2 / 1.01, rel=1e-12)
@@ -431,7 +432,15 @@ def test_regression_report_flags_each_change_by_its_rule():
     # A failed render: its error, and nothing measured.
     assert flags(_entry(passed=False, mean=None, error="timed out", seconds=50.0)) == \
         [("cornell", ["verdict PASS -> FAIL", "render failed: timed out"])]
+    # The same failure again is no news; the entries after a failed render are still compared.
+    failed = {"images": [_entry(passed=False, mean=None, error="timed out", relmse=2e-3), _entry("plane")]}
+    again = compare_runs([_entry(passed=False, mean=None, error="timed out"), _entry("plane", seconds=9.0)], failed)
+    assert [r["flags"] for r in again] == [[], ["time 1.00s -> 9.00s"]]
+    assert again[0]["relmse_before"] == 2e-3
     # Times: beyond a factor 1.5 and 0.05 s either way.
+    slow = {"images": [_entry(seconds=2.0), _entry("plane", seconds=0.5)]}
+    assert [r["flags"] for r in compare_runs([_entry(seconds=2.5), _entry("plane", seconds=0.9)], slow)] == \
+        [[], ["time 0.50s -> 0.90s"]]
     assert flags(_entry(seconds=1.6)) == [("cornell", ["time 1.00s -> 1.60s"])]
     assert flags(_entry(seconds=0.6)) == [("cornell", ["time 1.00s -> 0.60s"])]
     assert flags(_entry(seconds=1.45), _entry("plane", passed=False, seconds=0.7)) == [("cornell", []), ("plane", [])]
@@ -443,6 +452,9 @@ def test_regression_report_flags_each_change_by_its_rule():
     assert moved == [f"image mean moved {0.01 / np.hypot(1e-3, 1e-3):.1f} standard errors (+0.67%)"]
     # NaN and Inf written as strings in results.json are read as numbers.
     assert compare_runs([_entry(mean=("nan", 0.5, 0.5))], base)[0]["flags"] == []
+    stringy = {"images": [_entry(mean=("nan", 0.5, 0.5), se=("nan", 1e-3, 1e-3))]}
+    assert compare_runs([_entry(mean=(0.5, 0.5, 0.6), se=(1e-3, 1e-3, "inf"))], stringy)[0]["flags"] == []
+    assert compare_runs([_entry(mean=(0.5, 0.6, 0.5))], stringy)[0]["flags"]
     # A baseline with no standard error (0): any change of the mean counts.
     exact = {"images": [_entry(se=(0.0, 0.0, 0.0))]}
     assert compare_runs([_entry(mean=(0.5, 0.5, 0.5), se=(0.0, 0.0, 0.0))], exact)[0]["flags"] == []
