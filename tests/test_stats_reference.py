@@ -518,3 +518,42 @@ def test_metrics_follow_their_definitions():
     flat = np.full((16, 16, 3), 0.5)
     assert image_metrics(flat + 0.01, flat)["ssim"] == pytest.approx(
         structural_similarity(flat + 0.01, flat, channel_axis=-1, data_range=1.0), rel=1e-12)
+
+
+def test_flip_ssim_and_ciede_take_their_documented_settings():
+    import colour
+    import flip_evaluator as flip
+    from skimage.metrics import structural_similarity
+
+    from harness.metrics import flip_map
+
+    rng = np.random.default_rng(6)
+    reference = rng.uniform(0.5, 3.0, (16, 16, 3))
+    test = reference * rng.uniform(0.8, 1.2, reference.shape)
+    test[0, 0] = -0.5  # clipped to 0 for HDR-FLIP
+    m = image_metrics(test, reference)
+    peak = reference.max()
+    error, mean, _ = flip.evaluate((reference / peak).astype(np.float32),
+                                   (np.clip(test, 0, None) / peak).astype(np.float32), "HDR", inputsRGB=True,
+                                   applyMagma=False)
+    error = np.asarray(error)[..., 0]
+    assert m["flip_mean"] == pytest.approx(float(mean), rel=1e-6)
+    assert m["flip_p95"] == pytest.approx(float(np.percentile(error, 95)), rel=1e-6)
+    assert m["ssim"] == pytest.approx(structural_similarity(test, reference, channel_axis=-1,
+                                                            data_range=reference.max() - reference.min()), rel=1e-12)
+    lab = [colour.XYZ_to_Lab(colour.sRGB_to_XYZ(np.clip(x, 0, 1), apply_cctf_decoding=False)) for x in (test, reference)]
+    assert m["ciede2000_mean"] == pytest.approx(float(np.mean(colour.delta_E(lab[0], lab[1], method="CIE 2000"))),
+                                                rel=1e-9)
+    # Normals: LDR-FLIP on (x + 1) / 2, no sRGB decoding.
+    normals_ref = np.clip(reference - 1.5, -1, 1)
+    normals = np.clip(normals_ref + rng.normal(0, 0.1, reference.shape), -1, 1)
+    m = image_metrics(normals, normals_ref, signed=True)
+    error, mean, _ = flip.evaluate(((normals_ref + 1) / 2).astype(np.float32), ((normals + 1) / 2).astype(np.float32),
+                                   "LDR", inputsRGB=False, applyMagma=False)
+    assert m["flip_mean"] == pytest.approx(float(mean), rel=1e-6)
+    lab = [colour.XYZ_to_Lab(colour.sRGB_to_XYZ((x + 1) / 2, apply_cctf_decoding=False)) for x in (normals, normals_ref)]
+    assert m["ciede2000_mean"] == pytest.approx(float(np.mean(colour.delta_E(lab[0], lab[1], method="CIE 2000"))),
+                                                rel=1e-9)
+    # A black reference: a NaN map of the image's size.
+    nan_map, nan_mean = flip_map(test, np.zeros_like(test))
+    assert nan_map.shape == (16, 16) and np.isnan(nan_map).all() and np.isnan(nan_mean)
