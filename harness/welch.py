@@ -75,7 +75,10 @@ def moderate(stats: BatchStats, window: int = MODERATION_WINDOW) -> BatchStats:
     with np.errstate(invalid="ignore", over="ignore"):
         total = uniform_filter(clean, size=size, mode="nearest") * n - clean
         count = uniform_filter(finite.astype(np.float64), size=size, mode="nearest") * n - finite
-        prior = np.where(count > 0.5, total / np.maximum(count, 1.0), 0.0)
+        # Neighbours with a variance at all: the box filter's rounding leaves ~1e-19 where none has one.
+        positive = clean > 0
+        varied = uniform_filter(positive.astype(np.float64), size=size, mode="nearest") * n - positive
+        prior = np.where((count > 0.5) & (varied > 0.5), total / np.maximum(count, 1.0), 0.0)
     usable = finite & (prior > 0) & np.isfinite(prior)
     observed = usable & (v > 0)
     d0 = prior_dof(np.log(v[observed] / prior[observed]), d, (n - 1) * d)

@@ -191,8 +191,6 @@ def test_moderated_variances_follow_their_definition(spread, shape):
     np.testing.assert_array_equal(moderated.mean, stats.mean)
 
 
-@pytest.mark.xfail(reason="harness bug: the box filter's round-off leaves a prior of ~1e-19, not 0, so the "
-                          "element is shrunk towards 0 instead of keeping its variance", strict=False)
 def test_moderation_keeps_a_variance_whose_neighbours_are_all_zero():
     """As moderate's docstring says: its own variance and K - 1 degrees of freedom."""
     v = np.random.default_rng(2).uniform(0.005, 0.02, (9, 9, 3))
