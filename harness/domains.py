@@ -35,6 +35,10 @@ class Domain:
     #: on_boundary(points, tol): which points lie within distance tol of the domain's edge (see BOUNDARY_TOLERANCE).
     on_boundary: Callable[[np.ndarray, float], np.ndarray]
 
+    def inside(self, points: np.ndarray) -> np.ndarray:
+        """Which points are finite and in the domain (NaN and Inf count as outside)."""
+        return np.all(np.isfinite(points), axis=1) & self.contains(np.nan_to_num(points))
+
 
 def _azimuth(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     return np.mod(np.arctan2(y, x) / TWO_PI, 1.0)

@@ -125,8 +125,7 @@ def masked_to_domain(pdf: Callable, domain: str | Domain) -> Callable[..., np.nd
     def masked(points: np.ndarray, *args: Any) -> np.ndarray:
         points = np.asarray(points, dtype=np.float64)
         values = inner(points, *args)
-        inside = np.all(np.isfinite(points), axis=1) & dom.contains(np.nan_to_num(points))
-        return np.where(inside, values, 0.0)
+        return np.where(dom.inside(points), values, 0.0)
 
     masked.__name__ = masked.__qualname__ = f"{function_name(pdf)}, masked to the {dom.name}"
     return masked

@@ -19,9 +19,9 @@ from harness import warp_checks as wc
 from harness.calibration_stats import CALIBRATION_LEVELS, Rate, rates, uniformity_p
 from harness.domains import get_domain
 from harness.engines.base import Engine
-from harness.stats import HISTOGRAM_RES, WARP_SAMPLES
-from harness.warp_bins import equal_probability_bins, sample_quantum
+from harness.stats import WARP_SAMPLES
 from harness.warp_suite import WarpSpec, spec_seed
+from harness.warps import equal_probability_cells
 
 #: The warp checks that carry a p-value (the others are deterministic).
 STATISTICAL_CHECKS = ("chi2", "samples_vs_mitsuba")
@@ -77,14 +77,13 @@ def null_p_values(spec: WarpSpec, ours: Engine, reference: Engine | None, seeds:
     draws = lambda f, rng: wc.as_points(f.sample(rng.random((samples, 2))), samples, "sample")  # noqa: E731
     # The cells come from the pdf; the samples only say whether they are float32 (see warp_bins).
     pilot = [draws(f, np.random.default_rng([spec_seed(spec, 0), 1])) for f in (functions, ref) if f is not None]
-    bins = equal_probability_bins(wc.parameter_density(dom, functions.pdf), HISTOGRAM_RES, samples,
-                                  sample_quantum(*pilot))
-    probabilities = wc.expected_probabilities(dom, functions.pdf, bins).values
+    bins, cells = equal_probability_cells(dom, functions.pdf, samples, *pilot)
+    probabilities = cells.values
     out: dict[str, list[float]] = {"chi2": []} | ({"samples_vs_mitsuba": []} if ref is not None else {})
     for seed in seeds:
         rng = np.random.default_rng(spec_seed(spec, seed))
         points = draws(functions, rng)
-        inside = np.all(np.isfinite(points), axis=1) & dom.contains(np.nan_to_num(points))
+        inside = dom.inside(points)
         observed = wc.histogram(dom, points[inside], bins)
         out["chi2"].append(wc.chi2_check(observed, probabilities, int(np.count_nonzero(~inside))).p_value)
         if ref is not None:

@@ -23,7 +23,8 @@ from typing import Any, Callable
 import numpy as np
 
 from harness import warp_checks as wc
-from harness.domains import get_domain
+from harness.cubature import CellIntegrals
+from harness.domains import Domain, get_domain
 from harness.engines.base import WarpFunctions
 from harness.stats import HISTOGRAM_RES, SIGNIFICANCE, WARP_SAMPLES, sidak_level
 from harness.warp_adapters import NumpyPdf, NumpySampler
@@ -97,14 +98,12 @@ def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "
     points = wc.as_points(sample(u), samples, "sample")
     if points.shape[1] != dom.dim:
         raise ValueError(f"sample returned {points.shape[1]}D points; the {domain} domain is {dom.dim}D")
-    inside = np.all(np.isfinite(points), axis=1) & dom.contains(np.nan_to_num(points))
+    inside = dom.inside(points)
     ref_points = None if reference is None else wc.as_points(
         reference.sample(np.random.default_rng([seed, 1]).random((samples, 2))), samples, "reference sample")
-    # Equal-probability cells of the pdf, as fine as the samples' precision allows (see warp_bins).
-    quantum = sample_quantum(points[inside], *(() if ref_points is None else (ref_points,)))
-    bins = equal_probability_bins(wc.parameter_density(dom, pdf), HISTOGRAM_RES, samples, quantum)
+    bins, cells = equal_probability_cells(dom, pdf, samples, points[inside],
+                                          *(() if ref_points is None else (ref_points,)))
     observed = wc.histogram(dom, points[inside], bins)
-    cells = wc.expected_probabilities(dom, pdf, bins)
 
     checks = {
         "chi2": wc.chi2_check(observed, cells.values, int(np.count_nonzero(~inside)), bins),
@@ -126,6 +125,14 @@ def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "
     checks["throughput"] = throughput_check(sample, native_run, reference)
     return WarpResult(name, params, domain, checks, observed, cells.values * samples,
                       reference_observed, time.perf_counter() - start, seed, bins)
+
+
+def equal_probability_cells(dom: Domain, pdf: wc.Pdf, samples: int,
+                            *point_sets: np.ndarray) -> tuple[Bins, CellIntegrals]:
+    """The chi-square cells of `pdf` for `samples` samples, as fine as the precision of the samples in
+    `point_sets` allows (see warp_bins), and the pdf's integral over each."""
+    bins = equal_probability_bins(wc.parameter_density(dom, pdf), HISTOGRAM_RES, samples, sample_quantum(*point_sets))
+    return bins, wc.expected_probabilities(dom, pdf, bins)
 
 
 def throughput_check(sample: wc.Sampler, native_run, reference: WarpFunctions | None,
