@@ -58,7 +58,7 @@ bench: build
 
 ## mutate: mutation testing (mutmut, not in CI) of the statistics, checks and reports against the fast tests;
 ## the kill rate per module and the survivors in results/mutation/ (MUTATE= narrows the modules)
-MUTATE ?= harness.welch* harness.chi2* harness.stats* harness.compare* harness.warp_checks* \
+MUTATE ?= harness.welch* harness.chi2* harness.stats* harness.compare* harness.family_level* harness.warp_checks* \
 	harness.regression* harness.metrics* harness.bench*
 mutate: $(VENV)/.installed
 	@$(VENV)/bin/mutmut --version >/dev/null 2>&1 || $(PY) -m pip install --quiet "mutmut>=3.8,<4"

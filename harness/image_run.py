@@ -138,6 +138,6 @@ def _run_case(case: ImageCase, ours: Engine, mitsuba: Engine, analytic: Analytic
         references["analytic"] = Reference(summarize(exact.batches), exact.spp, exact.seconds, "closed form")
     summary = summarize(mine.batches)
     signed = case.integrator == "normals"
-    comparisons = {name: compare_summaries(summary, ref.summary, alpha, signed=signed)
+    comparisons = {name: compare_summaries(summary, ref.summary, alpha, signed=signed, samples=(mine.spp, ref.spp))
                    for name, ref in references.items()}
     return ImageResult(case, mine, references, comparisons, source, s, None, alpha, run_seed)

@@ -10,7 +10,7 @@ from scipy.ndimage import uniform_filter
 from scipy.optimize import brentq
 from scipy.special import polygamma
 
-from harness.stats import MODERATION_WINDOW, ROUNDING_TOLERANCE
+from harness.stats import MISSED_CONTRIBUTION, MODERATION_WINDOW, ROUNDING_TOLERANCE
 
 
 @dataclass
@@ -87,6 +87,33 @@ def moderate(stats: BatchStats, window: int = MODERATION_WINDOW) -> BatchStats:
     moderated = np.where(usable, (d0 * np.where(usable, prior, 0.0) + d * clean) / (d0 + d), v)
     dof = np.where(usable, d + d0, d)
     return BatchStats(stats.mean, moderated, stats.k, dof)
+
+
+def sample_floor(a: BatchStats, b: BatchStats, samples_a: int | None,
+                 samples_b: int | None) -> tuple[BatchStats, BatchStats]:
+    """The variance of the mean of the side with fewer samples, where it is far below what the other side's
+    implies for its sample count, replaced by that prediction.
+
+    With n samples per batch and K batches an independent-sample estimate has variance sigma^2 / (K n),
+    so under the null the better-sampled side predicts the other's. Where a contribution is rare (a
+    shadow sliver one sample in 30 hits) all K batches of the smaller side can miss it and agree to
+    1e-4 while their mean is 2 % off, and no neighbour knows: the other side, with more samples, has
+    seen it. Only a variance below MISSED_CONTRIBUTION times the prediction is replaced (a sample
+    variance with 7 degrees of freedom falls there by chance with probability 7e-4), because taking the
+    larger of two estimates everywhere makes the extreme-level pixel tests far too conservative. A
+    stratified sampler beats sigma^2 / n, so a replaced variance is then larger than needed, never
+    smaller. Replaced elements take the other side's degrees of freedom. Unchanged when a count is
+    unknown (None) or both sides hold as many samples."""
+    if samples_a is None or samples_b is None or a.k * samples_a == b.k * samples_b:
+        return a, b
+    if a.k * samples_a > b.k * samples_b:
+        floored_b, floored_a = sample_floor(b, a, samples_b, samples_a)
+        return floored_a, floored_b
+    floor = b.var_of_mean * (b.k * samples_b) / (a.k * samples_a)
+    with np.errstate(invalid="ignore"):
+        use = MISSED_CONTRIBUTION * floor > a.var_of_mean
+    dof = np.where(use, np.broadcast_to(b.var_dof, use.shape), np.broadcast_to(a.var_dof, use.shape))
+    return BatchStats(a.mean, np.where(use, floor, a.var_of_mean), a.k, dof), b
 
 
 def welch_dof(a: BatchStats, b: BatchStats) -> np.ndarray:

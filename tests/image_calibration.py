@@ -6,8 +6,10 @@ interval, and the rate at which a bias equal to the reported `detectable_bias` (
 1 + b) is found by the image scale. Pairs are synthetic (heteroscedastic Gaussian pixels) or real
 renders (an .npz of K1 and K2 batches per pair).
 
-    .venv/bin/python -m tests.image_calibration            # synthetic, then the renders in NULLS if present
-    .venv/bin/python -m tests.image_calibration PATH.npz   # renders: keys "scene:integrator:pair:a|b"
+    .venv/bin/python -m tests.image_calibration              # synthetic, then every NULLS/nulls-*.npz
+    .venv/bin/python -m tests.image_calibration PATH.npz ... # renders: keys "scene:integrator:pair:a|b"
+
+The render pairs are made by tests/null_renders.py.
 """
 from __future__ import annotations
 
@@ -20,9 +22,13 @@ import numpy as np
 from scipy import stats as sps
 
 from harness.compare import SCALES, compare_summaries, summarize
+from harness.image_suite import OUR_SPP
 
-NULLS = Path("/tmp/proto/nulls.npz")
+NULLS = Path(__file__).resolve().parent.parent / "results" / "calibration"
 Pair = tuple[np.ndarray, np.ndarray]
+Samples = tuple[int, int]
+#: The synthetic reference's batches have a sixteenth of the test's variance: sixteen times the samples.
+SYNTHETIC_SAMPLES = (1, 16)
 
 
 @dataclass
@@ -49,11 +55,12 @@ class Rates:
         return f"alpha {self.alpha}: whole {self.rate():.3f} [{lo:.3f}, {hi:.3f}] of {self.runs}; {scales}"
 
 
-def null_rates(pairs: Iterable[Pair], alpha: float) -> Rates:
-    """Rejection rates of `compare_summaries` at `alpha` over null (test, reference) batch pairs."""
+def null_rates(pairs: Iterable[Pair], alpha: float, samples: Samples = SYNTHETIC_SAMPLES) -> Rates:
+    """Rejection rates of `compare_summaries` at `alpha` over null (test, reference) batch pairs whose
+    batches hold `samples` samples per pixel."""
     per_scale, whole, runs = dict.fromkeys(SCALES, 0), 0, 0
     for test, reference in pairs:
-        result = compare_summaries(summarize(test), summarize(reference), alpha)
+        result = compare_summaries(summarize(test), summarize(reference), alpha, samples=samples)
         for s in result.scales:
             per_scale[s.scale] += not s.passed
         whole += not result.passed
@@ -61,14 +68,15 @@ def null_rates(pairs: Iterable[Pair], alpha: float) -> Rates:
     return Rates(alpha, runs, per_scale, whole)
 
 
-def detection_rate(pairs: Iterable[Pair], fresh: Callable[[], Pair]) -> tuple[float, int, float]:
+def detection_rate(pairs: Iterable[Pair], fresh: Callable[[], Pair],
+                   samples: Samples = SYNTHETIC_SAMPLES) -> tuple[float, int, float]:
     """(fraction found by the image scale, runs, median bias): each pair's `detectable_bias` is planted
     (the test scaled by 1 + b) into a fresh independent pair from `fresh`."""
     found, runs, biases = 0, 0, []
     for test, reference in pairs:
-        bias = compare_summaries(summarize(test), summarize(reference)).detectable_bias
+        bias = compare_summaries(summarize(test), summarize(reference), samples=samples).detectable_bias
         other_test, other_reference = fresh()
-        result = compare_summaries(summarize(other_test * (1 + bias)), summarize(other_reference))
+        result = compare_summaries(summarize(other_test * (1 + bias)), summarize(other_reference), samples=samples)
         found += not result.scales[2].passed
         runs += 1
         biases.append(bias)
@@ -91,7 +99,7 @@ def synthetic_pairs(seed: int, size: int = 32, k: tuple[int, int] = (8, 16)) -> 
     return draw
 
 
-def render_pairs(path: Path = NULLS, case: str | None = None) -> list[Pair]:
+def render_pairs(path: Path, case: str | None = None) -> list[Pair]:
     """Null pairs stored in an .npz (keys "scene:integrator:pair:a" and ":b"), of one case or all."""
     data = np.load(path)
     names = sorted({key.rsplit(":", 1)[0] for key in data.files})
@@ -105,19 +113,25 @@ def main(argv: list[str]) -> None:
         print("synthetic", null_rates((draw() for _ in range(runs)), alpha))
     rate, runs, bias = detection_rate((draw() for _ in range(200)), draw)
     print(f"synthetic detectable_bias (median {bias:.2e}) found {rate:.3f} of {runs}")
-    path = Path(argv[0]) if argv else NULLS
-    if not path.exists():
-        return
-    pairs = render_pairs(path)
-    for alpha in (0.3, 0.05, 0.01):
-        print("renders", null_rates(pairs, alpha))
-    cases = sorted({key.rsplit(":", 2)[0] for key in np.load(path).files})
-    for case in cases:
-        mine = render_pairs(path, case)
-        print(case, null_rates(mine, 0.3))
-        shifted = iter(mine[1:] + mine[:1])
-        rate, runs, bias = detection_rate(mine, lambda: next(shifted))
-        print(f"  {case} detectable_bias (median {bias:.2e}) found {rate:.3f} of {runs}")
+    paths = [Path(a) for a in argv] if argv else sorted(NULLS.glob("nulls-*.npz"))
+    everything: list[tuple[np.ndarray, np.ndarray, Samples]] = []
+    for path in paths:
+        cases = sorted({key.rsplit(":", 2)[0] for key in np.load(path).files})
+        for case in cases:
+            mine = render_pairs(path, case)
+            integrator = case.split(":")[1]
+            samples = (OUR_SPP[integrator], OUR_SPP[integrator])  # as tests/null_renders.py makes them
+            everything += [(a, b, samples) for a, b in mine]
+            for alpha in (0.3, 0.05, 0.01):
+                print(case, null_rates(mine, alpha, samples), flush=True)
+            shifted = iter(mine[1:] + mine[:1])
+            rate, runs, bias = detection_rate(mine, lambda: next(shifted), samples)
+            print(f"  {case} detectable_bias (median {bias:.2e}) found {rate:.3f} of {runs}")
+    if len(paths) > 1:
+        for alpha in (0.3, 0.05, 0.01):
+            runs = [null_rates([(a, b)], alpha, samples) for a, b, samples in everything]
+            print("all renders", Rates(alpha, len(runs), {s: sum(r.per_scale[s] for r in runs) for s in SCALES},
+                                       sum(r.whole for r in runs)))
 
 
 if __name__ == "__main__":

@@ -35,8 +35,9 @@ MUTATIONS = {
         "compare.py", "per_scale = sidak_level(alpha, len(SCALES))", "per_scale = alpha",
         [f"{REF}::test_compare_splits_alpha_over_scales_then_pixels_and_channels"]),
     "sidak counts pixels, not channels": (
-        "compare.py", "level = sidak_level(level_family, p.size)", "level = sidak_level(level_family, p[..., 0].size)",
-        [f"{REF}::test_compare_splits_alpha_over_scales_then_pixels_and_channels"]),
+        "family_level.py", "share = channel_union(level, channels, rho) / channels", "share = 1.0 / channels",
+        [f"{REF}::test_compare_splits_alpha_over_scales_then_pixels_and_channels",
+         "tests/test_family_level.py::test_independent_tests_get_sidaks_level"]),
     "chi-square dof k instead of k - 1": (
         "chi2.py", "dof = len(exp) - 1", "dof = len(exp)",
         [f"{REF}::test_goodness_of_fit_matches_scipy", f"{REF}::test_goodness_of_fit_pools_small_cells_by_hand"]),

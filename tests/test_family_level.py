@@ -1,0 +1,93 @@
+"""The per-test level of a family of Welch tests (harness.family_level) against its definition and
+against simulation: noiseless elements do not count, correlated channels count less than three, tests
+shrunk by the rounding floor count by how often they can still reject."""
+import numpy as np
+import pytest
+from scipy import stats as sps
+
+from harness.compare import compare_batches
+from harness.family_level import channel_correlation, channel_union, element_rates, family_level
+from harness.stats import SIGNIFICANCE, sidak_level
+
+
+def test_independent_tests_get_sidaks_level():
+    dof, inflation = np.full((40, 3), 7.0), np.ones((40, 3))
+    assert family_level(0.1, dof, inflation) == pytest.approx(sidak_level(0.1, 120), rel=1e-6)
+
+
+def test_noiseless_elements_do_not_count():
+    inflation = np.ones((50, 3))
+    inflation[20:] = np.inf  # 30 elements without noise on either side
+    assert family_level(0.1, np.full((50, 3), 7.0), inflation) == pytest.approx(sidak_level(0.1, 60), rel=1e-6)
+
+
+def test_no_live_element_gives_the_family_level():
+    assert family_level(0.05, np.full((4, 3), 7.0), np.full((4, 3), np.inf)) == 0.05
+
+
+def test_identical_channels_count_once():
+    dof, inflation = np.full((100, 3), 7.0), np.ones((100, 3))
+    level = family_level(0.1, dof, inflation, rho=0.999)
+    assert sidak_level(0.1, 300) < level
+    assert level == pytest.approx(sidak_level(0.1, 100), rel=0.1)
+
+
+@pytest.mark.parametrize("rho", [0.3, 0.8, 0.95])
+def test_channel_union_matches_simulation(rho):
+    rng = np.random.default_rng(1)
+    level, n = 0.01, 2_000_000
+    shared = rng.standard_normal(n)
+    z = np.sqrt(rho) * shared[:, None] + np.sqrt(1 - rho) * rng.standard_normal((n, 3))
+    simulated = np.mean(np.abs(z).max(axis=1) > sps.norm.isf(level / 2)) / level
+    assert channel_union(level, 3, rho) == pytest.approx(simulated, rel=0.02)
+    assert 1.0 <= channel_union(level, 3, rho) <= 3.0
+
+
+def test_channel_union_limits():
+    assert channel_union(1e-6, 3, 0.0) == 3.0
+    assert channel_union(1e-6, 1, 0.9) == 1.0
+    assert channel_union(1e-6, 3, 0.999) < 1.3
+
+
+def test_floored_tests_reject_less_than_their_level():
+    rates = element_rates(1e-3, np.array([7.0, 7.0, 7.0, 7.0]), np.array([1.0, 1.1, 3.0, np.inf]))
+    assert rates[0] == pytest.approx(1e-3, rel=1e-9)
+    assert rates[0] > rates[1] > rates[2] > rates[3] == 0.0
+    # By simulation: a t(7) statistic shrunk by 1.1 exceeds the critical value of 1e-3 this often.
+    t = sps.t.rvs(7, size=4_000_000, random_state=np.random.default_rng(2)) / 1.1
+    assert rates[1] == pytest.approx(np.mean(np.abs(t) > sps.t.isf(5e-4, 7)), rel=0.05)
+
+
+def test_floored_family_is_given_a_higher_level():
+    dof = np.full((200, 3), 7.0)
+    assert family_level(0.1, dof, np.full((200, 3), 2.0)) > 5 * sidak_level(0.1, 600)
+    assert family_level(0.1, dof, np.full((200, 3), 2.0)) <= 0.1
+
+
+def test_channel_correlation_of_statistics():
+    rng = np.random.default_rng(3)
+    shared = rng.standard_normal((5000, 1))
+    t = np.sqrt(0.7) * shared + np.sqrt(0.3) * rng.standard_normal((5000, 3))
+    assert channel_correlation(t, np.ones(5000, bool)) == pytest.approx(0.7, abs=0.03)
+    assert channel_correlation(t[:5], np.ones(5, bool)) == 0.0  # too few to tell
+    # A few heavily biased elements (the alternative) do not decide it.
+    t[:20, 0] += 100.0
+    assert channel_correlation(t, np.ones(5000, bool)) == pytest.approx(0.7, abs=0.05)
+
+
+def test_grey_image_is_tested_per_pixel_not_per_channel():
+    rng = np.random.default_rng(4)
+    grey = lambda k: np.repeat(0.5 + 0.01 * rng.standard_normal((k, 16, 16, 1)), 3, axis=-1)
+    result = compare_batches(grey(8), grey(16))
+    per_scale = sidak_level(SIGNIFICANCE, 3)
+    assert result.scales[0].level == pytest.approx(sidak_level(per_scale, 256), rel=0.1)
+
+
+def test_a_flat_image_with_one_noisy_pixel_tests_that_pixel_at_the_scale_level():
+    rng = np.random.default_rng(5)
+    a, b = np.full((8, 16, 16, 3), 0.5), np.full((16, 16, 16, 3), 0.5)
+    a[:, 3, 4, :] += 0.01 * rng.standard_normal((8, 1))
+    b[:, 3, 4, :] += 0.01 * rng.standard_normal((16, 1))
+    result = compare_batches(a, b)
+    # Only one pixel can reject (its channels identical): it gets the whole pixel-scale level.
+    assert result.scales[0].level == pytest.approx(sidak_level(SIGNIFICANCE, 3), rel=0.05)
