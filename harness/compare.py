@@ -234,12 +234,13 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     per_scale = sidak_level(alpha, len(SCALES))
     ref = reference.pixel.mean[np.isfinite(reference.pixel.mean)]
     magnitude = float(np.mean(np.abs(ref))) if ref.size else 0.0
-    # Moderation and the sample floor are for the pixel scale, where all K batches of a few samples can miss
-    # a rare contribution; a tile or image mean sums 64 or more pixels and keeps its own variance (moderated,
-    # the tile tests came out twice too conservative at 1e-3 on null renders).
+    # Moderation is for the pixel scale, where the variances of K batches of a few samples scatter widely; a
+    # tile or image mean sums 64 or more pixels and keeps its own variance (moderated, the tile tests came out
+    # twice too conservative at 1e-3 on null renders). The sample floor is for every scale: an otherwise
+    # noiseless tile whose one edge pixel missed its sliver in all K batches has no variance either.
     test_pixel, ref_pixel = sample_floor(moderate(test.pixel), moderate(reference.pixel), *samples)
-    test_tile, ref_tile = test.tile, reference.tile
-    test_image, ref_image = test.image, reference.image
+    test_tile, ref_tile = sample_floor(test.tile, reference.tile, *samples)
+    test_image, ref_image = sample_floor(test.image, reference.image, *samples)
     pixel, _ = _scale_test("pixel", test_pixel, ref_pixel, _noiseless(test.pixel, reference.pixel), per_scale,
                            (h, w), 1, magnitude, rounding)
     tile, rho = _scale_test("tile", test_tile, ref_tile, _noiseless(test.tile, reference.tile), per_scale, (h, w),

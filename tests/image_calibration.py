@@ -23,6 +23,7 @@ from scipy import stats as sps
 
 from harness.compare import SCALES, compare_summaries, summarize
 from harness.image_suite import OUR_SPP
+from harness.stats import TILE_SIZE
 
 NULLS = Path(__file__).resolve().parent.parent / "results" / "calibration"
 Pair = tuple[np.ndarray, np.ndarray]
@@ -83,6 +84,26 @@ def detection_rate(pairs: Iterable[Pair], fresh: Callable[[], Pair],
     return found / runs, runs, float(np.median(biases))
 
 
+def tile_detection_rate(pairs: Iterable[Pair], fresh: Callable[[], Pair], seed: int = 0,
+                        samples: Samples = SYNTHETIC_SAMPLES) -> tuple[float, int, float]:
+    """(fraction found by the tile scale, runs, median bias): each pair's `detectable_tile_bias` is planted
+    into one tile, drawn at random, of a fresh independent pair (that tile's test values scaled by 1 + b)."""
+    rng = np.random.default_rng(seed)
+    found, runs, biases = 0, 0, []
+    for test, reference in pairs:
+        bias = compare_summaries(summarize(test), summarize(reference), samples=samples).detectable_tile_bias
+        other_test, other_reference = fresh()
+        h, w = other_test.shape[1:3]
+        y, x = TILE_SIZE * rng.integers(h // TILE_SIZE), TILE_SIZE * rng.integers(w // TILE_SIZE)
+        planted = other_test.copy()
+        planted[:, y:y + TILE_SIZE, x:x + TILE_SIZE] *= 1 + bias
+        result = compare_summaries(summarize(planted), summarize(other_reference), samples=samples)
+        found += not result.scales[1].passed
+        runs += 1
+        biases.append(bias)
+    return found / runs, runs, float(np.median(biases))
+
+
 def synthetic_pairs(seed: int, size: int = 32, k: tuple[int, int] = (8, 16)) -> Callable[[], Pair]:
     """A source of null pairs: Gaussian pixels whose mean and standard deviation vary smoothly over the
     image and by a random factor per pixel and channel (heteroscedastic); the reference side has
@@ -113,6 +134,8 @@ def main(argv: list[str]) -> None:
         print("synthetic", null_rates((draw() for _ in range(runs)), alpha))
     rate, runs, bias = detection_rate((draw() for _ in range(200)), draw)
     print(f"synthetic detectable_bias (median {bias:.2e}) found {rate:.3f} of {runs}")
+    rate, runs, bias = tile_detection_rate((draw() for _ in range(200)), draw)
+    print(f"synthetic detectable_tile_bias (median {bias:.2e}) found {rate:.3f} of {runs}")
     paths = [Path(a) for a in argv] if argv else sorted(NULLS.glob("nulls-*.npz"))
     everything: list[tuple[np.ndarray, np.ndarray, Samples]] = []
     for path in paths:
@@ -127,6 +150,9 @@ def main(argv: list[str]) -> None:
             shifted = iter(mine[1:] + mine[:1])
             rate, runs, bias = detection_rate(mine, lambda: next(shifted), samples)
             print(f"  {case} detectable_bias (median {bias:.2e}) found {rate:.3f} of {runs}")
+            shifted = iter(mine[1:] + mine[:1])
+            rate, runs, bias = tile_detection_rate(mine, lambda: next(shifted), samples=samples)
+            print(f"  {case} detectable_tile_bias (median {bias:.2e}) found {rate:.3f} of {runs}", flush=True)
     if len(paths) > 1:
         for alpha in (0.3, 0.05, 0.01):
             runs = [null_rates([(a, b)], alpha, samples) for a, b, samples in everything]

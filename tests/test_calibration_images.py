@@ -7,7 +7,7 @@ from scipy import stats as sps
 
 from harness.compare import SCALES
 from harness.stats import sidak_level
-from tests.image_calibration import detection_rate, null_rates, synthetic_pairs
+from tests.image_calibration import detection_rate, null_rates, synthetic_pairs, tile_detection_rate
 
 RUNS = 120
 
@@ -42,3 +42,41 @@ def test_detectable_bias_is_found_half_of_the_time():
     rate, runs, bias = detection_rate((draw() for _ in range(80)), draw)
     assert 0 < bias < 0.05
     assert 0.3 <= rate <= 0.7, rate
+
+
+@pytest.fixture(scope="module")
+def crevice_nulls():
+    """Null pairs of real renders: crevice AO (rare sky contributions, the hard case) at 32 x 32, our
+    renderer against itself at the same samples per pixel, 8 against 16 batches, every pair its seeds."""
+    from tests.null_renders import ROOT, render_pair
+
+    return [render_pair(ROOT / "scenes" / "crevice.xml", "ao", pair, 32) for pair in range(RENDER_RUNS)]
+
+
+RENDER_RUNS = 60
+
+
+def test_real_null_renders_reject_at_about_the_stated_level(crevice_nulls):
+    from harness.image_suite import OUR_SPP
+
+    samples = (OUR_SPP["ao"], OUR_SPP["ao"])
+    rates = null_rates([(a.astype(np.float64), b.astype(np.float64)) for a, b in crevice_nulls], 0.3, samples)
+    lo, hi = acceptance(0.3, RENDER_RUNS)
+    assert lo <= rates.rate() <= hi, rates
+    assert null_rates([(a.astype(np.float64), b.astype(np.float64)) for a, b in crevice_nulls], 0.01,
+                      samples).rate() <= acceptance(0.01, RENDER_RUNS)[1], rates
+
+
+def test_detectable_biases_are_found_about_half_of_the_time_on_real_renders(crevice_nulls):
+    """Planted (the image, then one random tile, scaled by 1 + b) into the next pair; 60 runs, so the
+    bounds are 0.5 widened by its binomial spread."""
+    from harness.image_suite import OUR_SPP
+
+    samples = (OUR_SPP["ao"], OUR_SPP["ao"])
+    pairs = [(a.astype(np.float64), b.astype(np.float64)) for a, b in crevice_nulls]
+    lo, hi = acceptance(0.5, RENDER_RUNS, tail=0.01)
+    shifted = iter(pairs[1:] + pairs[:1])
+    image_rate, _, _ = detection_rate(pairs, lambda: next(shifted), samples)
+    shifted = iter(pairs[1:] + pairs[:1])
+    tile_rate, _, _ = tile_detection_rate(pairs, lambda: next(shifted), samples=samples)
+    assert lo <= image_rate <= hi and lo <= tile_rate <= hi, (image_rate, tile_rate, lo, hi)

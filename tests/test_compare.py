@@ -135,3 +135,21 @@ def test_bad_shapes_are_rejected():
         compare_batches(np.zeros((4, 8, 8, 3)), np.zeros((4, 8, 9, 3)))
     with pytest.raises(ValueError):
         compare_batches(np.zeros((1, 8, 8, 3)), np.zeros((4, 8, 8, 3)))
+
+
+def test_an_edge_pixel_whose_batches_all_caught_its_sliver_passes_at_every_scale():
+    """An otherwise noiseless image; one pixel's sliver (1.8 % of its area, value 0.45) holds one of 32
+    stratified samples with probability 0.58, so 8 batches all show 0.45 / 32 with probability 0.013, and
+    the tile holding it then has no variance. An independent-sample reference of 16 x 256 samples has
+    seen the truth: with the sample counts the comparison passes; without them the tile scale fails."""
+    rng = np.random.default_rng(21)
+    test = np.full((8, 16, 16, 3), 0.2)
+    test[:, 7, 0, :] = 0.45 / 32
+    reference = np.full((16, 16, 16, 3), 0.2)
+    reference[:, 7, 0, :] = (0.45 * rng.binomial(256, 0.018, 16) / 256)[:, None]
+    assert "tile" in compare_batches(test, reference).failed_scales
+    assert compare_batches(test, reference, samples=(32, 256)).passed
+    # Its twin with the sliver three times too wide (3 of 32 samples in every batch) is still found.
+    wrong = test.copy()
+    wrong[:, 7, 0, :] = 3 * 0.45 / 32
+    assert not compare_batches(wrong, reference, samples=(32, 256)).passed
