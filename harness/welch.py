@@ -89,8 +89,8 @@ def moderate(stats: BatchStats, window: int = MODERATION_WINDOW) -> BatchStats:
     return BatchStats(stats.mean, moderated, stats.k, dof)
 
 
-def sample_floor(a: BatchStats, b: BatchStats, samples_a: int | None,
-                 samples_b: int | None) -> tuple[BatchStats, BatchStats]:
+def sample_floor(a: BatchStats, b: BatchStats, samples_a: int | None, samples_b: int | None,
+                 raw_a: BatchStats | None = None, raw_b: BatchStats | None = None) -> tuple[BatchStats, BatchStats]:
     """The variance of the mean of the side with fewer samples, where it is far below what the other side's
     implies for its sample count, replaced by that prediction.
 
@@ -102,16 +102,19 @@ def sample_floor(a: BatchStats, b: BatchStats, samples_a: int | None,
     variance with 7 degrees of freedom falls there by chance with probability 7e-4), because taking the
     larger of two estimates everywhere makes the extreme-level pixel tests far too conservative. A
     stratified sampler beats sigma^2 / n, so a replaced variance is then larger than needed, never
-    smaller. Replaced elements take the other side's degrees of freedom. Unchanged when a count is
-    unknown (None) or both sides hold as many samples."""
+    smaller. Replaced elements take the other side's degrees of freedom. `raw_a` and `raw_b`, when `a`
+    and `b` are moderated, are their variances before: a missed contribution is judged on the element's
+    own batches, which its neighbours' variances would hide. Unchanged when a count is unknown (None) or
+    both sides hold as many samples."""
     if samples_a is None or samples_b is None or a.k * samples_a == b.k * samples_b:
         return a, b
     if a.k * samples_a > b.k * samples_b:
-        floored_b, floored_a = sample_floor(b, a, samples_b, samples_a)
+        floored_b, floored_a = sample_floor(b, a, samples_b, samples_a, raw_b, raw_a)
         return floored_a, floored_b
     floor = b.var_of_mean * (b.k * samples_b) / (a.k * samples_a)
+    own = (a if raw_a is None else raw_a).var_of_mean
     with np.errstate(invalid="ignore"):
-        use = MISSED_CONTRIBUTION * floor > a.var_of_mean
+        use = (MISSED_CONTRIBUTION * floor > own) & (floor > a.var_of_mean)
     dof = np.where(use, np.broadcast_to(b.var_dof, use.shape), np.broadcast_to(a.var_dof, use.shape))
     return BatchStats(a.mean, np.where(use, floor, a.var_of_mean), a.k, dof), b
 
