@@ -91,3 +91,39 @@ def test_a_flat_image_with_one_noisy_pixel_tests_that_pixel_at_the_scale_level()
     result = compare_batches(a, b)
     # Only one pixel can reject (its channels identical): it gets the whole pixel-scale level.
     assert result.scales[0].level == pytest.approx(sidak_level(SIGNIFICANCE, 3), rel=0.05)
+
+
+def test_channel_correlation_is_the_low_end_of_fishers_interval():
+    rng = np.random.default_rng(6)
+    shared = rng.standard_normal((40, 1))
+    t = np.sqrt(0.6) * shared + np.sqrt(0.4) * rng.standard_normal((40, 3))
+    c = np.corrcoef(t, rowvar=False)
+    r = np.mean([c[0, 1], c[0, 2], c[1, 2]])
+    expected = np.tanh(np.arctanh(r) - 2.0 / np.sqrt(40 - 3))
+    assert 0 < expected < r
+    assert channel_correlation(t, np.ones(40, bool)) == pytest.approx(expected, rel=1e-9)
+    # Ten elements are enough to estimate it; nine are not.
+    ten = t[:10]
+    c10 = np.corrcoef(ten, rowvar=False)
+    r10 = np.mean([c10[0, 1], c10[0, 2], c10[1, 2]])
+    assert channel_correlation(ten, np.ones(10, bool)) == pytest.approx(
+        max(0.0, np.tanh(np.arctanh(r10) - 2.0 / np.sqrt(7))), abs=1e-12)
+    assert channel_correlation(t[:9], np.ones(9, bool)) == 0.0
+
+
+def test_channel_correlation_of_one_channel_or_identical_channels():
+    rng = np.random.default_rng(7)
+    t = rng.standard_normal((50, 1))
+    assert channel_correlation(t, np.ones(50, bool)) == 0.0  # one channel: nothing to correlate
+    assert channel_correlation(np.repeat(t[:3], 3, axis=1), np.ones(3, bool)) == 1.0
+    two = np.hstack([t, -t + 0.1 * rng.standard_normal((50, 1))])  # anti-correlated: clipped at 0
+    assert channel_correlation(two, np.ones(50, bool)) == 0.0
+    # Statistics beyond |t| = 4 count as 4: two channels at opposite extremes stay uncorrelated.
+    wide = np.hstack([t, t])
+    wide[:, 1] += rng.standard_normal(50)
+    clipped = np.clip(wide, -4, 4)
+    wide[0] = [50.0, -50.0]
+    clipped[0] = [4.0, -4.0]
+    r = np.corrcoef(clipped, rowvar=False)[0, 1]
+    assert channel_correlation(wide, np.ones(50, bool)) == pytest.approx(
+        max(0.0, np.tanh(np.arctanh(r) - 2.0 / np.sqrt(47))), rel=1e-9)

@@ -64,3 +64,25 @@ def test_a_pixel_truly_off_still_fails_given_the_sample_counts():
     test[:, 5, 5, :] += 0.05  # a 10 % error in one pixel
     result = compare_batches(test, _shadow_edge(rng, 16, 256), samples=(32, 256))
     assert "pixel" in result.failed_scales and result.scales[0].worst == (5, 5)
+
+
+def test_a_variance_at_exactly_the_threshold_is_kept_and_just_below_it_replaced():
+    # The prediction for the 8 x 32-sample side from the 16 x 256-sample one is 16 times b's variance.
+    prediction = 1.0 / 16.0 * (16 * 256) / (8 * 32)
+    threshold = MISSED_CONTRIBUTION * prediction
+    at = BatchStats(np.zeros(3), np.array([threshold, np.nextafter(threshold, 0.0), 2 * threshold]), 8)
+    fa, _ = sample_floor(at, BatchStats(np.zeros(3), np.full(3, 1.0 / 16.0), 16), 32, 256)
+    # "Only a variance below MISSED_CONTRIBUTION times the prediction is replaced."
+    assert fa.var_of_mean[0] == threshold and fa.var_of_mean[2] == 2 * threshold
+    assert fa.var_of_mean[1] == pytest.approx(prediction, rel=1e-12)
+    assert list(fa.var_dof) == [7, 15, 7]
+
+
+def test_the_floored_side_keeps_its_means_and_batch_count():
+    rng = np.random.default_rng(13)
+    mean = rng.normal(size=(2, 2, 3))
+    a = BatchStats(mean, np.full((2, 2, 3), 1e-12), 8)
+    fa, fb = sample_floor(a, stats(1e-6, 16), 32, 256)
+    assert fa.mean is mean and fa.k == 8
+    fb2, fa2 = sample_floor(stats(1e-6, 16), a, 256, 32)
+    assert fa2.mean is mean and fa2.k == 8 and fb2.k == 16
