@@ -127,3 +127,59 @@ def test_channel_correlation_of_one_channel_or_identical_channels():
     r = np.corrcoef(clipped, rowvar=False)[0, 1]
     assert channel_correlation(wide, np.ones(50, bool)) == pytest.approx(
         max(0.0, np.tanh(np.arctanh(r) - 2.0 / np.sqrt(47))), rel=1e-9)
+
+
+# --- corners found by mutation testing -------------------------------------------------------------
+
+def _exact_level(level_family, dof, inflation, share=1.0):
+    """The defining equation solved directly: every live test's rate summed, no sampling."""
+    from scipy.optimize import brentq
+
+    live = np.isfinite(inflation)
+    d, f = dof[live], inflation[live]
+
+    def excess(log_level):
+        rates = np.minimum(element_rates(np.exp(log_level), d, f) * share, 1.0)
+        return -np.expm1(np.sum(np.log1p(-rates))) - level_family
+
+    if excess(np.log(level_family)) <= 0:  # even at the family's level they reject less often
+        return level_family
+    return float(np.exp(brentq(excess, np.log(1e-14), np.log(level_family), xtol=1e-12)))
+
+
+@pytest.mark.parametrize("inflation", [[1.0, 1.7], [2.5], [1.0, 1.0, 3.0, 1.2, np.inf]])
+def test_small_families_match_the_defining_equation(inflation):
+    inflation = np.array(inflation)[:, None]
+    dof = np.full(inflation.shape, 9.0)
+    assert family_level(0.2, dof, inflation) == pytest.approx(_exact_level(0.2, dof, inflation), rel=1e-6)
+
+
+def test_large_floored_families_are_summed_within_a_percent():
+    rng = np.random.default_rng(6)
+    inflation = 1.0 + rng.exponential(0.5, (3000, 1))  # more than SAMPLED tests shrunk by the floor
+    dof = rng.uniform(7, 30, (3000, 1))
+    assert family_level(0.1, dof, inflation) == pytest.approx(_exact_level(0.1, dof, inflation), rel=0.01)
+
+
+def test_scalar_and_single_element_inputs():
+    assert family_level(0.05, 7.0, 1.0) == pytest.approx(0.05)
+    # One element of three identical channels (the image scale of a grey image) is one test.
+    assert family_level(0.1, np.full(3, 7.0), np.ones(3), rho=1.0) == pytest.approx(0.1, rel=1e-6)
+    assert family_level(0.1, np.full(3, 7.0), np.ones(3), rho=0.0) == pytest.approx(sidak_level(0.1, 3), rel=1e-6)
+
+
+def test_correlation_corners():
+    rng = np.random.default_rng(7)
+    # One channel (the last axis) gives nothing to correlate, whatever the other axes.
+    assert channel_correlation(rng.standard_normal((20, 3, 1)), np.ones((20, 3), bool)) == 0.0
+    # Constant channels have no correlation to estimate.
+    constant = np.tile([1.0, 2.0, 3.0], (50, 1))
+    assert channel_correlation(constant, np.ones(50, bool)) == 0.0
+    # Proportional but not identical channels: correlation 1, stated just below it.
+    x = rng.standard_normal((1000, 1))
+    value = channel_correlation(np.hstack([x, 0.5 * x, 0.25 * x]), np.ones(1000, bool))
+    assert 0.99 < value < 1.0
+
+
+def test_two_correlated_channels_count_less_than_two():
+    assert 1.0 < channel_union(0.01, 2, 0.9) < 1.9
