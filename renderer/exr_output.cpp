@@ -18,11 +18,12 @@ namespace mcr {
 
 namespace {
 
-void addLayer(Imf::Header &header, Imf::FrameBuffer &fb, const std::string &prefix, const Image &image) {
+void addLayer(Imf::Header &header, Imf::FrameBuffer &fb, const std::string &prefix, const Image &image,
+              bool half) {
     static const char *names[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c) {
         const std::string name = prefix + names[c];
-        header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+        header.channels().insert(name, Imf::Channel(half ? Imf::HALF : Imf::FLOAT));
         char *base = reinterpret_cast<char *>(const_cast<float *>(image.rgb.data() + c));
         fb.insert(name, Imf::Slice(Imf::FLOAT, base, 3 * sizeof(float), 3 * sizeof(float) * image.width));
     }
@@ -45,10 +46,10 @@ void writeExr(const std::string &path, const RenderOutput &output, const OutputI
     header.insert("mcval.shadowRays", Imf::StringAttribute(std::to_string(s.shadowRays)));
 
     Imf::FrameBuffer fb;
-    addLayer(header, fb, "", output.mean);
-    addLayer(header, fb, "variance.", output.variance);
+    addLayer(header, fb, "", output.mean, info.half);
+    addLayer(header, fb, "variance.", output.variance, info.half);
     for (size_t k = 0; k < output.batches.size(); ++k)
-        addLayer(header, fb, "batch" + std::to_string(k) + ".", output.batches[k]);
+        addLayer(header, fb, "batch" + std::to_string(k) + ".", output.batches[k], info.half);
 
     requireWritableOutput(path);
     namespace fs = std::filesystem;

@@ -11,6 +11,7 @@ namespace mcr {
 struct OutputInfo {
     std::string sceneFile;
     double loadSeconds = 0.0;
+    bool half = false;  ///< the film's component_format is float16: write HALF channels
 };
 
 /// Writes R, G, B (mean), variance.R/G/B and, for K > 1 batches, batch<k>.R/G/B. Header attributes

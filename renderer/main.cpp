@@ -71,8 +71,9 @@ int main(int argc, char **argv) {
         if (outPath.empty()) outPath = std::filesystem::path(scenePath).stem().string() + ".exr";
         requireWritableOutput(outPath);  // before the work, not after it
         const auto start = std::chrono::steady_clock::now();
-        const SceneDescription scene = loadScene(scenePath, params);
-        OutputInfo info{scenePath, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+        const SceneDescription scene = loadScene(scenePath, params, integrator);
+        OutputInfo info{scenePath, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                        scene.film.componentFormat == "float16"};
 
         RenderOptions options;
         options.spp = spp;

@@ -50,6 +50,7 @@ struct FilterSpec {
 struct FilmSpec {
     int width = 768, height = 576;   ///< Mitsuba's hdrfilm defaults
     FilterSpec filter;
+    std::string componentFormat = "float32";  ///< hdrfilm component_format: float16 or float32
 };
 
 /// Which of our integrators to run, and its parameters.
@@ -72,6 +73,10 @@ struct SceneDescription {
 
 /// Loads a scene file of the Mitsuba 3 XML subset; `params` override its <default> values.
 /// Throws SceneError naming file, line and what was expected.
-SceneDescription loadScene(const std::string &path, const std::map<std::string, std::string> &params = {});
+/// `integrator`, if not empty, overrides the file's <integrator> whatever its type; elements the
+/// chosen integrator does not use are skipped with one note line on stderr, those that would
+/// change its answer are errors.
+SceneDescription loadScene(const std::string &path, const std::map<std::string, std::string> &params = {},
+                           const std::string &integrator = "");
 
 }  // namespace mcr

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 #include "error.h"
@@ -55,7 +56,8 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
     if (!(cam.nearClip > 0.f && cam.farClip > cam.nearClip)) ctx.fail(node, "need 0 < near_clip < far_clip");
     cam.toWorld = props.getTransform("to_world");
     requirePosition(ctx, node, "the camera (its to_world)", cam.toWorld.point({0.f, 0.f, 0.f}));
-    props.finish("fov, fov_axis, near_clip, far_clip, to_world");
+    props.ignore("focus_distance");  // a pinhole has no focus: accepted and ignored
+    props.finish("fov, fov_axis, near_clip, far_clip, focus_distance, to_world");
     for (const auto &child : props.objects()) {
         const std::string tag = child.name();
         if (tag == "film") {
@@ -65,7 +67,18 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
             scene.film.height = fp.getInt("height", 576);
             fp.requireRange("width", scene.film.width, 1, kMaxFilmSide);
             fp.requireRange("height", scene.film.height, 1, kMaxFilmSide);
-            fp.finish("width, height");
+            // Output formats: we always write an RGB OpenEXR; its component type is honoured.
+            const std::string pixelFormat = fp.getString("pixel_format", "rgb");
+            if (pixelFormat != "rgb" && pixelFormat != "rgba")
+                ctx.fail(child, "pixel_format \"" + pixelFormat + "\" is not supported: expected rgb or rgba");
+            const std::string fileFormat = fp.getString("file_format", "openexr");
+            if (fileFormat != "openexr" && fileFormat != "exr")
+                ctx.fail(child, "file_format \"" + fileFormat + "\" is not supported: expected openexr");
+            scene.film.componentFormat = fp.getString("component_format", "float32");
+            if (scene.film.componentFormat != "float16" && scene.film.componentFormat != "float32")
+                ctx.fail(child, "component_format \"" + scene.film.componentFormat +
+                                    "\" is not supported: expected float16 or float32");
+            fp.finish("width, height, pixel_format, component_format, file_format");
             for (const auto &f : fp.objects()) {
                 if (std::string(f.name()) != "rfilter") ctx.fail(f, "unsupported element in <film>: expected <rfilter>");
                 const std::string type = typeOf(ctx, f);
@@ -96,8 +109,18 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
     }
 }
 
-Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node) {
-    if (typeOf(ctx, node) != "diffuse") ctx.fail(node, "unsupported bsdf type: expected \"diffuse\"");
+/// Elements the chosen integrator may not use, judged once the integrator is known.
+struct Deferred {
+    std::vector<std::pair<pugi::xml_node, std::string>> nonDiffuseBsdfs, areaEmitters;
+};
+
+Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node, Deferred &deferred) {
+    if (typeOf(ctx, node) != "diffuse") {
+        // Only `normals` can ignore it; whether that is allowed is decided when the integrator is known.
+        deferred.nonDiffuseBsdfs.emplace_back(node, "<bsdf type=\"" + typeOf(ctx, node) + "\"> at line " +
+                                                        std::to_string(ctx.line(node)));
+        return {0.5f, 0.5f, 0.5f};
+    }
     XmlProps props(ctx, node);
     const Color rho = props.getColor("reflectance", {0.5f, 0.5f, 0.5f});
     props.requireRange("reflectance", rho, 0.f, 1.f);
@@ -107,7 +130,7 @@ Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node) {
 }
 
 void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const std::map<std::string, Color> &bsdfs,
-               SceneDescription &scene) {
+               SceneDescription &scene, Deferred &deferred) {
     const std::string type = typeOf(ctx, node);
     XmlProps props(ctx, node);
     const Transform toWorld = props.getTransform("to_world");
@@ -133,16 +156,22 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const std::map
     bool hasBsdf = false;
     for (const auto &child : props.objects()) {
         const std::string tag = child.name();
+        if (tag == "emitter") {
+            if (typeOf(ctx, child) != "area") ctx.fail(child, "a shape's emitter must be of type \"area\"");
+            deferred.areaEmitters.emplace_back(child, "<emitter type=\"area\"> at line " +
+                                                          std::to_string(ctx.line(child)));
+            continue;
+        }
         if (hasBsdf && (tag == "bsdf" || tag == "ref")) ctx.fail(child, "a shape takes one bsdf");
         if (tag == "bsdf") {
-            mesh.reflectance = loadBsdf(ctx, child);
+            mesh.reflectance = loadBsdf(ctx, child, deferred);
         } else if (tag == "ref") {
             const std::string id = ctx.attr(child, "id");
             const auto it = bsdfs.find(id);
             if (it == bsdfs.end()) ctx.fail(child, "no <bsdf id=\"" + id + "\"> defined before this point");
             mesh.reflectance = it->second;
         } else {
-            ctx.fail(child, "unsupported element in <shape>: expected <bsdf> or <ref>");
+            ctx.fail(child, "unsupported element in <shape>: expected <bsdf>, <ref> or <emitter type=\"area\">");
         }
         hasBsdf = true;
     }
@@ -204,7 +233,8 @@ std::string readSceneFile(const std::string &path) {
 
 }  // namespace
 
-SceneDescription loadScene(const std::string &path, const std::map<std::string, std::string> &params) {
+SceneDescription loadScene(const std::string &path, const std::map<std::string, std::string> &params,
+                           const std::string &integrator) {
     XmlContext ctx;
     ctx.file = path;
     ctx.text = readSceneFile(path);
@@ -231,6 +261,8 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     scene.file = path;
     std::map<std::string, Color> bsdfs;
     bool hasSensor = false, hasIntegrator = false;
+    Deferred deferred;
+    std::vector<std::string> skipped;
     for (pugi::xml_node node : root.children()) {
         if (node.type() != pugi::node_element) continue;
         const std::string tag = node.name();
@@ -240,16 +272,19 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
             loadSensor(ctx, node, scene);
             hasSensor = true;
         } else if (tag == "shape") {
-            loadShape(ctx, node, bsdfs, scene);
+            loadShape(ctx, node, bsdfs, scene, deferred);
         } else if (tag == "bsdf") {
             const std::string id = ctx.attr(node, "id");
             if (id.empty()) ctx.fail(node, "a top-level <bsdf> needs an id to be referenced by");
-            bsdfs[id] = loadBsdf(ctx, node);
+            bsdfs[id] = loadBsdf(ctx, node, deferred);
         } else if (tag == "emitter") {
             loadEmitter(ctx, node, scene);
         } else if (tag == "integrator") {
             if (hasIntegrator) ctx.fail(node, "only one integrator is supported");
-            loadIntegrator(ctx, node, scene);
+            // An integrator given by the caller overrides the file's, whatever its type; the file's
+            // parameters are read only when it names the same integrator. The caller asked for the
+            // override, so it needs no note.
+            if (integrator.empty() || typeOf(ctx, node) == integrator) loadIntegrator(ctx, node, scene);
             hasIntegrator = true;
         } else {
             ctx.fail(node, "unsupported element: expected <default>, <sensor>, <shape>, <bsdf>, <emitter> or <integrator>");
@@ -257,6 +292,28 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     }
     if (!hasSensor) ctx.fail(root, "the scene has no <sensor type=\"perspective\">");
     if (scene.meshes.empty()) ctx.fail(root, "the scene has no <shape>");
+
+    // What the chosen integrator needs: refuse what would change its answer, skip what it ignores.
+    const std::string chosen = integrator.empty() ? scene.integrator.type : integrator;
+    if (chosen == "simple" && scene.pointLights.empty())
+        ctx.fail(root, "the scene has no point light, the only emitter the simple integrator uses");
+    for (const auto &[node, what] : deferred.areaEmitters) {
+        if (chosen == "simple") ctx.fail(node, "the simple integrator does not model area emitters");
+        if (chosen == "normals" || chosen == "ao") skipped.push_back(what);
+    }
+    for (const auto &[node, what] : deferred.nonDiffuseBsdfs) {
+        if (chosen == "normals")
+            skipped.push_back(what);
+        else
+            ctx.fail(node, "unsupported bsdf type \"" + typeOf(ctx, node) + "\": the " +
+                               (chosen.empty() ? std::string("chosen") : chosen) +
+                               " integrator needs \"diffuse\"");
+    }
+    if (!skipped.empty()) {
+        std::string note = "note: " + path + ": skipped, not used by the " + chosen + " integrator:";
+        for (size_t i = 0; i < skipped.size(); ++i) note += (i ? "; " : " ") + skipped[i];
+        std::cerr << note << std::endl;
+    }
     return scene;
 }
 

@@ -42,6 +42,10 @@ public:
     /// `<point>` with value="x, y, z" or x/y/z attributes.
     Vec3f getPoint(const std::string &name, const Vec3f &def);
     Transform getTransform(const std::string &name);
+    /// Accepts a property that cannot change our answer (whatever its type) without reading it.
+    void ignore(const std::string &name) {
+        if (m_props.count(name)) m_used.insert(name);
+    }
 
     /// Throws at the property's line (the element's if it was not given) unless every component of
     /// `value` lies in [lo, hi]; NaN never does.

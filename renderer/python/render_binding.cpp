@@ -37,7 +37,7 @@ nb::dict renderScene(const std::string &path, std::optional<int> spp, uint64_t s
     {
         nb::gil_scoped_release release;
         const auto start = std::chrono::steady_clock::now();
-        const SceneDescription scene = loadScene(path, params);
+        const SceneDescription scene = loadScene(path, params, integrator);
         loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         RenderOptions options;
         options.spp = spp.value_or(0);
