@@ -1,6 +1,7 @@
 #include "exr_output.h"
 
 #include <cstdio>
+#include <deque>
 #include <filesystem>
 #include <random>
 
@@ -11,6 +12,7 @@
 #include <ImfIntAttribute.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
+#include <half.h>
 
 #include "error.h"
 
@@ -18,14 +20,23 @@ namespace mcr {
 
 namespace {
 
+/// Adds R, G, B of `image`; as HALF channels (converted into `halves`, which must outlive the write) if `half`.
 void addLayer(Imf::Header &header, Imf::FrameBuffer &fb, const std::string &prefix, const Image &image,
-              bool half) {
+              bool half, std::deque<std::vector<::half>> &halves) {
     static const char *names[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c) {
         const std::string name = prefix + names[c];
-        header.channels().insert(name, Imf::Channel(half ? Imf::HALF : Imf::FLOAT));
-        char *base = reinterpret_cast<char *>(const_cast<float *>(image.rgb.data() + c));
-        fb.insert(name, Imf::Slice(Imf::FLOAT, base, 3 * sizeof(float), 3 * sizeof(float) * image.width));
+        if (half) {
+            std::vector<::half> &h = halves.emplace_back(image.rgb.size() / 3);
+            for (size_t i = 0; i < h.size(); ++i) h[i] = ::half(image.rgb[3 * i + c]);
+            header.channels().insert(name, Imf::Channel(Imf::HALF));
+            fb.insert(name, Imf::Slice(Imf::HALF, reinterpret_cast<char *>(h.data()), sizeof(::half),
+                                       sizeof(::half) * image.width));
+        } else {
+            header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+            char *base = reinterpret_cast<char *>(const_cast<float *>(image.rgb.data() + c));
+            fb.insert(name, Imf::Slice(Imf::FLOAT, base, 3 * sizeof(float), 3 * sizeof(float) * image.width));
+        }
     }
 }
 
@@ -46,10 +57,11 @@ void writeExr(const std::string &path, const RenderOutput &output, const OutputI
     header.insert("mcval.shadowRays", Imf::StringAttribute(std::to_string(s.shadowRays)));
 
     Imf::FrameBuffer fb;
-    addLayer(header, fb, "", output.mean, info.half);
-    addLayer(header, fb, "variance.", output.variance, info.half);
+    std::deque<std::vector<::half>> halves;
+    addLayer(header, fb, "", output.mean, info.half, halves);
+    addLayer(header, fb, "variance.", output.variance, info.half, halves);
     for (size_t k = 0; k < output.batches.size(); ++k)
-        addLayer(header, fb, "batch" + std::to_string(k) + ".", output.batches[k], info.half);
+        addLayer(header, fb, "batch" + std::to_string(k) + ".", output.batches[k], info.half, halves);
 
     requireWritableOutput(path);
     namespace fs = std::filesystem;
