@@ -153,3 +153,32 @@ def test_area_emitter_is_an_error_for_simple(tmp_path):
 def test_unknown_file_integrator_without_override_names_file_and_line(tmp_path):
     path = scene(tmp_path)
     one_error(run(path, "-o", tmp_path / "o.exr", "-q"), path, ":2:", 'unsupported integrator type "path"')
+
+
+def test_the_written_cornell_box_is_mitsubas_own():
+    """Mitsuba loads the written XML into the same shapes (bounding boxes) and emitter as mi.cornell_box()."""
+    import mitsuba as mi
+    mi.set_variant("scalar_rgb")
+    ours, theirs = mi.load_file(str(CORNELL)), mi.load_dict(mi.cornell_box())
+
+    def boxes(s):
+        return sorted((sh.id(), tuple(sh.bbox().min), tuple(sh.bbox().max)) for sh in s.shapes())
+
+    a, b = boxes(ours), boxes(theirs)
+    assert [x[0] for x in a] == [x[0] for x in b]
+    np.testing.assert_allclose(np.array([x[1] + x[2] for x in a]), np.array([x[1] + x[2] for x in b]), atol=1e-6)
+    assert len(ours.emitters()) == len(theirs.emitters()) == 1
+    assert list(ours.sensors()[0].film().size()) == list(theirs.sensors()[0].film().size())
+    assert str(ours.sensors()[0]) == str(theirs.sensors()[0])
+
+
+def test_float16_holds_the_float32_image(tmp_path):
+    images = []
+    for fmt in ("float16", "float32"):
+        d = tmp_path / fmt
+        d.mkdir()
+        path = scene(d, film_extra=f'<string name="component_format" value="{fmt}"/>')
+        assert run(path, "--integrator", "ao", "--seed", 3, "-o", d / "o.exr", "-q").returncode == 0
+        with OpenEXR.File(str(d / "o.exr")) as f:
+            images.append(f.channels()["RGB"].pixels.astype(np.float32))
+    np.testing.assert_allclose(images[0], images[1], rtol=1e-3, atol=1e-4)
