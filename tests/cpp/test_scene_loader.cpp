@@ -160,3 +160,55 @@ TEST(SceneLoader, EveryShippedSceneLoads) {
         EXPECT_NO_THROW(loadScene(entry.path().string())) << entry.path();
     }
 }
+
+// Issue 11: what the chosen integrator needs is modelled, what it ignores is skipped, what would change
+// its answer is refused with file and line.
+TEST(SceneLoader, TheCallersIntegratorOverridesTheFilesWhateverItsType) {
+    const std::string path = writeScene(
+        "override", std::string(kHeader) + sensor("<float name=\"focus_distance\" value=\"2\"/>") + kShape +
+                        "  <integrator type=\"path\"><integer name=\"max_depth\" value=\"8\"/></integrator>\n</scene>\n");
+    EXPECT_NO_THROW(loadScene(path, {}, "ao"));
+    EXPECT_NO_THROW(loadScene(path, {}, "normals"));
+    try {
+        loadScene(path);
+        FAIL() << "an unknown file integrator without override must be an error";
+    } catch (const SceneError &e) {
+        EXPECT_NE(std::string(e.what()).find(":4:"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("\"path\""), std::string::npos) << e.what();
+    }
+}
+
+TEST(SceneLoader, ComponentFormatIsHonouredOrRefused) {
+    auto film = [](const std::string &fmt) {
+        return std::string(kHeader) +
+               "  <sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/><film type=\"hdrfilm\">"
+               "<string name=\"component_format\" value=\"" + fmt + "\"/><string name=\"pixel_format\" value=\"rgb\"/>"
+               "</film></sensor>\n" + kShape + "</scene>\n";
+    };
+    EXPECT_EQ(loadScene(writeScene("half", film("float16")), {}, "normals").film.componentFormat, "float16");
+    EXPECT_EQ(loadScene(writeScene("single", film("float32")), {}, "normals").film.componentFormat, "float32");
+    const std::string path = writeScene("uint8", film("uint8"));
+    try {
+        loadScene(path, {}, "normals");
+        FAIL() << "uint8 must be refused";
+    } catch (const SceneError &e) {
+        EXPECT_NE(std::string(e.what()).find(path + ":2:"), std::string::npos) << e.what();
+    }
+}
+
+TEST(SceneLoader, UnusedElementsAreSkippedAndAnswerChangingOnesRefused) {
+    const std::string path = writeScene(
+        "area_conductor", std::string(kHeader) + sensor() +
+                              "  <shape type=\"rectangle\"><bsdf type=\"conductor\"/>"
+                              "<emitter type=\"area\"><rgb name=\"radiance\" value=\"1\"/></emitter></shape>\n"
+                              "  <emitter type=\"point\"/>\n</scene>\n");
+    EXPECT_NO_THROW(loadScene(path, {}, "normals"));
+    for (const char *integrator : {"simple", "ao"}) {
+        try {
+            loadScene(path, {}, integrator);
+            FAIL() << integrator;
+        } catch (const SceneError &e) {
+            EXPECT_NE(std::string(e.what()).find(path + ":3:"), std::string::npos) << e.what();
+        }
+    }
+}
