@@ -304,10 +304,11 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     for (const auto &[node, what] : deferred.nonDiffuseBsdfs) {
         if (chosen == "normals")
             skipped.push_back(what);
-        else
-            ctx.fail(node, "unsupported bsdf type \"" + typeOf(ctx, node) + "\": the " +
-                               (chosen.empty() ? std::string("chosen") : chosen) +
+        else if (chosen == "simple" || chosen == "ao")
+            ctx.fail(node, "unsupported bsdf type \"" + typeOf(ctx, node) + "\": the " + chosen +
                                " integrator needs \"diffuse\"");
+        else  // no or an unknown integrator: render() names that error; a bsdf we cannot model is one too
+            ctx.fail(node, "unsupported bsdf type: expected \"diffuse\"");
     }
     if (!skipped.empty()) {
         std::string note = "note: " + path + ": skipped, not used by the " + chosen + " integrator:";
