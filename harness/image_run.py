@@ -59,7 +59,19 @@ class ImageResult:
             "batches": {"mcval": len(self.ours.batches), **{k: r.summary.image.k for k, r in self.references.items()}},
             "image_mean": batch_means.mean(axis=0).tolist(),
             "image_mean_se": (batch_means.std(axis=0, ddof=1) / np.sqrt(len(batch_means))).tolist(),
+            "idiff": self._idiff(),
         }
+
+    def _idiff(self) -> dict | None:
+        """What idiff (OIIO test-suite thresholds) says of our mean image against the reference's."""
+        ref = self.references.get("mitsuba") or next(iter(self.references.values()), None)
+        if ref is None:
+            return None
+        from harness.idiff import idiff
+        try:
+            return idiff(self.ours.batches.mean(axis=0), ref.summary.mean_image)
+        except Exception as e:  # never let the side report break the run
+            return {"verdict": "ERROR", "error": str(e)}
 
 
 def case_seed(case: ImageCase, seed: int) -> int:
