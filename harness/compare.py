@@ -14,11 +14,15 @@ Hanika, Dachsbacher, JCGT 2020). The false-alarm rate `alpha` is split evenly
 test is the one that gives the scale its share (`harness.family_level`): elements
 without noise on either side cannot reject and do not count, elements shrunk by
 the rounding floor count by how often they can still reject, and the three
-channels count by their correlation (once for a grey image). At the pixel and tile scales each side's variances are moderated towards their 3x3
-neighbourhood's (empirical Bayes, `harness.welch.moderate`): a rare contribution that all K batches
-miss borrows its neighbours' variance, with no blanket inflation, so each scale rejects a correct
-renderer at its stated level (tests/test_calibration_images.py). `detectable_bias` and
-`detectable_tile_bias` are the relative biases found half of the time (noncentral t at the Welch dof).
+channels count by their correlation (once for a grey image). Pixel variances
+are moderated towards their 3x3 neighbourhood's (empirical Bayes,
+`harness.welch.moderate`), never below their own; tile and image means keep
+their own. At every scale, a variance far below what the better-sampled side
+predicts for its sample count (all K batches missed a rare contribution) takes
+that prediction (`harness.welch.sample_floor`). Each scale then rejects a correct
+renderer at its stated level (tests/test_calibration_images.py). `detectable_bias`
+and `detectable_tile_bias` are the relative biases found half of the time
+(noncentral t at the Welch dof).
 A render can be reduced to its `Summary` first (what references store).
 
 Before any statistics, both sides are checked for NaN, +Inf and -Inf, and for
