@@ -137,16 +137,17 @@ def main(argv: list[str]) -> None:
     rate, runs, bias = tile_detection_rate((draw() for _ in range(200)), draw)
     print(f"synthetic detectable_tile_bias (median {bias:.2e}) found {rate:.3f} of {runs}")
     paths = [Path(a) for a in argv] if argv else sorted(NULLS.glob("nulls-*.npz"))
-    everything: list[tuple[np.ndarray, np.ndarray, Samples]] = []
+    totals: dict[float, list[Rates]] = {0.3: [], 0.05: [], 0.01: []}
     for path in paths:
         cases = sorted({key.rsplit(":", 2)[0] for key in np.load(path).files})
         for case in cases:
             mine = render_pairs(path, case)
             integrator = case.split(":")[1]
             samples = (OUR_SPP[integrator], OUR_SPP[integrator])  # as tests/null_renders.py makes them
-            everything += [(a, b, samples) for a, b in mine]
-            for alpha in (0.3, 0.05, 0.01):
-                print(case, null_rates(mine, alpha, samples), flush=True)
+            for alpha in totals:
+                rates = null_rates(mine, alpha, samples)
+                totals[alpha].append(rates)
+                print(case, rates, flush=True)
             shifted = iter(mine[1:] + mine[:1])
             rate, runs, bias = detection_rate(mine, lambda: next(shifted), samples)
             print(f"  {case} detectable_bias (median {bias:.2e}) found {rate:.3f} of {runs}")
@@ -154,11 +155,10 @@ def main(argv: list[str]) -> None:
             rate, runs, bias = tile_detection_rate(mine, lambda: next(shifted), samples=samples)
             print(f"  {case} detectable_tile_bias (median {bias:.2e}) found {rate:.3f} of {runs}", flush=True)
     if len(paths) > 1:
-        for alpha in (0.3, 0.05, 0.01):
-            runs = [null_rates([(a, b)], alpha, samples) for a, b, samples in everything]
-            print("all renders", Rates(alpha, len(runs), {s: sum(r.per_scale[s] for r in runs) for s in SCALES},
-                                       sum(r.whole for r in runs)))
-
+        for alpha, parts in totals.items():
+            print("all renders", Rates(alpha, sum(r.runs for r in parts),
+                                       {s: sum(r.per_scale[s] for r in parts) for s in SCALES},
+                                       sum(r.whole for r in parts)))
 
 if __name__ == "__main__":
     main(sys.argv[1:])
