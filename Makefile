@@ -88,7 +88,7 @@ $(VENV)/.installed: pyproject.toml | deps
 	[ -x $(PY) ] || python3 -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e .
-	echo "$(abspath $(BUILD))/python" > "$$($(PY) -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/mcrender-build.pth"
+	echo "$(abspath $(BUILD))/python" > "$$($(PY) -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/mcval_renderer-build.pth"
 	touch $@
 
 clean:

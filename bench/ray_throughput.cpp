@@ -20,7 +20,7 @@
 #include "scene.h"
 #include "warp.h"
 
-using namespace mcr;
+using namespace mcval;
 
 namespace {
 

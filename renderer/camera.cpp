@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace mcr {
+namespace mcval {
 
 namespace {
 constexpr float kDegToRad = 3.14159265358979323846f / 180.f;
@@ -38,4 +38,4 @@ Ray Camera::generateRay(float x, float y) const {
     return ray;
 }
 
-}  // namespace mcr
+}  // namespace mcval

@@ -4,7 +4,7 @@
 #include "ray.h"
 #include "scene.h"
 
-namespace mcr {
+namespace mcval {
 
 class Camera {
 public:
@@ -23,4 +23,4 @@ private:
     float m_fovX, m_tanHalfX, m_aspect, m_width, m_height, m_near, m_far;
 };
 
-}  // namespace mcr
+}  // namespace mcval

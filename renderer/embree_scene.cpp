@@ -7,7 +7,7 @@
 
 #include "error.h"
 
-namespace mcr {
+namespace mcval {
 
 namespace {
 // Embree calls this from C code, where an exception must not pass: keep the message, throw later.
@@ -140,4 +140,4 @@ bool EmbreeScene::occluded(const Ray &ray) const {
     return r.tfar < 0.f;  // Embree sets tfar to -inf on a hit
 }
 
-}  // namespace mcr
+}  // namespace mcval

@@ -8,7 +8,7 @@
 #include "ray.h"
 #include "scene.h"
 
-namespace mcr {
+namespace mcval {
 
 class EmbreeScene {
 public:
@@ -37,4 +37,4 @@ private:
     RTCScene m_scene = nullptr;
 };
 
-}  // namespace mcr
+}  // namespace mcval

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace mcr {
+namespace mcval {
 
 /// A user error in a scene file or on the command line; the message names file, line and what was expected.
 class SceneError : public std::runtime_error {
@@ -15,7 +15,7 @@ public:
         : std::runtime_error(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + message) {}
 };
 
-}  // namespace mcr
+}  // namespace mcval
 
 /// Internal invariant; compiled out in release builds.
 #define MCR_ASSERT(cond) assert(cond)

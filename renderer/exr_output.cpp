@@ -16,7 +16,7 @@
 
 #include "error.h"
 
-namespace mcr {
+namespace mcval {
 
 namespace {
 
@@ -100,4 +100,4 @@ void requireWritableOutput(const std::string &path) {
     if (!fs::is_directory(parent, ec)) throw SceneError(path, 0, "the output's folder does not exist");
 }
 
-}  // namespace mcr
+}  // namespace mcval

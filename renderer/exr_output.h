@@ -5,7 +5,7 @@
 
 #include "render.h"
 
-namespace mcr {
+namespace mcval {
 
 /// Timings measured outside render() (scene loading), to go into the header beside the rest.
 struct OutputInfo {
@@ -24,4 +24,4 @@ void writeExr(const std::string &path, const RenderOutput &output, const OutputI
 /// output never replaces a folder, FIFO or device.
 void requireWritableOutput(const std::string &path);
 
-}  // namespace mcr
+}  // namespace mcval

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace mcr {
+namespace mcval {
 
 ImageBlock::ImageBlock(int x0, int y0, int width, int height, const FilterSpec &filter)
     : m_filter(filter), m_radius(filter.radius()) {
@@ -79,4 +79,4 @@ void Film::develop(std::vector<float> &mean, std::vector<float> &variance) const
     }
 }
 
-}  // namespace mcr
+}  // namespace mcval

@@ -5,7 +5,7 @@
 
 #include "scene.h"
 
-namespace mcr {
+namespace mcval {
 
 /// Per-pixel sums (in double) for the pixels a tile's samples can reach: the tile plus a
 /// border as wide as the filter. Each tile has its own block, so threads never share one.
@@ -48,4 +48,4 @@ private:
     std::vector<double> m_data;
 };
 
-}  // namespace mcr
+}  // namespace mcval

@@ -2,7 +2,7 @@
 
 #include "scene.h"
 
-namespace mcr {
+namespace mcval {
 
 float FilterSpec::eval(float x) const {
     if (type == Type::Box) return std::abs(x) <= 0.5f ? 1.f : 0.f;
@@ -12,4 +12,4 @@ float FilterSpec::eval(float x) const {
     return std::max(0.f, std::exp(alpha * x * x) - std::exp(alpha * r * r));
 }
 
-}  // namespace mcr
+}  // namespace mcval

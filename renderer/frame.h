@@ -5,7 +5,7 @@
 
 #include "vector.h"
 
-namespace mcr {
+namespace mcval {
 
 /// Tangent frame with n as its z axis (Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 2017).
 struct Frame {
@@ -22,4 +22,4 @@ struct Frame {
     Vec3f toWorld(const Vec3f &v) const { return s * v.x + t * v.y + n * v.z; }
 };
 
-}  // namespace mcr
+}  // namespace mcval

@@ -15,7 +15,7 @@
 #include "scene.h"
 #include "scene_limits.h"
 
-using namespace mcr;
+using namespace mcval;
 
 namespace {
 

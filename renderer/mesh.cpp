@@ -14,7 +14,7 @@
 #include "obj_reader.h"
 #include "ply_reader.h"
 
-namespace mcr {
+namespace mcval {
 
 namespace {
 
@@ -167,4 +167,4 @@ void computeVertexNormals(Mesh &mesh) {
     }
 }
 
-}  // namespace mcr
+}  // namespace mcval

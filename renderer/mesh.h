@@ -6,7 +6,7 @@
 #include "scene.h"
 #include "transform.h"
 
-namespace mcr {
+namespace mcval {
 
 /// Mitsuba's `rectangle`: [-1,1]^2 in the z = 0 plane, front side +z, flat.
 Mesh makeRectangle(const Transform &toWorld);
@@ -22,4 +22,4 @@ Mesh loadMeshFile(const std::string &path, const Transform &toWorld, bool faceNo
 /// (Thuermer and Wuethrich 1998).
 void computeVertexNormals(Mesh &mesh);
 
-}  // namespace mcr
+}  // namespace mcval

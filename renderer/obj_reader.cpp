@@ -10,7 +10,7 @@
 
 #include "error.h"
 
-namespace mcr {
+namespace mcval {
 
 namespace {
 
@@ -135,4 +135,4 @@ Mesh readObj(const std::string &path, std::string_view bytes) {
     return mesh;
 }
 
-}  // namespace mcr
+}  // namespace mcval

@@ -6,11 +6,11 @@
 
 #include "scene.h"
 
-namespace mcr {
+namespace mcval {
 
 /// The triangles of an OBJ file: one vertex per distinct (position, texcoord, normal) index
 /// tuple in order of first use, polygons split into fans (0, k-1, k), normals only if every
 /// corner has one. `path` only names the file in errors; mtllib lines are ignored. Throws SceneError.
 Mesh readObj(const std::string &path, std::string_view bytes);
 
-}  // namespace mcr
+}  // namespace mcval

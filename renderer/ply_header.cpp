@@ -5,7 +5,7 @@
 
 #include "error.h"
 
-namespace mcr::ply {
+namespace mcval::ply {
 
 namespace {
 
@@ -115,4 +115,4 @@ std::vector<std::string_view> splitWords(std::string_view line) {
     }
 }
 
-}  // namespace mcr::ply
+}  // namespace mcval::ply

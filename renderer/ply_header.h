@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-namespace mcr::ply {
+namespace mcval::ply {
 
 /// A scalar type of the header: byte size, integer or floating point, signedness.
 struct ScalarType {
@@ -54,4 +54,4 @@ std::vector<std::string_view> splitWords(std::string_view line);
 /// Largest number of vertices, faces or triangles of one file.
 constexpr uint64_t kMaxCount = uint64_t(1) << 28;
 
-}  // namespace mcr::ply
+}  // namespace mcval::ply

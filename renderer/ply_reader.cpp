@@ -9,7 +9,7 @@
 #include "error.h"
 #include "ply_header.h"
 
-namespace mcr {
+namespace mcval {
 
 namespace {
 
@@ -247,4 +247,4 @@ Mesh readPly(const std::string &path, std::string_view bytes) {
     return mesh;  // bytes after the last record are tolerated, as by most readers
 }
 
-}  // namespace mcr
+}  // namespace mcval

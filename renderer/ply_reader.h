@@ -7,11 +7,11 @@
 
 #include "scene.h"
 
-namespace mcr {
+namespace mcval {
 
 /// The triangles of a PLY file (ascii, binary little or big endian) in the file's own vertex
 /// order, with the file's normals if it has nx, ny, nz; polygons are split into fans
 /// (0, k-1, k). `path` only names the file in errors. Throws SceneError.
 Mesh readPly(const std::string &path, std::string_view bytes);
 
-}  // namespace mcr
+}  // namespace mcval

@@ -4,7 +4,7 @@
 #include <chrono>
 #include <cstdio>
 
-namespace mcr {
+namespace mcval {
 
 class ProgressBar {
 public:
@@ -32,4 +32,4 @@ private:
     bool m_drawn = false;
 };
 
-}  // namespace mcr
+}  // namespace mcval

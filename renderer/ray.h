@@ -8,7 +8,7 @@
 
 #include "vector.h"
 
-namespace mcr {
+namespace mcval {
 
 /// A ray o + t d for t in [tnear, tfar]; d need not be unit length.
 struct Ray {
@@ -56,4 +56,4 @@ inline Vec3f offsetRayOrigin(const Vec3f &p, const Vec3f &n) {
     return {shift(p.x, n.x), shift(p.y, n.y), shift(p.z, n.z)};
 }
 
-}  // namespace mcr
+}  // namespace mcval

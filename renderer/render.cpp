@@ -17,7 +17,7 @@
 #include "integrators/integrator.h"
 #include "scene_limits.h"
 
-namespace mcr {
+namespace mcval {
 
 namespace {
 
@@ -175,4 +175,4 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
     return out;
 }
 
-}  // namespace mcr
+}  // namespace mcval

@@ -8,7 +8,7 @@
 
 #include "scene.h"
 
-namespace mcr {
+namespace mcval {
 
 struct RenderOptions {
     int spp = 0;                 ///< samples per pixel per batch; 0: the scene's sample_count
@@ -44,4 +44,4 @@ struct RenderOutput {
 /// Renders `scene`; the result depends only on the scene and the options, never on the thread count.
 RenderOutput render(const SceneDescription &scene, const RenderOptions &options);
 
-}  // namespace mcr
+}  // namespace mcval

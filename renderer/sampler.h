@@ -11,7 +11,7 @@
 
 #include "vector.h"
 
-namespace mcr {
+namespace mcval {
 
 namespace detail {
 
@@ -87,4 +87,4 @@ private:
     uint32_t m_dimension = 0;
 };
 
-}  // namespace mcr
+}  // namespace mcval

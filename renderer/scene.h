@@ -10,7 +10,7 @@
 #include "transform.h"
 #include "vector.h"
 
-namespace mcr {
+namespace mcval {
 
 using Color = Vec3f;  ///< linear RGB
 
@@ -79,4 +79,4 @@ struct SceneDescription {
 SceneDescription loadScene(const std::string &path, const std::map<std::string, std::string> &params = {},
                            const std::string &integrator = "");
 
-}  // namespace mcr
+}  // namespace mcval

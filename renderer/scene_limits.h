@@ -1,7 +1,7 @@
 // The ranges every scene number must lie in: finite, meaningful, and with bounded work.
 #pragma once
 
-namespace mcr {
+namespace mcval {
 
 /// Largest |coordinate| of a world-space position or light: far inside Embree's limit (1.8e18),
 /// with room for the differences and squared distances the integrators take.
@@ -26,4 +26,4 @@ constexpr float kMinFov = 1e-3f, kMaxFov = 179.9f;
 /// Largest scene file read, in bytes.
 constexpr long long kMaxSceneFileBytes = 64ll << 20;
 
-}  // namespace mcr
+}  // namespace mcval

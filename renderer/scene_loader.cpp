@@ -11,7 +11,7 @@
 #include "scene.h"
 #include "xml_props.h"
 
-namespace mcr {
+namespace mcval {
 
 namespace {
 
@@ -318,4 +318,4 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     return scene;
 }
 
-}  // namespace mcr
+}  // namespace mcval

@@ -4,7 +4,7 @@
 
 #include <stdexcept>
 
-namespace mcr {
+namespace mcval {
 
 namespace {
 
@@ -119,4 +119,4 @@ float Transform::determinant3() const {
            m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
 }
 
-}  // namespace mcr
+}  // namespace mcval

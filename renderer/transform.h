@@ -3,7 +3,7 @@
 
 #include "vector.h"
 
-namespace mcr {
+namespace mcval {
 
 /// A 4x4 row-major matrix acting on column vectors.
 class Transform {
@@ -33,4 +33,4 @@ public:
     float inv[4][4];
 };
 
-}  // namespace mcr
+}  // namespace mcval

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-namespace mcr {
+namespace mcval {
 
 /// A 2D point or vector of floats.
 struct Vec2f {
@@ -46,4 +46,4 @@ inline float norm(const Vec3f &v) { return std::sqrt(dot(v, v)); }
 /// Unit vector along v (v must not be zero).
 inline Vec3f normalize(const Vec3f &v) { return v / norm(v); }
 
-}  // namespace mcr
+}  // namespace mcval

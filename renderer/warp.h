@@ -12,7 +12,7 @@
 
 #include "vector.h"
 
-namespace mcr {
+namespace mcval {
 
 constexpr float kPi = 3.14159265358979323846f;
 constexpr float kInvPi = 0.31830988618379067154f;
@@ -122,4 +122,4 @@ inline float squareToBeckmannPdf(const Vec3f &m, float alpha) {
     return std::exp(-exponent) / (kPi * alpha * alpha * cos3);
 }
 
-}  // namespace mcr
+}  // namespace mcval

@@ -8,7 +8,7 @@
 
 #include "error.h"
 
-namespace mcr {
+namespace mcval {
 
 namespace {
 const std::set<std::string> kPropertyTags = {"float", "integer", "boolean", "string", "rgb",
@@ -244,4 +244,4 @@ void XmlProps::finish(const std::string &expected) const {
                                  m_element.attribute("type").value() + "\">: expected " + expected);
 }
 
-}  // namespace mcr
+}  // namespace mcval

@@ -11,7 +11,7 @@
 #include "transform.h"
 #include "vector.h"
 
-namespace mcr {
+namespace mcval {
 
 /// The parse state shared by all elements of one file: its name, text (for line numbers) and $parameters.
 struct XmlContext {
@@ -76,4 +76,4 @@ private:
     std::vector<pugi::xml_node> m_objects;
 };
 
-}  // namespace mcr
+}  // namespace mcval

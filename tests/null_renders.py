@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 from rich.progress import Progress
 
-import mcrender
+import mcval_renderer
 from harness.image_suite import OUR_SPP
 from harness.references import REFERENCE_BATCHES
 from harness.stats import IMAGE_BATCHES
@@ -33,7 +33,7 @@ def render_pair(scene: Path, integrator: str, pair: int, res: int,
     seed = 100_000 + 2 * pair
 
     def side(spp: int, batches: int, s: int) -> np.ndarray:
-        out = mcrender.render(str(scene), spp=spp, seed=s, batches=batches, integrator=integrator, params=params)
+        out = mcval_renderer.render(str(scene), spp=spp, seed=s, batches=batches, integrator=integrator, params=params)
         return np.asarray(out["batches"], np.float32)
 
     return (side(OUR_SPP[integrator], IMAGE_BATCHES, seed),

@@ -89,11 +89,11 @@ def test_the_files_path_integrator_is_an_error_without_override(tmp_path):
 
 
 def test_python_api_override(tmp_path):
-    import mcrender
-    out = mcrender.render(str(CORNELL), spp=1, integrator="ao")
+    import mcval_renderer
+    out = mcval_renderer.render(str(CORNELL), spp=1, integrator="ao")
     assert out["mean"].shape == (256, 256, 3) and out["stats"]["integrator"] == "ao"
     with pytest.raises(ValueError, match="no point light"):
-        mcrender.render(str(CORNELL), spp=1, integrator="simple")
+        mcval_renderer.render(str(CORNELL), spp=1, integrator="simple")
 
 
 @pytest.mark.parametrize("integrator", ["normals", "simple", "ao"])

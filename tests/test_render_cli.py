@@ -66,14 +66,14 @@ def test_help_answers():
 
 
 def test_python_module_renders_numpy_arrays():
-    import mcrender
-    out = mcrender.render(str(SCENES[0]), spp=2, batches=2, integrator="ao", params={"res": "16"})
+    import mcval_renderer
+    out = mcval_renderer.render(str(SCENES[0]), spp=2, batches=2, integrator="ao", params={"res": "16"})
     assert out["mean"].shape == (16, 16, 3)
     assert out["batches"].shape == (2, 16, 16, 3)
     assert np.allclose(out["mean"], out["batches"].mean(axis=0), rtol=1e-5, atol=1e-7)
     assert out["stats"]["shadow_rays"] > 0
     with pytest.raises(ValueError, match="expected normals, simple or ao"):
-        mcrender.render(str(SCENES[0]), integrator="path")
+        mcval_renderer.render(str(SCENES[0]), integrator="path")
 
 
 @pytest.mark.parametrize("kind", ["fifo", "folder", "device", "missing_folder"])

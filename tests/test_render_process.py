@@ -17,9 +17,9 @@ PARAMS = {"res": "24"}
 
 
 def test_child_process_render_is_bit_identical_to_the_module():
-    import mcrender
+    import mcval_renderer
     mine = OurEngine().render(SCENE, "simple", 4, 3, 4242, PARAMS)
-    module = mcrender.render(SCENE, spp=4, seed=4242, batches=3, integrator="simple", params=PARAMS)
+    module = mcval_renderer.render(SCENE, spp=4, seed=4242, batches=3, integrator="simple", params=PARAMS)
     assert mine.batches.dtype == np.float32 and mine.batches.shape == (3, 24, 24, 3)
     assert np.array_equal(mine.batches, module["batches"])
     assert set(mine.seconds) == {"load", "build", "render", "total"}
@@ -27,9 +27,9 @@ def test_child_process_render_is_bit_identical_to_the_module():
 
 
 def test_one_batch_comes_from_the_mean_layer():
-    import mcrender
+    import mcval_renderer
     mine = OurEngine().render(SCENE, "ao", 2, 1, 7, PARAMS)
-    module = mcrender.render(SCENE, spp=2, seed=7, batches=1, integrator="ao", params=PARAMS)
+    module = mcval_renderer.render(SCENE, spp=2, seed=7, batches=1, integrator="ao", params=PARAMS)
     assert np.array_equal(mine.batches, module["batches"])
 
 

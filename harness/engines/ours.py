@@ -1,5 +1,5 @@
 """Our renderer: images through the `render` CLI in a child process (see render_process), warps through
-its Python module `mcrender` (both built by CMake, see the Makefile)."""
+its Python module `mcval_renderer` (both built by CMake, see the Makefile)."""
 from __future__ import annotations
 
 import time
@@ -13,11 +13,11 @@ from harness.engines.render_process import render_binary, run_render
 
 def _load_module():
     try:
-        import mcrender
+        import mcval_renderer
     except ImportError as e:
-        raise RuntimeError("the renderer's Python module `mcrender` is not built or not on the path: "
+        raise RuntimeError("the renderer's Python module `mcval_renderer` is not built or not on the path: "
                            "run `make build` (it builds it into build/python)") from e
-    return mcrender
+    return mcval_renderer
 
 
 class OurEngine(Engine):
@@ -37,7 +37,7 @@ class OurEngine(Engine):
 
     def version(self) -> str:
         return f"this repository's renderer (images: {self.binary or render_binary()} as a child process; " \
-               "warps: the mcrender module)"
+               "warps: the mcval_renderer module)"
 
     def warp(self, name: str, alpha: float | None = None) -> WarpFunctions | None:
         sample_fn = getattr(self._m, name, None)

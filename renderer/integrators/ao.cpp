@@ -3,7 +3,7 @@
 #include "../frame.h"
 #include "../warp.h"
 
-namespace mcr {
+namespace mcval {
 
 AoIntegrator::AoIntegrator(const SceneDescription &scene, const EmbreeScene &embree, int samples)
     : m_embree(embree), m_environment(scene.environment.value_or(Color(1.f, 1.f, 1.f))), m_samples(samples) {}
@@ -24,4 +24,4 @@ Color AoIntegrator::Li(const Ray &ray, const Hit *camHit, Sampler &sampler, RayC
     return rho * m_environment * (static_cast<float>(visible) / static_cast<float>(m_samples));
 }
 
-}  // namespace mcr
+}  // namespace mcval

@@ -2,7 +2,7 @@
 
 #include "integrator.h"
 
-namespace mcr {
+namespace mcval {
 
 /// Ambient occlusion under the constant emitter (radiance 1 without one), cosine-weighted:
 /// L = rho * L_env * mean(V(w_i)) over `samples` occlusion rays per camera sample.
@@ -17,4 +17,4 @@ private:
     int m_samples;
 };
 
-}  // namespace mcr
+}  // namespace mcval

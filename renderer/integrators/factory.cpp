@@ -3,7 +3,7 @@
 #include "normals.h"
 #include "simple.h"
 
-namespace mcr {
+namespace mcval {
 
 std::unique_ptr<Integrator> createIntegrator(const IntegratorSpec &spec, const SceneDescription &scene,
                                              const EmbreeScene &embree) {
@@ -15,4 +15,4 @@ std::unique_ptr<Integrator> createIntegrator(const IntegratorSpec &spec, const S
     throw SceneError(scene.file, 0, "unknown integrator \"" + spec.type + "\": expected normals, simple or ao");
 }
 
-}  // namespace mcr
+}  // namespace mcval

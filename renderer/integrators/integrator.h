@@ -9,7 +9,7 @@
 #include "../sampler.h"
 #include "../scene.h"
 
-namespace mcr {
+namespace mcval {
 
 /// Rays traced by one thread, by kind.
 struct RayCounts {
@@ -44,4 +44,4 @@ inline Ray spawnRay(const Hit &hit, const Vec3f &d, float tfar) {
     return r;
 }
 
-}  // namespace mcr
+}  // namespace mcval

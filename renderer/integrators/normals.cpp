@@ -2,10 +2,10 @@
 // per ray, so it checks camera and geometry before any noise enters.
 #include "normals.h"
 
-namespace mcr {
+namespace mcval {
 
 Color NormalsIntegrator::Li(const Ray &, const Hit *hit, Sampler &, RayCounts &) const {
     return hit ? hit->ns : Color(0.f, 0.f, 0.f);
 }
 
-}  // namespace mcr
+}  // namespace mcval

@@ -2,7 +2,7 @@
 
 #include "integrator.h"
 
-namespace mcr {
+namespace mcval {
 
 /// Shading normal at the first hit; 0 where the ray escapes.
 class NormalsIntegrator final : public Integrator {
@@ -11,4 +11,4 @@ public:
     Color Li(const Ray &ray, const Hit *hit, Sampler &sampler, RayCounts &counts) const override;
 };
 
-}  // namespace mcr
+}  // namespace mcval

@@ -4,7 +4,7 @@
 
 #include "../warp.h"
 
-namespace mcr {
+namespace mcval {
 
 Color SimpleIntegrator::Li(const Ray &ray, const Hit *camHit, Sampler &, RayCounts &counts) const {
     // One-sided diffuse, as Mitsuba's: black seen from behind the shading normal.
@@ -29,4 +29,4 @@ Color SimpleIntegrator::Li(const Ray &ray, const Hit *camHit, Sampler &, RayCoun
     return rho * sum * kInvPi;
 }
 
-}  // namespace mcr
+}  // namespace mcval

@@ -2,7 +2,7 @@
 
 #include "integrator.h"
 
-namespace mcr {
+namespace mcval {
 
 /// Direct light from point emitters on diffuse surfaces, with shadow rays:
 /// L = (rho / pi) * I * max(0, cos) / r^2 * V, summed over the point lights.
@@ -16,4 +16,4 @@ private:
     const EmbreeScene &m_embree;
 };
 
-}  // namespace mcr
+}  // namespace mcval

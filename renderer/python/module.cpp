@@ -10,7 +10,7 @@
 #include "../warp.h"
 
 namespace nb = nanobind;
-using namespace mcr;
+using namespace mcval;
 
 namespace {
 
@@ -65,7 +65,7 @@ void bindWarp(nb::module_ &m, const char *name, const char *pdfName, Sample samp
 
 void bindRender(nb::module_ &m);  // render_binding.cpp
 
-NB_MODULE(mcrender, m) {
+NB_MODULE(mcval_renderer, m) {
     m.doc() = "The mcval renderer: render(scene, ...), and the sample warps over numpy arrays of shape "
               "(N, 2) or (N, 3), float32.";
     bindRender(m);

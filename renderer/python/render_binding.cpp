@@ -14,7 +14,7 @@
 #include "../scene.h"
 
 namespace nb = nanobind;
-using namespace mcr;
+using namespace mcval;
 
 namespace {
 

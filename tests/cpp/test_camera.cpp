@@ -5,7 +5,7 @@
 
 #include "camera.h"
 
-using namespace mcr;
+using namespace mcval;
 
 namespace {
 CameraSpec lookingDownMinusZ(float fov, const std::string &axis) {

@@ -24,7 +24,7 @@
 #include "obj_reader.h"
 #include "ply_reader.h"
 
-using namespace mcr;
+using namespace mcval;
 namespace fs = std::filesystem;
 
 namespace {

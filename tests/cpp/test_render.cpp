@@ -8,7 +8,7 @@
 #include "render.h"
 #include "scene.h"
 
-using namespace mcr;
+using namespace mcval;
 namespace fs = std::filesystem;
 
 namespace {

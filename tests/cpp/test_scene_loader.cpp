@@ -8,7 +8,7 @@
 #include "error.h"
 #include "scene.h"
 
-using namespace mcr;
+using namespace mcval;
 namespace fs = std::filesystem;
 
 namespace {

@@ -9,7 +9,7 @@
 
 #include "warp.h"
 
-using namespace mcr;
+using namespace mcval;
 
 namespace {
 
