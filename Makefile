@@ -58,8 +58,9 @@ bench: build
 
 ## mutate: mutation testing (mutmut, not in CI) of the statistics, checks and reports against the fast tests;
 ## the kill rate per module and the survivors in results/mutation/ (MUTATE= narrows the modules)
-MUTATE ?= harness.welch* harness.chi2* harness.stats* harness.compare* harness.family_level* harness.warp_checks* \
-	harness.regression* harness.metrics* harness.bench*
+MUTATE ?= harness.statistics.welch* harness.statistics.chi2* harness.statistics.constants* \
+	harness.statistics.family_level* harness.images.compare* harness.images.regression* harness.images.metrics* \
+	harness.warps.checks* harness.bench.ladder*
 mutate: $(VENV)/.installed
 	@$(VENV)/bin/mutmut --version >/dev/null 2>&1 || $(PY) -m pip install --quiet "mutmut>=3.8,<4"
 	@mkdir -p results/mutation

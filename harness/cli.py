@@ -13,7 +13,7 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, T
 
 from harness.cli_args import build_parser
 from harness.results import latest_run, new_run_dir, point_link, write_atomic, write_json
-from harness.stats import WARP_SAMPLES
+from harness.statistics.constants import WARP_SAMPLES
 
 # Logs (CI, pipes) get a wide table rather than a truncated one.
 console = Console(width=None if sys.stdout.isatty() else 120)
@@ -30,8 +30,8 @@ def _run_warps(args, specs, run_dir: Path) -> tuple[bool, dict]:
 
     from harness.engines.ours import OurEngine
     from harness.report.warp_table import warp_table
-    from harness.warp_outputs import warp_payload, write_warp_outputs
-    from harness.warp_suite import run_matrix
+    from harness.warps.outputs import warp_payload, write_warp_outputs
+    from harness.warps.suite import run_matrix
 
     ours = OurEngine()
     reference = None
@@ -61,8 +61,8 @@ def _run_warps(args, specs, run_dir: Path) -> tuple[bool, dict]:
 def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path | None) -> tuple[bool, dict]:
     from harness.engines.mitsuba import MitsubaEngine
     from harness.engines.ours import OurEngine
-    from harness.image_outputs import write_image_outputs
-    from harness.image_run import run_images
+    from harness.images.outputs import write_image_outputs
+    from harness.images.run import run_images
     from harness.report.image_html import reproduce_command
     from harness.report.image_table import image_table
 
@@ -97,8 +97,8 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
 
 def _references(args) -> int:
     from harness.engines.mitsuba import MitsubaEngine
-    from harness.image_suite import select_cases
-    from harness.references import render_reference, write_reference
+    from harness.images.suite import select_cases
+    from harness.images.references import render_reference, write_reference
 
     cases = select_cases(args.scenes)
     mitsuba = MitsubaEngine(args.variant)
@@ -113,10 +113,10 @@ def _references(args) -> int:
 
 
 def _bench(args, run_dir: Path) -> tuple[bool, dict]:
-    from harness.bench_run import ray_rates, run_bench, seed_comparison
+    from harness.bench.run import ray_rates, run_bench, seed_comparison
     from harness.engines.mitsuba import MitsubaEngine
     from harness.engines.ours import OurEngine
-    from harness.image_suite import select_cases
+    from harness.images.suite import select_cases
     from harness.report.bench_html import bench_html
 
     cases = [c for c in select_cases(args.scenes) if args.scenes or c.integrator != "normals"]
@@ -159,8 +159,8 @@ def _calibrate(args, run_dir: Path) -> bool:
     from harness.engines.ours import OurEngine
     from harness.report.calibration_html import warp_calibration_html
     from harness.report.calibration_table import calibration_table
-    from harness.warp_calibration import calibrate_warps
-    from harness.warp_suite import select
+    from harness.warps.calibration import calibrate_warps
+    from harness.warps.suite import select
 
     specs = select(args.only)
     ours = OurEngine()
@@ -194,8 +194,8 @@ def _unfinished(what: str, out: Path, run_dir: Path | None, previous: str | None
 
 def _run(args, out: Path, started: list[Path]) -> int:
     """The command; its run folder goes into `started` as soon as it exists."""
-    from harness.image_suite import select_cases
-    from harness.warp_suite import select
+    from harness.images.suite import select_cases
+    from harness.warps.suite import select
     if args.command == "references":
         return _references(args)
     if args.command == "bench":

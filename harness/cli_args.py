@@ -4,7 +4,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from harness.stats import WARP_SAMPLES
+from harness.statistics.constants import WARP_SAMPLES
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -21,9 +21,9 @@ from pathlib import Path
 import numpy as np
 from scipy import stats as sps
 
-from harness.compare import SCALES, compare_summaries, summarize
-from harness.image_suite import OUR_SPP
-from harness.stats import TILE_SIZE
+from harness.images.compare import SCALES, compare_summaries, summarize
+from harness.images.suite import OUR_SPP
+from harness.statistics.constants import TILE_SIZE
 
 NULLS = Path(__file__).resolve().parent.parent / "results" / "calibration"
 Pair = tuple[np.ndarray, np.ndarray]

@@ -1,7 +1,7 @@
 """Summarise a mutmut run (mutants/**/*.meta) into results/mutation/: the kill rate per module and the
 surviving mutants, as survivors.json and survivors.txt (with each survivor's diff).
 
-    python tests/mutation_report.py [--out results/mutation] [--no-diffs] [module patterns, e.g. 'harness.welch*']
+    python tests/mutation_report.py [--out results/mutation] [--no-diffs] [module patterns, e.g. 'harness.statistics.welch*']
 
 Mutants listed in tests/mutation_equivalent.txt (name, then a reason) are equivalent to the original
 code: reported apart and not counted against the kill rate.

@@ -19,9 +19,9 @@ import numpy as np
 from rich.progress import Progress
 
 import mcval_renderer
-from harness.image_suite import OUR_SPP
-from harness.references import REFERENCE_BATCHES
-from harness.stats import IMAGE_BATCHES
+from harness.images.suite import OUR_SPP
+from harness.images.references import REFERENCE_BATCHES
+from harness.statistics.constants import IMAGE_BATCHES
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "results" / "calibration"

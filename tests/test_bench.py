@@ -4,8 +4,8 @@ import json
 import numpy as np
 import pytest
 
-from harness.bench import Curve, Step, relmse
-from harness.compare import summarize
+from harness.bench.ladder import Curve, Step, relmse
+from harness.images.compare import summarize
 
 
 def test_relmse_removes_the_reference_noise():
@@ -13,7 +13,7 @@ def test_relmse_removes_the_reference_noise():
     mu, sx, sr, k = 0.5, 0.05, 0.05, 16
     reference = summarize(mu + rng.normal(0, sr * np.sqrt(k), (k, 64, 64, 3)))
     image = mu + rng.normal(0, sx, (64, 64, 3))
-    from harness.references import Reference
+    from harness.images.references import Reference
     ref = Reference(reference, 0, {}, "synthetic")
     expected = sx**2 / (mu**2 + 1e-2)
     assert relmse(image, ref) == pytest.approx(expected, rel=0.15)

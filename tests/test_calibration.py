@@ -2,10 +2,10 @@
 import numpy as np
 import pytest
 
-from harness.calibration_stats import clopper_pearson, rates, uniformity_p
+from harness.statistics.calibration_rates import clopper_pearson, rates, uniformity_p
 from harness.engines.base import Engine, WarpFunctions
-from harness.warp_calibration import calibrate_warps, null_p_values
-from harness.warp_suite import WarpSpec
+from harness.warps.calibration import calibrate_warps, null_p_values
+from harness.warps.suite import WarpSpec
 
 
 def test_clopper_pearson_against_its_closed_forms():

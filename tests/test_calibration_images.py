@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 from scipy import stats as sps
 
-from harness.compare import SCALES
-from harness.stats import sidak_level
+from harness.images.compare import SCALES
+from harness.statistics.constants import sidak_level
 from tests.image_calibration import detection_rate, null_rates, synthetic_pairs, tile_detection_rate
 
 RUNS = 120
@@ -57,7 +57,7 @@ RENDER_RUNS = 60
 
 
 def test_real_null_renders_reject_at_about_the_stated_level(crevice_nulls):
-    from harness.image_suite import OUR_SPP
+    from harness.images.suite import OUR_SPP
 
     samples = (OUR_SPP["ao"], OUR_SPP["ao"])
     rates = null_rates([(a.astype(np.float64), b.astype(np.float64)) for a, b in crevice_nulls], 0.3, samples)
@@ -70,7 +70,7 @@ def test_real_null_renders_reject_at_about_the_stated_level(crevice_nulls):
 def test_detectable_biases_are_found_about_half_of_the_time_on_real_renders(crevice_nulls):
     """Planted (the image, then one random tile, scaled by 1 + b) into the next pair; 60 runs, so the
     bounds are 0.5 widened by its binomial spread."""
-    from harness.image_suite import OUR_SPP
+    from harness.images.suite import OUR_SPP
 
     samples = (OUR_SPP["ao"], OUR_SPP["ao"])
     pairs = [(a.astype(np.float64), b.astype(np.float64)) for a, b in crevice_nulls]

@@ -3,9 +3,9 @@ import numpy as np
 import pytest
 from scipy import stats as sps
 
-from harness.chi2 import goodness_of_fit, homogeneity
-from harness.cubature import integrate_cells
-from harness.stats import sidak_level
+from harness.statistics.chi2 import goodness_of_fit, homogeneity
+from harness.statistics.cubature import integrate_cells
+from harness.statistics.constants import sidak_level
 
 RUNS = 300
 LEVEL = 0.05
@@ -82,7 +82,7 @@ def test_cell_integrals_of_smooth_and_peaked_densities():
 
 
 def test_batch_tests_agree_with_single_ones_and_with_scipy():
-    from harness.chi2 import goodness_of_fit_batch, homogeneity_batch
+    from harness.statistics.chi2 import goodness_of_fit_batch, homogeneity_batch
     rng = np.random.default_rng(11)
     for _ in range(100):
         k = int(rng.integers(2, 40))

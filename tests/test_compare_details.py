@@ -1,5 +1,5 @@
-"""harness.compare's pieces (tile means, summaries, one scale's tests, the detectable bias, the reports)
-and harness.welch's, each against its definition or an independent computation (scipy, a loop)."""
+"""harness.images.compare's pieces (tile means, summaries, one scale's tests, the detectable bias, the reports)
+and harness.statistics.welch's, each against its definition or an independent computation (scipy, a loop)."""
 import json
 
 import numpy as np
@@ -7,10 +7,10 @@ import pytest
 from scipy import stats as sps
 from scipy.optimize import brentq
 
-from harness.compare import (Comparison, ScaleTest, _half_power_bias, _noiseless, _scale_test, compare_batches,
+from harness.images.compare import (Comparison, ScaleTest, _half_power_bias, _noiseless, _scale_test, compare_batches,
                              compare_summaries, summarize, tile_means)
-from harness.stats import ROUNDING_TOLERANCE, SIGNIFICANCE, sidak_level
-from harness.welch import BatchStats, welch_p_values
+from harness.statistics.constants import ROUNDING_TOLERANCE, SIGNIFICANCE, sidak_level
+from harness.statistics.welch import BatchStats, welch_p_values
 
 
 def welch_by_scipy(a: BatchStats, b: BatchStats) -> np.ndarray:
@@ -264,7 +264,7 @@ def test_half_power_bias_of_independent_channels_and_of_elements_without_a_mean(
 
 
 def test_half_power_bias_of_correlated_channels_counts_them_as_the_null_does():
-    from harness.family_level import channel_union
+    from harness.statistics.family_level import channel_union
     mean, se = np.array([1.0, 0.8, 0.9]), np.array([0.05, 0.05, 0.05])
     share = channel_union(1e-3, 3, 0.5) / 3
     got = _half_power_bias(BatchStats(mean, se**2, 8), se, np.full(3, 12.0), 1e-3, 0.5)

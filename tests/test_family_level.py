@@ -1,13 +1,13 @@
-"""The per-test level of a family of Welch tests (harness.family_level) against its definition and
+"""The per-test level of a family of Welch tests (harness.statistics.family_level) against its definition and
 against simulation: noiseless elements do not count, correlated channels count less than three, tests
 shrunk by the rounding floor count by how often they can still reject."""
 import numpy as np
 import pytest
 from scipy import stats as sps
 
-from harness.compare import compare_batches
-from harness.family_level import channel_correlation, channel_union, element_rates, family_level
-from harness.stats import SIGNIFICANCE, sidak_level
+from harness.images.compare import compare_batches
+from harness.statistics.family_level import channel_correlation, channel_union, element_rates, family_level
+from harness.statistics.constants import SIGNIFICANCE, sidak_level
 
 
 def test_independent_tests_get_sidaks_level():

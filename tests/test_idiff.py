@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from harness.idiff import IDIFF_DEFAULT, idiff
+from harness.images.idiff import IDIFF_DEFAULT, idiff
 
 
 def test_figures_match_hand_computation():

@@ -8,9 +8,9 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 
-import harness.references as refs
+import harness.images.references as refs
 from harness.cli import main
-from harness.image_suite import ImageCase, select_cases
+from harness.images.suite import ImageCase, select_cases
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 

@@ -22,48 +22,48 @@ TWINS = "tests/test_stats_twins.py"
 #: name -> (file, original line fragment, mutated fragment, test node ids that must fail).
 MUTATIONS = {
     "welch one-sided p-value": (
-        "welch.py", "p = 2.0 * sps.t.sf(np.abs(t), welch_dof(a, b))", "p = sps.t.sf(np.abs(t), welch_dof(a, b))",
+        "statistics/welch.py", "p = 2.0 * sps.t.sf(np.abs(t), welch_dof(a, b))", "p = sps.t.sf(np.abs(t), welch_dof(a, b))",
         [f"{REF}::test_welch_p_values_match_scipy"]),
     "welch normal instead of t": (
-        "welch.py", "p = 2.0 * sps.t.sf(np.abs(t), welch_dof(a, b))", "p = 2.0 * sps.norm.sf(np.abs(t))",
+        "statistics/welch.py", "p = 2.0 * sps.t.sf(np.abs(t), welch_dof(a, b))", "p = 2.0 * sps.norm.sf(np.abs(t))",
         [f"{REF}::test_welch_p_values_match_scipy", f"{REF}::test_welch_uses_satterthwaite_dof_and_t_tails"]),
     "welch pooled dof": (
-        "welch.py", "dof = np.where(dof_den > 0, (va + vb) ** 2 / dof_den, da + db)",
+        "statistics/welch.py", "dof = np.where(dof_den > 0, (va + vb) ** 2 / dof_den, da + db)",
         "dof = np.where(dof_den > 0, da + db, da + db)",
         [f"{REF}::test_welch_p_values_match_scipy", f"{REF}::test_welch_uses_satterthwaite_dof_and_t_tails"]),
     "no sidak split over the three scales": (
-        "compare.py", "per_scale = sidak_level(alpha, len(SCALES))", "per_scale = alpha",
+        "images/compare.py", "per_scale = sidak_level(alpha, len(SCALES))", "per_scale = alpha",
         [f"{REF}::test_compare_splits_alpha_over_scales_then_pixels_and_channels"]),
     "sidak counts pixels, not channels": (
-        "family_level.py", "share = channel_union(level, channels, rho) / channels", "share = 1.0 / channels",
+        "statistics/family_level.py", "share = channel_union(level, channels, rho) / channels", "share = 1.0 / channels",
         [f"{REF}::test_compare_splits_alpha_over_scales_then_pixels_and_channels",
          "tests/test_family_level.py::test_independent_tests_get_sidaks_level"]),
     "chi-square dof k instead of k - 1": (
-        "chi2.py", "dof = len(exp) - 1", "dof = len(exp)",
+        "statistics/chi2.py", "dof = len(exp) - 1", "dof = len(exp)",
         [f"{REF}::test_goodness_of_fit_matches_scipy", f"{REF}::test_goodness_of_fit_pools_small_cells_by_hand"]),
     "pooling threshold 5 -> 1": (
-        "stats.py", "MIN_EXPECTED = 5.0", "MIN_EXPECTED = 1.0",
+        "statistics/constants.py", "MIN_EXPECTED = 5.0", "MIN_EXPECTED = 1.0",
         [f"{REF}::test_goodness_of_fit_pools_small_cells_by_hand",
          f"{REF}::test_goodness_of_fit_folds_a_too_small_pool_into_the_smallest_bin"]),
     "normalisation tolerance 1e-3 -> 2e-2": (
-        "stats.py", "NORMALISATION_TOLERANCE = 1e-3", "NORMALISATION_TOLERANCE = 2e-2",
+        "statistics/constants.py", "NORMALISATION_TOLERANCE = 1e-3", "NORMALISATION_TOLERANCE = 2e-2",
         [f"{TWINS}::test_normalisation_half_a_percent_off_fails_and_0_05_percent_passes"]),
     "pdf-vs-Mitsuba tolerance 1e-3 -> 0.3": (
-        "stats.py", "PDF_RELATIVE_TOLERANCE = 1e-3", "PDF_RELATIVE_TOLERANCE = 0.3",
+        "statistics/constants.py", "PDF_RELATIVE_TOLERANCE = 1e-3", "PDF_RELATIVE_TOLERANCE = 0.3",
         [f"{TWINS}::test_pdf_one_percent_off_the_reference_fails_and_0_05_percent_passes"]),
     "regression never flags a moved mean": (
-        "regression.py", "if np.any(z > MEAN_SIGMAS) and np.any(m1 != m0):",
+        "images/regression.py", "if np.any(z > MEAN_SIGMAS) and np.any(m1 != m0):",
         "if np.any(z > MEAN_SIGMAS) and np.any(m1 != m1):",
         [f"{TWINS}::test_regression_flags_a_mean_moved_by_five_sigma_and_not_one"]),
     "detectable_bias x2": (
-        "compare.py", "return np.where(live, 0.5 * (lo + hi)[..., 0], np.inf)",
+        "images/compare.py", "return np.where(live, 0.5 * (lo + hi)[..., 0], np.inf)",
         "return np.where(live, (lo + hi)[..., 0], np.inf)",
         [f"{TWINS}::test_detectable_bias_is_its_definition"]),
     "PSNR with 20 log10": (
-        "metrics.py", "float(10 * np.log10(peak**2 / mse))", "float(20 * np.log10(peak**2 / mse))",
+        "images/metrics.py", "float(10 * np.log10(peak**2 / mse))", "float(20 * np.log10(peak**2 / mse))",
         [f"{REF}::test_psnr_is_its_definition"]),
     "efficiency ratio inverted": (
-        "bench_run.py", "return self.curves[ours].efficiency() / self.curves[other].efficiency()",
+        "bench/run.py", "return self.curves[ours].efficiency() / self.curves[other].efficiency()",
         "return self.curves[other].efficiency() / self.curves[ours].efficiency()",
         [f"{REF}::test_efficiency_ratio_has_its_known_answer", f"{TWINS}::test_efficiency_ratio_of_a_twice_slower_twin"]),
 }

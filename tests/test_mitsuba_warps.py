@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from harness.engines.mitsuba import load_mitsuba
-from harness.warp_adapters import masked_to_domain
-from harness.warps import check_warp
+from harness.warps.adapters import masked_to_domain
+from harness.warps.evaluate import check_warp
 
 #: Fewer samples than the matrix: the file runs in seconds.
 SAMPLES = 200_000

@@ -7,8 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from harness.compare import compare_batches, compare_summaries, summarize
-from harness.welch import BatchStats, welch_p_values
+from harness.images.compare import compare_batches, compare_summaries, summarize
+from harness.statistics.welch import BatchStats, welch_p_values
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"
 SPHERE = SCENES / "sphere_plane.xml"

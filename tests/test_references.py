@@ -8,10 +8,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import harness.references as refs
-from harness.image_suite import ImageCase
+import harness.images.references as refs
+from harness.images.suite import ImageCase
 
-REAL = Path(refs.__file__).resolve().parent.parent / "references"
+REAL = Path(refs.__file__).resolve().parents[2] / "references"
 CASE = ImageCase("plane_point", "normals")
 
 

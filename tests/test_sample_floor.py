@@ -1,11 +1,11 @@
-"""harness.welch.sample_floor: a pixel whose few batches all missed a rare contribution borrows the
+"""harness.statistics.welch.sample_floor: a pixel whose few batches all missed a rare contribution borrows the
 variance the better-sampled side predicts for it, and nothing else changes."""
 import numpy as np
 import pytest
 
-from harness.compare import compare_batches
-from harness.stats import MISSED_CONTRIBUTION
-from harness.welch import BatchStats, sample_floor
+from harness.images.compare import compare_batches
+from harness.statistics.constants import MISSED_CONTRIBUTION
+from harness.statistics.welch import BatchStats, sample_floor
 
 
 def stats(var: float, k: int) -> BatchStats:

@@ -10,13 +10,13 @@ from scipy import stats as sps
 from scipy.optimize import brentq
 from scipy.special import polygamma
 
-from harness.bench import Curve, Step
-from harness.bench_run import CaseBench
-from harness.chi2 import goodness_of_fit, goodness_of_fit_batch, homogeneity
-from harness.compare import compare_batches
-from harness.metrics import image_metrics
-from harness.stats import MIN_EXPECTED, ROUNDING_TOLERANCE, SIGNIFICANCE, sidak_level
-from harness.welch import BatchStats, critical_t, moderate, prior_dof, welch_dof, welch_p_values
+from harness.bench.ladder import Curve, Step
+from harness.bench.run import CaseBench
+from harness.statistics.chi2 import goodness_of_fit, goodness_of_fit_batch, homogeneity
+from harness.images.compare import compare_batches
+from harness.images.metrics import image_metrics
+from harness.statistics.constants import MIN_EXPECTED, ROUNDING_TOLERANCE, SIGNIFICANCE, sidak_level
+from harness.statistics.welch import BatchStats, critical_t, moderate, prior_dof, welch_dof, welch_p_values
 
 
 def definition_sidak(alpha, n):
@@ -413,7 +413,7 @@ def _entry(scene="cornell", passed=True, mean=(0.5, 0.5, 0.5), se=(1e-3, 1e-3, 1
 
 
 def test_regression_report_flags_each_change_by_its_rule():
-    from harness.regression import MEAN_SIGMAS, TIME_FACTOR, TIME_FLOOR, compare_runs
+    from harness.images.regression import MEAN_SIGMAS, TIME_FACTOR, TIME_FLOOR, compare_runs
 
     assert (MEAN_SIGMAS, TIME_FACTOR, TIME_FLOOR) == (4.0, 1.5, 0.05)
     base = {"images": [_entry(relmse=2e-3), _entry("plane", passed=False)]}
@@ -464,7 +464,7 @@ def test_regression_report_flags_each_change_by_its_rule():
 def test_regression_baseline_loading(tmp_path):
     import json
 
-    from harness.regression import load_baseline
+    from harness.images.regression import load_baseline
 
     assert load_baseline(tmp_path / "missing.json") is None
     (tmp_path / "bad.json").write_text("{not json")
@@ -480,7 +480,7 @@ def test_regression_baseline_loading(tmp_path):
 def test_metrics_follow_their_definitions():
     from skimage.metrics import structural_similarity
 
-    from harness.metrics import RELMSE_EPSILON, _tonemapped
+    from harness.images.metrics import RELMSE_EPSILON, _tonemapped
 
     rng = np.random.default_rng(4)
     reference = rng.uniform(0.0, 2.0, (16, 16, 3))
@@ -525,7 +525,7 @@ def test_flip_ssim_and_ciede_take_their_documented_settings():
     import flip_evaluator as flip
     from skimage.metrics import structural_similarity
 
-    from harness.metrics import flip_map
+    from harness.images.metrics import flip_map
 
     rng = np.random.default_rng(6)
     reference = rng.uniform(0.5, 3.0, (16, 16, 3))

@@ -9,14 +9,14 @@ import pytest
 from scipy import stats as sps
 from scipy.optimize import brentq
 
-from harness.bench import Curve, Step
-from harness.bench_run import CaseBench
-from harness.compare import compare_batches
-from harness.domains import get_domain
-from harness.stats import IMAGE_POWER_TARGET
-from harness.regression import MEAN_SIGMAS, compare_runs
-from harness.warp_checks import expected_probabilities, normalisation_check, pdf_agreement_check
-from harness.warps import check_warp
+from harness.bench.ladder import Curve, Step
+from harness.bench.run import CaseBench
+from harness.images.compare import compare_batches
+from harness.warps.domains import get_domain
+from harness.statistics.constants import IMAGE_POWER_TARGET
+from harness.images.regression import MEAN_SIGMAS, compare_runs
+from harness.warps.checks import expected_probabilities, normalisation_check, pdf_agreement_check
+from harness.warps.evaluate import check_warp
 
 TWO_PI = 2 * np.pi
 ONE_MINUS_EPS = np.nextafter(1.0, 0.0)
@@ -89,7 +89,7 @@ def test_pdf_one_percent_off_the_reference_fails_and_0_05_percent_passes(seed):
 
 def test_pdf_one_percent_off_mitsuba_fails_and_0_05_percent_passes():
     from harness.engines.mitsuba import load_mitsuba
-    from harness.warp_adapters import masked_to_domain
+    from harness.warps.adapters import masked_to_domain
 
     mi = load_mitsuba()
     reference = masked_to_domain(mi.warp.square_to_cosine_hemisphere_pdf, "hemisphere")

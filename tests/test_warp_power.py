@@ -2,14 +2,14 @@
 import numpy as np
 import pytest
 
-from harness import warp_checks as wc
-from harness.chi2 import goodness_of_fit, homogeneity
-from harness.domains import get_domain
-from harness.stats import FLOAT32_QUANTUM, HISTOGRAM_RES
-from harness.warp_bins import equal_probability_bins, uniform_bins
-from harness.warp_power import (attach_power, lower_half, mass_moved_defect, pdf_half_defect, simulated_powers)
-from harness.warp_suite import run_matrix, select
-from harness.warps import check_warp
+from harness.warps import checks as wc
+from harness.statistics.chi2 import goodness_of_fit, homogeneity
+from harness.warps.domains import get_domain
+from harness.statistics.constants import FLOAT32_QUANTUM, HISTOGRAM_RES
+from harness.warps.bins import equal_probability_bins, uniform_bins
+from harness.warps.power import (attach_power, lower_half, mass_moved_defect, pdf_half_defect, simulated_powers)
+from harness.warps.suite import run_matrix, select
+from harness.warps.evaluate import check_warp
 from wrong_warps import beckmann_pdf, beckmann_sample, cosine_pdf, disk_pdf, disk_sample, tent_pdf
 
 R = HISTOGRAM_RES
@@ -175,7 +175,7 @@ def test_power_is_cached_by_warp_and_cells(tmp_path, monkeypatch):
 
     def fail(*args, **kwargs):
         raise AssertionError("simulated again")
-    monkeypatch.setattr("harness.warp_power.simulated_powers", fail)
+    monkeypatch.setattr("harness.warps.power.simulated_powers", fail)
     again = _Fake(np.full((9, 9), 1 / 81))
     attach_power([again], ["square"], N, LEVEL, cache)
     assert again.checks["chi2"].details["power"] == first.checks["chi2"].details["power"]

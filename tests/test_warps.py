@@ -2,8 +2,8 @@
 import numpy as np
 import pytest
 
-from harness.warp_suite import SUITE, run_matrix, select
-from harness.warps import check_warp
+from harness.warps.suite import SUITE, run_matrix, select
+from harness.warps.evaluate import check_warp
 from wrong_warps import (WRONG, beckmann_pdf, beckmann_sample, cosine_pdf, cosine_sample, disk_pdf, disk_sample,
                          tent_pdf)
 
@@ -155,8 +155,8 @@ def test_failures_come_before_warnings_and_nan_first():
 
 
 def test_domain_check_sorts_zero_pdf_by_where_the_sample_is():
-    from harness.domains import get_domain
-    from harness.warp_checks import domain_check
+    from harness.warps.domains import get_domain
+    from harness.warps.checks import domain_check
     tent = get_domain("tent")
     rng = np.random.default_rng(0)
     edge = domain_check(tent, np.array([[0.2, 0.3], [-1.0, 0.4], [0.5, 1.0]]), tent_pdf, rng)
@@ -166,8 +166,8 @@ def test_domain_check_sorts_zero_pdf_by_where_the_sample_is():
 
 
 def test_domains_know_their_boundary():
-    from harness.domains import get_domain
-    from harness.stats import BOUNDARY_TOLERANCE as tol
+    from harness.warps.domains import get_domain
+    from harness.statistics.constants import BOUNDARY_TOLERANCE as tol
     assert list(get_domain("square").on_boundary(np.array([[0.0, 0.5], [0.5, 1 - 1e-7], [0.5, 0.5]]), tol)) == [
         True, True, False]
     assert list(get_domain("tent").on_boundary(np.array([[-1.0, 0.0], [0.3, 0.999], [0.0, 0.0]]), tol)) == [
@@ -228,7 +228,7 @@ def test_reports_show_warnings_apart():
     from harness.report.junit import junit_xml
     from harness.report.warp_html import warp_report_html
     from harness.report.warp_table import warp_table
-    from harness.warp_outputs import warp_payload
+    from harness.warps.outputs import warp_payload
     results = [check_warp(tent_corner_sample, tent_pdf, "tent", samples=20_000, name="tent corner"),
                check_warp(disk_sample, disk_pdf, "disk", samples=20_000, name="disk")]
     console = Console(record=True, width=200)

@@ -4,7 +4,7 @@ from __future__ import annotations
 import base64
 import html
 
-from harness.bench_run import CaseBench
+from harness.bench.run import CaseBench
 from harness.report.bench_plots import convergence_png, equal_time_png
 from harness.report.style import CSS
 

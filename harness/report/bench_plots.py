@@ -9,7 +9,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from harness.bench_run import CaseBench  # noqa: E402
+from harness.bench.run import CaseBench  # noqa: E402
 from harness.report.image_plots import display  # noqa: E402
 
 COLORS = {"mcval": "tab:blue", "mitsuba": "tab:orange", "mitsuba-scalar": "tab:green"}

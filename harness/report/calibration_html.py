@@ -7,7 +7,7 @@ import io
 
 import numpy as np
 
-from harness.calibration_stats import Rate
+from harness.statistics.calibration_rates import Rate
 from harness.report.style import CSS
 
 
@@ -54,7 +54,7 @@ def calibration_page(title: str, intro: str, sections: list[str], meta: dict) ->
 
 def warp_calibration_html(cal, meta: dict) -> str:
     """The warp part of the calibration page: the table (pooled rows first) and the p-value histograms."""
-    from harness.calibration_stats import CALIBRATION_LEVELS
+    from harness.statistics.calibration_rates import CALIBRATION_LEVELS
     head = "".join(f"<th>rate at {level:g}</th>" for level in CALIBRATION_LEVELS)
     rows = "".join(
         f"<tr><td>{html.escape(e.warp)}</td><td>{e.check}</td><td>{len(e.p_values)}</td>{rate_cells(e.rates)}"

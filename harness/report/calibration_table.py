@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from rich.table import Table
 
-from harness.calibration_stats import CALIBRATION_LEVELS
+from harness.statistics.calibration_rates import CALIBRATION_LEVELS
 
 
 def calibration_table(cal) -> Table:

@@ -9,7 +9,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from harness.domains import get_domain  # noqa: E402
+from harness.warps.domains import get_domain  # noqa: E402
 
 #: Axis labels of each domain's parameter square.
 _AXES = {"square": ("x", "y"), "tent": ("(x+1)/2", "(y+1)/2"), "disk": ("r²", "φ/2π"),

@@ -6,10 +6,10 @@ import html
 
 import numpy as np
 
-from harness.compare import Comparison
-from harness.finite import SIDES
-from harness.image_run import ImageResult
-from harness.image_suite import INTEGRATORS
+from harness.images.compare import Comparison
+from harness.images.finite import SIDES
+from harness.images.run import ImageResult
+from harness.images.suite import INTEGRATORS
 from harness.report.image_plots import comparison_png
 from harness.report.style import CSS
 

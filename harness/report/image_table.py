@@ -5,8 +5,8 @@ from rich import box
 from rich.markup import escape
 from rich.table import Table
 
-from harness.finite import SIDES
-from harness.image_run import ImageResult
+from harness.images.finite import SIDES
+from harness.images.run import ImageResult
 
 
 def _bad_pixels(result: ImageResult) -> list[str]:

@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 
-from harness.compare import Comparison
-from harness.image_run import ImageResult
+from harness.images.compare import Comparison
+from harness.images.run import ImageResult
 
 
 def _failure(c: Comparison) -> str:

@@ -7,7 +7,7 @@ import html
 from harness.report.heatmaps import warp_heatmaps_png
 from harness.report.style import CSS
 from harness.report.warp_power_text import POWER_CAPTION, power_cell, power_html
-from harness.warps import CHECK_NAMES, WarpResult
+from harness.warps.evaluate import CHECK_NAMES, WarpResult
 
 
 #: A check that passed with warnings is yellow (the shared stylesheet has pass, fail and na).

@@ -1,10 +1,10 @@
-"""Power figures of the warp checks (see harness.warp_power) as short texts for the terminal and the page."""
+"""Power figures of the warp checks (see harness.warps.power) as short texts for the terminal and the page."""
 from __future__ import annotations
 
 import html
 
-from harness.warp_checks import CheckResult
-from harness.warps import WarpResult
+from harness.warps.checks import CheckResult
+from harness.warps.evaluate import WarpResult
 
 #: What each defect is called after its figure.
 _UNITS = {"pdf_half": "pdf", "mass_moved": "mass", "normalisation": "∫", "pdf_relative": "rel."}

@@ -5,8 +5,8 @@ from rich import box
 from rich.table import Table
 
 from harness.report.warp_power_text import POWER_CAPTION, power_cell
-from harness.warp_checks import CheckResult
-from harness.warps import CHECK_NAMES, WarpResult, format_params
+from harness.warps.checks import CheckResult
+from harness.warps.evaluate import CHECK_NAMES, WarpResult, format_params
 
 #: Column headers, short enough for an 80-column terminal.
 _HEADERS = {"chi2": "χ² p", "normalisation": "∫pdf", "domain": "bad", "pdf_vs_mitsuba": "pdf≈mi",

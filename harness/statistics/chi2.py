@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats as sps
 
-from harness.stats import MIN_EXPECTED
+from harness.statistics.constants import MIN_EXPECTED
 
 
 @dataclass

@@ -10,7 +10,7 @@ from scipy.ndimage import uniform_filter
 from scipy.optimize import brentq
 from scipy.special import polygamma
 
-from harness.stats import MISSED_CONTRIBUTION, MODERATION_WINDOW, ROUNDING_TOLERANCE
+from harness.statistics.constants import MISSED_CONTRIBUTION, MODERATION_WINDOW, ROUNDING_TOLERANCE
 
 
 @dataclass

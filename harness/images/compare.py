@@ -11,15 +11,15 @@ t-test on them is valid whatever the filter or sampler correlation (Jung,
 Hanika, Dachsbacher, JCGT 2020). The false-alarm rate `alpha` is split evenly
 (Sidak) over the three scales, so a global bias (a missing 1/pi) and a local one
 (a shadow in the wrong place) are both caught; within a scale the level of each
-test is the one that gives the scale its share (`harness.family_level`): elements
+test is the one that gives the scale its share (`harness.statistics.family_level`): elements
 without noise on either side cannot reject and do not count, elements shrunk by
 the rounding floor count by how often they can still reject, and the three
 channels count by their correlation (once for a grey image). Pixel variances
 are moderated towards their 3x3 neighbourhood's (empirical Bayes,
-`harness.welch.moderate`), never below their own; tile and image means keep
+`harness.statistics.welch.moderate`), never below their own; tile and image means keep
 their own. At every scale, a variance far below what the better-sampled side
 predicts for its sample count (all K batches missed a rare contribution) takes
-that prediction (`harness.welch.sample_floor`). Each scale then rejects a correct
+that prediction (`harness.statistics.welch.sample_floor`). Each scale then rejects a correct
 renderer at its stated level (tests/test_calibration_images.py). `detectable_bias`
 and `detectable_tile_bias` are the relative biases found half of the time
 (noncentral t at the Welch dof).
@@ -38,11 +38,11 @@ from functools import cache
 import numpy as np
 from scipy import stats as sps
 
-from harness.family_level import channel_correlation, channel_union, family_level
-from harness.finite import FiniteCheck, damage_of_summary
-from harness.metrics import image_metrics
-from harness.stats import IMAGE_POWER_TARGET, ROUNDING_TOLERANCE, SIGNIFICANCE, TILE_SIZE, sidak_level
-from harness.welch import BatchStats, critical_t, moderate, sample_floor, welch_dof, welch_p_values
+from harness.statistics.family_level import channel_correlation, channel_union, family_level
+from harness.images.finite import FiniteCheck, damage_of_summary
+from harness.images.metrics import image_metrics
+from harness.statistics.constants import IMAGE_POWER_TARGET, ROUNDING_TOLERANCE, SIGNIFICANCE, TILE_SIZE, sidak_level
+from harness.statistics.welch import BatchStats, critical_t, moderate, sample_floor, welch_dof, welch_p_values
 
 SCALES = ("pixel", "tile", "image")
 #: Bumped whenever `summarize` changes what it stores, so stored references are made again.
@@ -287,7 +287,7 @@ def compare_batches(test: np.ndarray, reference: np.ndarray, alpha: float = SIGN
     marks images with negative values (normals), for that check and the metrics;
     `rounding` is the relative precision of the values (float32 by default);
     `samples` the samples per pixel of each side's batches, which lets each
-    side's variance floor the other's (`harness.welch.sample_floor`; None for
+    side's variance floor the other's (`harness.statistics.welch.sample_floor`; None for
     an exact reference or an unknown count).
     """
     t, r = np.asarray(test), np.asarray(reference)

@@ -14,7 +14,7 @@ from typing import Callable
 
 import numpy as np
 
-from harness.stats import UNIT_TOLERANCE
+from harness.statistics.constants import UNIT_TOLERANCE
 
 TWO_PI = 2.0 * np.pi
 

@@ -9,9 +9,9 @@ from typing import Callable
 import numpy as np
 
 from harness.engines.base import Engine
-from harness.image_suite import ImageCase
-from harness.metrics import RELMSE_EPSILON, flip_map
-from harness.references import RESOLUTION, Reference
+from harness.images.suite import ImageCase
+from harness.images.metrics import RELMSE_EPSILON, flip_map
+from harness.images.references import RESOLUTION, Reference
 
 #: Samples per pixel of the ladder, and independent runs per step.
 LADDER = (1, 2, 4, 8, 16, 32, 64, 128, 256)

@@ -11,12 +11,12 @@ from typing import Any, Callable
 
 import numpy as np
 
-from harness.chi2 import goodness_of_fit, homogeneity
-from harness.cubature import CellIntegrals, integrate_cells
-from harness.domains import Domain
-from harness.stats import HISTOGRAM_RES, NORMALISATION_TOLERANCE, PDF_RELATIVE_TOLERANCE
-from harness.warp_bins import Bins, bin_indices, uniform_bins
-from harness.warp_findings import Finding, classify, count, describe, merge, off_domain, summarize
+from harness.statistics.chi2 import goodness_of_fit, homogeneity
+from harness.statistics.cubature import CellIntegrals, integrate_cells
+from harness.warps.domains import Domain
+from harness.statistics.constants import HISTOGRAM_RES, NORMALISATION_TOLERANCE, PDF_RELATIVE_TOLERANCE
+from harness.warps.bins import Bins, bin_indices, uniform_bins
+from harness.warps.findings import Finding, classify, count, describe, merge, off_domain, summarize
 
 Sampler = Callable[[np.ndarray], np.ndarray]
 Pdf = Callable[[np.ndarray], np.ndarray]

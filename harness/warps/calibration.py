@@ -15,13 +15,13 @@ from typing import Callable
 
 import numpy as np
 
-from harness import warp_checks as wc
-from harness.calibration_stats import CALIBRATION_LEVELS, Rate, rates, uniformity_p
-from harness.domains import get_domain
+from harness.warps import checks as wc
+from harness.statistics.calibration_rates import CALIBRATION_LEVELS, Rate, rates, uniformity_p
+from harness.warps.domains import get_domain
 from harness.engines.base import Engine
-from harness.stats import WARP_SAMPLES
-from harness.warp_suite import WarpSpec, spec_seed
-from harness.warps import equal_probability_cells
+from harness.statistics.constants import WARP_SAMPLES
+from harness.warps.suite import WarpSpec, spec_seed
+from harness.warps.evaluate import equal_probability_cells
 
 #: The warp checks that carry a p-value (the others are deterministic).
 STATISTICAL_CHECKS = ("chi2", "samples_vs_mitsuba")

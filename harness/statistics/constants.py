@@ -43,7 +43,7 @@ TILE_SIZE = 8
 #: Differences below this fraction of a value are float32 rounding, not bias (a floor on the standard error).
 ROUNDING_TOLERANCE = 1e-5
 #: A pixel variance below this fraction of what the better-sampled side predicts for it is taken as a
-#: contribution all its batches missed (harness.welch.sample_floor).
+#: contribution all its batches missed (harness.statistics.welch.sample_floor).
 MISSED_CONTRIBUTION = 0.1
 #: Side of the neighbourhood (pixels or tiles) whose variances are the prior of an element's moderated variance.
 MODERATION_WINDOW = 3

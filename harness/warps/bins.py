@@ -9,7 +9,7 @@ edges depend on the pdf only (and on the precision of the samples, see below),
 never on the sample values, so the chi-square test stays valid.
 
 Quantiles are found hierarchically: integrate the density over 256 strips (the
-adaptive rule of harness.cubature), find the strip holding each quantile, then
+adaptive rule of harness.statistics.cubature), find the strip holding each quantile, then
 halve it 40 times, all quantiles at once (to about 1e-15; a float32 pdf's own
 noise limits it sooner). They are of the pdf's own mass, so
 a pdf off by a constant factor gets the same cells (the normalisation check and
@@ -29,8 +29,8 @@ from typing import Callable
 
 import numpy as np
 
-from harness.cubature import integrate_regions, uniform_edges
-from harness.stats import FLOAT32_QUANTUM, HISTOGRAM_RES, ROUNDING_NONCENTRALITY, WARP_SAMPLES
+from harness.statistics.cubature import integrate_regions, uniform_edges
+from harness.statistics.constants import FLOAT32_QUANTUM, HISTOGRAM_RES, ROUNDING_NONCENTRALITY, WARP_SAMPLES
 
 Density = Callable[[np.ndarray, np.ndarray], np.ndarray]
 

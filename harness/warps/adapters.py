@@ -22,7 +22,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from harness.domains import Domain, get_domain
+from harness.warps.domains import Domain, get_domain
 
 
 def is_drjit_function(fn: Any) -> bool:

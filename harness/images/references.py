@@ -27,12 +27,12 @@ from pathlib import Path
 
 import numpy as np
 
-from harness.compare import SUMMARY_FORMAT, Summary, summarize
+from harness.images.compare import SUMMARY_FORMAT, Summary, summarize
 from harness.engines.base import Engine
-from harness.image_suite import REFERENCE_SPP, ROOT, ImageCase
+from harness.images.suite import REFERENCE_SPP, ROOT, ImageCase
 from harness.results import write_atomic
-from harness.stats import TILE_SIZE
-from harness.welch import BatchStats
+from harness.statistics.constants import TILE_SIZE
+from harness.statistics.welch import BatchStats
 
 REFERENCES_DIR = ROOT / "references"
 REFERENCE_SEED = 1000

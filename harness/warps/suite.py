@@ -9,10 +9,10 @@ from typing import Callable
 import numpy as np
 
 from harness.engines.base import Engine
-from harness.stats import SIGNIFICANCE, WARP_SAMPLES
-from harness.warp_power import CACHE_PATH as POWER_CACHE
-from harness.warp_power import attach_power
-from harness.warps import WarpResult, decide, evaluate_warp
+from harness.statistics.constants import SIGNIFICANCE, WARP_SAMPLES
+from harness.warps.power import CACHE_PATH as POWER_CACHE
+from harness.warps.power import attach_power
+from harness.warps.evaluate import WarpResult, decide, evaluate_warp
 
 #: Beckmann roughnesses in the matrix; small ones are where careless cell integrals fail.
 BECKMANN_ALPHAS = (0.01, 0.05, 0.1, 0.3, 1.0)

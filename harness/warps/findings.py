@@ -17,8 +17,8 @@ from typing import Any
 
 import numpy as np
 
-from harness.domains import Domain
-from harness.stats import BOUNDARY_TOLERANCE
+from harness.warps.domains import Domain
+from harness.statistics.constants import BOUNDARY_TOLERANCE
 
 #: Inputs quoted per finding (the count says how many there are in all).
 MAX_EXAMPLES = 3

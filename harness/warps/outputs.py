@@ -5,8 +5,8 @@ from pathlib import Path
 
 from harness.report.warp_html import warp_report_html
 from harness.results import write_atomic, write_json, write_npz
-from harness.warp_suite import WarpSpec, reproduce_command
-from harness.warps import WarpResult
+from harness.warps.suite import WarpSpec, reproduce_command
+from harness.warps.evaluate import WarpResult
 
 
 def warp_payload(results: list[WarpResult], level: float, meta: dict) -> dict:

@@ -5,8 +5,8 @@ from pathlib import Path
 
 import numpy as np
 
-from harness.image_run import ImageResult
-from harness.regression import compare_runs, load_baseline
+from harness.images.run import ImageResult
+from harness.images.regression import compare_runs, load_baseline
 from harness.report.image_html import report_html
 from harness.report.junit import junit_xml
 from harness.results import write_atomic, write_json, write_npz

@@ -7,12 +7,12 @@ from typing import Callable
 
 import numpy as np
 
-from harness.compare import Comparison, compare_summaries, summarize
+from harness.images.compare import Comparison, compare_summaries, summarize
 from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine, RenderFailed, RenderResult
-from harness.image_suite import OUR_SPP, ImageCase
-from harness.references import RESOLUTION, Reference, load_reference, render_reference
-from harness.stats import IMAGE_BATCHES, SIGNIFICANCE, sidak_level
+from harness.images.suite import OUR_SPP, ImageCase
+from harness.images.references import RESOLUTION, Reference, load_reference, render_reference
+from harness.statistics.constants import IMAGE_BATCHES, SIGNIFICANCE, sidak_level
 
 GEOMETRY_NOTE = "camera or geometry mismatch (normals failed on this scene)"
 
@@ -67,7 +67,7 @@ class ImageResult:
         ref = self.references.get("mitsuba") or next(iter(self.references.values()), None)
         if ref is None:
             return None
-        from harness.idiff import idiff
+        from harness.images.idiff import idiff
         try:
             return idiff(self.ours.batches.mean(axis=0), ref.summary.mean_image)
         except Exception as e:  # never let the side report break the run

@@ -22,13 +22,13 @@ from typing import Any, Callable
 
 import numpy as np
 
-from harness import warp_checks as wc
-from harness.cubature import CellIntegrals
-from harness.domains import Domain, get_domain
+from harness.warps import checks as wc
+from harness.statistics.cubature import CellIntegrals
+from harness.warps.domains import Domain, get_domain
 from harness.engines.base import WarpFunctions
-from harness.stats import HISTOGRAM_RES, SIGNIFICANCE, WARP_SAMPLES, sidak_level
-from harness.warp_adapters import NumpyPdf, NumpySampler
-from harness.warp_bins import Bins, equal_probability_bins, sample_quantum
+from harness.statistics.constants import HISTOGRAM_RES, SIGNIFICANCE, WARP_SAMPLES, sidak_level
+from harness.warps.adapters import NumpyPdf, NumpySampler
+from harness.warps.bins import Bins, equal_probability_bins, sample_quantum
 
 #: The checks, in the order reports show them.
 CHECK_NAMES = ("chi2", "normalisation", "domain", "pdf_vs_mitsuba", "samples_vs_mitsuba",

@@ -8,10 +8,10 @@ from typing import Callable
 
 import numpy as np
 
-from harness.bench import LADDER, RUNS, Curve, run_ladder
+from harness.bench.ladder import LADDER, RUNS, Curve, run_ladder
 from harness.engines.base import Engine
-from harness.image_suite import SCENES_DIR, ImageCase
-from harness.references import load_reference, render_reference
+from harness.images.suite import SCENES_DIR, ImageCase
+from harness.images.references import load_reference, render_reference
 
 #: The seed document's own figures: its simple integrator at 768x768 and 32 spp, its AO at 768x768
 #: and 512 spp, both on a ~0.5M-triangle bust (seconds).

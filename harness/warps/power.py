@@ -29,9 +29,9 @@ import numpy as np
 from scipy import optimize as spo
 from scipy import stats as sps
 
-from harness.chi2 import goodness_of_fit_batch, homogeneity_batch
+from harness.statistics.chi2 import goodness_of_fit_batch, homogeneity_batch
 from harness.results import write_json
-from harness.stats import (MIN_EXPECTED, NORMALISATION_TOLERANCE, PDF_RELATIVE_TOLERANCE, POWER_REPLICATIONS,
+from harness.statistics.constants import (MIN_EXPECTED, NORMALISATION_TOLERANCE, PDF_RELATIVE_TOLERANCE, POWER_REPLICATIONS,
                            POWER_TARGET)
 
 #: Bump when the simulation or its output changes: older cache entries are then recomputed.

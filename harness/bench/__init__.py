@@ -1,0 +1,1 @@
+"""Speed against error: sample-count ladders for each engine and their reports."""

@@ -1,0 +1,1 @@
+"""Image validation: renders compared with references at three scales, with verdicts."""

@@ -1,0 +1,1 @@
+"""The statistics the verdicts rest on: Welch and chi-square tests, cubature, levels, calibration rates."""
