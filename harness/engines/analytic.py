@@ -1,9 +1,6 @@
 """The analytic engine: closed-form radiance on one plane, integrated over each pixel by jittered
-camera rays (numpy). Its only noise is the pixel footprint; its light transport is exact:
-
-* simple: L = rho / pi * I * max(0, cos) / r^2 per point light (nothing can shadow a lone plane);
-* ao: L = rho * L_env (nothing occludes a lone plane);
-* normals: the plane's normal.
+camera rays (numpy). Its only noise is the pixel footprint; its light transport is exact. Each integrator's
+closed form is in its entry (harness/integrators/<name>.py, `analytic`); one without has none here.
 """
 from __future__ import annotations
 
@@ -13,20 +10,14 @@ import numpy as np
 
 from harness.engines.analytic_scene import NotAnalytic, load_plane_scene
 from harness.engines.base import Engine, RenderResult
+from harness.integrators import entry
 
 
 def _shade(scene, integrator: str, p: np.ndarray, normal: np.ndarray) -> np.ndarray:
-    if integrator == "normals":
-        return np.broadcast_to(normal, p.shape)
-    if integrator == "ao":
-        return np.broadcast_to(scene.reflectance * scene.environment, p.shape)
-    out = np.zeros_like(p)
-    for position, intensity in scene.lights:
-        to_light = position - p
-        r2 = np.sum(to_light**2, axis=-1, keepdims=True)
-        cos = np.clip(np.sum(to_light * normal, axis=-1, keepdims=True) / np.sqrt(r2), 0.0, None)
-        out += scene.reflectance / np.pi * intensity * cos / r2
-    return out
+    form = entry(integrator).analytic
+    if form is None:
+        raise NotAnalytic(f"integrator {integrator} has no closed form ({entry(integrator).source})")
+    return form.shade(scene, p, normal)
 
 
 class AnalyticEngine(Engine):
@@ -38,7 +29,10 @@ class AnalyticEngine(Engine):
         return "analytic (closed form, numpy pixel integration)"
 
     @staticmethod
-    def supports(scene: str, params: dict[str, str] | None = None) -> bool:
+    def supports(scene: str, params: dict[str, str] | None = None, integrator: str | None = None) -> bool:
+        """Whether `scene` is a one-plane scene (and `integrator`, if given, has a closed form)."""
+        if integrator is not None and entry(integrator).analytic is None:
+            return False
         try:
             load_plane_scene(scene, params)
         except NotAnalytic:

@@ -65,7 +65,7 @@ class Engine(ABC):
 
     def render(self, scene: str, integrator: str, spp: int, batches: int, seed: int,
                params: dict[str, str] | None = None) -> RenderResult:
-        """Render `scene` with our integrator `integrator` (normals, simple, ao), `batches`
+        """Render `scene` with our integrator `integrator` (an entry of harness/integrators/), `batches`
         independent times at `spp` samples per pixel; `params` override the scene's <default>s.
         Raises RenderFailed when the engine crashes, hangs or fails to produce the image."""
         raise NotImplementedError(f"engine {self.name} does not render images")

@@ -1,10 +1,6 @@
-"""Our scene files, made into Mitsuba scenes: each of our integrators mapped onto its Mitsuba equivalent.
-
-* normals -> ``aov`` with ``nn:sh_normal``;
-* simple  -> ``direct`` with one emitter sample and no BSDF sample, the
-  constant emitter removed (our simple integrator sees only point lights);
-* ao      -> ``direct`` with ``hide_emitters``, the point emitters removed
-  (a constant emitter of radiance 1 added when the scene has none, as ours assumes).
+"""Our scene files, made into Mitsuba scenes: each integrator mapped onto its Mitsuba equivalent as its entry
+says (harness/integrators/<name>.py, `mitsuba`): the <integrator> replaced, and removed what our loader skips
+for that integrator (emitter types, area emitters inside shapes), a constant emitter added where ours assumes one.
 
 The film stores float32 (Mitsuba's hdrfilm default is float16).
 """
@@ -14,38 +10,33 @@ import os
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-INTEGRATORS = ("normals", "simple", "ao")
+from harness.images.suite import INTEGRATORS  # noqa: F401  (re-exported: the suite's integrators)
+from harness.integrators import entry
 
 
 def mitsuba_xml(text: str, integrator: str) -> str:
     """The scene text with our `integrator` mapped onto Mitsuba's plugins."""
-    if integrator not in INTEGRATORS:
-        raise ValueError(f"unknown integrator {integrator!r}: expected one of {', '.join(INTEGRATORS)}")
+    mapping = entry(integrator).mitsuba
     root = ET.fromstring(text)
     old = [e for e in root if e.tag == "integrator"]
     index = list(root).index(old[0]) if old else len(root)
     for e in old:
         root.remove(e)
-    new = ET.Element("integrator")
-    drop = None
-    if integrator == "normals":
-        new.set("type", "aov")
-        ET.SubElement(new, "string", name="aovs", value="nn:sh_normal")
-    elif integrator == "simple":
-        new.set("type", "direct")
-        ET.SubElement(new, "integer", name="emitter_samples", value="1")
-        ET.SubElement(new, "integer", name="bsdf_samples", value="0")
-        drop = "constant"
-    else:
-        new.set("type", "direct")
-        ET.SubElement(new, "boolean", name="hide_emitters", value="true")
-        drop = "point"
-        if not any(e.tag == "emitter" and e.get("type") == "constant" for e in root):
-            root.append(ET.Element("emitter", type="constant"))
+    new = ET.Element("integrator", type=mapping.plugin)
+    for tag, name, value in mapping.properties:
+        ET.SubElement(new, tag, name=name, value=value)
+    if mapping.add_environment and not any(e.tag == "emitter" and e.get("type") == "constant" for e in root):
+        root.append(ET.Element("emitter", type="constant"))
     root.insert(index, new)
-    for e in [e for e in root if e.tag == "emitter" and e.get("type") == drop]:
+    for e in [e for e in root if e.tag == "emitter" and e.get("type") in mapping.drop_emitters]:
         root.remove(e)
+    if mapping.drop_area_emitters:
+        for shape in root.iter("shape"):
+            for e in [e for e in shape if e.tag == "emitter" and e.get("type") == "area"]:
+                shape.remove(e)
     for film in root.iter("film"):
+        for e in [e for e in film if e.get("name") == "component_format"]:
+            film.remove(e)  # a file's own component_format would be a duplicate property
         ET.SubElement(film, "string", name="component_format", value="float32")
     return ET.tostring(root, encoding="unicode")
 

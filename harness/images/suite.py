@@ -1,16 +1,21 @@
-"""The image-validation suite: every scene of scenes/ with every integrator, its budgets and references."""
+"""The image-validation suite: every scene with every integrator of the renderer that has a harness entry.
+
+Two groups of scenes: our own (scenes/*.xml) and real ones (scenes/real/*.xml, Mitsuba's own files). A case
+whose scene lacks what its integrator needs (simple without a point light) is not applicable: listed with the
+entry's reason, never run. Budgets and Mitsuba mappings live in each integrator's entry (harness/integrators/).
+"""
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from harness.integrators import match
+
 ROOT = Path(__file__).resolve().parents[2]
 SCENES_DIR = ROOT / "scenes"
-INTEGRATORS = ("normals", "simple", "ao")
-
-#: Samples per pixel per batch: ours in every run, Mitsuba's for stored references.
-OUR_SPP = {"normals": 16, "simple": 32, "ao": 32}
-REFERENCE_SPP = {"normals": 64, "simple": 256, "ao": 256}
+REAL_SCENES_DIR = SCENES_DIR / "real"
+GROUP_DIRS = {"synthetic": SCENES_DIR, "real": REAL_SCENES_DIR}
 
 #: Scenes whose Mitsuba reference is another scene file that must give the same image.
 #: far_from_origin is sphere_plane scaled by 1000 and moved 1e5 from the origin: the same image,
@@ -18,12 +23,62 @@ REFERENCE_SPP = {"normals": 64, "simple": 256, "ao": 256}
 MITSUBA_SCENE = {"far_from_origin": "sphere_plane"}
 
 
+def suite_integrators() -> tuple[str, ...]:
+    """The renderer's integrators that have an entry; normals first (a scene whose normals fail has a camera
+    or geometry mismatch, which the run notes on that scene's other cases)."""
+    names = [e.name for e in match().entries]
+    return tuple(sorted(names, key=lambda n: n != "normals"))
+
+
+class _Integrators(Sequence):
+    """INTEGRATORS, read from the registry when used (importing this module needs no renderer)."""
+
+    def __getitem__(self, i):
+        return suite_integrators()[i]
+
+    def __len__(self) -> int:
+        return len(suite_integrators())
+
+    def __repr__(self) -> str:
+        return repr(suite_integrators())
+
+
+class _Budget(Mapping):
+    """OUR_SPP / REFERENCE_SPP: one entry field by integrator name, read from the registry when used."""
+
+    def __init__(self, field: str) -> None:
+        self._field = field
+
+    def _values(self) -> dict[str, int]:
+        from harness.integrators import entries
+        return {name: getattr(e, self._field) for name, e in entries().items()}
+
+    def __getitem__(self, name: str) -> int:
+        return self._values()[name]
+
+    def __iter__(self):
+        return iter(self._values())
+
+    def __len__(self) -> int:
+        return len(self._values())
+
+    def __repr__(self) -> str:
+        return repr(self._values())
+
+
+INTEGRATORS = _Integrators()
+#: Samples per pixel per batch: ours in every run, Mitsuba's for stored references.
+OUR_SPP = _Budget("our_spp")
+REFERENCE_SPP = _Budget("reference_spp")
+
+
 @dataclass(frozen=True)
 class ImageCase:
     """One comparison: a scene with one of our integrators."""
 
-    scene: str        # file stem in scenes/
+    scene: str        # file stem in the group's folder
     integrator: str
+    group: str = "synthetic"  # "synthetic" (scenes/) or "real" (scenes/real/)
 
     @property
     def key(self) -> str:
@@ -31,26 +86,53 @@ class ImageCase:
 
     @property
     def path(self) -> Path:
-        return SCENES_DIR / f"{self.scene}.xml"
+        return GROUP_DIRS[self.group] / f"{self.scene}.xml"
 
     @property
     def mitsuba_path(self) -> Path:
-        return SCENES_DIR / f"{MITSUBA_SCENE.get(self.scene, self.scene)}.xml"
+        return GROUP_DIRS[self.group] / f"{MITSUBA_SCENE.get(self.scene, self.scene)}.xml"
 
 
-def scene_names() -> list[str]:
-    return sorted(p.stem for p in SCENES_DIR.glob("*.xml") if not p.name.startswith("."))
+def scene_names(group: str = "synthetic") -> list[str]:
+    return sorted(p.stem for p in GROUP_DIRS[group].glob("*.xml") if not p.name.startswith("."))
+
+
+def _all_cases() -> tuple[list[ImageCase], list[tuple[ImageCase, str]]]:
+    """Every case that can run, and every one that cannot with why (the entry's scene requirement)."""
+    from harness.integrators import entry
+
+    runnable, not_applicable = [], []
+    for group in GROUP_DIRS:
+        for scene in scene_names(group):
+            for name in suite_integrators():
+                case = ImageCase(scene, name, group)
+                reason = entry(name).not_applicable(case.path)
+                (not_applicable.append((case, reason)) if reason else runnable.append(case))
+    return runnable, not_applicable
+
+
+def _chosen(cases, only: list[str] | None, key=lambda c: c):
+    return [x for x in cases if not only or key(x).key in only or key(x).scene in only or key(x).integrator in only]
 
 
 def select_cases(only: list[str] | None) -> list[ImageCase]:
-    """All cases, normals first per scene; `only` takes scene names, integrator names or scene:integrator."""
-    cases = [ImageCase(s, i) for s in scene_names() for i in INTEGRATORS]
+    """All runnable cases, normals first per scene; `only` takes scene names, integrator names or
+    scene:integrator. A case named in `only` that is not applicable is an error saying why."""
+    runnable, not_applicable = _all_cases()
     if not only:
-        return cases
-    chosen = [c for c in cases if c.key in only or c.scene in only or c.integrator in only]
-    known = {c.key for c in cases} | set(scene_names()) | set(INTEGRATORS)
+        return runnable
+    cases = [*runnable, *(c for c, _ in not_applicable)]
+    known = {c.key for c in cases} | {c.scene for c in cases} | set(suite_integrators())
     unknown = sorted(set(only) - known)
     if unknown:
-        raise ValueError(f"unknown scene or case {', '.join(unknown)}: scenes are {', '.join(scene_names())}; "
-                         f"integrators {', '.join(INTEGRATORS)}")
-    return chosen
+        raise ValueError(f"unknown scene or case {', '.join(unknown)}: scenes are "
+                         f"{', '.join(scene_names() + scene_names('real'))}; integrators {', '.join(INTEGRATORS)}")
+    for case, reason in not_applicable:
+        if case.key in only:
+            raise ValueError(f"{case.key} is not applicable: {reason} ({case.path.relative_to(ROOT)})")
+    return _chosen(runnable, only)
+
+
+def not_applicable_cases(only: list[str] | None) -> list[tuple[ImageCase, str]]:
+    """The cases `only` would name that cannot run, each with the entry's reason."""
+    return _chosen(_all_cases()[1], only, key=lambda pair: pair[0])

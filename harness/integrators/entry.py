@@ -1,0 +1,76 @@
+"""What the harness knows of one integrator, in one place: its budgets, its Mitsuba equivalent, its closed
+form on a lone plane (if any) and what it needs of a scene. Each module of this package holds one `ENTRY`."""
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class MitsubaMapping:
+    """How a scene file's <integrator> is replaced for Mitsuba, and what Mitsuba must not see.
+
+    What is removed is exactly what our loader skips for this integrator, so both render the same scene.
+    """
+
+    plugin: str                                    # Mitsuba's integrator type
+    properties: tuple[tuple[str, str, str], ...] = ()  # (tag, name, value) children of <integrator>
+    drop_emitters: tuple[str, ...] = ()            # top-level <emitter type> removed
+    drop_area_emitters: bool = False               # <emitter type="area"> inside shapes removed
+    add_environment: bool = False                  # a constant emitter (radiance 1) when the scene has none
+
+    def summary(self) -> str:
+        props = ", ".join(f"{name}={value}" for _, name, value in self.properties)
+        parts = [f"{self.plugin}({props})" if props else self.plugin]
+        if self.drop_emitters:
+            parts.append(f"drops {', '.join(self.drop_emitters)} emitters")
+        if self.drop_area_emitters:
+            parts.append("drops area emitters in shapes")
+        if self.add_environment:
+            parts.append("adds constant emitter if none")
+        return "; ".join(parts)
+
+
+#: shade(plane_scene, points (..., 3), normal (3,)) -> radiance (..., 3), on a lone plane (analytic_scene).
+Shade = Callable[[object, np.ndarray, np.ndarray], np.ndarray]
+#: requirement(scene root) -> None if the scene suits the integrator, else why not ("no point light").
+Requirement = Callable[[ET.Element], "str | None"]
+
+
+@dataclass(frozen=True)
+class AnalyticForm:
+    """The integrator's exact image of a one-plane scene."""
+
+    summary: str
+    shade: Shade
+
+
+@dataclass(frozen=True)
+class IntegratorEntry:
+    """One integrator as the harness sees it."""
+
+    name: str
+    our_spp: int            # samples per pixel per batch of our renders
+    reference_spp: int      # samples per pixel per batch of stored Mitsuba references
+    mitsuba: MitsubaMapping
+    analytic: AnalyticForm | None = None
+    requirements: tuple[tuple[str, Requirement], ...] = ()  # (summary, check)
+    source: str = field(default="", compare=False)  # the file it was read from (set by the registry)
+
+    def not_applicable(self, scene: Path) -> str | None:
+        """Why `scene` cannot be rendered with this integrator, or None if it can."""
+        root = ET.parse(scene).getroot()
+        for _, check in self.requirements:
+            reason = check(root)
+            if reason:
+                return reason
+        return None
+
+
+def has_point_light(root: ET.Element) -> str | None:
+    """A requirement: at least one point emitter (the only light our direct-lighting integrator sees)."""
+    return None if any(e.get("type") == "point" for e in root.iter("emitter")) else "no point light"

@@ -1,0 +1,13 @@
+"""normals: the shading normal of the first hit, signed, 0 on a miss."""
+import numpy as np
+
+from harness.integrators.entry import AnalyticForm, IntegratorEntry, MitsubaMapping
+
+ENTRY = IntegratorEntry(
+    name="normals",
+    our_spp=16,
+    reference_spp=64,
+    # Emitters and BSDFs cannot change a normal; area emitters go as our loader skips them.
+    mitsuba=MitsubaMapping("aov", (("string", "aovs", "nn:sh_normal"),), drop_area_emitters=True),
+    analytic=AnalyticForm("the plane's normal", lambda scene, p, normal: np.broadcast_to(normal, p.shape)),
+)

@@ -1,0 +1,111 @@
+"""Finding the integrator entries and matching them with the renderer's own list.
+
+Entries are the modules of this package with an `ENTRY`, plus every *.py file (with an `ENTRY`) in the
+folders of $MCVAL_INTEGRATOR_PATH (os.pathsep-separated), so a test can add one without editing the harness.
+"""
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import os
+import pkgutil
+from dataclasses import dataclass, replace
+from functools import cache
+from pathlib import Path
+
+from harness.integrators.entry import IntegratorEntry
+
+PATH_ENV = "MCVAL_INTEGRATOR_PATH"
+_PACKAGE = "harness.integrators"
+_NOT_ENTRIES = {"entry", "registry"}
+
+
+def _checked(entry: object, source: str) -> IntegratorEntry:
+    if not isinstance(entry, IntegratorEntry):
+        raise ValueError(f"{source}: ENTRY is a {type(entry).__name__}, expected an IntegratorEntry "
+                         "(harness.integrators.entry)")
+    return replace(entry, source=source)
+
+
+def _package_entries() -> list[IntegratorEntry]:
+    package = importlib.import_module(_PACKAGE)
+    found = []
+    for info in sorted(pkgutil.iter_modules(package.__path__), key=lambda m: m.name):
+        if info.name in _NOT_ENTRIES or info.name.startswith("_"):
+            continue
+        module = importlib.import_module(f"{_PACKAGE}.{info.name}")
+        source = str(Path(module.__file__).relative_to(Path(package.__path__[0]).parents[1]))
+        if not hasattr(module, "ENTRY"):
+            raise ValueError(f"{source}: no ENTRY (each module of {_PACKAGE} but entry and registry is one "
+                             "integrator's entry)")
+        found.append(_checked(module.ENTRY, source))
+    return found
+
+
+def _folder_entries(folder: Path) -> list[IntegratorEntry]:
+    if not folder.is_dir():
+        raise ValueError(f"{PATH_ENV}: {folder} is not a folder")
+    found = []
+    for path in sorted(folder.glob("*.py")):
+        if path.name.startswith("_"):
+            continue
+        spec = importlib.util.spec_from_file_location(f"mcval_integrator_entry_{path.stem}", path)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        if not hasattr(module, "ENTRY"):
+            raise ValueError(f"{path}: no ENTRY (every .py file in a {PATH_ENV} folder is an integrator entry)")
+        found.append(_checked(module.ENTRY, str(path)))
+    return found
+
+
+@cache
+def _discover(extra: str) -> dict[str, IntegratorEntry]:
+    entries: dict[str, IntegratorEntry] = {}
+    folders = [Path(p) for p in extra.split(os.pathsep) if p]
+    for entry in _package_entries() + [e for f in folders for e in _folder_entries(f)]:
+        if entry.name in entries:
+            raise ValueError(f"{entry.source}: integrator {entry.name!r} already has an entry in "
+                             f"{entries[entry.name].source}")
+        entries[entry.name] = entry
+    return entries
+
+
+def entries() -> dict[str, IntegratorEntry]:
+    """Every entry found, by name: this package's, then those of $MCVAL_INTEGRATOR_PATH."""
+    return _discover(os.environ.get(PATH_ENV, ""))
+
+
+def entry(name: str) -> IntegratorEntry:
+    found = entries()
+    if name not in found:
+        raise ValueError(f"unknown integrator {name!r}: the harness has entries for {', '.join(found)}")
+    return found[name]
+
+
+def renderer_integrators() -> tuple[str, ...]:
+    """The integrators of the renderer's registry, in its order (mcval_renderer.integrators())."""
+    from harness.engines.ours import _load_module
+
+    module = _load_module()
+    if not hasattr(module, "integrators"):  # a module built before integrators() existed had these three
+        return ("normals", "simple", "ao")
+    return tuple(str(getattr(x, "name", x)) for x in module.integrators())
+
+
+@dataclass(frozen=True)
+class Matched:
+    """The renderer's integrators with their entries, and those the harness has no entry for."""
+
+    entries: tuple[IntegratorEntry, ...]
+    without_entry: tuple[str, ...]
+
+
+def match() -> Matched:
+    """The renderer's integrators, each with its entry; an entry for an integrator the renderer lacks is an
+    error naming the entry's file."""
+    ours, found = renderer_integrators(), entries()
+    orphans = [e for name, e in found.items() if name not in ours]
+    if orphans:
+        raise ValueError("; ".join(f"{e.source}: entry for integrator {e.name!r}, which the renderer does not "
+                                   f"have (mcval_renderer.integrators(): {', '.join(ours)})" for e in orphans))
+    return Matched(tuple(found[n] for n in ours if n in found), tuple(n for n in ours if n not in found))
