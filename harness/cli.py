@@ -1,4 +1,5 @@
-"""The command line: `python -m harness {warps,images,references,validate}`. The only module that prints."""
+"""The command line: `python -m harness {warps,images,references,validate,integrators,...}`. The only module
+that prints."""
 from __future__ import annotations
 
 import signal
@@ -58,10 +59,26 @@ def _run_warps(args, specs, run_dir: Path) -> tuple[bool, dict]:
     return not failed, warp_payload(results, level, meta)
 
 
-def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path | None) -> tuple[bool, dict]:
+def _print_real_scenes(real, not_applicable, alpha: float) -> None:
+    """The real scenes under their own heading: their table, then the cases that do not apply and why."""
+    from harness.report.image_table import image_table
+
+    console.rule("[bold]Real scenes[/] (scenes/real/)")
+    if real:
+        table = image_table(real, alpha)
+        table.title = f"Real scenes against Mitsuba 3 (per-comparison α {alpha:.2g}, family-wise 0.01)"
+        console.print(table)
+    for case, reason in not_applicable:
+        console.print(f"{escape(case.key)}: not applicable: {escape(reason)} (not run)")
+
+
+def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path | None,
+                not_applicable=()) -> tuple[bool, dict]:
     from harness.engines.mitsuba import MitsubaEngine
     from harness.engines.ours import OurEngine
     from harness.images.outputs import write_image_outputs
+    from harness.images.real_scenes import real_scenes_json, split
+    from harness.integrators import match
     from harness.images.run import run_images
     from harness.report.image_html import reproduce_command
     from harness.report.image_table import image_table
@@ -75,10 +92,19 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
                                     on_message=lambda m: progress.console.print(f"[yellow]{escape(m)}[/]",
                                                                                 soft_wrap=True))
     seconds = time.perf_counter() - start
-    console.print(image_table(results, alpha))
+    synthetic, real = split(results)
+    if synthetic:
+        console.print(image_table(synthetic, alpha))
+    if real or not_applicable:
+        _print_real_scenes(real, not_applicable, alpha)
+    for name in match().without_entry:
+        console.print(f"[yellow]{escape(name)}[/]: no harness entry (not validated; see `python -m harness "
+                      "integrators`)")
     meta = {"engine": ours.version(), "reference": mitsuba.version(), "seed": args.seed,
             "image seconds": round(seconds, 1)}
     payload = write_image_outputs(run_dir, results, alpha, warps, meta, baseline)
+    if real or not_applicable:
+        payload["real_scenes"] = real_scenes_json(results, not_applicable)
     regression = payload["regression"] or []
     new = [e for e in regression if e["flags"] == ["new case"]]
     if new:
@@ -112,6 +138,14 @@ def _references(args) -> int:
     return 0
 
 
+def _integrators() -> int:
+    from harness.integrators import match
+    from harness.integrators.listing import integrators_table
+
+    console.print(integrators_table(match()))
+    return 0
+
+
 def _bench(args, run_dir: Path) -> tuple[bool, dict]:
     from harness.bench.run import ray_rates, run_bench, seed_comparison
     from harness.engines.mitsuba import MitsubaEngine
@@ -119,7 +153,9 @@ def _bench(args, run_dir: Path) -> tuple[bool, dict]:
     from harness.images.suite import select_cases
     from harness.report.bench_html import bench_html
 
-    cases = [c for c in select_cases(args.scenes) if args.scenes or c.integrator != "normals"]
+    # By default the simple and ao cases of our own scenes (the real scenes are validated, not benchmarked).
+    cases = [c for c in select_cases(args.scenes)
+             if args.scenes or (c.integrator != "normals" and c.group == "synthetic")]
     reference = MitsubaEngine()
     factories = {"mcval": OurEngine, "mitsuba": lambda: reference, "mitsuba-scalar": lambda: MitsubaEngine("scalar_rgb")}
     engines = [factories[name]() for name in args.engines]
@@ -194,8 +230,10 @@ def _unfinished(what: str, out: Path, run_dir: Path | None, previous: str | None
 
 def _run(args, out: Path, started: list[Path]) -> int:
     """The command; its run folder goes into `started` as soon as it exists."""
-    from harness.images.suite import select_cases
+    from harness.images.suite import not_applicable_cases, select_cases
     from harness.warps.suite import select
+    if args.command == "integrators":
+        return _integrators()
     if args.command == "references":
         return _references(args)
     if args.command == "bench":
@@ -214,6 +252,7 @@ def _run(args, out: Path, started: list[Path]) -> int:
         return 0 if ok else 1
     specs = select(getattr(args, "only", None)) if args.command in ("warps", "validate") else []
     cases = select_cases(args.scenes) if args.command in ("images", "validate") else []
+    not_applicable = not_applicable_cases(args.scenes) if cases else []
     # `latest` is the newest complete run; it moves to this run only once this run is complete.
     # The regression baseline is the newest complete run with images (a warps-only run has none).
     baseline = getattr(args, "baseline", None) or ((out / "images-latest").resolve() / "results.json")
@@ -226,7 +265,7 @@ def _run(args, out: Path, started: list[Path]) -> int:
         ok &= warps_ok
         payload.update(warps=warps["warps"], warp_level=warps["level"])
     if cases:
-        images_ok, images = _run_images(args, cases, run_dir, warps, baseline)
+        images_ok, images = _run_images(args, cases, run_dir, warps, baseline, not_applicable)
         ok &= images_ok
         payload.update(images)
     elif warps is not None:

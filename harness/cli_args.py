@@ -27,7 +27,7 @@ def build_parser() -> argparse.ArgumentParser:
     def image_options(q: argparse.ArgumentParser) -> None:
         q.add_argument("--scenes", "--only", dest="scenes", nargs="+", metavar="CASE",
                        help="scenes, integrators or scene:integrator cases, e.g. cornell ao plane_point:simple "
-                            "(default: all)")
+                            "cornell_box (default: all, scenes/ and scenes/real/)")
         q.add_argument("--baseline", type=Path, metavar="RESULTS_JSON",
                        help="compare with this run's results.json (default: the previous run's)")
         q.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant (default: llvm_ad_rgb)")
@@ -84,8 +84,18 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--json", type=Path, metavar="PATH", help="also write the figures as JSON to PATH")
     c.add_argument("--no-mitsuba", action="store_true", help="skip the homogeneity test against Mitsuba")
 
+    sub.add_parser("integrators", help="the renderer's integrators and what the harness knows of each",
+                   description="List every integrator of the renderer's registry (mcval_renderer.integrators()) "
+                               "with its harness entry (harness/integrators/<name>.py, or a .py file in a folder "
+                               "of $MCVAL_INTEGRATOR_PATH): samples per pixel of our renders and of Mitsuba's "
+                               "references, the Mitsuba integrator it is compared with and what is removed from "
+                               "a scene for it, its closed form on one plane, and what it needs of a scene. An "
+                               "integrator without an entry is listed as such (it is not validated); an entry "
+                               "for an integrator the renderer lacks is an error (exit status 2).")
+
     v = sub.add_parser("validate", help="everything: what `make validate` runs",
-                       description="Warp conformance and image validation; writes results/<run>/report.html.")
+                       description="Warp conformance and image validation (our scenes, then the real scenes of "
+                                   "scenes/real/ as their own section); writes results/<run>/report.html.")
     common(v)
     image_options(v)
     return p

@@ -17,7 +17,7 @@ from harness.integrators.entry import IntegratorEntry
 
 PATH_ENV = "MCVAL_INTEGRATOR_PATH"
 _PACKAGE = "harness.integrators"
-_NOT_ENTRIES = {"entry", "registry"}
+_NOT_ENTRIES = {"entry", "listing", "registry"}  # the machinery, not integrators
 
 
 def _checked(entry: object, source: str) -> IntegratorEntry:
@@ -36,7 +36,7 @@ def _package_entries() -> list[IntegratorEntry]:
         module = importlib.import_module(f"{_PACKAGE}.{info.name}")
         source = str(Path(module.__file__).relative_to(Path(package.__path__[0]).parents[1]))
         if not hasattr(module, "ENTRY"):
-            raise ValueError(f"{source}: no ENTRY (each module of {_PACKAGE} but entry and registry is one "
+            raise ValueError(f"{source}: no ENTRY (each module of {_PACKAGE} but entry, listing and registry is one "
                              "integrator's entry)")
         found.append(_checked(module.ENTRY, source))
     return found
