@@ -42,6 +42,14 @@ def _package_entries() -> list[IntegratorEntry]:
     return found
 
 
+def _shown(path: Path) -> str:
+    """The path as the user would type it: relative to the current folder when inside it."""
+    try:
+        return str(path.resolve().relative_to(Path.cwd()))
+    except ValueError:
+        return str(path)
+
+
 def _folder_entries(folder: Path) -> list[IntegratorEntry]:
     if not folder.is_dir():
         raise ValueError(f"{PATH_ENV}: {folder} is not a folder")
@@ -54,7 +62,7 @@ def _folder_entries(folder: Path) -> list[IntegratorEntry]:
         spec.loader.exec_module(module)
         if not hasattr(module, "ENTRY"):
             raise ValueError(f"{path}: no ENTRY (every .py file in a {PATH_ENV} folder is an integrator entry)")
-        found.append(_checked(module.ENTRY, str(path)))
+        found.append(_checked(module.ENTRY, _shown(path)))
     return found
 
 
