@@ -35,7 +35,8 @@ struct RaySet {
     std::vector<Ray> occlusion; ///< shadow or AO rays (any hit)
 };
 
-RaySet collectRays(const SceneDescription &scene, const EmbreeScene &embree, const std::string &integrator, int spp) {
+RaySet collectRays(const SceneDescription &scene, const EmbreeScene &embree, const std::string &integrator, int spp,
+                   int aoSamples) {
     const Camera camera(scene.camera, scene.film.width, scene.film.height);
     RaySet rays;
     for (int y = 0; y < scene.film.height; ++y) {
@@ -57,7 +58,7 @@ RaySet collectRays(const SceneDescription &scene, const EmbreeScene &embree, con
                     }
                 } else {
                     const Frame frame(hit.ns);
-                    for (int i = 0; i < scene.integrator.aoSamples; ++i)
+                    for (int i = 0; i < aoSamples; ++i)
                         rays.occlusion.push_back(spawnRay(hit, frame.toWorld(squareToCosineHemisphere(sampler.next2D())), 1e30f));
                 }
             }
@@ -89,9 +90,11 @@ double traceRaw(const EmbreeScene &embree, const RaySet &rays, int spp) {
 int main(int argc, char **argv) {
     CLI::App app{"Rays per second of each integrator beside a raw Embree loop over the same rays."};
     std::string scenePath, jsonPath;
-    int spp = 16, repeats = 5;
+    int spp = 16, repeats = 5, aoSamples = 1;
     app.add_option("scene", scenePath, "scene file")->required()->check(CLI::ExistingFile);
     app.add_option("--spp", spp, "samples per pixel (default 16)")->check(CLI::PositiveNumber);
+    app.add_option("--ao-samples", aoSamples, "occlusion rays per camera hit for ao (default 1, as the ao integrator's)")
+        ->check(CLI::PositiveNumber);
     app.add_option("--repeats", repeats, "runs per measurement; the median is reported (default 5)")
         ->check(CLI::PositiveNumber);
     app.add_option("--json", jsonPath, "also write the figures as JSON");
@@ -116,7 +119,7 @@ int main(int argc, char **argv) {
             rayCount = out.stats.cameraRays + out.stats.shadowRays;
             ours.push_back(double(rayCount) / out.stats.renderSeconds);
         }
-        const RaySet rays = collectRays(scene, embree, name, spp);
+        const RaySet rays = collectRays(scene, embree, name, spp, aoSamples);
         const double rawCount = double(rays.closest.size() + rays.occlusion.size());
         for (int r = 0; r < repeats; ++r) raw.push_back(rawCount / traceRaw(embree, rays, spp));
         const double o = median(ours), w = median(raw);

@@ -11,6 +11,7 @@
 #include "error.h"
 #include "exr_output.h"
 #include "progress.h"
+#include "integrators/registry.h"
 #include "render.h"
 #include "scene.h"
 #include "scene_limits.h"
@@ -37,11 +38,20 @@ std::string oneLine(const std::string &message) {
     return out;
 }
 
+/// One line per registered integrator: its name and what it computes.
+std::string integratorHelp() {
+    std::string help;
+    for (const std::string &name : integratorNames())
+        help += "  " + name + std::string(name.size() < 10 ? 10 - name.size() : 1, ' ') + findIntegrator(name)->description + "\n";
+    return help;
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
-    CLI::App app{"Render a scene file (a subset of Mitsuba 3 XML) with the normals, simple or ao integrator.\n"
-                 "Writes OpenEXR: R,G,B (mean), variance.R/G/B, and batch<k>.R/G/B with --batches K."};
+    CLI::App app{"Render a scene file (a subset of Mitsuba 3 XML) with one of the integrators below.\n"
+                 "Writes OpenEXR: R,G,B (mean), variance.R/G/B, and batch<k>.R/G/B with --batches K.\n"
+                 "Integrators:\n" + integratorHelp()};
     std::string scenePath, outPath, integrator;
     int spp = 0, threads = 0, batches = 1;
     uint64_t seed = 0;
@@ -55,8 +65,8 @@ int main(int argc, char **argv) {
     app.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
     app.add_option("--batches", batches, "independent images to render, each with --spp samples (default 1)")
         ->check(CLI::Range(1, kMaxBatches));
-    app.add_option("--integrator", integrator, "normals, simple or ao (default: the scene's)")
-        ->check(CLI::IsMember({"normals", "simple", "ao"}));
+    app.add_option("--integrator", integrator, integratorNameList() + " (default: the scene's)")
+        ->check(CLI::IsMember(integratorNames()));
     app.add_option("-D,--define", defines, "set a scene parameter: -D name=value (overrides its <default>)");
     app.add_flag("-q,--quiet", quiet, "no progress bar or summary");
     CLI11_PARSE(app, argc, argv);

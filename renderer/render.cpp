@@ -67,13 +67,81 @@ void requireFinite(const Image &image, const std::string &what, const std::strin
     }
 }
 
-}  // namespace
+/// What every tile of a render reads; shared by the threads, never written.
+struct RenderContext {
+    const Camera &camera;
+    const EmbreeScene &embree;
+    const Integrator &integrator;
+    int width;
+    int spp;
+    uint64_t seed;
+};
 
-RenderOutput render(const SceneDescription &scene, const RenderOptions &options) {
-    IntegratorSpec spec = scene.integrator;
-    if (!options.integrator.empty()) spec.type = options.integrator;
-    const int spp = options.spp > 0 ? options.spp : scene.sampleCount;
-    const int batches = std::max(1, options.batches);
+/// Every sample of pixel (x, y) in batch `batch`, splatted into `block` (pbrt's EvaluatePixelSample,
+/// for all the samples of a pixel). The samples of one pixel are coherent: their camera rays are
+/// traced kPacket at a time.
+void renderPixel(const RenderContext &ctx, int batch, int x, int y, ImageBlock &block, RayCounts &counts) {
+    Sampler sampler(ctx.seed, static_cast<uint64_t>(batch), static_cast<uint64_t>(y) * ctx.width + x);
+    for (int first = 0; first < ctx.spp; first += kPacket) {
+        const int count = std::min(kPacket, ctx.spp - first);
+        Ray rays[kPacket];
+        Vec2f film[kPacket];
+        for (int i = 0; i < count; ++i) {
+            sampler.startSample(static_cast<uint32_t>(first + i));
+            const Vec2f jitter = sampler.next2D();
+            film[i] = {static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y};
+            rays[i] = ctx.camera.generateRay(film[i].x, film[i].y);
+        }
+        Hit hits[kPacket];
+        bool found[kPacket];
+        ctx.embree.intersect8(rays, count, hits, found);
+        counts.camera += static_cast<uint64_t>(count);
+        for (int i = 0; i < count; ++i) {
+            sampler.startSample(static_cast<uint32_t>(first + i), 1);
+            block.put(film[i].x, film[i].y, ctx.integrator.Li(rays[i], found[i] ? &hits[i] : nullptr, sampler, counts));
+        }
+    }
+}
+
+/// One tile of one batch (Nori's renderBlock).
+void renderTile(const RenderContext &ctx, int batch, const Tile &tile, ImageBlock &block, RayCounts &counts) {
+    for (int y = tile.y0; y < tile.y0 + tile.height; ++y)
+        for (int x = tile.x0; x < tile.x0 + tile.width; ++x) renderPixel(ctx, batch, x, y, block, counts);
+}
+
+/// Tiles finished so far, reported one call at a time from the worker threads.
+struct Progress {
+    const std::function<void(double)> &report;
+    size_t total;
+    std::atomic<size_t> done{0};
+    std::mutex mutex;
+
+    void tileDone() {
+        const size_t finished = ++done;
+        if (!report) return;
+        std::lock_guard<std::mutex> lock(mutex);
+        report(static_cast<double>(finished) / static_cast<double>(total));
+    }
+};
+
+/// One batch image: its tiles in parallel, merged in a fixed order so that the bits do not depend
+/// on the thread count; `mean` and `variance` are the film's per-pixel estimate and its variance.
+void renderBatch(const RenderContext &ctx, int batch, const std::vector<Tile> &tiles, const FilterSpec &filter,
+                 tbb::enumerable_thread_specific<RayCounts> &counts, Progress &progress, Image &mean, Image &variance) {
+    std::vector<ImageBlock> blocks;
+    blocks.reserve(tiles.size());
+    for (const Tile &t : tiles) blocks.emplace_back(t.x0, t.y0, t.width, t.height, filter);
+    tbb::parallel_for(size_t(0), tiles.size(), [&](size_t ti) {
+        renderTile(ctx, batch, tiles[ti], blocks[ti], counts.local());
+        progress.tileDone();
+    });
+    Film film(mean.width, mean.height);
+    for (const ImageBlock &block : blocks) film.merge(block);
+    film.develop(mean.rgb, variance.rgb);
+}
+
+/// Throws unless the film, its batches and the sample count fit the renderer's limits.
+void requireWithinLimits(const SceneDescription &scene, int spp, int batches) {
     if (spp > kMaxSampleCount) throw SceneError("spp must be at most " + std::to_string(kMaxSampleCount));
     if (batches > kMaxBatches) throw SceneError("batches must be at most " + std::to_string(kMaxBatches));
     // Film sums (11 doubles) and the mean, variance and batch images (3 floats each) per pixel.
@@ -83,6 +151,17 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
                                             " film with " + std::to_string(batches) + " batches needs " +
                                             std::to_string(int(bytes / (1 << 20))) + " MiB; the limit is " +
                                             std::to_string(int(kMaxImageBytes / (1 << 20))) + " MiB");
+}
+
+}  // namespace
+
+RenderOutput render(const SceneDescription &scene, const RenderOptions &options) {
+    // A different integrator than the scene's runs with its own defaults, not the scene's parameters.
+    IntegratorSpec spec = scene.integrator;
+    if (!options.integrator.empty() && options.integrator != spec.type) spec = {options.integrator, {}};
+    const int spp = options.spp > 0 ? options.spp : scene.sampleCount;
+    const int batches = std::max(1, options.batches);
+    requireWithinLimits(scene, spp, batches);
     const int width = scene.film.width, height = scene.film.height;
 
     std::unique_ptr<tbb::global_control> limit;
@@ -101,56 +180,15 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
     out.stats.bvhSeconds = secondsSince(start);
 
     const Camera camera(scene.camera, width, height);
+    const RenderContext ctx{camera, embree, *integrator, width, spp, options.seed};
     const std::vector<Tile> tiles = makeTiles(width, height);
     tbb::enumerable_thread_specific<RayCounts> counts;
-    std::atomic<size_t> done{0};
-    std::mutex progressMutex;
-    const size_t totalWork = tiles.size() * batches;
+    Progress progress{options.progress, tiles.size() * batches};
 
     start = std::chrono::steady_clock::now();
     for (int b = 0; b < batches; ++b) {
-        std::vector<ImageBlock> blocks;
-        blocks.reserve(tiles.size());
-        for (const Tile &t : tiles) blocks.emplace_back(t.x0, t.y0, t.width, t.height, scene.film.filter);
-        tbb::parallel_for(size_t(0), tiles.size(), [&](size_t ti) {
-            const Tile &tile = tiles[ti];
-            RayCounts &local = counts.local();
-            for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
-                for (int x = tile.x0; x < tile.x0 + tile.width; ++x) {
-                    Sampler sampler(options.seed, static_cast<uint64_t>(b), static_cast<uint64_t>(y) * width + x);
-                    // The samples of one pixel are coherent: trace their camera rays 8 at a time.
-                    for (int first = 0; first < spp; first += kPacket) {
-                        const int count = std::min(kPacket, spp - first);
-                        Ray rays[kPacket];
-                        Vec2f film[kPacket];
-                        for (int i = 0; i < count; ++i) {
-                            sampler.startSample(static_cast<uint32_t>(first + i));
-                            const Vec2f jitter = sampler.next2D();
-                            film[i] = {static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y};
-                            rays[i] = camera.generateRay(film[i].x, film[i].y);
-                        }
-                        Hit hits[kPacket];
-                        bool found[kPacket];
-                        embree.intersect8(rays, count, hits, found);
-                        local.camera += static_cast<uint64_t>(count);
-                        for (int i = 0; i < count; ++i) {
-                            sampler.startSample(static_cast<uint32_t>(first + i), 1);
-                            blocks[ti].put(film[i].x, film[i].y,
-                                           integrator->Li(rays[i], found[i] ? &hits[i] : nullptr, sampler, local));
-                        }
-                    }
-                }
-            }
-            const size_t finished = ++done;
-            if (options.progress) {
-                std::lock_guard<std::mutex> lock(progressMutex);
-                options.progress(static_cast<double>(finished) / static_cast<double>(totalWork));
-            }
-        });
-        Film film(width, height);
-        for (const ImageBlock &block : blocks) film.merge(block);  // fixed order: thread-count independent
         Image mean{width, height, {}}, variance{width, height, {}};
-        film.develop(mean.rgb, variance.rgb);
+        renderBatch(ctx, b, tiles, scene.film.filter, counts, progress, mean, variance);
         if (batches == 1) {
             out.mean = std::move(mean);
             out.variance = std::move(variance);

@@ -2,7 +2,9 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,10 +55,16 @@ struct FilmSpec {
     std::string componentFormat = "float32";  ///< hdrfilm component_format: float16 or float32
 };
 
-/// Which of our integrators to run, and its parameters.
+class Integrator;
+class EmbreeScene;
+struct SceneDescription;
+/// Builds an integrator, configured by its own parameters, for one scene.
+using IntegratorMaker = std::function<std::unique_ptr<Integrator>(const SceneDescription &, const EmbreeScene &)>;
+
+/// Which of our integrators to run, and its parameters as the integrator itself parsed them.
 struct IntegratorSpec {
     std::string type;
-    int aoSamples = 1;               ///< `ao`: occlusion rays per camera sample
+    IntegratorMaker make;            ///< empty: the integrator's defaults
 };
 
 /// Everything the renderer needs from a scene file.

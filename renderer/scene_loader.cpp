@@ -1,4 +1,5 @@
-// The Mitsuba 3 XML subset of DESIGN.md: every element and property outside it is an error.
+// The Mitsuba 3 XML subset the renderer reads (see docs/ARCHITECTURE.md): what the chosen integrator
+// needs is read and checked, what it does not use is skipped with a note, anything else is an error.
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +11,7 @@
 #include "mesh.h"
 #include "scene.h"
 #include "xml_props.h"
+#include "integrators/registry.h"
 
 namespace mcval {
 
@@ -200,18 +202,13 @@ void loadEmitter(const XmlContext &ctx, const pugi::xml_node &node, SceneDescrip
     if (!props.objects().empty()) ctx.fail(props.objects()[0], "unexpected element inside <emitter>");
 }
 
+/// The file's integrator: its type from the registry, its properties parsed by the integrator itself.
 void loadIntegrator(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene) {
     const std::string type = typeOf(ctx, node);
+    const IntegratorInfo *info = findIntegrator(type);
+    if (!info) ctx.fail(node, "unsupported integrator type \"" + type + "\": expected " + integratorNameList());
     XmlProps props(ctx, node);
-    if (type == "ao") {
-        scene.integrator.aoSamples = props.getInt("samples", 1);
-        props.requireRange("samples", scene.integrator.aoSamples, 1, kMaxAoSamples);
-        props.finish("samples");
-    } else if (type == "normals" || type == "simple") {
-        props.finish("no properties");
-    } else {
-        ctx.fail(node, "unsupported integrator type \"" + type + "\": expected normals, simple or ao");
-    }
+    scene.integrator.make = info->parse(&props);
     scene.integrator.type = type;
 }
 
@@ -293,22 +290,26 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     if (!hasSensor) ctx.fail(root, "the scene has no <sensor type=\"perspective\">");
     if (scene.meshes.empty()) ctx.fail(root, "the scene has no <shape>");
 
-    // What the chosen integrator needs: refuse what would change its answer, skip what it ignores.
-    const std::string chosen = integrator.empty() ? scene.integrator.type : integrator;
-    if (chosen == "simple" && scene.pointLights.empty())
-        ctx.fail(root, "the scene has no point light, the only emitter the simple integrator uses");
+    // What the chosen integrator uses, as it declared: refuse what would change its answer, skip the rest.
+    if (!integrator.empty() && integrator != scene.integrator.type) scene.integrator = {integrator, {}};
+    const std::string &chosen = scene.integrator.type;
+    const IntegratorInfo *info = findIntegrator(chosen);
+    if (!info) {
+        // No or an unknown integrator: render() names that error; a bsdf we cannot model is one too.
+        for (const auto &[node, what] : deferred.nonDiffuseBsdfs) ctx.fail(node, "unsupported bsdf type: expected \"diffuse\"");
+        return scene;
+    }
+    if (info->use.needsPointLight && scene.pointLights.empty())
+        ctx.fail(root, "the scene has no point light, the only emitter the " + chosen + " integrator uses");
     for (const auto &[node, what] : deferred.areaEmitters) {
-        if (chosen == "simple") ctx.fail(node, "the simple integrator does not model area emitters");
-        if (chosen == "normals" || chosen == "ao") skipped.push_back(what);
+        if (info->use.areaEmittersLight) ctx.fail(node, "the " + chosen + " integrator does not model area emitters");
+        skipped.push_back(what);
     }
     for (const auto &[node, what] : deferred.nonDiffuseBsdfs) {
-        if (chosen == "normals")
-            skipped.push_back(what);
-        else if (chosen == "simple" || chosen == "ao")
+        if (info->use.readsReflectance)
             ctx.fail(node, "unsupported bsdf type \"" + typeOf(ctx, node) + "\": the " + chosen +
                                " integrator needs \"diffuse\"");
-        else  // no or an unknown integrator: render() names that error; a bsdf we cannot model is one too
-            ctx.fail(node, "unsupported bsdf type: expected \"diffuse\"");
+        skipped.push_back(what);
     }
     if (!skipped.empty()) {
         std::string note = "note: " + path + ": skipped, not used by the " + chosen + " integrator:";

@@ -1,4 +1,4 @@
-// The integrator interface and its one factory.
+// The integrator interface; integrators are found by name in registry.h.
 #pragma once
 
 #include <cstdint>
@@ -28,7 +28,7 @@ public:
     virtual Color Li(const Ray &ray, const Hit *hit, Sampler &sampler, RayCounts &counts) const = 0;
 };
 
-/// The integrator `spec.type` (normals, simple or ao) over the given scene; throws SceneError otherwise.
+/// The registered integrator `spec.type` over the given scene; throws SceneError naming the choices otherwise.
 std::unique_ptr<Integrator> createIntegrator(const IntegratorSpec &spec, const SceneDescription &scene,
                                              const EmbreeScene &embree);
 

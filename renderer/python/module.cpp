@@ -3,10 +3,13 @@
 #include <cstring>
 
 #include <nanobind/nanobind.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
 #include <nanobind/ndarray.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "../integrators/registry.h"
 #include "../warp.h"
 
 namespace nb = nanobind;
@@ -69,6 +72,8 @@ NB_MODULE(mcval_renderer, m) {
     m.doc() = "The mcval renderer: render(scene, ...), and the sample warps over numpy arrays of shape "
               "(N, 2) or (N, 3), float32.";
     bindRender(m);
+    m.def("integrators", &integratorNames,
+          "The names of the integrators this build registered, sorted (render()'s `integrator` choices).");
 
     bindWarp<2>(m, "square_to_uniform_square", "square_to_uniform_square_pdf",
                 squareToUniformSquare, squareToUniformSquarePdf);

