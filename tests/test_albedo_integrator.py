@@ -20,7 +20,7 @@ pytestmark = pytest.mark.skipif(
 
 def harness(*args: str) -> subprocess.CompletedProcess:
     env = {**os.environ, "PYTHONPATH": str(TEST_MODULE), "MCVAL_INTEGRATOR_PATH": str(ROOT / "tests" / "integrators"),
-           "MCVAL_RENDER": str(TEST_RENDER), "COLUMNS": "200"}
+           "MCVAL_RENDER": str(TEST_RENDER)}
     return subprocess.run([sys.executable, "-m", "harness", *args], capture_output=True, text=True, env=env,
                           cwd=ROOT, timeout=600)
 
