@@ -95,9 +95,10 @@ def renderer_integrators() -> tuple[str, ...]:
     from harness.engines.ours import _load_module
 
     module = _load_module()
-    if not hasattr(module, "integrators"):  # a module built before integrators() existed had these three
-        return ("normals", "simple", "ao")
-    return tuple(str(getattr(x, "name", x)) for x in module.integrators())
+    if not hasattr(module, "integrators"):
+        raise RuntimeError(f"{module.__file__} has no integrators(): it was built before the renderer's integrator "
+                           "registry; run `make build`")
+    return tuple(module.integrators())
 
 
 @dataclass(frozen=True)
