@@ -98,3 +98,21 @@ def test_real_cases_live_in_scenes_real():
     case = ImageCase("cornell_box", "ao", "real")
     assert case.path == CORNELL_BOX and case.mitsuba_path == CORNELL_BOX
     assert next(c for c in select_cases(["cornell_box:ao"])) == case
+
+
+def test_the_integrators_command_lists_each_with_its_entry(capsys):
+    from harness.cli import main
+    assert main(["integrators"]) == 0
+    out = capsys.readouterr().out
+    for name, mitsuba in (("normals", "aov(aovs=nn:sh_normal)"), ("simple", "direct(emitter_samples=1,"),
+                          ("ao", "direct(hide_emitters=true)")):
+        row = next(line for line in out.splitlines() if line.strip().startswith(name + " "))
+        assert f"harness/integrators/{name}.py" in row and mitsuba in row, out
+    assert "no harness entry" not in out
+
+
+def test_an_orphan_entry_makes_the_integrators_command_fail_naming_it(extra_folder, capsys):
+    from harness.cli import main
+    (extra_folder / "sparkle.py").write_text(EXTRA.format(name="sparkle"))
+    assert main(["integrators"]) == 2
+    assert "sparkle.py: entry for integrator 'sparkle'" in capsys.readouterr().err.replace("\n", "")
