@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import zlib
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Callable
 
 import numpy as np
@@ -46,7 +47,8 @@ class ImageResult:
             return {"integrator": self.case.integrator, "scene": self.case.scene, "pass": False,
                     "error": self.error, "tests": {}, "metrics": {},
                     "seconds": {**({"mcval": self.ours.seconds} if self.ours else {}), **seconds},
-                    "reference": self.reference_source, "note": self.note, "seed": self.seed, "alpha": self.alpha}
+                    "reference": self.reference_source, "note": self.note, "seed": self.seed, "alpha": self.alpha,
+                    "idiff": self.idiff}
         mitsuba = self.comparisons.get("mitsuba")
         batch_means = self.ours.batches.mean(axis=(1, 2))
         return {
@@ -59,19 +61,22 @@ class ImageResult:
             "batches": {"mcval": len(self.ours.batches), **{k: r.summary.image.k for k, r in self.references.items()}},
             "image_mean": batch_means.mean(axis=0).tolist(),
             "image_mean_se": (batch_means.std(axis=0, ddof=1) / np.sqrt(len(batch_means))).tolist(),
-            "idiff": self._idiff(),
+            "idiff": self.idiff,
         }
 
-    def _idiff(self) -> dict | None:
-        """What idiff (OIIO test-suite thresholds) says of our mean image against the reference's."""
+    @cached_property
+    def idiff(self) -> dict:
+        """What idiff, at OpenImageIO's test-suite thresholds, says of our mean image against the
+        reference's mean (Mitsuba's, else the closed form's); verdict "n/a" with a reason when there
+        is no pair of images to compare."""
         ref = self.references.get("mitsuba") or next(iter(self.references.values()), None)
-        if ref is None:
-            return None
+        if self.error is not None or self.ours is None or ref is None:
+            return {"verdict": "n/a", "reason": self.error or "no reference image"}
         from harness.images.idiff import idiff
         try:
             return idiff(self.ours.batches.mean(axis=0), ref.summary.mean_image)
-        except Exception as e:  # never let the side report break the run
-            return {"verdict": "ERROR", "error": str(e)}
+        except Exception as e:  # a side report never breaks the run
+            return {"verdict": "n/a", "reason": f"idiff failed: {e}"}
 
 
 def case_seed(case: ImageCase, seed: int) -> int:

@@ -10,6 +10,7 @@ from harness.images.compare import Comparison
 from harness.images.finite import SIDES
 from harness.images.run import ImageResult
 from harness.images.suite import INTEGRATORS
+from harness.report.idiff_text import LEGEND, idiff_sentence
 from harness.report.image_plots import comparison_png
 from harness.report.style import CSS
 
@@ -64,6 +65,7 @@ def _entry(r: ImageResult) -> str:
         parts.append(f'<p class="fail">{_esc(r.note)}</p>')
     if not r.passed:
         parts.append(f"<p>Reproduce: <code>{_esc(reproduce_command(r))}</code></p>")
+    parts.append(f"<p>{_esc(idiff_sentence(r.idiff))}</p>")
     if r.error is not None or r.ours is None:
         parts.append(f'<p class="fail">Render failed: {_esc(r.error)}; nothing to compare.</p>')
         return "".join(parts)
@@ -135,7 +137,7 @@ def report_html(results: list[ImageResult], alpha: float, warps: dict | None, me
 <h2>Regression</h2>{_regression_html(regression, baseline)}
 <p>Each engine renders independent batches; Welch's t-test compares them per pixel, per 8×8 tile and for
 the whole image. The p-value map shows log10(p / level) at the pixel and tile scales: red pixels are where a
-difference is beyond noise.</p>
+difference is beyond noise. {_esc(LEGEND)}.</p>
 {''.join(sections)}
 </body></html>
 """

@@ -7,6 +7,7 @@ from rich.table import Table
 
 from harness.images.finite import SIDES
 from harness.images.run import ImageResult
+from harness.report.idiff_text import LEGEND, idiff_short
 
 
 def _bad_pixels(result: ImageResult) -> list[str]:
@@ -37,20 +38,20 @@ def image_table(results: list[ImageResult], alpha: float) -> Table:
     """One row per (scene, integrator): verdict, failing scales, mean ratio, relMSE, FLIP, seconds."""
     table = Table(title=f"Images against Mitsuba 3 (per-comparison α {alpha:.2g}, family-wise 0.01)",
                   box=box.SIMPLE_HEAD, padding=(0, 1), header_style="bold")
-    for name in ("scene", "integrator", "verdict", "mean ratio", "relMSE", "FLIP", "min bias", "s ours", "s mi"):
+    for name in ("scene", "integrator", "verdict", "mean ratio", "relMSE", "FLIP", "min bias", "idiff", "s ours", "s mi"):
         table.add_column(name, no_wrap=True)
     for r in results:
         m = r.comparisons.get("mitsuba")
         if r.error is not None or m is None:  # a render failed: no comparison (the CLI prints why)
-            table.add_row(r.case.scene, r.case.integrator, "[bold red]FAIL[/] render failed", "—", "—", "—", "—",
+            table.add_row(r.case.scene, r.case.integrator, "[bold red]FAIL[/] render failed", "—", "—", "—", "—", "—",
                           f"{r.ours.seconds['total']:.2f}" if r.ours else "—", "—")
             continue
         verdicts = _cell(r) + (" (+exact)" if "analytic" in r.comparisons else "")
         table.add_row(r.case.scene, r.case.integrator, verdicts, f"{m.metrics['mean_ratio']:.4f}",
-                      f"{m.metrics['relmse']:.1e}", f"{m.metrics['flip_mean']:.3f}", f"{m.detectable_bias:.1e}",
+                      f"{m.metrics['relmse']:.1e}", f"{m.metrics['flip_mean']:.3f}", f"{m.detectable_bias:.1e}", idiff_short(r.idiff),
                       f"{r.ours.seconds['total']:.2f}", f"{r.references['mitsuba'].seconds.get('total', 0):.2f}")
     table.caption = ("mean ratio: ours / Mitsuba image mean; min bias: smallest relative bias of the image mean "
-                     "detected half of the time; +exact: also compared with the closed form")
+                     "detected half of the time; +exact: also compared with the closed form\n" + LEGEND)
     for r in results:  # where the bad pixels are: one line per case and distinct finding
         found: dict[str, list[str]] = {}
         for name, c in r.comparisons.items():
