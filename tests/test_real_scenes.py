@@ -123,7 +123,13 @@ def test_component_format_is_honoured(fmt, dtype, tmp_path):
     path = scene(tmp_path, film_extra=f'<string name="component_format" value="{fmt}"/>')
     assert run(path, "--integrator", "ao", "-o", tmp_path / "o.exr", "-q").returncode == 0
     with OpenEXR.File(str(tmp_path / "o.exr")) as f:
-        assert f.channels()["RGB"].pixels.dtype == dtype
+        pixels = f.channels()["RGB"].pixels
+        assert pixels.dtype == dtype
+    # The harness reads it through OpenImageIO: the same values, as float32.
+    from harness.images.exr import read_layers
+    layers, attributes = read_layers(tmp_path / "o.exr")
+    assert layers["RGB"].dtype == np.float32 and np.array_equal(layers["RGB"], pixels.astype(np.float32))
+    assert "mcval.renderSeconds" in attributes
 
 
 def test_bad_component_format_is_an_error(tmp_path):

@@ -85,22 +85,20 @@ def _last_line(path: Path) -> str:
 
 def read_render_exr(path: Path, batches: int) -> ChildRender:
     """The batches (`batch<k>.R/G/B` layers, or `R,G,B` for one batch) and timings of a `render` EXR."""
-    import OpenEXR
+    from harness.images.exr import read_layers
 
     try:
-        with OpenEXR.File(str(path)) as f:
-            header, layers = f.header(), f.channels()
-            names = [f"batch{k}" for k in range(batches)] if "batch0" in layers or batches > 1 else ["RGB"]
-            missing = [n for n in names if n not in layers]
-            if missing:
-                raise RenderFailed(f"wrote an image without the layer(s) {', '.join(missing)}")
-            images = np.stack([np.asarray(layers[n].pixels, dtype=np.float32) for n in names])
-            seconds = {key: float(np.ravel(header[f"mcval.{name}"])[0])
-                       for key, name in (("load", "loadSeconds"), ("build", "bvhSeconds"),
-                                         ("render", "renderSeconds"))}
+        layers, header = read_layers(path)
+        names = [f"batch{k}" for k in range(batches)] if "batch0" in layers or batches > 1 else ["RGB"]
+        missing = [n for n in names if n not in layers]
+        if missing:
+            raise RenderFailed(f"wrote an image without the layer(s) {', '.join(missing)}")
+        images = np.stack([layers[n] for n in names])
+        seconds = {key: float(np.ravel(header[f"mcval.{name}"])[0])
+                   for key, name in (("load", "loadSeconds"), ("build", "bvhSeconds"), ("render", "renderSeconds"))}
     except RenderFailed:
         raise
-    except Exception as e:  # OpenEXR raises plain exceptions for truncated or foreign files
+    except Exception as e:  # a truncated or foreign file, or one without the renderer's attributes
         raise RenderFailed(f"wrote an unreadable image ({type(e).__name__}: {e})") from e
     return ChildRender(images, seconds)
 

@@ -134,7 +134,7 @@ def _json_stats(meta: dict, name: str, shape: tuple[int, ...], k: int, meta_path
 
 def _read_exr(path: Path, meta: dict, meta_path: Path) -> tuple[np.ndarray, np.ndarray]:
     """The mean and variance layers, after the file's size and SHA-256 matched those the .json records."""
-    import OpenEXR
+    from harness.images.exr import read_layers
 
     size, digest = meta.get("exr_bytes"), meta.get("exr_sha256")
     if not isinstance(size, int) or not isinstance(digest, str):
@@ -146,13 +146,12 @@ def _read_exr(path: Path, meta: dict, meta_path: Path) -> tuple[np.ndarray, np.n
         raise _Damaged(path, f"not the file written ({len(data)} bytes, {size} written; SHA-256 differs from "
                              f"the one in {meta_path.name}): damaged or edited")
     try:
-        with OpenEXR.File(str(path)) as f:
-            layers = f.channels()
-            missing = [name for name in ("RGB", "variance") if name not in layers]
-            if missing:
-                raise _Damaged(path, f"no {' or '.join(missing)} layer (has {', '.join(layers) or 'none'})")
-            mean = np.asarray(layers["RGB"].pixels, dtype=np.float64)
-            var = np.asarray(layers["variance"].pixels, dtype=np.float64)
+        layers, _ = read_layers(path)
+        missing = [name for name in ("RGB", "variance") if name not in layers]
+        if missing:
+            raise _Damaged(path, f"no {' or '.join(missing)} layer (has {', '.join(layers) or 'none'})")
+        mean = layers["RGB"].astype(np.float64)
+        var = layers["variance"].astype(np.float64)
     except _Damaged:
         raise
     except Exception as e:  # the decoder's own errors: RuntimeError, ValueError, ...
@@ -217,19 +216,17 @@ def render_reference(case: ImageCase, engine: Engine) -> Reference:
 
 def write_reference(case: ImageCase, engine: Engine, reference: Reference) -> Path:
     """Store a reference as references/<scene>/<integrator>.exr and .json, each written atomically."""
-    import OpenEXR
+    from harness.images.exr import write_layers
 
     s = reference.summary
     # Exactly what will be read back: float32 pixels, tile means rounded to 7 decimals.
     stored = Summary(BatchStats(s.pixel.mean.astype(np.float32), s.pixel.var_of_mean.astype(np.float32), s.pixel.k),
                      BatchStats(s.tile.mean.round(7), s.tile.var_of_mean, s.tile.k), s.image, s.tile_size)
     channels = {"RGB": stored.pixel.mean, "variance": stored.pixel.var_of_mean}
-    header = {"compression": OpenEXR.ZIP_COMPRESSION, "type": OpenEXR.scanlineimage}
     path = reference_path(case)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.stem}.tmp.exr")
-    with OpenEXR.File(header, channels) as f:
-        f.write(str(tmp))
+    write_layers(tmp, channels)
     exr = tmp.read_bytes()
     write_atomic(path, exr)
     tmp.unlink()

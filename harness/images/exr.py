@@ -1,0 +1,60 @@
+"""OpenEXR files in and out of the harness, through OpenImageIO.
+
+A file is a set of RGB layers: "RGB" for the channels R, G, B and "<name>" for <name>.R, .G, .B (as the
+renderer writes `batch<k>` and `variance`), plus its header attributes.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+
+class ExrError(ValueError):
+    """A file OpenImageIO cannot read as an EXR, or one that lacks what was asked of it."""
+
+
+def read_layers(path: Path) -> tuple[dict[str, np.ndarray], dict[str, object]]:
+    """The file's RGB layers as (H, W, 3) float32 arrays (half files converted), and its attributes."""
+    import OpenImageIO as oiio
+
+    inp = oiio.ImageInput.open(str(path))
+    if inp is None:
+        raise ExrError(oiio.geterror() or f"cannot open {path}")
+    try:
+        spec = inp.spec()
+        pixels = inp.read_image(0, 0, 0, spec.nchannels, "float")
+        if pixels is None:
+            raise ExrError(inp.geterror() or "cannot read its pixels")
+        attributes = {a.name: a.value for a in spec.extra_attribs}
+    finally:
+        inp.close()
+    pixels = np.asarray(pixels, np.float32).reshape(spec.height, spec.width, spec.nchannels)
+    index = {name: i for i, name in enumerate(spec.channelnames)}
+    layers = {}
+    for name in {n.rsplit(".", 1)[0] if "." in n else "RGB" for n in spec.channelnames}:
+        prefix = "" if name == "RGB" else name + "."
+        channels = [index.get(prefix + c) for c in "RGB"]
+        if None not in channels:
+            layers[name] = pixels[..., channels]
+    return layers, attributes
+
+
+def write_layers(path: Path, layers: dict[str, np.ndarray]) -> None:
+    """RGB layers (H, W, 3) as one float32, ZIP-compressed, scanline EXR at `path`."""
+    import OpenImageIO as oiio
+
+    shape = next(iter(layers.values())).shape
+    names = [f"{'' if n == 'RGB' else n + '.'}{c}" for n in layers for c in "RGB"]
+    spec = oiio.ImageSpec(shape[1], shape[0], len(names), "float")
+    spec.channelnames = tuple(names)
+    spec.attribute("compression", "zip")
+    pixels = np.concatenate([np.asarray(v, np.float32) for v in layers.values()], axis=-1)
+    out = oiio.ImageOutput.create(str(path))
+    if out is None or not out.open(str(path), spec):
+        raise ExrError(oiio.geterror() or (out.geterror() if out else f"cannot write {path}"))
+    try:
+        if not out.write_image(np.ascontiguousarray(pixels)):
+            raise ExrError(out.geterror())
+    finally:
+        out.close()
