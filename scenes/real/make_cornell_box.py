@@ -1,5 +1,8 @@
 """Writes Mitsuba's own Cornell box, ``mitsuba.cornell_box()``, as XML to cornell_box.xml beside this script.
 
+The only liberty taken: the square film's width and height are written as ``$res`` with Mitsuba's 256 as its
+<default>, so the harness validates it at its own resolution (-D res=128) like every other scene.
+
 Run: .venv/bin/python scenes/real/make_cornell_box.py   (the output is committed; never edit it by hand)
 """
 from pathlib import Path
