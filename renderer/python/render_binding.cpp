@@ -10,6 +10,7 @@
 #include <nanobind/stl/string.h>
 
 #include "../error.h"
+#include "../integrators/registry.h"
 #include "../render.h"
 #include "../scene.h"
 
@@ -76,9 +77,12 @@ nb::dict renderScene(const std::string &path, std::optional<int> spp, uint64_t s
 
 void bindRender(nb::module_ &m) {
     nb::exception<SceneError>(m, "SceneError", PyExc_ValueError);
+    // The docstring names the integrators this build registered; nanobind keeps the pointer, so it lives on.
+    static const std::string doc =
+        "Render a scene file with its integrator or `integrator`: " + integratorNameList() +
+        ". Returns {'mean': (H, W, 3), 'variance': (H, W, 3), 'batches': (K, H, W, 3), "
+        "'stats': {...}} as float32 arrays; raises SceneError (a ValueError) for a bad scene.";
     m.def("render", &renderScene, nb::arg("scene"), nb::arg("spp") = nb::none(), nb::arg("seed") = 0,
           nb::arg("threads") = 0, nb::arg("batches") = 1, nb::arg("integrator") = "",
-          nb::arg("params") = std::map<std::string, std::string>{},
-          "Render a scene file. Returns {'mean': (H, W, 3), 'variance': (H, W, 3), 'batches': (K, H, W, 3), "
-          "'stats': {...}} as float32 arrays; raises SceneError (a ValueError) for a bad scene.");
+          nb::arg("params") = std::map<std::string, std::string>{}, doc.c_str());
 }

@@ -1,5 +1,7 @@
 // The integrator registry: every integrator's own file registers it, the test-only one included.
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -51,4 +53,26 @@ TEST(IntegratorRegistry, UnknownNameListsTheChoices) {
         EXPECT_NE(std::string(e.what()).find("unknown integrator \"path\": expected albedo, ao, normals or simple"),
                   std::string::npos) << e.what();
     }
+}
+
+TEST(IntegratorRegistry, AoParsesItsOwnSamples) {
+    // plane_ao with <integrator type="ao"> given samples="4": four occlusion rays per floor hit, where
+    // ao's defaults (the same scene loaded for another integrator, rendered with ao) trace one.
+    std::ifstream in(fs::path(MCVAL_SOURCE_DIR) / "scenes" / "plane_ao.xml");
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string xml = text.str();
+    const std::string element = "<integrator type=\"$integrator\"/>";
+    ASSERT_NE(xml.find(element), std::string::npos);
+    xml.replace(xml.find(element), element.size(), "<integrator type=\"ao\"><integer name=\"samples\" value=\"4\"/></integrator>");
+    const fs::path path = fs::temp_directory_path() / "mcval_test_ao_samples.xml";  // a rectangle: no mesh files
+    std::ofstream(path) << xml;
+    RenderOptions options;
+    options.spp = 1;
+    const uint64_t configured = render(loadScene(path.string(), {{"res", "8"}}), options).stats.shadowRays;
+    options.integrator = "ao";
+    const uint64_t defaults = render(loadScene(path.string(), {{"res", "8"}}, "normals"), options).stats.shadowRays;
+    fs::remove(path);
+    EXPECT_EQ(defaults, 64u);  // every pixel sees the floor
+    EXPECT_EQ(configured, 4 * defaults);
 }

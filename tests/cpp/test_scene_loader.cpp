@@ -54,7 +54,6 @@ TEST(SceneLoader, AValidSceneLoads) {
     EXPECT_EQ(scene.meshes[0].indices.size(), 36u);
     EXPECT_FLOAT_EQ(scene.meshes[0].reflectance.x, 0.3f);
     EXPECT_EQ(scene.integrator.type, "ao");
-    EXPECT_EQ(scene.integrator.type, "ao");
     EXPECT_TRUE(static_cast<bool>(scene.integrator.make));  // ao parsed its samples itself
     EXPECT_EQ(scene.film.width, 8);
     EXPECT_FLOAT_EQ(loadScene(path, {{"w", "0.9"}}).meshes[0].reflectance.x, 0.9f);
