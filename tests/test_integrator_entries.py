@@ -116,3 +116,11 @@ def test_an_orphan_entry_makes_the_integrators_command_fail_naming_it(extra_fold
     (extra_folder / "sparkle.py").write_text(EXTRA.format(name="sparkle"))
     assert main(["integrators"]) == 2
     assert "sparkle.py: entry for integrator 'sparkle'" in capsys.readouterr().err.replace("\n", "")
+
+
+def test_a_scene_the_harness_cannot_parse_is_left_to_the_renderer_to_report(tmp_path):
+    broken = tmp_path / "broken.xml"
+    broken.write_text("<scene><shape type=")
+    assert entries()["simple"].not_applicable(broken) is None
+    broken.write_text('<scene><emitter type="constant"/></scene>')
+    assert entries()["simple"].not_applicable(broken) == "no point light"

@@ -63,7 +63,10 @@ class IntegratorEntry:
 
     def not_applicable(self, scene: Path) -> str | None:
         """Why `scene` cannot be rendered with this integrator, or None if it can."""
-        root = ET.parse(scene).getroot()
+        try:
+            root = ET.parse(scene).getroot()
+        except ET.ParseError:
+            return None  # the renderer's loader reports a broken file, with its line, as the case's failure
         for _, check in self.requirements:
             reason = check(root)
             if reason:
