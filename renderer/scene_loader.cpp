@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "error.h"
+#include "film_loader.h"
 #include "scene_limits.h"
 #include "mesh.h"
 #include "scene.h"
@@ -63,41 +64,7 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
     for (const auto &child : props.objects()) {
         const std::string tag = child.name();
         if (tag == "film") {
-            if (typeOf(ctx, child) != "hdrfilm") ctx.fail(child, "unsupported film type: expected \"hdrfilm\"");
-            XmlProps fp(ctx, child);
-            scene.film.width = fp.getInt("width", 768);
-            scene.film.height = fp.getInt("height", 576);
-            fp.requireRange("width", scene.film.width, 1, kMaxFilmSide);
-            fp.requireRange("height", scene.film.height, 1, kMaxFilmSide);
-            // Output formats: we always write an RGB OpenEXR; its component type is honoured.
-            const std::string pixelFormat = fp.getString("pixel_format", "rgb");
-            if (pixelFormat != "rgb" && pixelFormat != "rgba")
-                ctx.fail(child, "pixel_format \"" + pixelFormat + "\" is not supported: expected rgb or rgba");
-            const std::string fileFormat = fp.getString("file_format", "openexr");
-            if (fileFormat != "openexr" && fileFormat != "exr")
-                ctx.fail(child, "file_format \"" + fileFormat + "\" is not supported: expected openexr");
-            scene.film.componentFormat = fp.getString("component_format", "float32");
-            if (scene.film.componentFormat != "float16" && scene.film.componentFormat != "float32")
-                ctx.fail(child, "component_format \"" + scene.film.componentFormat +
-                                    "\" is not supported: expected float16 or float32");
-            fp.finish("width, height, pixel_format, component_format, file_format");
-            for (const auto &f : fp.objects()) {
-                if (std::string(f.name()) != "rfilter") ctx.fail(f, "unsupported element in <film>: expected <rfilter>");
-                const std::string type = typeOf(ctx, f);
-                XmlProps rp(ctx, f);
-                if (type == "box") {
-                    scene.film.filter.type = FilterSpec::Type::Box;
-                    rp.finish("no properties");
-                } else if (type == "gaussian") {
-                    scene.film.filter.type = FilterSpec::Type::Gaussian;
-                    scene.film.filter.stddev = rp.getFloat("stddev", 0.5f);
-                    rp.requireRange("stddev", scene.film.filter.stddev, kMinFilterStddev, kMaxFilterStddev);
-                    rp.finish("stddev");
-                } else {
-                    ctx.fail(f, "unsupported rfilter type \"" + type + "\": expected box or gaussian");
-                }
-                if (!rp.objects().empty()) ctx.fail(rp.objects()[0], "unexpected element inside <rfilter>");
-            }
+            loadFilm(ctx, child, scene.film);
         } else if (tag == "sampler") {
             if (typeOf(ctx, child) != "independent") ctx.fail(child, "unsupported sampler type: expected \"independent\"");
             XmlProps sp(ctx, child);
