@@ -43,7 +43,7 @@ def image_table(results: list[ImageResult], alpha: float) -> Table:
     for r in results:
         m = r.comparisons.get("mitsuba")
         if r.error is not None or m is None:  # a render failed: no comparison (the CLI prints why)
-            table.add_row(r.case.scene, r.case.integrator, "[bold red]FAIL[/] render failed", "—", "—", "—", "—", "—",
+            table.add_row(r.case.scene, r.case.integrator, "[bold red]FAIL[/] render failed", "—", "—", "—", "—", idiff_short(r.idiff),
                           f"{r.ours.seconds['total']:.2f}" if r.ours else "—", "—")
             continue
         verdicts = _cell(r) + (" (+exact)" if "analytic" in r.comparisons else "")
