@@ -36,7 +36,7 @@ def read_layers(path: Path) -> tuple[dict[str, np.ndarray], dict[str, object]]:
         prefix = "" if name == "RGB" else name + "."
         channels = [index.get(prefix + c) for c in "RGB"]
         if None not in channels:
-            layers[name] = pixels[..., channels]
+            layers[name] = np.ascontiguousarray(pixels[..., channels])
     return layers, attributes
 
 

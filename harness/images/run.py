@@ -50,7 +50,7 @@ class ImageResult:
                     "reference": self.reference_source, "note": self.note, "seed": self.seed, "alpha": self.alpha,
                     "idiff": self.idiff}
         mitsuba = self.comparisons.get("mitsuba")
-        batch_means = self.ours.batches.mean(axis=(1, 2))
+        batch_means = self.ours.batches.mean(axis=(1, 2), dtype=np.float64)  # float32 sums round by layout
         return {
             "integrator": self.case.integrator, "scene": self.case.scene, "pass": self.passed,
             "tests": {name: c.to_json() for name, c in self.comparisons.items()},
