@@ -13,9 +13,11 @@ ROOT = Path(__file__).resolve().parent.parent
 TEST_MODULE = ROOT / "build" / "python-test"
 TEST_RENDER = ROOT / "build" / "render_with_test_integrators"
 
-pytestmark = pytest.mark.skipif(
-    not TEST_MODULE.is_dir() or not TEST_RENDER.exists(),
-    reason="the test-only renderer build (build/python-test, build/render_with_test_integrators) is not built")
+
+@pytest.fixture(autouse=True)
+def require_test_build():
+    """`make build` builds the test-only targets; their absence is a failure, never a skip."""
+    assert TEST_MODULE.is_dir() and TEST_RENDER.exists(), "build/python-test or build/render_with_test_integrators missing"
 
 
 def harness(*args: str) -> subprocess.CompletedProcess:

@@ -110,7 +110,8 @@ def run_render(scene: str, integrator: str, spp: int, batches: int, seed: int,
     temporary folder (deleted afterwards) and read the EXR. `timeout` in seconds (default:
     `default_timeout`); `binary` defaults to `render_binary()`. Raises RenderFailed on a crash, a kill,
     a timeout, a non-zero exit or a missing image; RuntimeError if the binary does not exist."""
-    binary = Path(binary) if binary is not None else render_binary()
+    # Absolute: the child runs in a temporary folder, where a relative path would not resolve.
+    binary = (Path(binary) if binary is not None else render_binary()).resolve()
     if not os.access(binary, os.X_OK):
         raise RuntimeError(f"the renderer {binary} does not exist or is not executable: run `make build`, "
                            f"or point {RENDER_ENV} at a `render` binary")

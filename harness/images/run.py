@@ -100,7 +100,7 @@ def run_images(cases: list[ImageCase], ours: Engine, mitsuba: Engine, seed: int 
     exception of a reference engine) fails its case with the reason, and the run goes on."""
     analytic = AnalyticEngine()
     params = {"res": str(RESOLUTION)}
-    has_closed_form = {c: analytic.supports(str(c.path), params) for c in cases}
+    has_closed_form = {c: analytic.supports(str(c.path), params, c.integrator) for c in cases}
     alpha = sidak_level(SIGNIFICANCE, len(cases) + sum(has_closed_form.values()))
     geometry_failed: set[str] = set()
     results = []
