@@ -83,3 +83,12 @@ def test_default_timeout_grows_with_the_work(monkeypatch):
     assert BASE_TIMEOUT <= small < large
     monkeypatch.setenv("MCVAL_RENDER_TIMEOUT", "5")
     assert default_timeout(512, 1, {"res": "768"}) == 5
+
+
+def test_a_relative_render_binary_works(monkeypatch):
+    """MCVAL_RENDER=build/render (relative to the working folder): the child, which runs in a
+    temporary folder, still finds it."""
+    monkeypatch.chdir(ROOT)
+    monkeypatch.setenv("MCVAL_RENDER", "build/render")
+    mine = OurEngine().render(SCENE, "normals", 1, 2, 3, PARAMS)
+    assert mine.batches.shape == (2, 24, 24, 3)
