@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <iomanip>
 #include <sstream>
 
 #include "error.h"
@@ -189,6 +190,15 @@ Transform XmlProps::parseTransformStep(const pugi::xml_node &step) const {
         if (!step.attribute("angle")) m_ctx.fail(step, "missing angle=\"degrees\"");
         const Vec3f axis = triple(0.f);
         if (squaredNorm(axis) == 0.f) m_ctx.fail(step, "rotation axis is zero: give x, y or z");
+        // Mitsuba 3 uses the axis as given: a non-unit one makes its rotation a shear, ours would not.
+        const double length = std::sqrt(double(axis.x) * axis.x + double(axis.y) * axis.y + double(axis.z) * axis.z);
+        if (!(std::abs(length - 1.0) <= 1e-5)) {
+            std::ostringstream msg;
+            msg << "rotate axis (" << axis.x << ", " << axis.y << ", " << axis.z << ") has length "
+                << std::setprecision(4) << length
+                << ", not 1: Mitsuba 3 would shear with it (it does not normalise); give a unit axis";
+            m_ctx.fail(step, msg.str());
+        }
         return Transform::rotate(axis, parseFloat(step, m_ctx.attr(step, "angle")));
     }
     if (tag == "matrix") {

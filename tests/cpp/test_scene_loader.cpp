@@ -137,6 +137,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"far_vertices", std::string(kHeader) + sensor() + "  <shape type=\"cube\">\n    <transform "
                 "name=\"to_world\"><scale value=\"1e16\"/></transform></shape>\n</scene>\n",
                 "coordinates must be finite and within", 3},
+        // Mitsuba 3 does not normalise a rotate axis: (0.3, 1, 0.2) would be a shear there, a rotation here.
+        BadCase{"non_unit_rotate_axis", std::string(kHeader) + sensor() + "  <shape type=\"cube\"><transform "
+                "name=\"to_world\">\n    <rotate x=\"0.3\" y=\"1\" z=\"0.2\" angle=\"37\"/></transform></shape>\n"
+                "</scene>\n", "rotate axis (0.3, 1, 0.2) has length 1.063, not 1: Mitsuba 3 would shear", 4},
+        BadCase{"long_rotate_axis", std::string(kHeader) + sensor() + "  <shape type=\"cube\"><transform "
+                "name=\"to_world\">\n    <rotate value=\"0, 2, 0\" angle=\"37\"/></transform></shape>\n</scene>\n",
+                "has length 2, not 1", 4},
         BadCase{"zero_up", std::string(kHeader) + sensor("<transform name=\"to_world\">\n<lookat origin=\"0, 0, 5\" "
                 "target=\"0, 0, 0\" up=\"0, 0, 0\"/></transform>") + kShape + "</scene>\n", "up is zero or parallel", 3},
         BadCase{"huge_filter", std::string(kHeader) + "  <sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n"
@@ -153,6 +160,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"zero_fov", std::string(kHeader) + "  <sensor type=\"perspective\">\n    <float name=\"fov\" value=\"0\"/>"
                 "</sensor>\n" + kShape + "</scene>\n", "fov must lie in", 3}),
     [](const auto &info) { return std::string(info.param.name); });
+
+TEST(SceneLoader, AUnitRotateAxisLoadsWithinFloatRounding) {
+    // 0.6, 0.8 is exactly unit; 0.57735 three times is unit to 1e-5 (as a file would round 1/sqrt(3)).
+    for (const char *axis : {"x=\"0.6\" y=\"0.8\"", "x=\"0.57735\" y=\"0.57735\" z=\"0.57735\""}) {
+        const std::string body = std::string(kHeader) + sensor() + "  <shape type=\"cube\"><transform name=\"to_world\">"
+                                 "<rotate " + axis + " angle=\"30\"/></transform></shape>\n</scene>\n";
+        EXPECT_EQ(errorOf("unit_axis", body), "") << axis;
+    }
+}
 
 TEST(SceneLoader, EveryShippedSceneLoads) {
     for (const auto &entry : fs::directory_iterator(fs::path(MCVAL_SOURCE_DIR) / "scenes")) {
