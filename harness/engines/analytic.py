@@ -1,27 +1,38 @@
-"""The analytic engine: closed-form radiance on one plane, integrated over each pixel by jittered
-camera rays (numpy). Its only noise is the pixel footprint; its light transport is exact. Each integrator's
-closed form is in its entry (harness/integrators/<name>.py, `analytic`); one without has none here.
+"""The analytic engine: closed-form radiance on one plane, or on a sphere resting on it, integrated over each
+pixel by jittered camera rays (numpy). Its only noise is the pixel footprint; its light transport is exact.
+Each integrator's closed form is in its entry (harness/integrators/<name>.py, `analytic`), with the scene
+kinds it covers; one without has none here. The sphere's geometry and visibility: analytic_sphere.py.
 """
 from __future__ import annotations
 
+import dataclasses
 import time
 
 import numpy as np
 
-from harness.engines.analytic_scene import NotAnalytic, load_plane_scene
+from harness.engines.analytic_scene import NotAnalytic, PlaneScene, load_plane_scene
+from harness.engines.analytic_sphere import check_resting, hit_sphere
 from harness.engines.base import Engine, RenderResult
 from harness.integrators import entry
 
 
-def _shade(scene, integrator: str, p: np.ndarray, normal: np.ndarray) -> np.ndarray:
-    form = entry(integrator).analytic
-    if form is None:
-        raise NotAnalytic(f"integrator {integrator} has no closed form ({entry(integrator).source})")
-    return form.shade(scene, p, normal)
+def load(scene: str, params: dict[str, str] | None = None, integrator: str | None = None) -> PlaneScene:
+    """The scene, if the engine has its image (with `integrator`'s closed form, if given); else NotAnalytic."""
+    s = load_plane_scene(scene, params)
+    if s.sphere is not None:
+        check_resting(s)
+    if integrator is not None:
+        form = entry(integrator).analytic
+        if form is None:
+            raise NotAnalytic(f"integrator {integrator} has no closed form ({entry(integrator).source})")
+        if s.kind not in form.scenes:
+            raise NotAnalytic(f"integrator {integrator}'s closed form covers {', '.join(form.scenes)}, "
+                              f"not {s.kind}")
+    return s
 
 
 class AnalyticEngine(Engine):
-    """Closed forms for one-plane scenes; `render` raises NotAnalytic for any other scene."""
+    """Closed forms for a lone plane and a sphere resting on it; `render` raises NotAnalytic otherwise."""
 
     name = "analytic"
 
@@ -30,11 +41,10 @@ class AnalyticEngine(Engine):
 
     @staticmethod
     def supports(scene: str, params: dict[str, str] | None = None, integrator: str | None = None) -> bool:
-        """Whether `scene` is a one-plane scene (and `integrator`, if given, has a closed form)."""
-        if integrator is not None and entry(integrator).analytic is None:
-            return False
+        """Whether `scene` is a lone plane or a sphere resting on one (and `integrator`, if given, has a
+        closed form for that kind of scene)."""
         try:
-            load_plane_scene(scene, params)
+            load(scene, params, integrator)
         except NotAnalytic:
             return False
         return True
@@ -43,7 +53,8 @@ class AnalyticEngine(Engine):
                params: dict[str, str] | None = None) -> RenderResult:
         """Seconds: "load" (parse) and "render" (all batches)."""
         start = time.perf_counter()
-        s = load_plane_scene(scene, params)
+        s = load(scene, params, integrator)
+        shade = entry(integrator).analytic.shade
         seconds = {"load": time.perf_counter() - start}
         inv_plane = np.linalg.inv(s.plane)
         normal = np.linalg.inv(s.plane[:3, :3]).T @ np.array([0.0, 0.0, 1.0])
@@ -67,13 +78,30 @@ class AnalyticEngine(Engine):
                     t = ((plane_point - s.origin) @ normal) / denom
                 p = s.origin + t[..., None] * d
                 uv = p @ inv_plane[:3, :3].T + inv_plane[:3, 3]
-                # Hit: in front of the near plane, inside [-1,1]^2, seen from the front side.
-                hit = (t * local[..., 2] > s.near_clip) & (denom < 0) & np.all(np.abs(uv[..., :2]) <= 1, axis=-1)
-                acc += np.where(hit[..., None], _shade(s, integrator, p, normal), 0.0)
+                # Hit: between the clip planes, inside [-1,1]^2, seen from the front side.
+                hit = (_clipped(s, t, local) & (denom < 0) & np.all(np.abs(uv[..., :2]) <= 1, axis=-1))
+                if s.sphere is None:
+                    acc += np.where(hit[..., None], shade(s, p, normal), 0.0)
+                    continue
+                ts = hit_sphere(s, s.origin, d)
+                on_sphere = _clipped(s, ts, local) & (~hit | (ts < t))
+                q = s.origin + np.where(np.isfinite(ts), ts, 0.0)[..., None] * d
+                n = (q - s.sphere.center) / s.sphere.radius
+                floor_view = dataclasses.replace(s, surface="floor")
+                sphere_view = dataclasses.replace(s, surface="sphere", reflectance=s.sphere.reflectance)
+                acc += np.where(on_sphere[..., None], shade(sphere_view, q, n),
+                                np.where((hit & ~on_sphere)[..., None], shade(floor_view, p, normal), 0.0))
             images.append((acc / spp).astype(np.float32))
         seconds["render"] = time.perf_counter() - start - seconds["load"]
         seconds["total"] = time.perf_counter() - start
         return RenderResult(self.name, str(scene), integrator, spp, seed, np.stack(images), seconds)
 
 
-__all__ = ["AnalyticEngine", "NotAnalytic"]
+def _clipped(s: PlaneScene, t: np.ndarray, local: np.ndarray) -> np.ndarray:
+    """Hits whose depth along the camera's axis lies between near_clip and far_clip."""
+    with np.errstate(invalid="ignore"):
+        depth = t * local[..., 2]
+        return (depth > s.near_clip) & (depth < s.far_clip)
+
+
+__all__ = ["AnalyticEngine", "NotAnalytic", "load"]

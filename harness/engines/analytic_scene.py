@@ -1,5 +1,6 @@
-"""A second, independent reading of the scenes that have a closed-form image: one plane, point
-lights and a constant emitter, seen through Mitsuba's perspective camera with a box filter.
+"""A second, independent reading of the scenes that have a closed-form image: one plane (and at most one
+sphere resting on it), point lights and a constant emitter, seen through Mitsuba's perspective camera with a
+box filter.
 
 Written apart from the C++ loader on purpose, so a mistake there cannot hide here.
 """
@@ -17,6 +18,15 @@ class NotAnalytic(ValueError):
     """The scene has no closed form (more than one plane, a filter other than box, ...)."""
 
 
+@dataclass(frozen=True)
+class Sphere:
+    """An exact sphere in world space."""
+
+    center: np.ndarray
+    radius: float
+    reflectance: np.ndarray
+
+
 @dataclass
 class PlaneScene:
     """Everything the closed forms need, in world space."""
@@ -31,6 +41,15 @@ class PlaneScene:
     reflectance: np.ndarray
     lights: list[tuple[np.ndarray, np.ndarray]]  # (position, intensity W/sr)
     environment: np.ndarray
+    far_clip: float = 1e4
+    sphere: Sphere | None = None  # resting on the plane (checked by analytic_sphere)
+    #: Which surface the points handed to a closed form lie on ("floor" or "sphere"); set per call.
+    surface: str = "floor"
+
+    @property
+    def kind(self) -> str:
+        """"plane" (a lone plane) or "sphere_floor" (a sphere resting on it): what a closed form must cover."""
+        return "plane" if self.sphere is None else "sphere_floor"
 
 
 def _numbers(text: str) -> np.ndarray:
@@ -85,8 +104,31 @@ def _color(el: ET.Element, name: str, default: float) -> np.ndarray:
     return np.full(3, default) if c is None else _triple(c)
 
 
+def _reflectance(shape: ET.Element, bsdfs: dict[str, ET.Element]) -> np.ndarray:
+    bsdf = shape.find("bsdf")
+    if bsdf is None and shape.find("ref") is not None:
+        bsdf = bsdfs[shape.find("ref").get("id")]
+    if bsdf is not None and bsdf.get("type") != "diffuse":
+        raise NotAnalytic(f"bsdf {bsdf.get('type')}: closed forms are for diffuse surfaces")
+    return _color(bsdf, "reflectance", 0.5) if bsdf is not None else np.full(3, 0.5)
+
+
+def _sphere(shape: ET.Element, bsdfs: dict[str, ET.Element]) -> Sphere:
+    """Mitsuba's sphere: center and radius, then to_world (a uniform scale, rotation and translation)."""
+    m = _transform(_prop(shape, "transform", "to_world"))
+    scales = np.linalg.svd(m[:3, :3], compute_uv=False)
+    if not np.allclose(scales, scales[0], rtol=1e-9):
+        raise NotAnalytic("a sphere's to_world that is not a similarity (an ellipsoid)")
+    center = _prop(shape, "point", "center")
+    radius = _prop(shape, "float", "radius")
+    c = _triple(center) if center is not None else np.zeros(3)
+    r = float(radius.get("value")) if radius is not None else 1.0
+    return Sphere(m[:3, :3] @ c + m[:3, 3], abs(r) * float(scales[0]), _reflectance(shape, bsdfs))
+
+
 def load_plane_scene(path: str | Path, params: dict[str, str] | None = None) -> PlaneScene:
-    """Reads a one-plane scene; raises NotAnalytic for anything else."""
+    """Reads a one-plane scene, or one plane and one sphere; raises NotAnalytic for anything else (that the
+    sphere rests on the plane is checked where its closed forms are, analytic_sphere)."""
     root = ET.fromstring(Path(path).read_text())
     values = {d.get("name"): d.get("value") for d in root.iter("default")}
     values.update({k: str(v) for k, v in (params or {}).items()})
@@ -101,13 +143,15 @@ def load_plane_scene(path: str | Path, params: dict[str, str] | None = None) -> 
     if (_prop(sensor, "string", "fov_axis") is not None) and _prop(sensor, "string", "fov_axis").get("value") != "x":
         raise NotAnalytic("fov_axis other than x")
     shapes = root.findall("shape")
-    if len(shapes) != 1 or shapes[0].get("type") != "rectangle":
-        raise NotAnalytic("the scene must be a single rectangle")
+    planes = [s for s in shapes if s.get("type") == "rectangle"]
+    spheres = [s for s in shapes if s.get("type") == "sphere"]
+    if len(planes) != 1 or len(spheres) > 1 or len(shapes) != len(planes) + len(spheres):
+        raise NotAnalytic("the scene must be a single rectangle, with at most one sphere")
+    if any(s.find("emitter") is not None for s in shapes):
+        raise NotAnalytic("an emitting shape")
     bsdfs = {b.get("id"): b for b in root.findall("bsdf")}
-    shape = shapes[0]
-    bsdf = shape.find("bsdf")
-    if bsdf is None and shape.find("ref") is not None:
-        bsdf = bsdfs[shape.find("ref").get("id")]
+    shape = planes[0]
+    far = _prop(sensor, "float", "far_clip")
     cam = _transform(_prop(sensor, "transform", "to_world"))
     near = _prop(sensor, "float", "near_clip")
     lights, env = [], np.ones(3)
@@ -123,5 +167,6 @@ def load_plane_scene(path: str | Path, params: dict[str, str] | None = None) -> 
         height=int(_prop(film, "integer", "height").get("value")),
         near_clip=float(near.get("value")) if near is not None else 1e-2,
         plane=_transform(_prop(shape, "transform", "to_world")),
-        reflectance=_color(bsdf, "reflectance", 0.5) if bsdf is not None else np.full(3, 0.5),
-        lights=lights, environment=env)
+        reflectance=_reflectance(shape, bsdfs), lights=lights, environment=env,
+        far_clip=float(far.get("value")) if far is not None else 1e4,
+        sphere=_sphere(spheres[0], bsdfs) if spheres else None)

@@ -1,6 +1,5 @@
 """ao: ambient occlusion under a constant environment (radiance 1 when the scene has none)."""
-import numpy as np
-
+from harness.engines.analytic_sphere import ao_visible
 from harness.integrators.entry import AnalyticForm, IntegratorEntry, MitsubaMapping
 
 ENTRY = IntegratorEntry(
@@ -10,6 +9,8 @@ ENTRY = IntegratorEntry(
     # Direct light from the environment alone: point lights and area emitters go, as our loader skips them.
     mitsuba=MitsubaMapping("direct", (("boolean", "hide_emitters", "true"),), drop_emitters=("point",),
                            drop_area_emitters=True, add_environment=True),
-    analytic=AnalyticForm("rho * L_env (nothing occludes a lone plane)",
-                          lambda scene, p, normal: np.broadcast_to(scene.reflectance * scene.environment, p.shape)),
+    analytic=AnalyticForm("rho * L_env * V: V = 1 on a lone plane; 1 - (R/D)^3 on the floor under a resting "
+                          "sphere, (1 + n.up)/2 on the sphere",
+                          lambda scene, p, normal: scene.reflectance * scene.environment * ao_visible(scene, p, normal),
+                          scenes=("plane", "sphere_floor")),
 )

@@ -1,5 +1,5 @@
 """What the harness knows of one integrator, in one place: its budgets, its Mitsuba equivalent, its closed
-form on a lone plane (if any) and what it needs of a scene. Each module of this package holds one `ENTRY`."""
+form on the analytic scenes (if any) and what it needs of a scene. Each module of this package holds one `ENTRY`."""
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
@@ -35,7 +35,8 @@ class MitsubaMapping:
         return "; ".join(parts)
 
 
-#: shade(plane_scene, points (..., 3), normal (3,)) -> radiance (..., 3), on a lone plane (analytic_scene).
+#: shade(scene, points (..., 3), normals (3,) or (..., 3)) -> radiance (..., 3), at points of one surface
+#: (`scene.surface`) of an analytic scene (harness/engines/analytic_scene.py).
 Shade = Callable[[object, np.ndarray, np.ndarray], np.ndarray]
 #: requirement(scene root) -> None if the scene suits the integrator, else why not ("no point light").
 Requirement = Callable[[ET.Element], "str | None"]
@@ -43,10 +44,12 @@ Requirement = Callable[[ET.Element], "str | None"]
 
 @dataclass(frozen=True)
 class AnalyticForm:
-    """The integrator's exact image of a one-plane scene."""
+    """The integrator's exact image of the analytic scenes of the kinds in `scenes`."""
 
     summary: str
     shade: Shade
+    #: "plane" (a lone plane), "sphere_floor" (a sphere resting on it: analytic_sphere.py).
+    scenes: tuple[str, ...] = ("plane",)
 
 
 @dataclass(frozen=True)

@@ -9,5 +9,7 @@ ENTRY = IntegratorEntry(
     reference_spp=64,
     # Emitters and BSDFs cannot change a normal; area emitters go as our loader skips them.
     mitsuba=MitsubaMapping("aov", (("string", "aovs", "nn:sh_normal"),), drop_area_emitters=True),
-    analytic=AnalyticForm("the plane's normal", lambda scene, p, normal: np.broadcast_to(normal, p.shape)),
+    analytic=AnalyticForm("the surface's normal (the plane's; (p - c)/R on a sphere)",
+                          lambda scene, p, normal: np.broadcast_to(normal, p.shape),
+                          scenes=("plane", "sphere_floor")),
 )

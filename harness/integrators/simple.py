@@ -1,17 +1,18 @@
 """simple: direct light from point lights on diffuse surfaces, shadow rays, nothing else."""
 import numpy as np
 
+from harness.engines.analytic_sphere import lit
 from harness.integrators.entry import AnalyticForm, IntegratorEntry, MitsubaMapping, has_point_light
 
 
 def _point_lights(scene, p: np.ndarray, normal: np.ndarray) -> np.ndarray:
-    """L = rho / pi * I * max(0, cos) / r^2 per point light (nothing can shadow a lone plane)."""
+    """L = rho / pi * I * max(0, cos) / r^2 per point light; only a resting sphere can shadow (the floor)."""
     out = np.zeros_like(p)
     for position, intensity in scene.lights:
         to_light = position - p
         r2 = np.sum(to_light**2, axis=-1, keepdims=True)
         cos = np.clip(np.sum(to_light * normal, axis=-1, keepdims=True) / np.sqrt(r2), 0.0, None)
-        out += scene.reflectance / np.pi * intensity * cos / r2
+        out += scene.reflectance / np.pi * intensity * cos / r2 * lit(scene, p, position)
     return out
 
 
@@ -22,6 +23,7 @@ ENTRY = IntegratorEntry(
     # One light sample, no BSDF sample: Mitsuba's direct integrator as ours; it sees point lights only.
     mitsuba=MitsubaMapping("direct", (("integer", "emitter_samples", "1"), ("integer", "bsdf_samples", "0")),
                            drop_emitters=("constant",)),
-    analytic=AnalyticForm("rho/pi * I * max(0, cos) / r^2 per point light", _point_lights),
+    analytic=AnalyticForm("rho/pi * I * max(0, cos) / r^2 per point light, floor points behind a resting "
+                          "sphere dark", _point_lights, scenes=("plane", "sphere_floor")),
     requirements=(("a point light", has_point_light),),
 )
