@@ -6,6 +6,7 @@
 #include <string>
 
 #include "error.h"
+#include "sphere.h"
 
 namespace mcval {
 
@@ -30,7 +31,8 @@ RTCRay toRtc(const Ray &ray) {
 }
 }  // namespace
 
-EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes) : m_meshes(meshes) {
+EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphere> &spheres)
+    : m_meshes(meshes), m_spheres(spheres) {
     m_device = rtcNewDevice(nullptr);
     if (!m_device) throw std::runtime_error("cannot create an Embree device");
     rtcSetDeviceErrorFunction(m_device, onEmbreeError, nullptr);
@@ -55,6 +57,11 @@ EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes) : m_meshes(meshes) {
         rtcCommitGeometry(geom);
         rtcAttachGeometry(m_scene, geom);  // ids follow mesh order
         rtcReleaseGeometry(geom);
+        m_reflectance.push_back(mesh.reflectance);
+    }
+    for (const Sphere &sphere : spheres) {
+        attachSphere(m_device, m_scene, sphere);  // ids after the meshes'
+        m_reflectance.push_back(sphere.reflectance);
     }
     rtcCommitScene(m_scene);
     if (rtcGetDeviceError(m_device) != RTC_ERROR_NONE) {
@@ -81,7 +88,7 @@ bool EmbreeScene::intersect(const Ray &ray, Hit &hit) const {
     rtcIntersect1(m_scene, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
 
-    fillHit(rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, hit);
+    fillHit(ray, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, hit);
     return true;
 }
 
@@ -109,16 +116,24 @@ void EmbreeScene::intersect8(const Ray *rays, int count, Hit *hits, bool *found)
     rtcIntersect8(valid, m_scene, &context, &rh);
     for (int i = 0; i < count; ++i) {
         found[i] = rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
-        if (found[i]) fillHit(rh.hit.geomID[i], rh.hit.primID[i], rh.hit.u[i], rh.hit.v[i], rh.ray.tfar[i], hits[i]);
+        if (found[i]) fillHit(rays[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.u[i], rh.hit.v[i], rh.ray.tfar[i], hits[i]);
     }
 }
 
-void EmbreeScene::fillHit(unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const {
+void EmbreeScene::fillHit(const Ray &ray, unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const {
+    hit.t = t;
+    hit.geom = geom;
+    hit.prim = prim;
+    if (geom >= m_meshes.size()) {
+        // A sphere: the exact point and normal; its shading normal is its geometric one.
+        sphereHitPoint(m_spheres[geom - m_meshes.size()], ray.o, ray.d, double(t) + double(u), hit.p, hit.ng);
+        hit.ns = hit.ng;
+        return;
+    }
     const Mesh &mesh = m_meshes[geom];
     const uint32_t *tri = &mesh.indices[3 * prim];
     const Vec3f &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
     const float w = 1.f - u - v;
-    hit.t = t;
     hit.p = w * p0 + u * p1 + v * p2;
     hit.ng = normalize(cross(p1 - p0, p2 - p0));
     if (mesh.normals.empty()) {
@@ -128,8 +143,6 @@ void EmbreeScene::fillHit(unsigned geom, unsigned prim, float u, float v, float 
         const float len2 = squaredNorm(n);
         hit.ns = len2 > 0.f ? n / std::sqrt(len2) : hit.ng;
     }
-    hit.mesh = geom;
-    hit.prim = prim;
 }
 
 bool EmbreeScene::occluded(const Ray &ray) const {

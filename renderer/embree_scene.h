@@ -1,4 +1,4 @@
-// The scene's triangles in one Embree 3 BVH, behind a small RAII class.
+// The scene's triangle meshes and exact spheres in one Embree 3 BVH, behind a small RAII class.
 #pragma once
 
 #include <vector>
@@ -12,8 +12,9 @@ namespace mcval {
 
 class EmbreeScene {
 public:
-    /// Builds the BVH over all meshes; they must outlive this object.
-    explicit EmbreeScene(const std::vector<Mesh> &meshes);
+    /// Builds the BVH over all meshes and spheres; they must outlive this object. Geometry ids are
+    /// the meshes' indices, then the spheres' after them.
+    explicit EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphere> &spheres = {});
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene &) = delete;
     EmbreeScene &operator=(const EmbreeScene &) = delete;
@@ -26,13 +27,17 @@ public:
     /// Whether anything lies on the ray in [tnear, tfar].
     bool occluded(const Ray &ray) const;
 
-    const std::vector<Mesh> &meshes() const { return m_meshes; }
+    /// The diffuse reflectance of geometry `geom` (Hit::geom), mesh or sphere alike.
+    const Color &reflectance(uint32_t geom) const { return m_reflectance[geom]; }
 
 private:
-    /// Position and normals of a hit on triangle prim of mesh geom at barycentrics (u, v).
-    void fillHit(unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const;
+    /// Position and normals of a hit: on triangle prim of a mesh at barycentrics (u, v), or on a
+    /// sphere at t + u (u holds what float32 rounded off t).
+    void fillHit(const Ray &ray, unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const;
 
     const std::vector<Mesh> &m_meshes;
+    const std::vector<Sphere> &m_spheres;
+    std::vector<Color> m_reflectance;  ///< by geometry id: one table whatever the shape
     RTCDevice m_device = nullptr;
     RTCScene m_scene = nullptr;
 };

@@ -175,7 +175,7 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
     out.stats.integrator = spec.type;
 
     auto start = std::chrono::steady_clock::now();
-    const EmbreeScene embree(scene.meshes);
+    const EmbreeScene embree(scene.meshes, scene.spheres);
     const auto integrator = createIntegrator(spec, scene, embree);  // validates the name before any work
     out.stats.bvhSeconds = secondsSince(start);
 

@@ -25,6 +25,15 @@ struct Mesh {
     Color reflectance{0.5f, 0.5f, 0.5f};
 };
 
+/// Mitsuba's `sphere` in world space, intersected exactly rather than tessellated.
+struct Sphere {
+    std::string name;                ///< what the scene called it (for messages)
+    Vec3f center;
+    float radius = 1.f;
+    bool flipNormals = false;        ///< front side inside: flip_normals, or a mirroring to_world (as Mitsuba)
+    Color reflectance{0.5f, 0.5f, 0.5f};
+};
+
 /// An isotropic point light; intensity in W/sr.
 struct PointLight {
     Vec3f position;
@@ -74,6 +83,7 @@ struct SceneDescription {
     FilmSpec film;
     int sampleCount = 4;             ///< Mitsuba's `independent` default
     std::vector<Mesh> meshes;
+    std::vector<Sphere> spheres;
     std::vector<PointLight> pointLights;
     std::optional<Color> environment;  ///< radiance of the `constant` emitter, if any
     IntegratorSpec integrator;

@@ -6,6 +6,11 @@ namespace mcval {
 /// Largest |coordinate| of a world-space position or light: far inside Embree's limit (1.8e18),
 /// with room for the differences and squared distances the integrators take.
 constexpr float kMaxCoordinate = 1e15f;
+/// Smallest sphere radius: its squares (1e-30) stay normal float32 numbers.
+constexpr float kMinSphereRadius = 1e-15f;
+/// Smallest sphere radius relative to its centre's largest coordinate: float32 places a hit point to
+/// 1.2e-7 of that coordinate, so the point stays within 1e-3 of the radius of the surface.
+constexpr float kMinSphereRadiusToCenter = 1e-4f;
 /// Largest emitted intensity (W/sr) or radiance: products with 1/r^2 stay finite in float32.
 constexpr float kMaxEmission = 1e15f;
 /// Largest film side in pixels.

@@ -11,6 +11,7 @@
 #include "scene_limits.h"
 #include "mesh.h"
 #include "scene.h"
+#include "sphere_loader.h"
 #include "xml_props.h"
 #include "integrators/registry.h"
 
@@ -98,11 +99,50 @@ Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node, Deferred &defe
     return rho;
 }
 
+/// The shape's one <bsdf> or <ref> (its reflectance; the default without one) and its area emitter,
+/// whatever the shape.
+Color loadShapeChildren(const XmlContext &ctx, const XmlProps &props, const std::map<std::string, Color> &bsdfs,
+                        Deferred &deferred) {
+    Color reflectance{0.5f, 0.5f, 0.5f};
+    bool hasBsdf = false;
+    for (const auto &child : props.objects()) {
+        const std::string tag = child.name();
+        if (tag == "emitter") {
+            if (typeOf(ctx, child) != "area") ctx.fail(child, "a shape's emitter must be of type \"area\"");
+            deferred.areaEmitters.emplace_back(child, "<emitter type=\"area\"> at line " +
+                                                          std::to_string(ctx.line(child)));
+            continue;
+        }
+        if (hasBsdf && (tag == "bsdf" || tag == "ref")) ctx.fail(child, "a shape takes one bsdf");
+        if (tag == "bsdf") {
+            reflectance = loadBsdf(ctx, child, deferred);
+        } else if (tag == "ref") {
+            const std::string id = ctx.attr(child, "id");
+            const auto it = bsdfs.find(id);
+            if (it == bsdfs.end()) ctx.fail(child, "no <bsdf id=\"" + id + "\"> defined before this point");
+            reflectance = it->second;
+        } else {
+            ctx.fail(child, "unsupported element in <shape>: expected <bsdf>, <ref> or <emitter type=\"area\">");
+        }
+        hasBsdf = true;
+    }
+    return reflectance;
+}
+
 void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const std::map<std::string, Color> &bsdfs,
                SceneDescription &scene, Deferred &deferred) {
     const std::string type = typeOf(ctx, node);
     XmlProps props(ctx, node);
     const Transform toWorld = props.getTransform("to_world");
+    const std::string name =
+        node.attribute("id") ? ctx.attr(node, "id") : type + " at line " + std::to_string(ctx.line(node));
+    if (type == "sphere") {
+        Sphere sphere = loadSphere(props, toWorld);
+        sphere.name = name;
+        sphere.reflectance = loadShapeChildren(ctx, props, bsdfs, deferred);
+        scene.spheres.push_back(std::move(sphere));
+        return;
+    }
     Mesh mesh;
     if (type == "obj" || type == "ply") {
         const std::string filename = props.getStringRequired("filename");
@@ -118,32 +158,11 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const std::map
         props.finish("to_world");
         mesh = type == "rectangle" ? makeRectangle(toWorld) : makeCube(toWorld);
     } else {
-        ctx.fail(node, "unsupported shape type \"" + type + "\": expected obj, ply, rectangle or cube");
+        ctx.fail(node, "unsupported shape type \"" + type + "\": expected obj, ply, rectangle, cube or sphere");
     }
     requireFiniteMesh(ctx, node, mesh);
-    mesh.name = node.attribute("id") ? ctx.attr(node, "id") : type + " at line " + std::to_string(ctx.line(node));
-    bool hasBsdf = false;
-    for (const auto &child : props.objects()) {
-        const std::string tag = child.name();
-        if (tag == "emitter") {
-            if (typeOf(ctx, child) != "area") ctx.fail(child, "a shape's emitter must be of type \"area\"");
-            deferred.areaEmitters.emplace_back(child, "<emitter type=\"area\"> at line " +
-                                                          std::to_string(ctx.line(child)));
-            continue;
-        }
-        if (hasBsdf && (tag == "bsdf" || tag == "ref")) ctx.fail(child, "a shape takes one bsdf");
-        if (tag == "bsdf") {
-            mesh.reflectance = loadBsdf(ctx, child, deferred);
-        } else if (tag == "ref") {
-            const std::string id = ctx.attr(child, "id");
-            const auto it = bsdfs.find(id);
-            if (it == bsdfs.end()) ctx.fail(child, "no <bsdf id=\"" + id + "\"> defined before this point");
-            mesh.reflectance = it->second;
-        } else {
-            ctx.fail(child, "unsupported element in <shape>: expected <bsdf>, <ref> or <emitter type=\"area\">");
-        }
-        hasBsdf = true;
-    }
+    mesh.name = name;
+    mesh.reflectance = loadShapeChildren(ctx, props, bsdfs, deferred);
     scene.meshes.push_back(std::move(mesh));
 }
 
@@ -255,7 +274,7 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
         }
     }
     if (!hasSensor) ctx.fail(root, "the scene has no <sensor type=\"perspective\">");
-    if (scene.meshes.empty()) ctx.fail(root, "the scene has no <shape>");
+    if (scene.meshes.empty() && scene.spheres.empty()) ctx.fail(root, "the scene has no <shape>");
 
     // What the chosen integrator uses, as it declared: refuse what would change its answer, skip the rest.
     if (!integrator.empty() && integrator != scene.integrator.type) scene.integrator = {integrator, {}};

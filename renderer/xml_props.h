@@ -59,11 +59,11 @@ public:
     const std::vector<pugi::xml_node> &objects() const { return m_objects; }
     /// Throws if a property was given that nothing asked for.
     void finish(const std::string &expected) const;
+    /// Throws at the line of property `name` (the element's if it was not given).
+    [[noreturn]] void failAt(const std::string &name, const std::string &message) const;
 
 private:
     pugi::xml_node find(const std::string &name, const char *tag);
-    /// Throws at the line of property `name` (the element's if it was not given).
-    [[noreturn]] void failAt(const std::string &name, const std::string &message) const;
     float parseFloat(const pugi::xml_node &node, const std::string &text) const;
     Vec3f parseTriple(const pugi::xml_node &node, const std::string &text) const;
     Transform parseTransform(const pugi::xml_node &node) const;

@@ -27,7 +27,7 @@ public:
             ++counts.shadow;
             if (!m_embree.occluded(spawnRay(hit, wi, 1e30f))) ++visible;
         }
-        const Color &rho = m_embree.meshes()[hit.mesh].reflectance;
+        const Color &rho = m_embree.reflectance(hit.geom);
         return rho * m_environment * (static_cast<float>(visible) / static_cast<float>(m_samples));
     }
 

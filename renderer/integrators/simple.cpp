@@ -18,7 +18,7 @@ public:
         // One-sided diffuse, as Mitsuba's: black seen from behind the shading normal.
         if (!camHit || dot(camHit->ns, ray.d) >= 0.f) return {0.f, 0.f, 0.f};
         const Hit &hit = *camHit;
-        const Color &rho = m_embree.meshes()[hit.mesh].reflectance;
+        const Color &rho = m_embree.reflectance(hit.geom);
         Color sum{0.f, 0.f, 0.f};
         for (const PointLight &light : m_scene.pointLights) {
             const Vec3f toLight = light.position - hit.p;

@@ -12,7 +12,7 @@ class AlbedoIntegrator final : public Integrator {
 public:
     explicit AlbedoIntegrator(const EmbreeScene &embree) : m_embree(embree) {}
     Color Li(const Ray &, const Hit *hit, Sampler &, RayCounts &) const override {
-        return hit ? m_embree.meshes()[hit->mesh].reflectance : Color(0.f, 0.f, 0.f);
+        return hit ? m_embree.reflectance(hit->geom) : Color(0.f, 0.f, 0.f);
     }
 
 private:

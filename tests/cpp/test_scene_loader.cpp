@@ -87,8 +87,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"malformed", std::string(kHeader) + sensor() + "<shape type=\"cube\">\n</scene>\n", "malformed XML", 4},
         BadCase{"unknown_element", std::string(kHeader) + sensor() + "  <texture type=\"bitmap\"/>\n</scene>\n",
                 "unsupported element", 3},
-        BadCase{"unknown_shape", std::string(kHeader) + sensor() + "  <shape type=\"sphere\"/>\n</scene>\n",
-                "expected obj, ply, rectangle or cube", 3},
+        BadCase{"unknown_shape", std::string(kHeader) + sensor() + "  <shape type=\"cylinder\"/>\n</scene>\n",
+                "expected obj, ply, rectangle, cube or sphere", 3},
         BadCase{"unknown_property", std::string(kHeader) + sensor() +
                 "  <shape type=\"cube\">\n    <boolean name=\"flip_normals\" value=\"true\"/>\n  </shape>\n</scene>\n",
                 "unsupported property \"flip_normals\"", 4},
