@@ -1,5 +1,6 @@
 """The analytic engine: closed-form radiance on one plane, or on a sphere resting on it, integrated over each
-pixel by jittered camera rays (numpy). Its only noise is the pixel footprint; its light transport is exact.
+pixel by jittered camera rays (numpy). Its noise is the pixel footprint, and where a closed form is a
+probability (ao's visibility) one draw of it per ray, as the renderers' estimators have; the expectation is exact.
 Each integrator's closed form is in its entry (harness/integrators/<name>.py, `analytic`), with the scene
 kinds it covers; one without has none here. The sphere's geometry and visibility: analytic_sphere.py.
 """
@@ -36,6 +37,12 @@ class AnalyticEngine(Engine):
 
     name = "analytic"
 
+    @staticmethod
+    def samples_for(integrator: str, spp: int) -> int:
+        """Samples per pixel to render where ours renders `spp`: four times as many where the closed form is
+        sampled (its noise then predicts what ours may miss), as many where it is noiseless per ray."""
+        return 4 * spp if entry(integrator).analytic.sample is not None else spp
+
     def version(self) -> str:
         return "analytic (closed form, numpy pixel integration)"
 
@@ -54,14 +61,20 @@ class AnalyticEngine(Engine):
         """Seconds: "load" (parse) and "render" (all batches)."""
         start = time.perf_counter()
         s = load(scene, params, integrator)
-        shade = entry(integrator).analytic.shade
+        form = entry(integrator).analytic
+        rng = np.random.default_rng([seed, 0xA11])
+
+        def shade(view: PlaneScene, p: np.ndarray, n: np.ndarray) -> np.ndarray:
+            if form.sample is None:
+                return form.shade(view, p, n)
+            return form.sample(view, p, n, rng.random(p.shape[:-1] + (1,)))
+
         seconds = {"load": time.perf_counter() - start}
         inv_plane = np.linalg.inv(s.plane)
         normal = np.linalg.inv(s.plane[:3, :3]).T @ np.array([0.0, 0.0, 1.0])
         normal /= np.linalg.norm(normal)
         plane_point = s.plane[:3, 3]
         aspect = s.width / s.height
-        rng = np.random.default_rng([seed, 0xA11])
         ys, xs = np.mgrid[0 : s.height, 0 : s.width]
         images = []
         for _ in range(batches):

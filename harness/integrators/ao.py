@@ -12,5 +12,8 @@ ENTRY = IntegratorEntry(
     analytic=AnalyticForm("rho * L_env * V: V = 1 on a lone plane; 1 - (R/D)^3 on the floor under a resting "
                           "sphere, (1 + n.up)/2 on the sphere",
                           lambda scene, p, normal: scene.reflectance * scene.environment * ao_visible(scene, p, normal),
-                          scenes=("plane", "sphere_floor")),
+                          scenes=("plane", "sphere_floor"),
+                          # One cosine-weighted occlusion ray per camera sample, as ours and Mitsuba's direct.
+                          sample=lambda scene, p, normal, u: (scene.reflectance * scene.environment
+                                                              * (u < ao_visible(scene, p, normal)))),
 )

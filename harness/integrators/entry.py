@@ -38,6 +38,8 @@ class MitsubaMapping:
 #: shade(scene, points (..., 3), normals (3,) or (..., 3)) -> radiance (..., 3), at points of one surface
 #: (`scene.surface`) of an analytic scene (harness/engines/analytic_scene.py).
 Shade = Callable[[object, np.ndarray, np.ndarray], np.ndarray]
+#: sample(scene, points, normals, u (..., 1) uniform in [0, 1)) -> one sample of the renderers' estimator.
+Sample = Callable[[object, np.ndarray, np.ndarray, np.ndarray], np.ndarray]
 #: requirement(scene root) -> None if the scene suits the integrator, else why not ("no point light").
 Requirement = Callable[[ET.Element], "str | None"]
 
@@ -50,6 +52,11 @@ class AnalyticForm:
     shade: Shade
     #: "plane" (a lone plane), "sphere_floor" (a sphere resting on it: analytic_sphere.py).
     scenes: tuple[str, ...] = ("plane",)
+    #: One sample of the estimator the renderers use, drawn with the closed form's exact probabilities (ao: one
+    #: visibility ray, lit with probability V), or None where `shade` is noiseless per camera ray. Where a
+    #: contribution is rare, all K batches of ours can miss it; only a reference with the estimator's own noise
+    #: lets the comparison's sample floor (harness.statistics.welch.sample_floor) see that.
+    sample: Sample | None = None
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,68 @@
+"""The closed form as the oracle between our renderer and Mitsuba.
+
+Where a scene has a closed form and our render agrees with it but not with Mitsuba, the disagreement is
+Mitsuba's: the case passes, with a finding that says what the reference breaks and the evidence (Mitsuba's
+own comparison with the closed form, and each engine's image-mean ratio to it). Where ours disagrees with
+the closed form, nothing is overruled and the case fails as before.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from harness.images.compare import Comparison, Summary, compare_summaries
+
+
+@dataclass
+class Finding:
+    """A reference overruled by the closed form, and why."""
+
+    overruled: str                 # the reference whose failed comparison no longer decides ("mitsuba")
+    text: str                      # one line for the terminal and results.json
+    reference_vs_closed_form: dict  # the reference's own comparison with the closed form (Comparison.to_json)
+    mean_ratio: dict[str, list[float]]  # image mean over the closed form's, per channel, by engine
+
+    def to_json(self) -> dict:
+        return {"overruled": self.overruled, "text": self.text, "mean_ratio": self.mean_ratio,
+                "reference_vs_closed_form": self.reference_vs_closed_form}
+
+
+def _ratio(test: Summary, exact: Summary) -> list[float]:
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return [float(x) for x in np.asarray(test.image.mean) / np.asarray(exact.image.mean)]
+
+
+def _where(c: Comparison) -> str:
+    failed = [s for s in c.scales if not s.passed]
+    if not failed:
+        return "passes"
+    worst = min(failed, key=lambda s: s.min_p)
+    return (f"fails at {', '.join(s.scale for s in failed)} scale (worst at row {worst.worst[0]}, column "
+            f"{worst.worst[1]}, p = {worst.min_p:.2g})" + ("" if c.finite.passed else "; non-finite pixels"))
+
+
+def _fmt(ratio: list[float]) -> str:
+    return "/".join(f"{r:.4f}" for r in ratio)
+
+
+def decide(comparisons: dict[str, Comparison], ours: Summary, references: dict[str, Summary],
+           alpha: float, signed: bool, samples: dict[str, int]) -> Finding | None:
+    """A finding when ours agrees with the closed form ("analytic") and fails against Mitsuba; else None.
+
+    `references` holds each reference's summary by name, `samples` each side's samples per pixel (and
+    "ours")."""
+    exact, mitsuba = comparisons.get("analytic"), comparisons.get("mitsuba")
+    if exact is None or mitsuba is None or not exact.passed or mitsuba.passed:
+        return None
+    evidence = compare_summaries(references["mitsuba"], references["analytic"], alpha, signed=signed,
+                                 samples=(samples["mitsuba"], samples["analytic"]))
+    ratios = {"mitsuba": _ratio(references["mitsuba"], references["analytic"]),
+              "ours": _ratio(ours, references["analytic"])}
+    if evidence.passed:
+        what = "disagrees with ours, though the closed form does not reject either"
+    else:
+        what = f"breaks the closed form: Mitsuba against it {_where(evidence)}"
+    text = (f"reference {what}; image mean over the closed form: Mitsuba {_fmt(ratios['mitsuba'])}, ours "
+            f"{_fmt(ratios['ours'])} (ours agrees with the closed form; ours against Mitsuba {_where(mitsuba)})")
+    return Finding("mitsuba", text, evidence.to_json(), ratios)
