@@ -121,6 +121,42 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
     return not failed, payload
 
 
+def _run_invariance(args, only, run_dir: Path, engines=None) -> tuple[bool, dict]:
+    """The invariance matrix: each engine against itself under every transformation. Only our renderer's
+    breaks fail; a reference's are printed and stored as findings."""
+    from harness.engines.ours import OurEngine
+    from harness.invariance.check import run_invariances
+    from harness.invariance.findings import failure_lines, finding_lines, invariance_payload
+    from harness.invariance.suite import select
+    from harness.report.invariance_table import invariance_tables
+
+    cases, invariances = select(only)
+    if engines is None:
+        engines = [OurEngine()]
+        if not getattr(args, "no_mitsuba", False):
+            from harness.engines.mitsuba import MitsubaEngine
+            engines.append(MitsubaEngine(args.variant))
+    gating = engines[0].name
+    start = time.perf_counter()
+    with _progress("invariances") as progress:
+        task = progress.add_task("", total=len(cases) * len(engines))
+        cells, alpha = run_invariances(engines, cases, invariances, args.seed,
+                                       on_progress=lambda m: progress.update(task, advance=1, description=m))
+    seconds = time.perf_counter() - start
+    for table in invariance_tables(cells, alpha, gating):
+        console.print(table)
+    meta = {"engines": [e.version() for e in engines], "seed": args.seed, "seconds": round(seconds, 1)}
+    payload = invariance_payload(cells, alpha, gating, meta)
+    for line in payload["findings"]:
+        console.print(f"[yellow]finding[/] {escape(line)}", soft_wrap=True)
+    ours = [c for c in cells if c.engine == gating]
+    failed = failure_lines(cells, gating)
+    console.print(f"{len(ours) - len(failed)} of {len(ours)} invariance checks of {gating} pass, in {seconds:.1f} s.")
+    for line in failed:
+        console.print(f"[red]FAIL[/] invariance {escape(line)}", soft_wrap=True)
+    return payload["pass"], payload
+
+
 def _references(args) -> int:
     from harness.engines.mitsuba import MitsubaEngine
     from harness.images.suite import select_cases
@@ -245,6 +281,16 @@ def _run(args, out: Path, started: list[Path]) -> int:
         point_link(out / "bench-latest", run_dir)
         point_link(out / "latest", run_dir)
         return 0
+    if args.command == "invariance":
+        started.append(run_dir := new_run_dir(out))
+        ok, invariance = _run_invariance(args, args.only, run_dir)
+        payload = {"run": run_dir.name, "pass": ok, "invariance": invariance}
+        write_json(run_dir / "results.json", payload)
+        if args.json:
+            write_json(args.json, payload)
+        point_link(out / "latest", run_dir)
+        console.print(f"Results: {run_dir / 'results.json'} — {'PASS' if ok else 'FAIL'}")
+        return 0 if ok else 1
     if args.command == "calibrate":
         started.append(run_dir := new_run_dir(out))
         ok = _calibrate(args, run_dir)
@@ -268,7 +314,11 @@ def _run(args, out: Path, started: list[Path]) -> int:
         images_ok, images = _run_images(args, cases, run_dir, warps, baseline, not_applicable)
         ok &= images_ok
         payload.update(images)
-    elif warps is not None:
+    if args.command == "validate" and not args.no_invariance:
+        console.rule("[bold]Invariances[/] (each engine against itself)")
+        invariance_ok, payload["invariance"] = _run_invariance(args, args.invariance_only, run_dir)
+        ok &= invariance_ok
+    if not cases and warps is not None:
         write_atomic(run_dir / "report.html",
                      '<!DOCTYPE html><meta charset="utf-8"><a href="warps.html">Warp conformance</a>')
     payload["pass"] = ok

@@ -93,9 +93,38 @@ def build_parser() -> argparse.ArgumentParser:
                                "integrator without an entry is listed as such (it is not validated); an entry "
                                "for an integrator the renderer lacks is an error (exit status 2).")
 
+    n = sub.add_parser(
+        "invariance", help="metamorphic checks: each engine against itself under physical transformations",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        description="Render each scene and a rewritten copy of it with each engine (ours, then Mitsuba 3), as "
+                    "independent batches, and compare the copy's image, mapped back by what physics says, with "
+                    "the original's by the image suite's Welch tests (pixel, tile, image). No reference image "
+                    "is involved. The rewrites (harness/invariance/rewrite.py) apply to any scene:\n"
+                    "  scale        everything x 1e-3 and x 1e3 about the origin; point intensity x s^2, clip "
+                    "distances x s: same image\n"
+                    "  rotate       everything by 37 deg about a unit axis: same image, normals rotated\n"
+                    "  translate    everything by (10, -20, 30): same image (float32 rounding of a scene "
+                    "further away is resolved by the tests)\n"
+                    "  light        every emitter x 2: image x 2 (simple, ao)\n"
+                    "  reflectance  every diffuse reflectance x 1/2: image x 1/2 (simple, ao)\n"
+                    "Our renderer breaking an invariance fails the run (exit 1); Mitsuba breaking one is a "
+                    "finding, printed and stored in results.json (`invariance.findings`). Default cases: "
+                    "sphere_plane, cornell, crevice and plane_point with simple, ao and normals, at 64x64.")
+    common(n)
+    n.add_argument("--only", nargs="+", metavar="NAME",
+                   help="scenes, integrators, scene:integrator cases or invariances, e.g. crevice ao scale "
+                        "(a kind not named means all of it; scenes: the default four)")
+    n.add_argument("--json", type=Path, metavar="PATH", help="also write the results as JSON to PATH")
+    n.add_argument("--no-mitsuba", action="store_true", help="check our renderer alone")
+    n.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant (default: llvm_ad_rgb)")
+
     v = sub.add_parser("validate", help="everything: what `make validate` runs",
-                       description="Warp conformance and image validation (our scenes, then the real scenes of "
-                                   "scenes/real/ as their own section); writes results/<run>/report.html.")
+                       description="Warp conformance, image validation (our scenes, then the real scenes of "
+                                   "scenes/real/ as their own section) and the invariances (see `invariance "
+                                   "--help`); writes results/<run>/report.html.")
     common(v)
     image_options(v)
+    v.add_argument("--invariance-only", nargs="+", metavar="NAME",
+                   help="narrow the Invariances section as `invariance --only` does (default: its default cases)")
+    v.add_argument("--no-invariance", action="store_true", help="skip the Invariances section")
     return p

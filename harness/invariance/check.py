@@ -1,0 +1,155 @@
+"""The metamorphic check: each engine renders a scene and its rewritten variants as independent batches, and
+each variant's batches, mapped back (divided by the expected factor, normals rotated back), must pass the
+image suite's Welch tests against the base. No reference engine is needed: physics is the oracle.
+
+Our renderer breaking an invariance fails the suite; a reference engine breaking one is a finding, reported
+and stored, never a failure of ours.
+"""
+from __future__ import annotations
+
+import tempfile
+import zlib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from harness.engines.base import Engine, RenderFailed
+from harness.images.compare import Comparison, compare_summaries, summarize
+from harness.invariance.rewrite import rewrite
+from harness.invariance.variants import Invariance, Variant
+from harness.statistics.constants import IMAGE_BATCHES, SIGNIFICANCE, sidak_level
+
+
+@dataclass(frozen=True)
+class InvarianceCase:
+    """One scene with one integrator, at the check's resolution and samples."""
+
+    scene: Path
+    integrator: str
+    spp: int
+    res: int
+
+    @property
+    def key(self) -> str:
+        return f"{self.scene.stem}:{self.integrator}"
+
+
+@dataclass
+class VariantResult:
+    """One variant against the base: the comparison, and the image-mean ratio (mapped back over base)."""
+
+    variant: Variant
+    comparison: Comparison | None
+    ratio: float
+    error: str | None = None
+
+    @property
+    def passed(self) -> bool:
+        return self.error is None and self.comparison is not None and self.comparison.passed
+
+    def to_json(self) -> dict:
+        c = self.comparison
+        return {"variant": self.variant.label, "pass": self.passed, "ratio": self.ratio, "error": self.error,
+                "failed_checks": c.failed_checks if c else [], "min_p": {s.scale: s.min_p for s in c.scales} if c
+                else {}, "detectable_bias": c.detectable_bias if c else None}
+
+
+@dataclass
+class Cell:
+    """One engine x invariance x case: every variant of the invariance."""
+
+    engine: str
+    invariance: str
+    case: InvarianceCase
+    variants: list[VariantResult] = field(default_factory=list)
+    base_error: str | None = None
+
+    @property
+    def passed(self) -> bool:
+        return self.base_error is None and all(v.passed for v in self.variants)
+
+    @property
+    def failing(self) -> list[VariantResult]:
+        return [v for v in self.variants if not v.passed]
+
+    @property
+    def worst_ratio(self) -> float:
+        """The ratio furthest from 1 (NaN if none was measured)."""
+        ratios = [v.ratio for v in self.variants if np.isfinite(v.ratio)]
+        return max(ratios, key=lambda r: abs(r - 1.0)) if ratios else float("nan")
+
+    def to_json(self) -> dict:
+        return {"engine": self.engine, "invariance": self.invariance, "scene": self.case.scene.stem,
+                "integrator": self.case.integrator, "pass": self.passed, "ratio": self.worst_ratio,
+                "failing": [v.variant.label for v in self.failing], "base_error": self.base_error,
+                "variants": [v.to_json() for v in self.variants], "spp": self.case.spp, "res": self.case.res}
+
+
+def image_ratio(variant: np.ndarray, base: np.ndarray, signed: bool) -> float:
+    """Mean of the mapped-back variant over the base's mean (of absolute values for signed images)."""
+    f = np.abs if signed else (lambda x: x)
+    den = f(base).mean(dtype=np.float64)
+    return float(f(variant).mean(dtype=np.float64) / den) if den != 0 else float("nan")
+
+
+def case_seed(engine: str, case: InvarianceCase, label: str, seed: int) -> int:
+    """Independent seeds for the base and each variant, per engine and case."""
+    return (zlib.crc32(f"{engine}|{case.key}|{label}".encode()) + 7919 * seed) % 2**31
+
+
+def run_cell_group(engine: Engine, case: InvarianceCase, invariances: list[Invariance], alpha: float, seed: int,
+                   folder: Path, batches: int = IMAGE_BATCHES) -> list[Cell]:
+    """One base render of `case` by `engine`, then every variant of every invariance against it."""
+    params = {"res": str(case.res)}
+    signed = case.integrator == "normals"
+    cells = [Cell(engine.name, inv.name, case) for inv in invariances]
+    try:
+        base = engine.render(str(case.scene), case.integrator, case.spp, batches,
+                             case_seed(engine.name, case, "base", seed), params).batches
+    except Exception as e:  # no base image: every cell of the case fails with the reason
+        reason = e.reason if isinstance(e, RenderFailed) else f"{type(e).__name__}: {str(e).strip()[:200]}"
+        for cell in cells:
+            cell.base_error = reason
+        return cells
+    base_summary = summarize(base)
+    for inv, cell in zip(invariances, cells):
+        for v in inv.variants:
+            path = folder / f"{case.scene.stem}.{inv.name}.{len(cell.variants)}.xml"
+            try:
+                rewrite(case.scene, path, v.kind, v.value)
+                out = engine.render(str(path), case.integrator, case.spp, batches,
+                                    case_seed(engine.name, case, f"{inv.name}{v.label}", seed), params).batches
+            except Exception as e:
+                reason = e.reason if isinstance(e, RenderFailed) else f"{type(e).__name__}: {str(e).strip()[:200]}"
+                cell.variants.append(VariantResult(v, None, float("nan"), reason))
+                continue
+            mapped = v.expected(case.integrator, out.astype(np.float64))
+            comparison = compare_summaries(summarize(mapped), base_summary, alpha, signed=signed,
+                                           samples=(case.spp, case.spp))
+            cell.variants.append(VariantResult(v, comparison, image_ratio(mapped, base, signed)))
+    return cells
+
+
+def comparisons_of(cases: list[InvarianceCase], invariances: list[Invariance]) -> int:
+    """How many variant comparisons one engine makes (the family its level is split over)."""
+    return sum(len(inv.variants) for c in cases for inv in invariances if c.integrator in inv.integrators)
+
+
+def run_invariances(engines: list[Engine], cases: list[InvarianceCase], invariances: list[Invariance],
+                    seed: int = 0, on_progress: Callable[[str], None] | None = None,
+                    batches: int = IMAGE_BATCHES) -> tuple[list[Cell], float]:
+    """Every engine x case x invariance that applies to the case's integrator. Each engine's comparisons share
+    a family-wise false-alarm rate of SIGNIFICANCE (Sidak); returns the cells and the per-comparison level."""
+    alpha = sidak_level(SIGNIFICANCE, comparisons_of(cases, invariances))
+    cells: list[Cell] = []
+    with tempfile.TemporaryDirectory(prefix="mcval-invariance-") as tmp:
+        for engine in engines:
+            for case in cases:
+                chosen = [inv for inv in invariances if case.integrator in inv.integrators]
+                if chosen:
+                    cells += run_cell_group(engine, case, chosen, alpha, seed, Path(tmp), batches)
+                if on_progress:
+                    on_progress(f"{engine.name} {case.key}")
+    return cells, alpha

@@ -1,0 +1,38 @@
+"""What the invariance run says: verdict lines (our failures), findings (the reference's breaks) and the
+`invariance` block of results.json."""
+from __future__ import annotations
+
+from harness.invariance.check import Cell
+from harness.invariance.variants import INVARIANCES
+
+REFERENCE_NOTE = "A reference engine's break is a finding about it (BREAKS), never a failure of ours."
+
+
+def _variant_text(cell: Cell) -> str:
+    parts = []
+    for v in cell.failing:
+        what = v.error or (f"failed at {', '.join(v.comparison.failed_checks)}" if v.comparison else "failed")
+        parts.append(f"{v.variant.label}: mean ratio {v.ratio:.4f} ({what})")
+    return "; ".join(parts) or (cell.base_error or "")
+
+
+def failure_lines(cells: list[Cell], engine: str) -> list[str]:
+    """One line per failed cell of the gating engine: `sphere_plane:ao scale x0.001: mean ratio 0.9895 (...)`."""
+    return [f"{c.case.key} {c.invariance}: {c.base_error or _variant_text(c)}"
+            for c in cells if c.engine == engine and not c.passed]
+
+
+def finding_lines(cells: list[Cell], engine: str) -> list[str]:
+    """One line per broken cell of another engine: `reference mitsuba breaks scale on crevice:ao: ...`."""
+    return [f"reference {c.engine} breaks {c.invariance} on {c.case.key}: {c.base_error or _variant_text(c)}"
+            for c in cells if c.engine != engine and not c.passed]
+
+
+def invariance_payload(cells: list[Cell], alpha: float, engine: str, meta: dict) -> dict:
+    """results.json's `invariance`: pass (ours only), every cell, the findings about the references."""
+    ours = [c for c in cells if c.engine == engine]
+    return {"pass": all(c.passed for c in ours), "gating_engine": engine, "alpha": alpha,
+            "invariances": {i.name: {"summary": i.summary, "variants": [v.label for v in i.variants],
+                                     "integrators": list(i.integrators)} for i in INVARIANCES},
+            "cells": [c.to_json() for c in cells], "failures": failure_lines(cells, engine),
+            "findings": finding_lines(cells, engine), "meta": meta}

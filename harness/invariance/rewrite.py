@@ -1,0 +1,201 @@
+"""Scene files rewritten by a physical transformation, so every scene gets each invariance for free.
+
+Geometry: a step (scale, rotate, translate) appended AFTER the existing steps of every shape's and the
+sensor's to_world (the sensor's scale conjugated, S C S^-1, as Mitsuba's cameras must be rigid) (both our loader and Mitsuba's compose steps in document order), one added where a shape
+has none; point-light positions and sphere centres are mapped by the same matrix. Scaling also scales the
+sensor's clip distances (written explicitly: their defaults would not scale) and point intensities by s^2,
+so that 1/r^2 leaves the image unchanged. Light and reflectance factors multiply every emitter's radiance
+or intensity and every diffuse reflectance (defaults written out). Mesh paths are made absolute, so the
+variant file can live anywhere.
+"""
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+
+#: Defaults of the properties a rewrite changes, in both loaders (ours: scene_loader.cpp; Mitsuba's plugins).
+NEAR_CLIP, FAR_CLIP = 1e-2, 1e4
+DEFAULT_REFLECTANCE = 0.5
+DEFAULT_EMISSION = 1.0
+LIGHTS = ("point", "constant", "area")
+
+
+def _fmt(x: float) -> str:
+    return repr(float(x))
+
+
+def _numbers(node: ET.Element, attr: str = "value") -> np.ndarray:
+    text = node.get(attr, "")
+    if "$" in text:
+        raise ValueError(f"<{node.tag} name=\"{node.get('name')}\"> holds a parameter ({text}): cannot rewrite it")
+    return np.array([float(v) for v in text.replace(",", " ").split()])
+
+
+def _prop(parent: ET.Element, name: str) -> ET.Element | None:
+    return next((e for e in parent if e.get("name") == name), None)
+
+
+def scale_matrix(s: float) -> np.ndarray:
+    return np.diag([s, s, s, 1.0])
+
+
+def rotation_matrix(axis, degrees: float) -> np.ndarray:
+    """Rodrigues' rotation by `degrees` about the unit `axis`, right-handed, as <rotate> means it."""
+    a = np.asarray(axis, float)
+    x, y, z = a / np.linalg.norm(a)
+    t = np.radians(degrees)
+    c, s = np.cos(t), np.sin(t)
+    k = np.array([[0, -z, y], [z, 0, -x], [-y, x, 0]])
+    m = np.eye(4)
+    m[:3, :3] = c * np.eye(3) + s * k + (1 - c) * np.outer([x, y, z], [x, y, z])
+    return m
+
+
+def translation_matrix(v) -> np.ndarray:
+    m = np.eye(4)
+    m[:3, 3] = v
+    return m
+
+
+def _step_element(kind: str, value) -> ET.Element:
+    if kind == "scale":
+        return ET.Element("scale", value=_fmt(value))
+    if kind == "translate":
+        return ET.Element("translate", value=", ".join(_fmt(v) for v in value))
+    axis, angle = value
+    x, y, z = np.asarray(axis, float) / np.linalg.norm(axis)
+    return ET.Element("rotate", x=_fmt(x), y=_fmt(y), z=_fmt(z), angle=_fmt(angle))
+
+
+def step_matrix(kind: str, value) -> np.ndarray:
+    return {"scale": scale_matrix, "translate": translation_matrix,
+            "rotate": lambda v: rotation_matrix(*v)}[kind](value)
+
+
+def _append_step(owner: ET.Element, step: ET.Element) -> None:
+    """`step` after every step of the owner's to_world (a to_world made if it has none)."""
+    transform = next((e for e in owner if e.tag == "transform" and e.get("name") == "to_world"), None)
+    if transform is None:
+        transform = ET.SubElement(owner, "transform", name="to_world")
+    transform.append(step)
+
+
+def _prepend_step(owner: ET.Element, step: ET.Element) -> None:
+    transform = next(e for e in owner if e.tag == "transform" and e.get("name") == "to_world")
+    transform.insert(0, step)
+
+
+def _map_point(node: ET.Element, m: np.ndarray) -> None:
+    if node.get("value") is not None:
+        p = _numbers(node)
+    else:
+        p = np.array([float(node.get(a, "0")) for a in "xyz"])
+        for a in "xyz":
+            node.attrib.pop(a, None)
+    q = m[:3, :3] @ p + m[:3, 3]
+    node.set("value", ", ".join(_fmt(v) for v in q))
+
+
+def _scale_value(node: ET.Element, factor: float) -> None:
+    if node.tag not in ("rgb", "float", "spectrum") or node.get("value") is None:
+        raise ValueError(f"cannot scale <{node.tag} name=\"{node.get('name')}\">: expected an <rgb> or <float> value")
+    v = _numbers(node) * factor
+    if node.tag == "spectrum" and v.size != 1:
+        raise ValueError(f"cannot scale a sampled <spectrum name=\"{node.get('name')}\">")
+    node.set("value", ", ".join(_fmt(x) for x in v))
+
+
+def _scale_property(owner: ET.Element, name: str, factor: float, default: float) -> None:
+    node = _prop(owner, name)
+    if node is None:
+        node = ET.SubElement(owner, "float", name=name, value=_fmt(default))
+    _scale_value(node, factor)
+
+
+def transform_scene(root: ET.Element, kind: str, value) -> None:
+    """Apply the rigid or scaling step (kind "scale", "rotate" (axis, degrees) or "translate") to everything."""
+    m = step_matrix(kind, value)
+    s = float(value) if kind == "scale" else 1.0
+    for sensor in root.iter("sensor"):
+        _append_step(sensor, _step_element(kind, value))
+        if kind == "scale":
+            # Mitsuba's cameras refuse a scaled to_world: S C S^-1 moves the camera as S does and stays rigid.
+            _prepend_step(sensor, _step_element(kind, 1.0 / s))
+            for name, default in (("near_clip", NEAR_CLIP), ("far_clip", FAR_CLIP), ("focus_distance", None)):
+                if default is not None or _prop(sensor, name) is not None:
+                    _scale_property(sensor, name, s, default)
+    for shape in root.iter("shape"):
+        if shape.get("type") == "sphere" and not any(e.tag == "transform" for e in shape):
+            # Mitsuba's sphere is to_world * translate(center) * scale(radius): without a to_world, move those.
+            centre = _prop(shape, "center")
+            if centre is None:
+                centre = ET.SubElement(shape, "point", name="center", value="0, 0, 0")
+            _map_point(centre, m)
+            if kind == "scale":
+                _scale_property(shape, "radius", s, 1.0)
+            continue
+        _append_step(shape, _step_element(kind, value))
+    for emitter in root.iter("emitter"):
+        kind_of = emitter.get("type")
+        if kind_of == "point":
+            if any(e.tag == "transform" for e in emitter):
+                _append_step(emitter, _step_element(kind, value))
+            else:
+                position = _prop(emitter, "position")
+                if position is None:
+                    position = ET.SubElement(emitter, "point", name="position", value="0, 0, 0")
+                _map_point(position, m)
+            if kind == "scale":
+                _scale_property(emitter, "intensity", s * s, DEFAULT_EMISSION)
+        elif kind_of not in ("constant", "area"):
+            raise ValueError(f"cannot move <emitter type=\"{kind_of}\">: only {', '.join(LIGHTS)} are known")
+
+
+def scale_lights(root: ET.Element, factor: float) -> None:
+    """Every emitter's intensity (point) or radiance (constant, area) times `factor`."""
+    for emitter in root.iter("emitter"):
+        kind = emitter.get("type")
+        if kind not in LIGHTS:
+            raise ValueError(f"cannot scale <emitter type=\"{kind}\">: only {', '.join(LIGHTS)} are known")
+        _scale_property(emitter, "intensity" if kind == "point" else "radiance", factor, DEFAULT_EMISSION)
+
+
+def scale_reflectance(root: ET.Element, factor: float) -> None:
+    """Every diffuse reflectance times `factor`; a shape with no material gets the default one, scaled."""
+    for shape in root.iter("shape"):
+        if not any(e.tag in ("bsdf", "ref") for e in shape):
+            ET.SubElement(shape, "bsdf", type="diffuse")
+    for bsdf in root.iter("bsdf"):
+        kind = bsdf.get("type")
+        if kind == "diffuse":
+            _scale_property(bsdf, "reflectance", factor, DEFAULT_REFLECTANCE)
+        elif kind != "twosided":  # twosided wraps a diffuse one, scaled where it is met
+            raise ValueError(f"cannot scale the reflectance of <bsdf type=\"{kind}\">")
+
+
+def absolute_paths(root: ET.Element, folder: Path) -> None:
+    """Every `filename` property made absolute against the scene's folder."""
+    for node in root.iter("string"):
+        if node.get("name") == "filename" and not Path(node.get("value", "")).is_absolute():
+            node.set("value", str((folder / node.get("value")).resolve()))
+
+
+def rewrite(scene: Path, out: Path, kind: str, value) -> Path:
+    """Write `scene` transformed by (kind, value) to `out`: kind is "scale", "rotate", "translate", "light"
+    or "reflectance" (value the factor)."""
+    tree = ET.parse(scene)
+    root = tree.getroot()
+    if kind in ("scale", "rotate", "translate"):
+        transform_scene(root, kind, value)
+    elif kind == "light":
+        scale_lights(root, float(value))
+    elif kind == "reflectance":
+        scale_reflectance(root, float(value))
+    else:
+        raise ValueError(f"unknown rewrite {kind!r}")
+    absolute_paths(root, Path(scene).resolve().parent)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    tree.write(out, encoding="utf-8", xml_declaration=True)
+    return out
