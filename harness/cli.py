@@ -147,6 +147,8 @@ def _run_invariance(args, only, run_dir: Path, engines=None) -> tuple[bool, dict
         console.print(table)
     meta = {"engines": [e.version() for e in engines], "seed": args.seed, "seconds": round(seconds, 1)}
     payload = invariance_payload(cells, alpha, gating, meta)
+    from harness.report.invariance_html import invariance_html
+    write_atomic(run_dir / "invariance.html", invariance_html(payload))
     for line in payload["findings"]:
         console.print(f"[yellow]finding[/] {escape(line)}", soft_wrap=True)
     ours = [c for c in cells if c.engine == gating]
@@ -154,6 +156,7 @@ def _run_invariance(args, only, run_dir: Path, engines=None) -> tuple[bool, dict
     console.print(f"{len(ours) - len(failed)} of {len(ours)} invariance checks of {gating} pass, in {seconds:.1f} s.")
     for line in failed:
         console.print(f"[red]FAIL[/] invariance {escape(line)}", soft_wrap=True)
+    console.print(f"Page: {run_dir / 'invariance.html'}")
     return payload["pass"], payload
 
 
@@ -286,6 +289,8 @@ def _run(args, out: Path, started: list[Path]) -> int:
         ok, invariance = _run_invariance(args, args.only, run_dir)
         payload = {"run": run_dir.name, "pass": ok, "invariance": invariance}
         write_json(run_dir / "results.json", payload)
+        write_atomic(run_dir / "report.html", '<!DOCTYPE html><meta charset="utf-8">'
+                                              '<a href="invariance.html">Invariances</a>')
         if args.json:
             write_json(args.json, payload)
         point_link(out / "latest", run_dir)

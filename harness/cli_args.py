@@ -96,20 +96,21 @@ def build_parser() -> argparse.ArgumentParser:
     n = sub.add_parser(
         "invariance", help="metamorphic checks: each engine against itself under physical transformations",
         formatter_class=argparse.RawDescriptionHelpFormatter,
-        description="Render each scene and a rewritten copy of it with each engine (ours, then Mitsuba 3), as "
-                    "independent batches, and compare the copy's image, mapped back by what physics says, with "
-                    "the original's by the image suite's Welch tests (pixel, tile, image). No reference image "
-                    "is involved. The rewrites (harness/invariance/rewrite.py) apply to any scene:\n"
-                    "  scale        everything x 1e-3 and x 1e3 about the origin; point intensity x s^2, clip "
-                    "distances x s: same image\n"
-                    "  rotate       everything by 37 deg about a unit axis: same image, normals rotated\n"
-                    "  translate    everything by (10, -20, 30): same image (float32 rounding of a scene "
-                    "further away is resolved by the tests)\n"
-                    "  light        every emitter x 2: image x 2 (simple, ao)\n"
-                    "  reflectance  every diffuse reflectance x 1/2: image x 1/2 (simple, ao)\n"
-                    "Our renderer breaking an invariance fails the run (exit 1); Mitsuba breaking one is a "
-                    "finding, printed and stored in results.json (`invariance.findings`). Default cases: "
-                    "sphere_plane, cornell, crevice and plane_point with simple, ao and normals, at 64x64.")
+        description=(
+            "Render each scene and a rewritten copy of it with each engine (ours, then Mitsuba 3) as independent\n"
+            "batches, and compare the copy's image, mapped back by what physics says, with the original's by the\n"
+            "image suite's Welch tests (pixel, tile, image). No reference image is involved. The rewrites\n"
+            "(harness/invariance/rewrite.py) apply to any scene file:\n"
+            "  scale        everything x 1e-3 and x 1e3 about the origin (point intensity x s^2, clip\n"
+            "               distances x s): same image\n"
+            "  rotate       everything by 37 deg about a unit axis: same image, normals rotated\n"
+            "  translate    everything by (10, -20, 30): same image (further away, float32 rounding of the\n"
+            "               scene itself is resolved by the tests)\n"
+            "  light        every emitter x 2: image x 2 (simple, ao)\n"
+            "  reflectance  every diffuse reflectance x 1/2: image x 1/2 (simple, ao)\n"
+            "Our renderer breaking an invariance fails the run (exit 1); Mitsuba breaking one is a finding,\n"
+            "printed and stored in results.json (invariance.findings). Default cases: sphere_plane, cornell,\n"
+            "crevice and plane_point with simple, ao and normals at 64x64; `validate` runs the same section."))
     common(n)
     n.add_argument("--only", nargs="+", metavar="NAME",
                    help="scenes, integrators, scene:integrator cases or invariances, e.g. crevice ao scale "

@@ -15,13 +15,12 @@ def _cell_text(cell: Cell | None, gating: bool) -> str:
         return "[dim]—[/]"
     if cell.base_error:
         return "[bold red]ERR[/]" if gating else "[yellow]ERR[/]"
-    ratio = cell.worst_ratio
-    shown = f"{ratio:.4f}" if ratio == ratio else "—"
     if cell.passed:
-        return f"[green]PASS[/] {shown}"
-    failing = ",".join(v.variant.label for v in cell.failing)
-    word = "[bold red]FAIL[/]" if gating else "[yellow]BREAKS[/]"
-    return f"{word} {shown} {escape(failing)}"
+        ratio = cell.worst_ratio
+        return f"[green]PASS[/] {ratio:.4f}" if ratio == ratio else "[green]PASS[/]"
+    failing = " ".join(f"{escape(v.variant.label)}:{v.ratio:.4f}" if v.ratio == v.ratio
+                       else f"{escape(v.variant.label)}:no image" for v in cell.failing)
+    return f"{'[bold red]FAIL[/]' if gating else '[yellow]BREAKS[/]'} {failing}"
 
 
 def invariance_tables(cells: list[Cell], alpha: float, gating_engine: str) -> list[Table]:
@@ -44,5 +43,6 @@ def invariance_tables(cells: list[Cell], alpha: float, gating_engine: str) -> li
         tables.append(table)
     tables[-1].caption = ("ratio: the transformed image's mean, mapped back by the expected factor, over the "
                           "base's (furthest from 1 over the variants; mean |n| for normals); after FAIL or "
-                          f"BREAKS the failing variants; —: not applicable. {REFERENCE_NOTE}")
+                          "BREAKS each failing variant with its ratio (no image: the render failed, the reason is below); "
+                          f"—: not applicable. {REFERENCE_NOTE}")
     return tables
