@@ -284,6 +284,9 @@ def _run(args, out: Path, started: list[Path]) -> int:
         point_link(out / "bench-latest", run_dir)
         point_link(out / "latest", run_dir)
         return 0
+    if args.command in ("invariance", "validate"):
+        from harness.invariance.suite import select as select_invariance
+        select_invariance(args.only if args.command == "invariance" else args.invariance_only)  # bad names: no run
     if args.command == "invariance":
         started.append(run_dir := new_run_dir(out))
         ok, invariance = _run_invariance(args, args.only, run_dir)

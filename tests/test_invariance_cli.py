@@ -1,0 +1,26 @@
+"""`python -m harness invariance`: exit status, results.json's `invariance` block and the page."""
+from __future__ import annotations
+
+import json
+
+from harness.cli import main
+
+
+def test_invariance_command_writes_its_block(tmp_path):
+    out = tmp_path / "results"
+    code = main(["invariance", "--only", "plane_point", "simple", "light", "reflectance", "--no-mitsuba",
+                 "--out", str(out), "--json", str(tmp_path / "inv.json")])
+    assert code == 0
+    payload = json.loads((out / "latest" / "results.json").read_text())
+    block = payload["invariance"]
+    assert payload["pass"] and block["pass"] and block["gating_engine"] == "mcval"
+    assert [(c["invariance"], c["scene"], c["integrator"]) for c in block["cells"]] == \
+        [("light", "plane_point", "simple"), ("reflectance", "plane_point", "simple")]
+    assert block["cells"][0]["variants"][0]["ratio"] == block["cells"][0]["ratio"]
+    assert (out / "latest" / "invariance.html").read_text().count("PASS") == 2
+    assert json.loads((tmp_path / "inv.json").read_text())["invariance"]["failures"] == []
+
+
+def test_unknown_name_is_bad_input(tmp_path):
+    assert main(["invariance", "--only", "nonsense", "--no-mitsuba", "--out", str(tmp_path)]) == 2
+    assert not list(tmp_path.iterdir())  # refused before any run folder
