@@ -1,5 +1,6 @@
 #include "embree_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -15,6 +16,22 @@ namespace {
 thread_local std::string tLastError;
 void onEmbreeError(void *, RTCError code, const char *message) {
     tLastError = "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "");
+}
+
+/// The spawn-ray offset floor per unit of a shape's size: Mitsuba 3's offset for a unit-sized
+/// position, 2 * 1500 float epsilons. A smaller one changes which shadow rays graze a neighbouring
+/// facet at the terminator of smooth-shaded meshes, which the image tests detect (highpoly, simple).
+constexpr float kOffsetFloorPerSize = 2.f * 1500.f * 0x1p-24f;
+
+/// Half the largest side of the box around the points: a shape's size. Zero if it has no extent (a
+/// degenerate shape that no ray hits), which then does not set the offset floor.
+float halfExtent(const std::vector<Vec3f> &points) {
+    Vec3f lo = points.empty() ? Vec3f() : points[0], hi = lo;
+    for (const Vec3f &p : points) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    return 0.5f * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
 }
 
 RTCRay toRtc(const Ray &ray) {
@@ -41,6 +58,10 @@ EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphe
     // (a rectangle's diagonal would read 0.4995 instead of 0.5 under AO).
     rtcSetSceneFlags(m_scene, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(m_scene, RTC_BUILD_QUALITY_HIGH);  // a slower build for faster traversal
+    // The offset floor scales with the scene's smallest shape: a unit-sized object then gets Mitsuba's
+    // unit-scale offset, which the image tests match, and a large floor does not inflate it (its rays
+    // would clear contact shadows). Scaling the scene scales the floor, so the image does not change.
+    float smallest = std::numeric_limits<float>::infinity();
     for (const Mesh &mesh : meshes) {
         RTCGeometry geom = rtcNewGeometry(m_device, RTC_GEOMETRY_TYPE_TRIANGLE);
         // Embree's own buffers are padded for its SIMD loads; ours are not, so copy.
@@ -58,11 +79,14 @@ EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphe
         rtcAttachGeometry(m_scene, geom);  // ids follow mesh order
         rtcReleaseGeometry(geom);
         m_reflectance.push_back(mesh.reflectance);
+        if (const float size = halfExtent(mesh.positions); size > 0.f) smallest = std::min(smallest, size);
     }
     for (const Sphere &sphere : spheres) {
         attachSphere(m_device, m_scene, sphere);  // ids after the meshes'
         m_reflectance.push_back(sphere.reflectance);
+        smallest = std::min(smallest, sphere.radius);
     }
+    if (std::isfinite(smallest)) m_offsetFloor = kOffsetFloorPerSize * smallest;
     rtcCommitScene(m_scene);
     if (rtcGetDeviceError(m_device) != RTC_ERROR_NONE) {
         const std::string message = tLastError;
@@ -124,6 +148,7 @@ void EmbreeScene::fillHit(const Ray &ray, unsigned geom, unsigned prim, float u,
     hit.t = t;
     hit.geom = geom;
     hit.prim = prim;
+    hit.offsetFloor = m_offsetFloor;
     if (geom >= m_meshes.size()) {
         // A sphere: the exact point and normal; its shading normal is its geometric one.
         sphereHitPoint(m_spheres[geom - m_meshes.size()], ray.o, ray.d, double(t) + double(u), hit.p, hit.ng);

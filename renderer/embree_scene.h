@@ -38,6 +38,7 @@ private:
     const std::vector<Mesh> &m_meshes;
     const std::vector<Sphere> &m_spheres;
     std::vector<Color> m_reflectance;  ///< by geometry id: one table whatever the shape
+    float m_offsetFloor = 0.f;         ///< Hit::offsetFloor: from the scene's smallest shape
     RTCDevice m_device = nullptr;
     RTCScene m_scene = nullptr;
 };

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 #include "vector.h"
 
@@ -25,32 +26,30 @@ struct Hit {
     Vec3f ns;         ///< unit shading normal (interpolated, or ng for flat meshes)
     uint32_t geom = 0;  ///< Embree geometry id: a mesh's index, or a sphere's after the meshes
     uint32_t prim = 0;
+    float offsetFloor = 0.f;  ///< smallest offset of a ray leaving the hit (offsetRayOrigin)
 };
 
 /// Moves p off its surface to the side of n (the unit geometric normal, flipped toward where the
-/// ray goes), far enough that the ray cannot re-hit its own triangle at any scene scale.
+/// ray goes), far enough that the ray cannot re-hit its own surface at any scene scale.
 ///
-/// The offset is Waechter and Binder's "fast and robust" one (Ray Tracing Gems, 2019): a fixed
-/// number of ulps of each coordinate, so it grows with the position's magnitude and stays tight far
-/// from the origin. Near the origin, where ulps are tiny, it is floored at Mitsuba 3's offset for a
-/// unit-sized position, 2 * 1500 float epsilons: a smaller offset changes which shadow rays graze a
-/// neighbouring facet at the shadow terminator of smooth-shaded meshes, a difference from the
-/// reference that the image tests detect (highpoly, simple).
-inline Vec3f offsetRayOrigin(const Vec3f &p, const Vec3f &n) {
-    constexpr float kOrigin = 1.f / 32.f, kFloatScale = 1.f / 65536.f, kIntScale = 256.f;
-    constexpr float kFloor = 2.f * 1500.f * 0x1p-24f;
-    const auto shift = [](float x, float nx) {
-        float moved;
-        if (std::abs(x) < kOrigin) {
-            moved = x + kFloatScale * nx;  // near 0 ulps are tiny: a fixed step
-        } else {
+/// Each coordinate moves by the larger of two offsets. One is Waechter and Binder's (Ray Tracing
+/// Gems, 2019): a fixed number of ulps of the coordinate, so it grows with the position's magnitude
+/// and stays tight far from the origin. The other is `floor`, a length given by the hit shape's own
+/// size (EmbreeScene::offsetFloor), so that the offset scales with the scene: an absolute floor is a
+/// unit-scale choice that swallows millimetre geometry and vanishes on kilometre geometry.
+inline Vec3f offsetRayOrigin(const Vec3f &p, const Vec3f &n, float floor) {
+    constexpr float kIntScale = 256.f;
+    const auto shift = [floor](float x, float nx) {
+        float moved = x;
+        // Stepping the bits of 0 or a denormal could cross zero into a NaN; there the floor rules anyway.
+        if (std::abs(x) >= std::numeric_limits<float>::min()) {
             int32_t bits;
             std::memcpy(&bits, &x, 4);
             const auto step = static_cast<int32_t>(kIntScale * nx);
             bits += (x < 0.f) ? -step : step;
             std::memcpy(&moved, &bits, 4);
         }
-        const float floored = x + kFloor * nx;
+        const float floored = x + floor * nx;
         return nx >= 0.f ? std::max(moved, floored) : std::min(moved, floored);
     };
     return {shift(p.x, n.x), shift(p.y, n.y), shift(p.z, n.z)};

@@ -33,11 +33,12 @@ std::unique_ptr<Integrator> createIntegrator(const IntegratorSpec &spec, const S
                                              const EmbreeScene &embree);
 
 /// A ray leaving `hit` in direction d without re-hitting its surface: its origin moves off the
-/// surface, along the geometric normal, by an offset that scales with the position's magnitude.
+/// surface, along the geometric normal, by an offset that scales with the position's magnitude and
+/// with the size of the shape hit.
 inline Ray spawnRay(const Hit &hit, const Vec3f &d, float tfar) {
     const Vec3f side = dot(hit.ng, d) >= 0.f ? hit.ng : -hit.ng;
     Ray r;
-    r.o = offsetRayOrigin(hit.p, side);
+    r.o = offsetRayOrigin(hit.p, side, hit.offsetFloor);
     r.d = d;
     r.tnear = 0.f;
     r.tfar = tfar;
