@@ -30,7 +30,8 @@ SNIPPETS = ['<shape type="cube"/>', '<emitter type="point"/>', '<emitter type="c
             '<integrator type="ao"><integer name="samples" value="1024"/></integrator>', '<bsdf type="diffuse"/>',
             '<sensor type="perspective"><float name="fov" value="30"/></sensor>', '<ref id="nothing"/>',
             '<rgb name="reflectance" value="0.5"/>', '<!-- c -->', '<![CDATA[x]]>', '<default name="res" value="8"/>',
-            '<shape type="ply"><string name="filename" value="meshes/sphere.ply"/></shape>', '&amp;', '<']
+            '<shape type="ply"><string name="filename" value="meshes/sphere.ply"/></shape>', '&amp;', '<',
+            '<shape type="sphere"><float name="radius" value="1e-3"/><point name="center" value="0, 1, 0"/></shape>']
 
 NUMBER_RE = re.compile(rb"-?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 ATTR_RE = re.compile(rb'(value|angle|x|y|z|origin|target|up)="([^"]*)"')
