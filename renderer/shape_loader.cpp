@@ -1,0 +1,126 @@
+#include "shape_loader.h"
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "error.h"
+#include "mesh.h"
+#include "scene_limits.h"
+#include "sphere_loader.h"
+
+namespace mcval {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string typeOf(const XmlContext &ctx, const pugi::xml_node &node) { return ctx.attr(node, "type"); }
+
+bool inRange(const Vec3f &p, float bound) {
+    return std::abs(p.x) <= bound && std::abs(p.y) <= bound && std::abs(p.z) <= bound;  // false for NaN
+}
+
+/// Positions finite and bounded, normals unit length, after to_world: what Embree and the
+/// integrators can trace without producing NaN.
+void requireFiniteMesh(const XmlContext &ctx, const pugi::xml_node &node, const Mesh &mesh) {
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+        requirePosition(ctx, node, "vertex " + std::to_string(i) + " (after to_world)", mesh.positions[i]);
+    for (size_t i = 0; i < mesh.normals.size(); ++i)
+        if (!(std::abs(squaredNorm(mesh.normals[i]) - 1.f) < 1e-3f))
+            ctx.fail(node, "the normal of vertex " + std::to_string(i) + " is zero or not finite (after to_world)");
+}
+
+/// The shape's one <bsdf> or <ref> (its reflectance; the default without one) and its area emitter,
+/// whatever the shape.
+Color loadShapeChildren(const XmlContext &ctx, const XmlProps &props, const std::map<std::string, Color> &bsdfs,
+                        Deferred &deferred) {
+    Color reflectance{0.5f, 0.5f, 0.5f};
+    bool hasBsdf = false;
+    for (const auto &child : props.objects()) {
+        const std::string tag = child.name();
+        if (tag == "emitter") {
+            if (typeOf(ctx, child) != "area") ctx.fail(child, "a shape's emitter must be of type \"area\"");
+            deferred.areaEmitters.emplace_back(child, "<emitter type=\"area\"> at line " +
+                                                          std::to_string(ctx.line(child)));
+            continue;
+        }
+        if (hasBsdf && (tag == "bsdf" || tag == "ref")) ctx.fail(child, "a shape takes one bsdf");
+        if (tag == "bsdf") {
+            reflectance = loadBsdf(ctx, child, deferred);
+        } else if (tag == "ref") {
+            const std::string id = ctx.attr(child, "id");
+            const auto it = bsdfs.find(id);
+            if (it == bsdfs.end()) ctx.fail(child, "no <bsdf id=\"" + id + "\"> defined before this point");
+            reflectance = it->second;
+        } else {
+            ctx.fail(child, "unsupported element in <shape>: expected <bsdf>, <ref> or <emitter type=\"area\">");
+        }
+        hasBsdf = true;
+    }
+    return reflectance;
+}
+
+}  // namespace
+
+void requirePosition(const XmlContext &ctx, const pugi::xml_node &node, const std::string &what, const Vec3f &p) {
+    if (inRange(p, kMaxCoordinate)) return;
+    std::ostringstream msg;
+    msg << what << " lies at (" << p.x << ", " << p.y << ", " << p.z << "): coordinates must be finite and within "
+        << kMaxCoordinate;
+    ctx.fail(node, msg.str());
+}
+
+Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node, Deferred &deferred) {
+    if (typeOf(ctx, node) != "diffuse") {
+        // Only `normals` can ignore it; whether that is allowed is decided when the integrator is known.
+        deferred.nonDiffuseBsdfs.emplace_back(node, "<bsdf type=\"" + typeOf(ctx, node) + "\"> at line " +
+                                                        std::to_string(ctx.line(node)));
+        return {0.5f, 0.5f, 0.5f};
+    }
+    XmlProps props(ctx, node);
+    const Color rho = props.getColor("reflectance", {0.5f, 0.5f, 0.5f});
+    props.requireRange("reflectance", rho, 0.f, 1.f);
+    props.finish("reflectance");
+    if (!props.objects().empty()) ctx.fail(props.objects()[0], "unexpected element inside <bsdf>");
+    return rho;
+}
+
+void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const std::map<std::string, Color> &bsdfs,
+               SceneDescription &scene, Deferred &deferred) {
+    const std::string type = typeOf(ctx, node);
+    XmlProps props(ctx, node);
+    const Transform toWorld = props.getTransform("to_world");
+    const std::string name =
+        node.attribute("id") ? ctx.attr(node, "id") : type + " at line " + std::to_string(ctx.line(node));
+    if (type == "sphere") {
+        Sphere sphere = loadSphere(props, toWorld);
+        sphere.name = name;
+        sphere.reflectance = loadShapeChildren(ctx, props, bsdfs, deferred);
+        scene.spheres.push_back(std::move(sphere));
+        return;
+    }
+    Mesh mesh;
+    if (type == "obj" || type == "ply") {
+        const std::string filename = props.getStringRequired("filename");
+        const bool faceNormals = props.getBool("face_normals", false);
+        props.finish("filename, face_normals, to_world");
+        const fs::path path = fs::path(ctx.file).parent_path() / filename;
+        try {
+            mesh = loadMeshFile(path.string(), toWorld, faceNormals);
+        } catch (const SceneError &e) {
+            ctx.fail(node, e.what());
+        }
+    } else if (type == "rectangle" || type == "cube") {
+        props.finish("to_world");
+        mesh = type == "rectangle" ? makeRectangle(toWorld) : makeCube(toWorld);
+    } else {
+        ctx.fail(node, "unsupported shape type \"" + type + "\": expected obj, ply, rectangle, cube or sphere");
+    }
+    requireFiniteMesh(ctx, node, mesh);
+    mesh.name = name;
+    mesh.reflectance = loadShapeChildren(ctx, props, bsdfs, deferred);
+    scene.meshes.push_back(std::move(mesh));
+}
+
+}  // namespace mcval

@@ -1,0 +1,30 @@
+// Shapes and their materials in a scene file: meshes, spheres, bsdfs and area emitters.
+#pragma once
+
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scene.h"
+#include "xml_props.h"
+
+namespace mcval {
+
+/// Elements the chosen integrator may not use, judged once the integrator is known.
+struct Deferred {
+    std::vector<std::pair<pugi::xml_node, std::string>> nonDiffuseBsdfs, areaEmitters;
+};
+
+/// Throws at the node unless p is finite and within kMaxCoordinate; `what` names p in the message.
+void requirePosition(const XmlContext &ctx, const pugi::xml_node &node, const std::string &what, const Vec3f &p);
+
+/// A <bsdf>'s reflectance; a type other than diffuse is deferred (only some integrators can ignore it).
+Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node, Deferred &deferred);
+
+/// A <shape> (obj, ply, rectangle, cube or sphere) with its bsdf or ref and area emitter, appended
+/// to the scene's meshes or spheres.
+void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const std::map<std::string, Color> &bsdfs,
+               SceneDescription &scene, Deferred &deferred);
+
+}  // namespace mcval
