@@ -1,5 +1,7 @@
 """The sphere resting on a floor: its closed forms against numeric integration, and the analytic engine's
 image against brute-force Monte Carlo written here, apart from harness/engines/analytic_sphere.py."""
+import importlib.util
+
 import numpy as np
 import pytest
 
@@ -98,9 +100,32 @@ def test_what_the_engine_supports_is_explicit(tmp_path):
     with pytest.raises(NotAnalytic, match="not its radius"):
         load(str(floating))
     small = tmp_path / "small_floor.xml"
-    small.write_text(open(path).read().replace('<scale value="20000"/>', '<scale value="50"/>'))
+    small.write_text(_floor_scene(floor=50.0))
     assert load_plane_scene(str(small)).sphere is not None  # it parses, but its closed forms do not hold
     assert not AnalyticEngine.supports(str(small))
+
+
+def _floor_scene(floor: float = 2e4, tiles=None) -> str:
+    """sphere_floor_unit's text from its generator, with another floor half-size or other tiles."""
+    spec = importlib.util.spec_from_file_location("make_sphere_floor", SCENES_DIR / "make_sphere_floor.py")
+    gen = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(gen)
+    gen.FLOOR = floor
+    if tiles is not None:
+        gen.floor_tiles = lambda r: tiles
+    return gen.scene_text("unit", 1.0)
+
+
+def test_a_tiled_floor_is_one_plane_and_a_bad_tiling_is_refused(tmp_path):
+    """The floor is five rectangles (a small one under the camera, strips around it): the closed forms see
+    the one 2e4-radius square they tile; tiles with a gap or an overlap are not a plane."""
+    plane = load_plane_scene(str(SCENES_DIR / "sphere_floor_unit.xml")).plane
+    assert np.allclose(plane, np.diag([2e4, 2e4, 1.0, 1.0]))
+    for name, tiles in (("gap", [(0, 0, 32, 32), (-1e4, 0, 9e3, 2e4)]), ("overlap", [(0, 0, 2e4, 2e4), (0, 0, 32, 32)])):
+        bad = tmp_path / f"{name}.xml"
+        bad.write_text(_floor_scene(tiles=tiles))
+        with pytest.raises(NotAnalytic, match="overlap or leave a gap"):
+            load_plane_scene(str(bad))
 
 
 def _pixel_ray(s, x: float, y: float):

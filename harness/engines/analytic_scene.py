@@ -126,8 +126,46 @@ def _sphere(shape: ET.Element, bsdfs: dict[str, ET.Element]) -> Sphere:
     return Sphere(m[:3, :3] @ c + m[:3, 3], abs(r) * float(scales[0]), _reflectance(shape, bsdfs))
 
 
+def _tiled_plane(planes: list[ET.Element], bsdfs: dict[str, ET.Element]) -> tuple[np.ndarray, np.ndarray]:
+    """One rectangle's to_world and reflectance for rectangles that tile one: coplanar, edges parallel,
+    the same reflectance, no overlap and no gap (a floor may be tiled so that the part the camera sees
+    has small float32 vertices). Raises NotAnalytic otherwise."""
+    mats = [_transform(_prop(s, "transform", "to_world")) for s in planes]
+    rho = _reflectance(planes[0], bsdfs)
+    if len(mats) == 1:
+        return mats[0], rho
+    m0 = mats[0]
+    u, v = m0[:3, 0] / np.linalg.norm(m0[:3, 0]), m0[:3, 1] / np.linalg.norm(m0[:3, 1])
+    n = np.cross(u, v)
+    boxes = []
+    for m, shape in zip(mats, planes):
+        if not np.allclose(_reflectance(shape, bsdfs), rho):
+            raise NotAnalytic("floor tiles of different reflectance")
+        a, b = m[:3, 0], m[:3, 1]
+        if not (np.allclose(np.cross(a, b) / np.linalg.norm(np.cross(a, b)), n, atol=1e-9)
+                and abs(np.dot(m[:3, 3] - m0[:3, 3], n)) <= 1e-9 * np.linalg.norm(m[:3, 3] - m0[:3, 3] + 1e-300)
+                and abs(np.dot(a, v)) <= 1e-9 * np.linalg.norm(a) and abs(np.dot(b, u)) <= 1e-9 * np.linalg.norm(b)):
+            raise NotAnalytic("floor tiles that are not coplanar with parallel edges")
+        c = m[:3, 3] - m0[:3, 3]
+        hu, hv = abs(np.dot(a, u)), abs(np.dot(b, v))
+        boxes.append((np.dot(c, u) - hu, np.dot(c, u) + hu, np.dot(c, v) - hv, np.dot(c, v) + hv))
+    boxes = np.array(boxes)
+    lo_u, hi_u, lo_v, hi_v = boxes[:, 0].min(), boxes[:, 1].max(), boxes[:, 2].min(), boxes[:, 3].max()
+    area = (hi_u - lo_u) * (hi_v - lo_v)
+    areas = (boxes[:, 1] - boxes[:, 0]) * (boxes[:, 3] - boxes[:, 2])
+    overlap = sum(max(0.0, min(p[1], q[1]) - max(p[0], q[0])) * max(0.0, min(p[3], q[3]) - max(p[2], q[2]))
+                  for i, p in enumerate(boxes) for q in boxes[i + 1:])
+    if overlap > 1e-9 * area or abs(areas.sum() - area) > 1e-9 * area:
+        raise NotAnalytic("floor tiles that overlap or leave a gap")
+    whole = np.eye(4)
+    whole[:3, 0], whole[:3, 1], whole[:3, 2] = u * (hi_u - lo_u) / 2, v * (hi_v - lo_v) / 2, n
+    whole[:3, 3] = m0[:3, 3] + u * (hi_u + lo_u) / 2 + v * (hi_v + lo_v) / 2
+    return whole, rho
+
+
 def load_plane_scene(path: str | Path, params: dict[str, str] | None = None) -> PlaneScene:
-    """Reads a one-plane scene, or one plane and one sphere; raises NotAnalytic for anything else (that the
+    """Reads a one-plane scene (the plane possibly tiled), or one plane and one sphere; raises NotAnalytic
+    for anything else (that the
     sphere rests on the plane is checked where its closed forms are, analytic_sphere)."""
     root = ET.fromstring(Path(path).read_text())
     values = {d.get("name"): d.get("value") for d in root.iter("default")}
@@ -145,12 +183,12 @@ def load_plane_scene(path: str | Path, params: dict[str, str] | None = None) -> 
     shapes = root.findall("shape")
     planes = [s for s in shapes if s.get("type") == "rectangle"]
     spheres = [s for s in shapes if s.get("type") == "sphere"]
-    if len(planes) != 1 or len(spheres) > 1 or len(shapes) != len(planes) + len(spheres):
-        raise NotAnalytic("the scene must be a single rectangle, with at most one sphere")
+    if not planes or len(spheres) > 1 or len(shapes) != len(planes) + len(spheres):
+        raise NotAnalytic("the scene must be one rectangle (or rectangles tiling one), with at most one sphere")
     if any(s.find("emitter") is not None for s in shapes):
         raise NotAnalytic("an emitting shape")
     bsdfs = {b.get("id"): b for b in root.findall("bsdf")}
-    shape = planes[0]
+    plane, rho = _tiled_plane(planes, bsdfs)
     far = _prop(sensor, "float", "far_clip")
     cam = _transform(_prop(sensor, "transform", "to_world"))
     near = _prop(sensor, "float", "near_clip")
@@ -166,7 +204,6 @@ def load_plane_scene(path: str | Path, params: dict[str, str] | None = None) -> 
         width=int(_prop(film, "integer", "width").get("value")),
         height=int(_prop(film, "integer", "height").get("value")),
         near_clip=float(near.get("value")) if near is not None else 1e-2,
-        plane=_transform(_prop(shape, "transform", "to_world")),
-        reflectance=_reflectance(shape, bsdfs), lights=lights, environment=env,
+        plane=plane, reflectance=rho, lights=lights, environment=env,
         far_clip=float(far.get("value")) if far is not None else 1e4,
         sphere=_sphere(spheres[0], bsdfs) if spheres else None)
