@@ -8,23 +8,13 @@ import threading
 import time
 from pathlib import Path
 
-from rich.console import Console
 from rich.markup import escape
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
 from harness.cli_args import build_parser
+from harness.cli_commands import _bench, _calibrate, _integrators, _references
+from harness.cli_output import console, err, progress_bar
 from harness.results import latest_run, new_run_dir, point_link, write_atomic, write_json
 from harness.statistics.constants import WARP_SAMPLES
-
-# Logs (CI, pipes) get a wide table rather than a truncated one.
-console = Console(width=None if sys.stdout.isatty() else 120)
-err = Console(stderr=True)
-
-
-def _progress(label: str) -> Progress:
-    return Progress(TextColumn(label), BarColumn(), MofNCompleteColumn(), TextColumn("{task.description}"),
-                    TimeElapsedColumn(), console=err, transient=True)
-
 
 def _run_warps(args, specs, run_dir: Path) -> tuple[bool, dict]:
     import platform
@@ -41,7 +31,7 @@ def _run_warps(args, specs, run_dir: Path) -> tuple[bool, dict]:
         reference = MitsubaEngine()
     samples = getattr(args, "samples", WARP_SAMPLES)
     start = time.perf_counter()
-    with _progress("warps") as progress:
+    with progress_bar("warps") as progress:
         task = progress.add_task("", total=len(specs))
         results, level = run_matrix(ours, reference, specs, seed=args.seed, samples=samples,
                                     on_progress=lambda s: progress.update(task, advance=1, description=s.key))
@@ -85,7 +75,7 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
 
     ours, mitsuba = OurEngine(), MitsubaEngine(args.variant)
     start = time.perf_counter()
-    with _progress("images") as progress:
+    with progress_bar("images") as progress:
         task = progress.add_task("", total=len(cases))
         results, alpha = run_images(cases, ours, mitsuba, args.seed,
                                     on_progress=lambda c: progress.update(task, advance=1, description=c.key),
@@ -126,7 +116,7 @@ def _run_invariance(args, only, run_dir: Path, engines=None) -> tuple[bool, dict
     breaks fail; a reference's are printed and stored as findings."""
     from harness.engines.ours import OurEngine
     from harness.invariance.check import run_invariances
-    from harness.invariance.findings import failure_lines, finding_lines, invariance_payload
+    from harness.invariance.findings import failure_lines, invariance_payload
     from harness.invariance.suite import select
     from harness.report.invariance_table import invariance_tables
 
@@ -138,7 +128,7 @@ def _run_invariance(args, only, run_dir: Path, engines=None) -> tuple[bool, dict
             engines.append(MitsubaEngine(args.variant))
     gating = engines[0].name
     start = time.perf_counter()
-    with _progress("invariances") as progress:
+    with progress_bar("invariances") as progress:
         task = progress.add_task("", total=len(cases) * len(engines))
         cells, alpha = run_invariances(engines, cases, invariances, args.seed,
                                        on_progress=lambda m: progress.update(task, advance=1, description=m))
@@ -158,105 +148,6 @@ def _run_invariance(args, only, run_dir: Path, engines=None) -> tuple[bool, dict
         console.print(f"[red]FAIL[/] invariance {escape(line)}", soft_wrap=True)
     console.print(f"Page: {run_dir / 'invariance.html'}")
     return payload["pass"], payload
-
-
-def _references(args) -> int:
-    from harness.engines.mitsuba import MitsubaEngine
-    from harness.images.suite import select_cases
-    from harness.images.references import render_reference, write_reference
-
-    cases = select_cases(args.scenes)
-    mitsuba = MitsubaEngine(args.variant)
-    with _progress("references") as progress:
-        task = progress.add_task("", total=len(cases))
-        for case in cases:
-            progress.update(task, description=case.key)
-            path = write_reference(case, mitsuba, render_reference(case, mitsuba))
-            progress.console.print(f"wrote {path}")
-            progress.update(task, advance=1)
-    return 0
-
-
-def _integrators() -> int:
-    from harness.integrators import match
-    from harness.integrators.listing import integrators_table
-
-    console.print(integrators_table(match()))
-    return 0
-
-
-def _bench(args, run_dir: Path) -> tuple[bool, dict]:
-    from harness.bench.run import ray_rates, run_bench, seed_comparison
-    from harness.engines.mitsuba import MitsubaEngine
-    from harness.engines.ours import OurEngine
-    from harness.images.suite import select_cases
-    from harness.report.bench_html import bench_html
-
-    # By default the simple and ao cases of our own scenes (the real scenes are validated, not benchmarked).
-    cases = [c for c in select_cases(args.scenes)
-             if args.scenes or (c.integrator != "normals" and c.group == "synthetic")]
-    reference = MitsubaEngine()
-    factories = {"mcval": OurEngine, "mitsuba": lambda: reference, "mitsuba-scalar": lambda: MitsubaEngine("scalar_rgb")}
-    engines = [factories[name]() for name in args.engines]
-    ladder = tuple(2**k for k in range(args.max_spp.bit_length()) if 2**k <= args.max_spp)
-    start = time.perf_counter()
-    with _progress("bench") as progress:
-        task = progress.add_task("", total=len(cases) * len(engines) * len(ladder))
-        benches = run_bench(cases, engines, reference, args.seed, ladder, args.runs,
-                            on_step=lambda m: progress.update(task, advance=1, description=m))
-        seed = seed_comparison(engines[0], args.seed_runs, lambda m: progress.console.print(m)) \
-            if args.seed_runs > 0 and "mcval" in args.engines else None
-    rays = ray_rates(args.rays_json)
-    meta = {"engines": ", ".join(e.version() for e in engines), "ladder": ladder, "runs per step": args.runs,
-            "seconds": round(time.perf_counter() - start, 1)}
-    write_atomic(run_dir / "bench.html", bench_html(benches, rays, seed, meta))
-    from rich.table import Table
-    table = Table(title="Speed against error", header_style="bold")
-    for col in ("scene", "integrator", "efficiency ours/mitsuba", *[f"slope {e.name}" for e in engines]):
-        table.add_column(col)
-    for bch in benches:
-        ratio = bch.efficiency_ratio()
-        shown = "below ref. noise" if ratio != ratio else f"[{'green' if ratio >= 2 else 'red'}]{ratio:.2f}[/]"
-        table.add_row(bch.case.scene, bch.case.integrator, shown,
-                      *[f"{c.fit('spp')[0]:.2f}" for c in bch.curves.values()])
-    console.print(table)
-    payload = {"speed": [bch.to_json() for bch in benches], "seed_comparison": seed, "ray_rates": rays}
-    if rays:
-        payload["ray_rate_ratio"] = min(v["ratio"] for v in rays["integrators"].values())
-    if seed:
-        for name, v in seed.items():
-            console.print(f"seed settings, {name}: ours {v['seconds']:.2f} s (seed document {v['seed_seconds']} s)")
-    console.print(f"Page: {run_dir / 'bench.html'}")
-    return True, payload
-
-
-def _calibrate(args, run_dir: Path) -> bool:
-    from harness.engines.ours import OurEngine
-    from harness.report.calibration_html import warp_calibration_html
-    from harness.report.calibration_table import calibration_table
-    from harness.warps.calibration import calibrate_warps
-    from harness.warps.suite import select
-
-    specs = select(args.only)
-    ours = OurEngine()
-    reference = None
-    if not args.no_mitsuba:
-        from harness.engines.mitsuba import MitsubaEngine
-        reference = MitsubaEngine()
-    with _progress("calibrate") as progress:
-        task = progress.add_task("", total=len(specs) * args.seeds)
-        cal = calibrate_warps(ours, reference, specs, args.seeds, args.samples,
-                              on_seed=lambda: progress.update(task, advance=1))
-    meta = {"engine": ours.version(), "reference": reference.version() if reference else "none",
-            "seeds per warp": args.seeds, "samples": args.samples, "seconds": round(cal.seconds, 1)}
-    write_atomic(run_dir / "calibration.html", warp_calibration_html(cal, meta))
-    payload = {"run": run_dir.name, "pass": cal.within, "warps": cal.to_json(), "meta": meta}
-    write_json(run_dir / "calibration.json", payload)
-    if args.json:
-        write_json(args.json, payload)
-    console.print(calibration_table(cal))
-    console.print(f"{len(specs)} warps x {args.seeds} seeds in {cal.seconds:.0f} s. Page: {run_dir / 'calibration.html'}")
-    return cal.within
 
 
 def _unfinished(what: str, out: Path, run_dir: Path | None, previous: str | None) -> str:
