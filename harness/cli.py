@@ -92,7 +92,9 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
                       "integrators`)")
     meta = {"engine": ours.version(), "reference": mitsuba.version(), "seed": args.seed,
             "image seconds": round(seconds, 1)}
-    payload = write_image_outputs(run_dir, results, alpha, warps, meta, baseline)
+    with_invariance = args.command == "validate" and not args.no_invariance
+    payload = write_image_outputs(run_dir, results, alpha, warps, meta, baseline,
+                                  "invariance.html" if with_invariance else None)
     if real or not_applicable:
         payload["real_scenes"] = real_scenes_json(results, not_applicable)
     regression = payload["regression"] or []

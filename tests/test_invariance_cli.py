@@ -24,3 +24,10 @@ def test_invariance_command_writes_its_block(tmp_path):
 def test_unknown_name_is_bad_input(tmp_path):
     assert main(["invariance", "--only", "nonsense", "--no-mitsuba", "--out", str(tmp_path)]) == 2
     assert not list(tmp_path.iterdir())  # refused before any run folder
+
+
+def test_the_image_report_links_the_invariance_page_only_when_there_is_one():
+    from harness.report.image_html import report_html
+    linked = report_html([], 0.01, None, {}, None, None, invariance_href="invariance.html")
+    assert '<a href="invariance.html">Invariances</a>' in linked
+    assert "invariance.html" not in report_html([], 0.01, None, {}, None, None)

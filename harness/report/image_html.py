@@ -108,9 +108,10 @@ def _regression_html(regression: list[dict] | None, baseline: str | None) -> str
 
 
 def report_html(results: list[ImageResult], alpha: float, warps: dict | None, meta: dict,
-                regression: list[dict] | None, baseline: str | None, bench_href: str | None = None) -> str:
+                regression: list[dict] | None, baseline: str | None, bench_href: str | None = None,
+                invariance_href: str | None = None) -> str:
     """The whole page. Within each integrator's section, failures come first. `bench_href` links the
-    latest speed-against-error page, if there is one."""
+    latest speed-against-error page, if there is one; `invariance_href` the run's invariance page."""
     failed = sum(not r.passed for r in results)
     summary = [f"<li>Images: {len(results) - failed} of {len(results)} comparisons pass "
                f"(per-comparison α {alpha:.2g}, family-wise 0.01 over the run)</li>"]
@@ -118,6 +119,9 @@ def report_html(results: list[ImageResult], alpha: float, warps: dict | None, me
         n_pass = sum(w["pass"] for w in warps["warps"])
         summary.append(f'<li><a href="warps.html">Warp conformance</a>: {n_pass} of {len(warps["warps"])} warps '
                        f'pass {_verdict(warps["pass"])}</li>')
+    if invariance_href:
+        summary.append(f'<li><a href="{_esc(invariance_href)}">Invariances</a>: each engine against itself under '
+                       f'scale, rotation, translation, light and reflectance (verdicts and findings there)</li>')
     if bench_href:
         summary.append(f'<li><a href="{_esc(bench_href)}">Speed against error</a> (the latest `make bench`)</li>')
     summary += [f"<li>{_esc(k)}: {_esc(v)}</li>" for k, v in meta.items()]
