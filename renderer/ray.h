@@ -34,9 +34,9 @@ struct Hit {
 ///
 /// Each coordinate moves by the larger of two offsets. One is Waechter and Binder's (Ray Tracing
 /// Gems, 2019): a fixed number of ulps of the coordinate, so it grows with the position's magnitude
-/// and stays tight far from the origin. The other is `floor`, a length given by the hit shape's own
-/// size (EmbreeScene::offsetFloor), so that the offset scales with the scene: an absolute floor is a
-/// unit-scale choice that swallows millimetre geometry and vanishes on kilometre geometry.
+/// and stays tight far from the origin. The other is `floor`, a length given by the size of the
+/// scene's smallest shape (see EmbreeScene), so that the offset scales with the scene: an absolute
+/// floor is a unit-scale choice that swallows millimetre geometry and vanishes on kilometre geometry.
 inline Vec3f offsetRayOrigin(const Vec3f &p, const Vec3f &n, float floor) {
     constexpr float kIntScale = 256.f;
     const auto shift = [floor](float x, float nx) {

@@ -34,7 +34,7 @@ std::unique_ptr<Integrator> createIntegrator(const IntegratorSpec &spec, const S
 
 /// A ray leaving `hit` in direction d without re-hitting its surface: its origin moves off the
 /// surface, along the geometric normal, by an offset that scales with the position's magnitude and
-/// with the size of the shape hit.
+/// with the size of the scene's smallest shape.
 inline Ray spawnRay(const Hit &hit, const Vec3f &d, float tfar) {
     const Vec3f side = dot(hit.ng, d) >= 0.f ? hit.ng : -hit.ng;
     Ray r;
