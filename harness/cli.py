@@ -63,7 +63,7 @@ def _print_real_scenes(real, not_applicable, alpha: float) -> None:
 
 
 def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path | None,
-                not_applicable=()) -> tuple[bool, dict]:
+                not_applicable=(), invariance: dict | None = None) -> tuple[bool, dict]:
     from harness.engines.mitsuba import MitsubaEngine
     from harness.engines.ours import OurEngine
     from harness.images.outputs import write_image_outputs
@@ -92,9 +92,7 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
                       "integrators`)")
     meta = {"engine": ours.version(), "reference": mitsuba.version(), "seed": args.seed,
             "image seconds": round(seconds, 1)}
-    with_invariance = args.command == "validate" and not args.no_invariance
-    payload = write_image_outputs(run_dir, results, alpha, warps, meta, baseline,
-                                  "invariance.html" if with_invariance else None)
+    payload = write_image_outputs(run_dir, results, alpha, warps, meta, baseline, invariance)
     if real or not_applicable:
         payload["real_scenes"] = real_scenes_json(results, not_applicable)
     regression = payload["regression"] or []
@@ -143,9 +141,14 @@ def _run_invariance(args, only, run_dir: Path, engines=None) -> tuple[bool, dict
     write_atomic(run_dir / "invariance.html", invariance_html(payload))
     for line in payload["findings"]:
         console.print(f"[yellow]finding[/] {escape(line)}", soft_wrap=True)
+    for line in payload["float32_limits"]:
+        console.print(f"[cyan]float32[/] {escape(line)}", soft_wrap=True)
     ours = [c for c in cells if c.engine == gating]
     failed = failure_lines(cells, gating)
-    console.print(f"{len(ours) - len(failed)} of {len(ours)} invariance checks of {gating} pass, in {seconds:.1f} s.")
+    beyond = sum(c.status == "float32" for c in ours)
+    console.print(f"{len(ours) - len(failed) - beyond} of {len(ours)} invariance checks of {gating} pass"
+                  + (f", {beyond} broke only where float32 cannot represent the scene" if beyond else "")
+                  + f", in {seconds:.1f} s.")
     for line in failed:
         console.print(f"[red]FAIL[/] invariance {escape(line)}", soft_wrap=True)
     console.print(f"Page: {run_dir / 'invariance.html'}")
@@ -211,14 +214,16 @@ def _run(args, out: Path, started: list[Path]) -> int:
         warps_ok, warps = _run_warps(args, specs, run_dir)
         ok &= warps_ok
         payload.update(warps=warps["warps"], warp_level=warps["level"])
-    if cases:
-        images_ok, images = _run_images(args, cases, run_dir, warps, baseline, not_applicable)
-        ok &= images_ok
-        payload.update(images)
     if args.command == "validate" and not args.no_invariance:
+        # Before the images, so report.html (written with them) carries the matrix.
         console.rule("[bold]Invariances[/] (each engine against itself)")
         invariance_ok, payload["invariance"] = _run_invariance(args, args.invariance_only, run_dir)
         ok &= invariance_ok
+    if cases:
+        images_ok, images = _run_images(args, cases, run_dir, warps, baseline, not_applicable,
+                                        payload.get("invariance"))
+        ok &= images_ok
+        payload.update(images)
     if not cases and warps is not None:
         write_atomic(run_dir / "report.html",
                      '<!DOCTYPE html><meta charset="utf-8"><a href="warps.html">Warp conformance</a>')

@@ -9,7 +9,7 @@ from scipy.optimize import brentq
 
 from harness.images.compare import (Comparison, ScaleTest, _half_power_bias, _noiseless, _scale_test, compare_batches,
                              compare_summaries, summarize, tile_means)
-from harness.statistics.constants import ROUNDING_TOLERANCE, SIGNIFICANCE, sidak_level
+from harness.statistics.constants import sidak_level
 from harness.statistics.welch import BatchStats, welch_p_values
 
 

@@ -88,6 +88,24 @@ def test_select_narrows_and_refuses_unknown_names():
     assert [c.key for c in cases] == ["crevice:ao"] and [i.name for i in invariances] == ["scale"]
     cases, _ = select(["cornell:normals"])
     assert [c.key for c in cases] == ["cornell:normals"]
-    assert len(select(None)[0]) == 12
     with pytest.raises(ValueError, match="nonsense"):
         select(["nonsense"])
+
+
+def test_by_default_every_scene_runs_with_every_integrator_that_applies():
+    from harness.images.suite import scene_names
+
+    keys = {c.key for c in select(None)[0]}
+    for scene in scene_names() + scene_names("real"):
+        assert f"{scene}:normals" in keys and f"{scene}:ao" in keys
+    assert "cornell_box:simple" not in keys  # no point light
+    with pytest.raises(ValueError, match="not applicable"):
+        select(["cornell_box:simple"])
+
+
+def test_ao_without_a_constant_emitter_keeps_its_fixed_ambient_under_doubled_lights():
+    light = invariance("light").variants[0]
+    image = np.full((1, 2, 2, 3), 0.4)
+    assert np.allclose(light.expected("ao", image, has_environment=True), 0.2)
+    assert np.allclose(light.expected("ao", image, has_environment=False), 0.4)
+    assert np.allclose(light.expected("simple", image, has_environment=False), 0.2)

@@ -26,8 +26,16 @@ def test_unknown_name_is_bad_input(tmp_path):
     assert not list(tmp_path.iterdir())  # refused before any run folder
 
 
-def test_the_image_report_links_the_invariance_page_only_when_there_is_one():
+def test_the_image_report_carries_the_invariance_matrix_only_when_there_is_one(tmp_path):
     from harness.report.image_html import report_html
-    linked = report_html([], 0.01, None, {}, None, None, invariance_href="invariance.html")
-    assert '<a href="invariance.html">Invariances</a>' in linked
-    assert "invariance.html" not in report_html([], 0.01, None, {}, None, None)
+
+    out = tmp_path / "results"
+    assert main(["invariance", "--only", "plane_point", "simple", "light", "--no-mitsuba", "--out", str(out)]) == 0
+    block = json.loads((out / "latest" / "results.json").read_text())["invariance"]
+    page = report_html([], 0.01, None, {}, None, None, invariance=block)
+    assert '<a href="invariance.html">own page</a>' in page and 'id="invariances"' in page
+    assert "1 of 1 checks of mcval pass" in page and "<td>plane_point:simple</td>" in page
+    failed = dict(block, **{"pass": False})
+    assert "mcval validation report: <span class=\"fail\"" in report_html([], 0.01, None, {}, None, None,
+                                                                          invariance=failed)
+    assert "invariance" not in report_html([], 0.01, None, {}, None, None)

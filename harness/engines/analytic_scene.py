@@ -113,8 +113,9 @@ def _reflectance(shape: ET.Element, bsdfs: dict[str, ET.Element]) -> np.ndarray:
     return _color(bsdf, "reflectance", 0.5) if bsdf is not None else np.full(3, 0.5)
 
 
-def _sphere(shape: ET.Element, bsdfs: dict[str, ET.Element]) -> Sphere:
-    """Mitsuba's sphere: center and radius, then to_world (a uniform scale, rotation and translation)."""
+def sphere_geometry(shape: ET.Element) -> tuple[np.ndarray, float]:
+    """Mitsuba's sphere in world space, (centre, radius): center and radius, then to_world (a uniform
+    scale, rotation and translation)."""
     m = _transform(_prop(shape, "transform", "to_world"))
     scales = np.linalg.svd(m[:3, :3], compute_uv=False)
     if not np.allclose(scales, scales[0], rtol=1e-9):
@@ -123,7 +124,11 @@ def _sphere(shape: ET.Element, bsdfs: dict[str, ET.Element]) -> Sphere:
     radius = _prop(shape, "float", "radius")
     c = _triple(center) if center is not None else np.zeros(3)
     r = float(radius.get("value")) if radius is not None else 1.0
-    return Sphere(m[:3, :3] @ c + m[:3, 3], abs(r) * float(scales[0]), _reflectance(shape, bsdfs))
+    return m[:3, :3] @ c + m[:3, 3], abs(r) * float(scales[0])
+
+
+def _sphere(shape: ET.Element, bsdfs: dict[str, ET.Element]) -> Sphere:
+    return Sphere(*sphere_geometry(shape), _reflectance(shape, bsdfs))
 
 
 def _tiled_plane(planes: list[ET.Element], bsdfs: dict[str, ET.Element]) -> tuple[np.ndarray, np.ndarray]:

@@ -13,9 +13,9 @@ from harness.results import write_atomic, write_json, write_npz
 
 
 def write_image_outputs(run_dir: Path, results: list[ImageResult], alpha: float, warps: dict | None,
-                        meta: dict, baseline_path: Path | None, invariance_href: str | None = None) -> dict:
+                        meta: dict, baseline_path: Path | None, invariance: dict | None = None) -> dict:
     """Writes report.html and junit.xml; returns the results.json fields (images, regression).
-    `invariance_href` links the invariance page the same run writes after the images."""
+    `invariance`: the same run's invariance block (results.json's), shown in the report and linked."""
     images = [r.to_json() for r in results]
     for r, entry in zip(results, images):
         if not r.passed and r.error is None:  # (a failed render has no arrays; its entry says why)
@@ -39,7 +39,6 @@ def write_image_outputs(run_dir: Path, results: list[ImageResult], alpha: float,
     bench = run_dir.parent / "bench-latest" / "bench.html"
     bench_href = "../bench-latest/bench.html" if bench.exists() else None
     write_atomic(run_dir / "report.html",
-                 report_html(results, alpha, warps, meta, regression, baseline_name, bench_href,
-                             invariance_href))
+                 report_html(results, alpha, warps, meta, regression, baseline_name, bench_href, invariance))
     write_atomic(run_dir / "junit.xml", junit_xml(results, warps["warps"] if warps else None))
     return {"images": images, "image_alpha": alpha, "regression": regression, "baseline": baseline_name}

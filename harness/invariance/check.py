@@ -8,6 +8,7 @@ and stored, never a failure of ours.
 from __future__ import annotations
 
 import tempfile
+import xml.etree.ElementTree as ET
 import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -17,6 +18,7 @@ import numpy as np
 
 from harness.engines.base import Engine, RenderFailed
 from harness.images.compare import Comparison, compare_summaries, summarize
+from harness.invariance.float32 import float32_limit
 from harness.invariance.rewrite import rewrite
 from harness.invariance.variants import Invariance, Variant
 from harness.statistics.constants import IMAGE_BATCHES, SIGNIFICANCE, sidak_level
@@ -38,20 +40,28 @@ class InvarianceCase:
 
 @dataclass
 class VariantResult:
-    """One variant against the base: the comparison, and the image-mean ratio (mapped back over base)."""
+    """One variant against the base: the comparison, the image-mean ratio (mapped back over base), and why
+    float32 cannot represent the variant's scene, if it cannot."""
 
     variant: Variant
     comparison: Comparison | None
     ratio: float
     error: str | None = None
+    float32_limit: str | None = None
 
     @property
     def passed(self) -> bool:
         return self.error is None and self.comparison is not None and self.comparison.passed
 
+    @property
+    def status(self) -> str:
+        """"pass"; "float32" (it broke, on a scene float32 cannot represent: a limit, not a failure); "fail"."""
+        return "pass" if self.passed else "float32" if self.float32_limit else "fail"
+
     def to_json(self) -> dict:
         c = self.comparison
-        return {"variant": self.variant.label, "pass": self.passed, "ratio": self.ratio, "error": self.error,
+        return {"variant": self.variant.label, "pass": self.passed, "status": self.status, "ratio": self.ratio,
+                "error": self.error, "float32_limit": self.float32_limit,
                 "failed_checks": c.failed_checks if c else [], "min_p": {s.scale: s.min_p for s in c.scales} if c
                 else {}, "detectable_bias": c.detectable_bias if c else None}
 
@@ -68,11 +78,20 @@ class Cell:
 
     @property
     def passed(self) -> bool:
-        return self.base_error is None and all(v.passed for v in self.variants)
+        """No base error and no failing variant (a variant beyond float32 is not a failure)."""
+        return self.base_error is None and not self.failing
 
     @property
     def failing(self) -> list[VariantResult]:
-        return [v for v in self.variants if not v.passed]
+        return [v for v in self.variants if v.status == "fail"]
+
+    @property
+    def beyond_float32(self) -> list[VariantResult]:
+        return [v for v in self.variants if v.status == "float32"]
+
+    @property
+    def status(self) -> str:
+        return "fail" if not self.passed else "float32" if self.beyond_float32 else "pass"
 
     @property
     def worst_ratio(self) -> float:
@@ -82,8 +101,9 @@ class Cell:
 
     def to_json(self) -> dict:
         return {"engine": self.engine, "invariance": self.invariance, "scene": self.case.scene.stem,
-                "integrator": self.case.integrator, "pass": self.passed, "ratio": self.worst_ratio,
-                "failing": [v.variant.label for v in self.failing], "base_error": self.base_error,
+                "integrator": self.case.integrator, "pass": self.passed, "status": self.status,
+                "ratio": self.worst_ratio, "failing": [v.variant.label for v in self.failing],
+                "beyond_float32": [v.variant.label for v in self.beyond_float32], "base_error": self.base_error,
                 "variants": [v.to_json() for v in self.variants], "spp": self.case.spp, "res": self.case.res}
 
 
@@ -114,21 +134,24 @@ def run_cell_group(engine: Engine, case: InvarianceCase, invariances: list[Invar
             cell.base_error = reason
         return cells
     base_summary = summarize(base)
+    has_environment = any(e.get("type") == "constant" for e in ET.parse(case.scene).getroot().iter("emitter"))
     for inv, cell in zip(invariances, cells):
         for v in inv.variants:
             path = folder / f"{case.scene.stem}.{inv.name}.{len(cell.variants)}.xml"
+            limit = None
             try:
                 rewrite(case.scene, path, v.kind, v.value)
+                limit = float32_limit(path)
                 out = engine.render(str(path), case.integrator, case.spp, batches,
                                     case_seed(engine.name, case, f"{inv.name}{v.label}", seed), params).batches
             except Exception as e:
                 reason = e.reason if isinstance(e, RenderFailed) else f"{type(e).__name__}: {str(e).strip()[:200]}"
-                cell.variants.append(VariantResult(v, None, float("nan"), reason))
+                cell.variants.append(VariantResult(v, None, float("nan"), reason, limit))
                 continue
-            mapped = v.expected(case.integrator, out.astype(np.float64))
+            mapped = v.expected(case.integrator, out.astype(np.float64), has_environment)
             comparison = compare_summaries(summarize(mapped), base_summary, alpha, signed=signed,
                                            samples=(case.spp, case.spp))
-            cell.variants.append(VariantResult(v, comparison, image_ratio(mapped, base, signed)))
+            cell.variants.append(VariantResult(v, comparison, image_ratio(mapped, base, signed), None, limit))
     return cells
 
 

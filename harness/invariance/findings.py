@@ -1,9 +1,9 @@
-"""What the invariance run says: verdict lines (our failures), findings (the reference's breaks) and the
-`invariance` block of results.json."""
+"""What the invariance run says: verdict lines (our failures), findings (the reference's breaks), the breaks
+float32 explains, and the `invariance` block of results.json."""
 from __future__ import annotations
 
 from harness.invariance.check import Cell
-from harness.invariance.variants import INVARIANCES
+from harness.invariance.variants import INVARIANCES, TRANSLATION_REACH
 
 REFERENCE_NOTE = "A reference engine's break is a finding about it (BREAKS), never a failure of ours."
 
@@ -28,6 +28,12 @@ def finding_lines(cells: list[Cell], engine: str) -> list[str]:
             for c in cells if c.engine != engine and not c.passed]
 
 
+def float32_lines(cells: list[Cell]) -> list[str]:
+    """One line per variant that broke on a scene float32 cannot represent, with the reason in numbers."""
+    return [f"{c.engine} {c.case.key} {c.invariance} {v.variant.label}: {v.float32_limit}"
+            for c in cells for v in c.beyond_float32]
+
+
 def invariance_payload(cells: list[Cell], alpha: float, engine: str, meta: dict) -> dict:
     """results.json's `invariance`: pass (ours only), every cell, the findings about the references."""
     ours = [c for c in cells if c.engine == engine]
@@ -35,4 +41,5 @@ def invariance_payload(cells: list[Cell], alpha: float, engine: str, meta: dict)
             "invariances": {i.name: {"summary": i.summary, "variants": [v.label for v in i.variants],
                                      "integrators": list(i.integrators)} for i in INVARIANCES},
             "cells": [c.to_json() for c in cells], "failures": failure_lines(cells, engine),
-            "findings": finding_lines(cells, engine), "meta": meta}
+            "findings": finding_lines(cells, engine), "float32_limits": float32_lines(cells),
+            "translation_reach": TRANSLATION_REACH, "meta": meta}

@@ -99,8 +99,10 @@ def _map_point(node: ET.Element, m: np.ndarray) -> None:
 
 
 def _scale_value(node: ET.Element, factor: float) -> None:
-    if node.tag not in ("rgb", "float", "spectrum") or node.get("value") is None:
+    if node.tag not in ("rgb", "float", "spectrum", "integer") or node.get("value") is None:
         raise ValueError(f"cannot scale <{node.tag} name=\"{node.get('name')}\">: expected an <rgb> or <float> value")
+    if node.tag == "integer":  # a length written as a whole number (focus_distance="10"): scaled, it is a float
+        node.tag = "float"
     v = _numbers(node) * factor
     if node.tag == "spectrum" and v.size != 1:
         raise ValueError(f"cannot scale a sampled <spectrum name=\"{node.get('name')}\">")

@@ -1,42 +1,50 @@
 """Which scenes and integrators the invariance suite renders, and how `--only` narrows them.
 
-Four scenes that isolate what a transformation can break (a contact shadow, a closed room, slats with thin
-gaps, a lone plane) at 64x64 and each integrator's own samples per pixel: both engines take about 30 s on
-two cores, so `validate` can afford it. Any scene of scenes/ can be named with --only.
+Every scene of the image suite (scenes/ and scenes/real/) with each integrator that applies to it, at 64x64
+and each integrator's own samples per pixel: both engines take about 80 s on two cores, so `validate` can
+afford all of them.
 """
 from __future__ import annotations
 
-from harness.images.suite import SCENES_DIR, scene_names
+from harness.images.suite import GROUP_DIRS, scene_names
 from harness.invariance.check import InvarianceCase
 from harness.invariance.variants import INVARIANCES, Invariance
 
-DEFAULT_SCENES = ("sphere_plane", "cornell", "crevice", "plane_point")
 INTEGRATORS = ("simple", "ao", "normals")
 RESOLUTION = 64
 
 
+def _scenes() -> dict[str, object]:
+    """Scene name -> file, over every group."""
+    return {name: GROUP_DIRS[group] / f"{name}.xml" for group in GROUP_DIRS for name in scene_names(group)}
+
+
 def select(only: list[str] | None, resolution: int = RESOLUTION) -> tuple[list[InvarianceCase], list[Invariance]]:
     """The cases and invariances `only` names: scene names, integrator names, scene:integrator, or
-    invariance names (scale, rotate, translate, light, reflectance); a kind not named means all of it
-    (scenes: the default four)."""
-    from harness.integrators import entries
+    invariance names (scale, rotate, translate, light, reflectance); a kind not named means all of it.
+    A scene an integrator does not apply to (simple without a point light) is left out, unless named as
+    scene:integrator, which is an error saying why."""
+    from harness.integrators import entries, entry
 
     only = list(only or [])
-    known_scenes = scene_names()
+    scenes = _scenes()
     names = {i.name for i in INVARIANCES}
     pairs = [o.split(":", 1) for o in only if ":" in o]
-    unknown = [o for o in only if ":" not in o and o not in known_scenes and o not in INTEGRATORS
-               and o not in names]
-    unknown += [":".join(p) for p in pairs if p[0] not in known_scenes or p[1] not in INTEGRATORS]
+    unknown = [o for o in only if ":" not in o and o not in scenes and o not in INTEGRATORS and o not in names]
+    unknown += [":".join(p) for p in pairs if p[0] not in scenes or p[1] not in INTEGRATORS]
     if unknown:
         raise ValueError(f"unknown scene, integrator or invariance {', '.join(unknown)}: scenes are "
-                         f"{', '.join(known_scenes)}; integrators {', '.join(INTEGRATORS)}; invariances "
+                         f"{', '.join(scenes)}; integrators {', '.join(INTEGRATORS)}; invariances "
                          f"{', '.join(i.name for i in INVARIANCES)}")
-    scenes = [o for o in only if o in known_scenes] or ([] if pairs else list(DEFAULT_SCENES))
+    for s, i in pairs:
+        reason = entry(i).not_applicable(scenes[s])
+        if reason:
+            raise ValueError(f"{s}:{i} is not applicable: {reason}")
+    chosen = [o for o in only if o in scenes] or ([] if pairs else list(scenes))
     integrators = [o for o in only if o in INTEGRATORS] or list(INTEGRATORS)
-    keys = [(s, i) for s in scenes for i in integrators] + [(s, i) for s, i in pairs]
+    keys = [(s, i) for s in chosen for i in integrators if not entry(i).not_applicable(scenes[s])]
+    keys += [(s, i) for s, i in pairs]
     invariances = [i for i in INVARIANCES if i.name in only] or list(INVARIANCES)
     budget = entries()
-    cases = [InvarianceCase(SCENES_DIR / f"{s}.xml", i, budget[i].our_spp, resolution)
-             for s, i in dict.fromkeys(keys)]
+    cases = [InvarianceCase(scenes[s], i, budget[i].our_spp, resolution) for s, i in dict.fromkeys(keys)]
     return cases, invariances

@@ -12,6 +12,7 @@ from harness.images.run import ImageResult
 from harness.images.suite import INTEGRATORS
 from harness.report.idiff_text import LEGEND, idiff_sentence
 from harness.report.image_plots import comparison_png
+from harness.report.invariance_html import invariance_section, invariance_summary
 from harness.report.style import CSS
 
 
@@ -109,9 +110,10 @@ def _regression_html(regression: list[dict] | None, baseline: str | None) -> str
 
 def report_html(results: list[ImageResult], alpha: float, warps: dict | None, meta: dict,
                 regression: list[dict] | None, baseline: str | None, bench_href: str | None = None,
-                invariance_href: str | None = None) -> str:
+                invariance: dict | None = None) -> str:
     """The whole page. Within each integrator's section, failures come first. `bench_href` links the
-    latest speed-against-error page, if there is one; `invariance_href` the run's invariance page."""
+    latest speed-against-error page, if there is one; `invariance` is the run's invariance block, whose
+    matrix ends the page (its own page, invariance.html, is linked)."""
     failed = sum(not r.passed for r in results)
     summary = [f"<li>Images: {len(results) - failed} of {len(results)} comparisons pass "
                f"(per-comparison α {alpha:.2g}, family-wise 0.01 over the run)</li>"]
@@ -119,9 +121,9 @@ def report_html(results: list[ImageResult], alpha: float, warps: dict | None, me
         n_pass = sum(w["pass"] for w in warps["warps"])
         summary.append(f'<li><a href="warps.html">Warp conformance</a>: {n_pass} of {len(warps["warps"])} warps '
                        f'pass {_verdict(warps["pass"])}</li>')
-    if invariance_href:
-        summary.append(f'<li><a href="{_esc(invariance_href)}">Invariances</a>: each engine against itself under '
-                       f'scale, rotation, translation, light and reflectance (verdicts and findings there)</li>')
+    if invariance:
+        summary.append(f'<li><a href="#invariances">Invariances</a> (<a href="invariance.html">own page</a>): '
+                       f'{invariance_summary(invariance)} {_verdict(invariance["pass"])}</li>')
     if bench_href:
         summary.append(f'<li><a href="{_esc(bench_href)}">Speed against error</a> (the latest `make bench`)</li>')
     summary += [f"<li>{_esc(k)}: {_esc(v)}</li>" for k, v in meta.items()]
@@ -136,12 +138,14 @@ def report_html(results: list[ImageResult], alpha: float, warps: dict | None, me
                         + "".join(_entry(r) for r in mine))
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>mcval report</title><style>{CSS}</style></head>
-<body><h1>mcval validation report: {_verdict(failed == 0 and (warps is None or warps["pass"]))}</h1>
+<body><h1>mcval validation report: {_verdict(failed == 0 and (warps is None or warps["pass"])
+                                             and (invariance is None or invariance["pass"]))}</h1>
 <ul class="meta">{''.join(summary)}</ul>
 <h2>Regression</h2>{_regression_html(regression, baseline)}
 <p>Each engine renders independent batches; Welch's t-test compares them per pixel, per 8×8 tile and for
 the whole image. The p-value map shows log10(p / level) at the pixel and tile scales: red pixels are where a
 difference is beyond noise. {_esc(LEGEND)}.</p>
 {''.join(sections)}
+{invariance_section(invariance, "h2") if invariance else ""}
 </body></html>
 """

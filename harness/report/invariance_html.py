@@ -1,4 +1,5 @@
-"""invariance.html: the invariance matrix of one run, one table per engine, and the findings."""
+"""The invariance matrix as HTML: a section (one table per engine, the findings, the breaks float32 explains)
+for report.html, and invariance.html, the same section as a page of its own."""
 from __future__ import annotations
 
 from html import escape
@@ -9,6 +10,8 @@ from harness.report.style import CSS
 def _cell(cell: dict | None, gating: bool) -> str:
     if cell is None:
         return '<td class="na">—</td>'
+    if cell.get("status") == "float32":
+        return f'<td class="na">FLOAT32 {escape(", ".join(cell["beyond_float32"]))}</td>'
     if cell["pass"]:
         return f'<td class="pass">PASS {cell["ratio"]:.4f}</td>' if isinstance(cell["ratio"], float) \
             else '<td class="pass">PASS</td>'
@@ -16,37 +19,57 @@ def _cell(cell: dict | None, gating: bool) -> str:
     if cell["base_error"]:
         return f'<td class="fail">{word}: {escape(cell["base_error"])}</td>'
     parts = [f'{escape(v["variant"])}: {v["ratio"]:.4f}' if isinstance(v["ratio"], float) and v["ratio"] == v["ratio"]
-             else f'{escape(v["variant"])}: {escape(v["error"] or "no image")}' for v in cell["variants"] if not v["pass"]]
+             else f'{escape(v["variant"])}: {escape(v["error"] or "no image")}' for v in cell["variants"]
+             if v.get("status", "pass" if v["pass"] else "fail") == "fail"]
     style = "fail" if gating else "na"
     return f'<td class="{style}">{word} {"<br>".join(parts)}</td>'
 
 
-def invariance_html(payload: dict) -> str:
-    """The page for results.json's `invariance` block (harness.invariance.findings.invariance_payload)."""
+def invariance_summary(payload: dict) -> str:
+    """`187 of 190 checks of mcval pass, 3 beyond float32; 20 findings about the reference`."""
+    ours = [c for c in payload["cells"] if c["engine"] == payload["gating_engine"]]
+    passing = sum(c.get("status", "pass" if c["pass"] else "fail") == "pass" for c in ours)
+    beyond = sum(c.get("status") == "float32" for c in ours)
+    return (f'{passing} of {len(ours)} checks of {escape(payload["gating_engine"])} pass'
+            + (f", {beyond} beyond float32" if beyond else "")
+            + f'; {len(payload["findings"])} findings about the reference')
+
+
+def invariance_section(payload: dict, heading: str = "h2") -> str:
+    """The matrix, one table per engine, then the failures, findings and float32 limits."""
+    sub = "h3" if heading == "h2" else "h2"
     cells = payload["cells"]
     gating = payload["gating_engine"]
     rows = list(dict.fromkeys(f'{c["scene"]}:{c["integrator"]}' for c in cells))
-    out = ['<!DOCTYPE html><meta charset="utf-8"><title>Invariances</title>', f"<style>{CSS}</style>",
-           "<h1>Invariances: each engine against itself</h1>",
-           f'<p class="meta">per-comparison α {payload["alpha"]:.2g} (family-wise 0.01 per engine); '
-           f'{escape(", ".join(payload["meta"].get("engines", [])))}; seed {payload["meta"].get("seed")}; '
-           f'{payload["meta"].get("seconds")} s</p>', "<ul>"]
+    out = [f'<{heading} id="invariances">Invariances: each engine against itself</{heading}>',
+           f'<p class="meta">{invariance_summary(payload)}; per-comparison α {payload["alpha"]:.2g} (family-wise '
+           f'0.01 per engine); {escape(", ".join(payload["meta"].get("engines", [])))}; seed '
+           f'{payload["meta"].get("seed")}; {payload["meta"].get("seconds")} s</p>', "<ul>"]
     out += [f"<li><b>{escape(name)}</b>: {escape(inv['summary'])}</li>" for name, inv in payload["invariances"].items()]
     out.append("</ul>")
     for engine in dict.fromkeys(c["engine"] for c in cells):
         mine = {(c["invariance"], f'{c["scene"]}:{c["integrator"]}'): c for c in cells if c["engine"] == engine}
         columns = list(dict.fromkeys(inv for inv, _ in mine))
         role = "under test: a FAIL fails the run" if engine == gating else "reference: a break is a finding"
-        out.append(f"<h2>{escape(engine)} ({role})</h2><table><tr><th>scene:integrator</th>"
+        out.append(f"<{sub}>{escape(engine)} ({role})</{sub}><table><tr><th>scene:integrator</th>"
                    + "".join(f"<th>{escape(c)}</th>" for c in columns) + "</tr>")
         for key in rows:
             out.append(f"<tr><td>{escape(key)}</td>"
                        + "".join(_cell(mine.get((inv, key)), engine == gating) for inv in columns) + "</tr>")
         out.append("</table>")
     out.append("<p>ratio: the transformed image's mean, mapped back by the expected factor, over the base's "
-               "(furthest from 1 over the variants; mean |n| for normals).</p>")
+               "(furthest from 1 over the variants; mean |n| for normals). FLOAT32: the listed variants broke on a "
+               "scene float32 cannot represent (below, why).</p>")
+    out.append(f"<p><b>How far a translation reaches.</b> {escape(payload.get('translation_reach', ''))}</p>")
     for title, lines in (("Failures of the renderer under test", payload["failures"]),
-                         ("Findings about the reference", payload["findings"])):
+                         ("Findings about the reference", payload["findings"]),
+                         ("Breaks float32 explains (not failures)", payload.get("float32_limits", []))):
         if lines:
-            out.append(f"<h2>{title}</h2><ul>" + "".join(f"<li>{escape(x)}</li>" for x in lines) + "</ul>")
-    return "\n".join(out) + "\n"
+            out.append(f"<{sub}>{title}</{sub}><ul>" + "".join(f"<li>{escape(x)}</li>" for x in lines) + "</ul>")
+    return "\n".join(out)
+
+
+def invariance_html(payload: dict) -> str:
+    """The page for results.json's `invariance` block (harness.invariance.findings.invariance_payload)."""
+    return ('<!DOCTYPE html><meta charset="utf-8"><title>Invariances</title>'
+            f"<style>{CSS}</style>\n{invariance_section(payload, 'h1')}\n")

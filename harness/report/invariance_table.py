@@ -15,6 +15,8 @@ def _cell_text(cell: Cell | None, gating: bool) -> str:
         return "[dim]—[/]"
     if cell.base_error:
         return "[bold red]ERR[/]" if gating else "[yellow]ERR[/]"
+    if cell.status == "float32":
+        return "[cyan]FLOAT32[/] " + " ".join(escape(v.variant.label) for v in cell.beyond_float32)
     if cell.passed:
         ratio = cell.worst_ratio
         return f"[green]PASS[/] {ratio:.4f}" if ratio == ratio else "[green]PASS[/]"
@@ -37,12 +39,13 @@ def invariance_tables(cells: list[Cell], alpha: float, gating_engine: str) -> li
                       box=box.SIMPLE_HEAD, padding=(0, 1), header_style="bold")
         table.add_column("scene:integrator", no_wrap=True)
         for inv in columns:
-            table.add_column(inv, no_wrap=True)
+            table.add_column(inv, overflow="fold")
         for key in rows:
             table.add_row(escape(key), *[_cell_text(found.get((engine, i, key)), gating) for i in columns])
         tables.append(table)
     tables[-1].caption = ("ratio: the transformed image's mean, mapped back by the expected factor, over the "
                           "base's (furthest from 1 over the variants; mean |n| for normals); after FAIL or "
                           "BREAKS each failing variant with its ratio (no image: the render failed, the reason is below); "
+                          "FLOAT32: those variants broke on a scene float32 cannot represent (why, in numbers, below); "
                           f"—: not applicable. {REFERENCE_NOTE}")
     return tables

@@ -89,7 +89,7 @@ def pdf_half_defect(p: np.ndarray, eps: float) -> np.ndarray:
 def mass_moved_defect(p: np.ndarray, delta: float) -> np.ndarray:
     """p with a fraction delta of the total moved from the lower half to the upper one, proportionally."""
     a = lower_half(p)
-    total, share = p.sum(), p[a].sum() / p.sum()
+    share = p[a].sum() / p.sum()
     return np.where(a, p * (1 - delta / share), p * (1 + delta / (1 - share))) if share > delta else p * np.nan
 
 

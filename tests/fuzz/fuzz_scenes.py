@@ -210,7 +210,7 @@ def main(argv: list[str] | None = None) -> int:
         list(pool.map(one, range(args.runs)))
     seconds = time.perf_counter() - start
     print(file=sys.stderr)
-    print(f"| outcome | count |\n|---|---|")
+    print("| outcome | count |\n|---|---|")
     for outcome in OUTCOMES:
         print(f"| {outcome} | {counts[outcome]} |")
     print(f"\n{args.runs} variants (seed {args.seed}) in {seconds:.0f} s with {args.render}; "
