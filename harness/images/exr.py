@@ -10,6 +10,10 @@ from pathlib import Path
 import numpy as np
 
 
+#: Channels a render's file may hold: 3 x (4096 batches + mean + variance).
+MAX_CHANNELS = 3 * (4096 + 2)
+
+
 class ExrError(ValueError):
     """A file OpenImageIO cannot read as an EXR, or one that lacks what was asked of it."""
 
@@ -18,6 +22,9 @@ def read_layers(path: Path) -> tuple[dict[str, np.ndarray], dict[str, object]]:
     """The file's RGB layers as (H, W, 3) float32 arrays (half files converted), and its attributes."""
     import OpenImageIO as oiio
 
+    # The renderer writes 3 channels per batch plus mean and variance (up to 4096 batches): above OIIO's
+    # default guard of 1024 channels, which is there against corrupt headers.
+    oiio.attribute("limits:channels", MAX_CHANNELS)
     inp = oiio.ImageInput.open(str(path))
     if inp is None:
         raise ExrError(oiio.geterror() or f"cannot open {path}")
