@@ -41,7 +41,7 @@ RaySet collectRays(const SceneDescription &scene, const EmbreeScene &embree, con
     RaySet rays;
     for (int y = 0; y < scene.film.height; ++y) {
         for (int x = 0; x < scene.film.width; ++x) {
-            Sampler sampler(0, 0, static_cast<uint64_t>(y) * scene.film.width + x);
+            Sampler sampler(scene.sampler, 0, 0, static_cast<uint64_t>(y) * scene.film.width + x);
             for (int s = 0; s < spp; ++s) {
                 sampler.startSample(static_cast<uint32_t>(s));
                 const Vec2f j = sampler.next2D();

@@ -47,6 +47,7 @@ void writeExr(const std::string &path, const RenderOutput &output, const OutputI
     Imf::Header header(output.mean.width, output.mean.height);
     header.insert("mcval.scene", Imf::StringAttribute(info.sceneFile));
     header.insert("mcval.integrator", Imf::StringAttribute(s.integrator));
+    header.insert("mcval.sampler", Imf::StringAttribute(s.sampler));
     header.insert("mcval.spp", Imf::IntAttribute(s.spp));
     header.insert("mcval.batches", Imf::IntAttribute(s.batches));
     header.insert("mcval.seed", Imf::StringAttribute(std::to_string(s.seed)));

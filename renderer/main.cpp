@@ -52,7 +52,7 @@ int main(int argc, char **argv) {
     CLI::App app{"Render a scene file (a subset of Mitsuba 3 XML) with one of the integrators below.\n"
                  "Writes OpenEXR: R,G,B (mean), variance.R/G/B, and batch<k>.R/G/B with --batches K.\n"
                  "Integrators:\n" + integratorHelp()};
-    std::string scenePath, outPath, integrator;
+    std::string scenePath, outPath, integrator, sampler;
     int spp = 0, threads = 0, batches = 1;
     uint64_t seed = 0;
     std::vector<std::string> defines;
@@ -67,6 +67,9 @@ int main(int argc, char **argv) {
         ->check(CLI::Range(1, kMaxBatches));
     app.add_option("--integrator", integrator, integratorNameList() + " (default: the scene's)")
         ->check(CLI::IsMember(integratorNames()));
+    app.add_option("--sampler", sampler, "independent (independent uniform values) or sobol (Owen-scrambled Sobol "
+                                         "points) (default: the scene's <sampler>)")
+        ->check(CLI::IsMember({"independent", "sobol"}));
     app.add_option("-D,--define", defines, "set a scene parameter: -D name=value (overrides its <default>)");
     app.add_flag("-q,--quiet", quiet, "no progress bar or summary");
     CLI11_PARSE(app, argc, argv);
@@ -91,6 +94,7 @@ int main(int argc, char **argv) {
         options.threads = threads;
         options.batches = batches;
         options.integrator = integrator;
+        options.sampler = sampler;
         ProgressBar bar;
         if (!quiet) options.progress = [&bar](double f) { bar.update(f); };
         const RenderOutput output = render(scene, options);
@@ -99,9 +103,9 @@ int main(int argc, char **argv) {
         if (!quiet) {
             const RenderStats &s = output.stats;
             const double rays = double(s.cameraRays + s.shadowRays);
-            std::fprintf(stderr, "%s: %s, %dx%d, %d spp x %d batches; load %.3fs, BVH %.3fs, render %.3fs, "
+            std::fprintf(stderr, "%s: %s, %s sampler, %dx%d, %d spp x %d batches; load %.3fs, BVH %.3fs, render %.3fs, "
                                  "%.1f Mrays/s\n",
-                         outPath.c_str(), s.integrator.c_str(), output.mean.width, output.mean.height, s.spp,
+                         outPath.c_str(), s.integrator.c_str(), s.sampler.c_str(), output.mean.width, output.mean.height, s.spp,
                          s.batches, info.loadSeconds, s.bvhSeconds, s.renderSeconds, rays / s.renderSeconds / 1e6);
         }
         return 0;

@@ -75,13 +75,14 @@ struct RenderContext {
     int width;
     int spp;
     uint64_t seed;
+    SamplerType sampler;
 };
 
 /// Every sample of pixel (x, y) in batch `batch`, splatted into `block` (pbrt's EvaluatePixelSample,
 /// for all the samples of a pixel). The samples of one pixel are coherent: their camera rays are
 /// traced kPacket at a time.
 void renderPixel(const RenderContext &ctx, int batch, int x, int y, ImageBlock &block, RayCounts &counts) {
-    Sampler sampler(ctx.seed, static_cast<uint64_t>(batch), static_cast<uint64_t>(y) * ctx.width + x);
+    Sampler sampler(ctx.sampler, ctx.seed, static_cast<uint64_t>(batch), static_cast<uint64_t>(y) * ctx.width + x);
     for (int first = 0; first < ctx.spp; first += kPacket) {
         const int count = std::min(kPacket, ctx.spp - first);
         Ray rays[kPacket];
@@ -160,6 +161,12 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
     IntegratorSpec spec = scene.integrator;
     if (!options.integrator.empty() && options.integrator != spec.type) spec = {options.integrator, {}};
     const int spp = options.spp > 0 ? options.spp : scene.sampleCount;
+    SamplerType sampler = scene.sampler;
+    if (!options.sampler.empty()) {
+        const auto chosen = parseSampler(options.sampler);
+        if (!chosen) throw SceneError("unknown sampler \"" + options.sampler + "\": expected independent or sobol");
+        sampler = *chosen;
+    }
     const int batches = std::max(1, options.batches);
     requireWithinLimits(scene, spp, batches);
     const int width = scene.film.width, height = scene.film.height;
@@ -173,6 +180,7 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
     out.stats.batches = batches;
     out.stats.seed = options.seed;
     out.stats.integrator = spec.type;
+    out.stats.sampler = samplerName(sampler);
 
     auto start = std::chrono::steady_clock::now();
     const EmbreeScene embree(scene.meshes, scene.spheres);
@@ -180,7 +188,7 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
     out.stats.bvhSeconds = secondsSince(start);
 
     const Camera camera(scene.camera, width, height);
-    const RenderContext ctx{camera, embree, *integrator, width, spp, options.seed};
+    const RenderContext ctx{camera, embree, *integrator, width, spp, options.seed, sampler};
     const std::vector<Tile> tiles = makeTiles(width, height);
     tbb::enumerable_thread_specific<RayCounts> counts;
     Progress progress{options.progress, tiles.size() * batches};

@@ -16,6 +16,7 @@ struct RenderOptions {
     int threads = 0;             ///< 0: all cores
     int batches = 1;             ///< independent images, each with spp samples per pixel
     std::string integrator;      ///< overrides the scene's <integrator> when not empty
+    std::string sampler;         ///< overrides the scene's <sampler> when not empty: independent or sobol
     /// Called with the fraction done (0..1), from worker threads, one call at a time.
     std::function<void(double)> progress;
 };
@@ -32,6 +33,7 @@ struct RenderStats {
     int spp = 0, batches = 1;
     uint64_t seed = 0;
     std::string integrator;
+    std::string sampler;
 };
 
 struct RenderOutput {

@@ -1,13 +1,20 @@
-// Sample values: Owen-scrambled Sobol points, one independent randomisation per pixel and batch.
+// Sample values, as the scene's <sampler type="..."> asks:
 //
-// Each sample of a pixel draws 2D points from a (0,2)-sequence (the first two Sobol dimensions),
-// one independently scrambled sequence per 2D dimension pair (pixel jitter, then each AO
-// direction). Stratification lowers the variance of every batch; the scrambles are random, so each
-// batch stays an unbiased estimate, independent of the others (what the harness's tests need).
-// Burley, "Practical Hash-based Owen Scrambling", JCGT 2020.
+// independent  independent uniform values, as Mitsuba's sampler of that name: each (pixel, batch,
+//              sample, dimension) is hashed to its own value, so nothing is stratified and the
+//              error of a batch falls as 1/sqrt(spp).
+// sobol        Owen-scrambled Sobol points (pbrt-v4's PaddedSobolSampler with Owen scrambling):
+//              each sample of a pixel draws 2D points from a (0,2)-sequence (the first two Sobol
+//              dimensions), one independently scrambled sequence per 2D dimension pair (pixel
+//              jitter, then each AO direction). Burley, "Practical Hash-based Owen Scrambling",
+//              JCGT 2020. Stratified within a batch; each batch's scrambles are its own, so batches
+//              stay independent unbiased estimates. Mitsuba has no sampler of this name: its closest
+//              is `ldsampler`, scrambled (0,2)-sequences as well.
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
 
 #include "vector.h"
 
@@ -52,17 +59,37 @@ inline uint32_t hash(uint64_t a, uint64_t b) {
     return static_cast<uint32_t>(z ^ (z >> 32));
 }
 
+/// The SplitMix64 finaliser: every input bit reaches every output bit.
+inline uint64_t mix64(uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+}
+
 /// [0, 1) from the top 24 bits.
 inline float toUnit(uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; }
 
 }  // namespace detail
 
+enum class SamplerType { Independent, Sobol };
+
+/// The scene-file name of each sampler type.
+inline const char *samplerName(SamplerType type) { return type == SamplerType::Sobol ? "sobol" : "independent"; }
+
+/// The type called `name`, or nothing.
+inline std::optional<SamplerType> parseSampler(const std::string &name) {
+    if (name == "independent") return SamplerType::Independent;
+    if (name == "sobol") return SamplerType::Sobol;
+    return std::nullopt;
+}
+
 /// Sample values for one pixel of one batch: call startSample(i) for sample i, then next2D()
 /// for each 2D dimension pair the integrator needs.
 class Sampler {
 public:
-    Sampler(uint64_t seed, uint64_t batch, uint64_t pixel)
-        : m_key(detail::hash(detail::hash(seed, batch), pixel)) {}
+    Sampler(SamplerType type, uint64_t seed, uint64_t batch, uint64_t pixel)
+        : m_type(type), m_key(detail::hash(detail::hash(seed, batch), pixel)),
+          m_key64(detail::mix64(detail::mix64(seed * 0x9E3779B97F4A7C15ULL + batch) + pixel)) {}
 
     /// Starts sample `index` at 2D dimension pair `pair` (1 to skip the pixel jitter already drawn).
     void startSample(uint32_t index, uint32_t pair = 0) {
@@ -72,6 +99,11 @@ public:
 
     Vec2f next2D() {
         using namespace detail;
+        if (m_type == SamplerType::Independent) {
+            // One 64-bit hash per (sample, pair): 24 bits for each coordinate.
+            const uint64_t z = mix64(m_key64 + m_index * 0xD1B54A32D192ED03ULL + (m_dimension++) * 0xABC98388FB8FAC03ULL);
+            return {toUnit(static_cast<uint32_t>(z >> 32)), toUnit(static_cast<uint32_t>(z))};
+        }
         const uint32_t pairSeed = hash(m_key, m_dimension++);
         // Shuffle the order of the points, then scramble each coordinate (Burley 2020). The first
         // Sobol dimension is the bit reversal of the index, so its scramble needs no reversal in.
@@ -82,7 +114,9 @@ public:
     }
 
 private:
+    SamplerType m_type;
     uint32_t m_key;
+    uint64_t m_key64;
     uint32_t m_index = 0;
     uint32_t m_dimension = 0;
 };

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "sampler.h"
 #include "transform.h"
 #include "vector.h"
 
@@ -82,6 +83,7 @@ struct SceneDescription {
     CameraSpec camera;
     FilmSpec film;
     int sampleCount = 4;             ///< Mitsuba's `independent` default
+    SamplerType sampler = SamplerType::Independent;  ///< <sampler type="...">
     std::vector<Mesh> meshes;
     std::vector<Sphere> spheres;
     std::vector<PointLight> pointLights;

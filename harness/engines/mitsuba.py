@@ -112,7 +112,8 @@ class MitsubaEngine(Engine):
                 seconds["first"] = time.perf_counter() - batch_start
         seconds["render"] = time.perf_counter() - render_start
         seconds["total"] = time.perf_counter() - start
-        return RenderResult(self.name, str(scene), integrator, spp, seed, np.stack(images), seconds)
+        sampler = loaded.sensors()[0].sampler().class_name()  # e.g. IndependentSampler
+        return RenderResult(self.name, str(scene), integrator, spp, seed, np.stack(images), seconds, sampler)
 
 
 def mitsuba_seed(seed: int, batch: int) -> int:

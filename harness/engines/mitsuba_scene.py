@@ -1,6 +1,7 @@
 """Our scene files, made into Mitsuba scenes: each integrator mapped onto its Mitsuba equivalent as its entry
 says (harness/integrators/<name>.py, `mitsuba`): the <integrator> replaced, and removed what our loader skips
 for that integrator (emitter types, area emitters inside shapes), a constant emitter added where ours assumes one.
+A sampler Mitsuba does not have (ours: `sobol`) becomes its closest one (MITSUBA_SAMPLER).
 
 The film stores float32 (Mitsuba's hdrfilm default is float16).
 """
@@ -12,6 +13,11 @@ from pathlib import Path
 
 from harness.images.suite import INTEGRATORS  # noqa: F401  (re-exported: the suite's integrators)
 from harness.integrators import entry
+
+
+#: Our samplers Mitsuba has no plugin of the same name for, and the Mitsuba sampler closest to each:
+#: Owen-scrambled Sobol points and Mitsuba's ldsampler are both scrambled (0,2)-sequences per dimension pair.
+MITSUBA_SAMPLER = {"sobol": "ldsampler"}
 
 
 def mitsuba_xml(text: str, integrator: str) -> str:
@@ -34,6 +40,9 @@ def mitsuba_xml(text: str, integrator: str) -> str:
         for shape in root.iter("shape"):
             for e in [e for e in shape if e.tag == "emitter" and e.get("type") == "area"]:
                 shape.remove(e)
+    for sampler in root.iter("sampler"):
+        if sampler.get("type") in MITSUBA_SAMPLER:
+            sampler.set("type", MITSUBA_SAMPLER[sampler.get("type")])
     for film in root.iter("film"):
         for e in [e for e in film if e.get("name") == "component_format"]:
             film.remove(e)  # a file's own component_format would be a duplicate property

@@ -67,4 +67,4 @@ class OurEngine(Engine):
         out = run_render(str(scene), integrator, spp, batches, seed, {k: str(v) for k, v in (params or {}).items()},
                          self.timeout, self.binary)
         seconds = {**out.seconds, "total": time.perf_counter() - start}
-        return RenderResult(self.name, str(scene), integrator, spp, seed, out.batches, seconds)
+        return RenderResult(self.name, str(scene), integrator, spp, seed, out.batches, seconds, out.sampler)

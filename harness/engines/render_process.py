@@ -43,6 +43,7 @@ class ChildRender:
 
     batches: np.ndarray
     seconds: dict[str, float]
+    sampler: str = ""  # as the file's header names it (mcval.sampler)
 
 
 def render_binary() -> Path:
@@ -96,11 +97,12 @@ def read_render_exr(path: Path, batches: int) -> ChildRender:
         images = np.stack([layers[n] for n in names])
         seconds = {key: float(np.ravel(header[f"mcval.{name}"])[0])
                    for key, name in (("load", "loadSeconds"), ("build", "bvhSeconds"), ("render", "renderSeconds"))}
+        sampler = str(header.get("mcval.sampler", ""))
     except RenderFailed:
         raise
     except Exception as e:  # a truncated or foreign file, or one without the renderer's attributes
         raise RenderFailed(f"wrote an unreadable image ({type(e).__name__}: {e})") from e
-    return ChildRender(images, seconds)
+    return ChildRender(images, seconds, sampler)
 
 
 def run_render(scene: str, integrator: str, spp: int, batches: int, seed: int,

@@ -32,7 +32,8 @@ Array toNumpy(const std::vector<const Image *> &images, bool stacked) {
 }
 
 nb::dict renderScene(const std::string &path, std::optional<int> spp, uint64_t seed, int threads, int batches,
-                     const std::string &integrator, const std::map<std::string, std::string> &params) {
+                     const std::string &integrator, const std::map<std::string, std::string> &params,
+                     const std::string &sampler) {
     RenderOutput out;
     double loadSeconds = 0.0;
     {
@@ -46,6 +47,7 @@ nb::dict renderScene(const std::string &path, std::optional<int> spp, uint64_t s
         options.threads = threads;
         options.batches = batches;
         options.integrator = integrator;
+        options.sampler = sampler;
         out = render(scene, options);
     }
     nb::dict result;
@@ -61,6 +63,7 @@ nb::dict renderScene(const std::string &path, std::optional<int> spp, uint64_t s
     const RenderStats &s = out.stats;
     nb::dict stats;
     stats["integrator"] = s.integrator;
+    stats["sampler"] = s.sampler;
     stats["spp"] = s.spp;
     stats["batches"] = s.batches;
     stats["seed"] = s.seed;
@@ -80,9 +83,10 @@ void bindRender(nb::module_ &m) {
     // The docstring names the integrators this build registered; nanobind keeps the pointer, so it lives on.
     static const std::string doc =
         "Render a scene file with its integrator or `integrator`: " + integratorNameList() +
+        ", and its sampler or `sampler` (independent or sobol)" +
         ". Returns {'mean': (H, W, 3), 'variance': (H, W, 3), 'batches': (K, H, W, 3), "
         "'stats': {...}} as float32 arrays; raises SceneError (a ValueError) for a bad scene.";
     m.def("render", &renderScene, nb::arg("scene"), nb::arg("spp") = nb::none(), nb::arg("seed") = 0,
           nb::arg("threads") = 0, nb::arg("batches") = 1, nb::arg("integrator") = "",
-          nb::arg("params") = std::map<std::string, std::string>{}, doc.c_str());
+          nb::arg("params") = std::map<std::string, std::string>{}, nb::arg("sampler") = "", doc.c_str());
 }

@@ -1,5 +1,6 @@
 // Warps on hard inputs: every sample finite, in its domain, with a finite positive pdf.
 // The statistical checks (chi-square, normalisation) live in the Python harness.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -109,7 +110,7 @@ TEST(Warp, BeckmannPdfIntegratesToOne) {
 
 TEST(Sampler, EachPairIsStratifiedAndBatchesDiffer) {
     // 16 samples of one pair: exactly one in each of the 4 x 4 strata (a (0,2)-net).
-    Sampler sampler(3, 0, 42);
+    Sampler sampler(SamplerType::Sobol, 3, 0, 42);
     int counts[16] = {0};
     for (uint32_t i = 0; i < 16; ++i) {
         sampler.startSample(i);
@@ -118,10 +119,55 @@ TEST(Sampler, EachPairIsStratifiedAndBatchesDiffer) {
         ++counts[int(u.x * 4) * 4 + int(u.y * 4)];
     }
     for (int c : counts) EXPECT_EQ(c, 1);
-    Sampler other(3, 1, 42);
+    Sampler other(SamplerType::Sobol, 3, 1, 42);
     sampler.startSample(0);
     other.startSample(0);
     EXPECT_NE(sampler.next2D().x, other.next2D().x);
     EXPECT_EQ(detail::reverseBits(1u), 0x80000000u);
     EXPECT_EQ(detail::reverseBits(0x12345678u), 0x1E6A2C48u);
+}
+
+/// Fraction of `pixels` pixels whose first 16 samples fall one in each of the 4 x 4 strata.
+static double stratifiedFraction(SamplerType type, int pixels) {
+    int stratified = 0;
+    for (int p = 0; p < pixels; ++p) {
+        Sampler sampler(type, 7, 0, static_cast<uint64_t>(p));
+        int counts[16] = {0};
+        for (uint32_t i = 0; i < 16; ++i) {
+            sampler.startSample(i);
+            const Vec2f u = sampler.next2D();
+            ++counts[int(u.x * 4) * 4 + int(u.y * 4)];
+        }
+        stratified += std::all_of(std::begin(counts), std::end(counts), [](int c) { return c == 1; });
+    }
+    return double(stratified) / pixels;
+}
+
+TEST(Sampler, IndependentIsUniformUncorrelatedAndNotStratified) {
+    // One per stratum by chance has probability 16! / 16^16 = 1.1e-6; Sobol always is.
+    EXPECT_EQ(stratifiedFraction(SamplerType::Sobol, 256), 1.0);
+    EXPECT_EQ(stratifiedFraction(SamplerType::Independent, 4096), 0.0);
+    // Moments over 2^16 values of two consecutive pairs: mean 1/2, variance 1/12, no correlation
+    // between coordinates or between pairs (tolerances are 5 standard errors).
+    const int n = 1 << 16;
+    double sx = 0, sxx = 0, sxy = 0, sxz = 0;
+    for (int k = 0; k < n; ++k) {
+        Sampler sampler(SamplerType::Independent, 11, static_cast<uint64_t>(k % 8), static_cast<uint64_t>(k / 64));
+        sampler.startSample(static_cast<uint32_t>(k % 64 / 8));
+        const Vec2f a = sampler.next2D(), b = sampler.next2D();
+        ASSERT_TRUE(a.x >= 0.f && a.x < 1.f && a.y >= 0.f && a.y < 1.f);
+        sx += a.x;
+        sxx += (a.x - 0.5) * (a.x - 0.5);
+        sxy += (a.x - 0.5) * (a.y - 0.5);
+        sxz += (a.x - 0.5) * (b.x - 0.5);
+    }
+    EXPECT_NEAR(sx / n, 0.5, 5 * std::sqrt(1.0 / 12 / n));
+    EXPECT_NEAR(sxx / n, 1.0 / 12, 5 * std::sqrt(1.0 / 180 / n));
+    EXPECT_NEAR(sxy / n, 0.0, 5 * (1.0 / 12) / std::sqrt(n));
+    EXPECT_NEAR(sxz / n, 0.0, 5 * (1.0 / 12) / std::sqrt(n));
+}
+
+TEST(Sampler, NamesRoundTrip) {
+    for (SamplerType t : {SamplerType::Independent, SamplerType::Sobol}) EXPECT_EQ(parseSampler(samplerName(t)), t);
+    EXPECT_FALSE(parseSampler("multijitter").has_value());
 }
