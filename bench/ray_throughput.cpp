@@ -73,11 +73,11 @@ double traceRaw(const EmbreeScene &embree, const RaySet &rays, int spp) {
     const auto start = std::chrono::steady_clock::now();
     const size_t pixels = rays.closest.size() / static_cast<size_t>(spp);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, 64), [&](const auto &r) {
-        Hit hits[8];
-        bool found[8];
+        Hit hits[kPacketSize];
+        bool found[kPacketSize];
         for (size_t p = r.begin(); p != r.end(); ++p)
-            for (int first = 0; first < spp; first += 8)
-                embree.intersect8(&rays.closest[p * spp + first], std::min(8, spp - first), hits, found);
+            for (int first = 0; first < spp; first += kPacketSize)
+                embree.intersect16(&rays.closest[p * spp + first], std::min(kPacketSize, spp - first), hits, found);
     });
     tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.occlusion.size(), 1024), [&](const auto &r) {
         for (size_t i = r.begin(); i != r.end(); ++i) embree.occluded(rays.occlusion[i]);

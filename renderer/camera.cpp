@@ -24,17 +24,24 @@ Camera::Camera(const CameraSpec &spec, int width, int height)
     : m_toWorld(spec.toWorld), m_origin(spec.toWorld.point({0.f, 0.f, 0.f})),
       m_fovX(horizontalFov(spec.fov, spec.fovAxis, float(width), float(height))),
       m_tanHalfX(std::tan(0.5f * m_fovX * kDegToRad)), m_aspect(float(width) / float(height)),
-      m_width(float(width)), m_height(float(height)), m_near(spec.nearClip), m_far(spec.farClip) {}
+      m_width(float(width)), m_height(float(height)), m_near(spec.nearClip), m_far(spec.farClip) {
+    m_axisX = spec.toWorld.vector({1.f, 0.f, 0.f});
+    m_axisY = spec.toWorld.vector({0.f, 1.f, 0.f});
+    m_axisZ = spec.toWorld.vector({0.f, 0.f, 1.f});
+    m_scaleX = 2.f * m_tanHalfX / m_width;
+    m_scaleY = 2.f * m_tanHalfX / m_aspect / m_height;
+}
 
 Ray Camera::generateRay(float x, float y) const {
-    // Camera space: +z forward, +x to the left, +y up; the left edge of the image is +x.
-    const float sx = x / m_width, sy = y / m_height;
-    const Vec3f local = normalize(Vec3f((1.f - 2.f * sx) * m_tanHalfX, (1.f - 2.f * sy) * m_tanHalfX / m_aspect, 1.f));
+    // Camera space: +z forward, +x to the left, +y up; the left edge of the image is +x. The
+    // direction is (lx, ly, 1) in camera space, normalised once in world space.
+    const float lx = m_tanHalfX - x * m_scaleX, ly = m_tanHalfX / m_aspect - y * m_scaleY;
+    const float length = std::sqrt(lx * lx + ly * ly + 1.f);
     Ray ray;
     ray.o = m_origin;
-    ray.d = normalize(m_toWorld.vector(local));
-    ray.tnear = m_near / local.z;  // clip planes are distances along the optical axis
-    ray.tfar = m_far / local.z;
+    ray.d = normalize(m_axisX * lx + m_axisY * ly + m_axisZ);
+    ray.tnear = m_near * length;  // clip planes are distances along the optical axis
+    ray.tfar = m_far * length;
     return ray;
 }
 

@@ -116,34 +116,6 @@ bool EmbreeScene::intersect(const Ray &ray, Hit &hit) const {
     return true;
 }
 
-void EmbreeScene::intersect8(const Ray *rays, int count, Hit *hits, bool *found) const {
-    MCR_ASSERT(count > 0 && count <= 8);
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    alignas(32) int valid[8];
-    alignas(32) RTCRayHit8 rh;
-    for (int i = 0; i < 8; ++i) {
-        valid[i] = i < count ? -1 : 0;
-        const Ray &r = rays[i < count ? i : 0];
-        rh.ray.org_x[i] = r.o.x; rh.ray.org_y[i] = r.o.y; rh.ray.org_z[i] = r.o.z;
-        rh.ray.dir_x[i] = r.d.x; rh.ray.dir_y[i] = r.d.y; rh.ray.dir_z[i] = r.d.z;
-        rh.ray.tnear[i] = r.tnear;
-        rh.ray.tfar[i] = r.tfar;
-        rh.ray.time[i] = 0.f;
-        rh.ray.mask[i] = std::numeric_limits<unsigned>::max();
-        rh.ray.id[i] = 0;
-        rh.ray.flags[i] = 0;
-        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
-    }
-    rtcIntersect8(valid, m_scene, &context, &rh);
-    for (int i = 0; i < count; ++i) {
-        found[i] = rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
-        if (found[i]) fillHit(rays[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.u[i], rh.hit.v[i], rh.ray.tfar[i], hits[i]);
-    }
-}
-
 void EmbreeScene::fillHit(const Ray &ray, unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const {
     hit.t = t;
     hit.geom = geom;

@@ -10,6 +10,10 @@
 
 namespace mcval {
 
+/// Rays traced together as one Embree packet: the samples of a pixel, or the shadow rays they
+/// spawn. 16 is AVX-512's width; Embree splits a packet on narrower machines.
+constexpr int kPacketSize = 16;
+
 class EmbreeScene {
 public:
     /// Builds the BVH over all meshes and spheres; they must outlive this object. Geometry ids are
@@ -21,11 +25,14 @@ public:
 
     /// Closest hit along the ray, with position and normals filled in.
     bool intersect(const Ray &ray, Hit &hit) const;
-    /// Closest hits of up to 8 rays traced as one packet (coherent rays, such as the samples of
-    /// one pixel, traverse the BVH together); found[i] tells whether ray i hit.
-    void intersect8(const Ray *rays, int count, Hit *hits, bool *found) const;
+    /// Closest hits of up to kPacketSize rays traced as one packet (coherent rays, such as the
+    /// samples of one pixel, traverse the BVH together); found[i] tells whether ray i hit.
+    void intersect16(const Ray *rays, int count, Hit *hits, bool *found) const;
     /// Whether anything lies on the ray in [tnear, tfar].
     bool occluded(const Ray &ray) const;
+    /// occluded() for the rays i < count with active[i], as one packet; blocked[i] is false for the
+    /// others. `coherent`: the rays start close together and point alike (shadow rays to one light).
+    void occluded16(const Ray *rays, const bool *active, int count, bool *blocked, bool coherent) const;
 
     /// The diffuse reflectance of geometry `geom` (Hit::geom), mesh or sphere alike.
     const Color &reflectance(uint32_t geom) const { return m_reflectance[geom]; }

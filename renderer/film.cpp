@@ -41,6 +41,24 @@ void ImageBlock::put(float x, float y, const Color &L) {
     }
 }
 
+void ImageBlock::putBox(int x, int y, const Color *L, int count) {
+    double sum[3] = {0.0, 0.0, 0.0}, sum2[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < count; ++k)
+        for (int c = 0; c < 3; ++c) {
+            const double l = L[k][c];
+            sum[c] += l;
+            sum2[c] += l * l;
+        }
+    double *s = &m_data[kChannels * ((y - m_y0) * m_width + (x - m_x0))];
+    s[0] += count;
+    s[4] += count;
+    for (int c = 0; c < 3; ++c) {
+        s[1 + c] += sum[c];
+        s[5 + c] += sum[c];
+        s[8 + c] += sum2[c];
+    }
+}
+
 Film::Film(int width, int height)
     : m_width(width), m_height(height), m_data(static_cast<size_t>(ImageBlock::kChannels) * width * height, 0.0) {}
 

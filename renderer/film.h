@@ -15,6 +15,10 @@ public:
 
     /// Adds radiance L sampled at film position (x, y) to every pixel the filter reaches.
     void put(float x, float y, const Color &L);
+    /// Adds `count` samples L[0..count) of pixel (x, y) with weight 1: put() for a box filter, whose
+    /// weight is 1 inside the pixel the sample lies in and 0 elsewhere.
+    void putBox(int x, int y, const Color *L, int count);
+    bool isBox() const { return m_filter.type == FilterSpec::Type::Box; }
 
     int x0() const { return m_x0; }
     int y0() const { return m_y0; }

@@ -11,6 +11,7 @@ namespace mcval {
 struct Frame {
     Vec3f s, t, n;
 
+    Frame() = default;
     explicit Frame(const Vec3f &normal) : n(normal) {
         const float sign = std::copysign(1.f, n.z);
         const float a = -1.f / (sign + n.z);

@@ -22,7 +22,6 @@ namespace mcval {
 namespace {
 
 constexpr int kTileSize = 32;
-constexpr int kPacket = 8;  ///< camera rays traced together
 
 struct Tile {
     int x0, y0, width, height;
@@ -80,26 +79,28 @@ struct RenderContext {
 
 /// Every sample of pixel (x, y) in batch `batch`, splatted into `block` (pbrt's EvaluatePixelSample,
 /// for all the samples of a pixel). The samples of one pixel are coherent: their camera rays are
-/// traced kPacket at a time.
+/// traced kPacketSize at a time, and the integrator gets them as one packet for its own rays.
 void renderPixel(const RenderContext &ctx, int batch, int x, int y, ImageBlock &block, RayCounts &counts) {
     Sampler sampler(ctx.sampler, ctx.seed, static_cast<uint64_t>(batch), static_cast<uint64_t>(y) * ctx.width + x);
-    for (int first = 0; first < ctx.spp; first += kPacket) {
-        const int count = std::min(kPacket, ctx.spp - first);
-        Ray rays[kPacket];
-        Vec2f film[kPacket];
+    for (int first = 0; first < ctx.spp; first += kPacketSize) {
+        const int count = std::min(kPacketSize, ctx.spp - first);
+        Ray rays[kPacketSize];
+        Vec2f film[kPacketSize];
         for (int i = 0; i < count; ++i) {
-            sampler.startSample(static_cast<uint32_t>(first + i));
-            const Vec2f jitter = sampler.next2D();
+            const Vec2f jitter = sampler.sample2D(static_cast<uint32_t>(first + i), 0);
             film[i] = {static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y};
             rays[i] = ctx.camera.generateRay(film[i].x, film[i].y);
         }
-        Hit hits[kPacket];
-        bool found[kPacket];
-        ctx.embree.intersect8(rays, count, hits, found);
+        Hit hits[kPacketSize];
+        bool found[kPacketSize];
+        ctx.embree.intersect16(rays, count, hits, found);
         counts.camera += static_cast<uint64_t>(count);
-        for (int i = 0; i < count; ++i) {
-            sampler.startSample(static_cast<uint32_t>(first + i), 1);
-            block.put(film[i].x, film[i].y, ctx.integrator.Li(rays[i], found[i] ? &hits[i] : nullptr, sampler, counts));
+        Color radiance[kPacketSize];
+        ctx.integrator.LiPacket({count, static_cast<uint32_t>(first), rays, hits, found}, sampler, radiance, counts);
+        if (block.isBox()) {
+            block.putBox(x, y, radiance, count);  // a box filter keeps every sample in its own pixel
+        } else {
+            for (int i = 0; i < count; ++i) block.put(film[i].x, film[i].y, radiance[i]);
         }
     }
 }

@@ -97,17 +97,24 @@ public:
         m_dimension = pair;
     }
 
-    Vec2f next2D() {
+    Vec2f next2D() { return sample2D(m_index, m_dimension++); }
+
+    /// The current sample's index (startSample's).
+    uint32_t index() const { return m_index; }
+
+    /// The value of 2D pair `pair` of sample `index`, without moving the sampler: the samples of a
+    /// packet each read their own.
+    Vec2f sample2D(uint32_t index, uint32_t pair) const {
         using namespace detail;
         if (m_type == SamplerType::Independent) {
             // One 64-bit hash per (sample, pair): 24 bits for each coordinate.
-            const uint64_t z = mix64(m_key64 + m_index * 0xD1B54A32D192ED03ULL + (m_dimension++) * 0xABC98388FB8FAC03ULL);
+            const uint64_t z = mix64(m_key64 + index * 0xD1B54A32D192ED03ULL + pair * 0xABC98388FB8FAC03ULL);
             return {toUnit(static_cast<uint32_t>(z >> 32)), toUnit(static_cast<uint32_t>(z))};
         }
-        const uint32_t pairSeed = hash(m_key, m_dimension++);
+        const uint32_t pairSeed = hash(m_key, pair);
         // Shuffle the order of the points, then scramble each coordinate (Burley 2020). The first
         // Sobol dimension is the bit reversal of the index, so its scramble needs no reversal in.
-        const uint32_t i = owenScramble(m_index, pairSeed);
+        const uint32_t i = owenScramble(index, pairSeed);
         const uint32_t x = reverseBits(laineKarras(i, pairSeed ^ 0xA511E9B3u));
         const uint32_t y = owenScramble(sobolSecond(i), pairSeed ^ 0x63D83595u);
         return {toUnit(x), toUnit(y)};

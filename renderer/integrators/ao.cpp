@@ -15,20 +15,42 @@ public:
     AoIntegrator(const SceneDescription &scene, const EmbreeScene &embree, int samples)
         : m_embree(embree), m_environment(scene.environment.value_or(Color(1.f, 1.f, 1.f))), m_samples(samples) {}
 
-    Color Li(const Ray &ray, const Hit *camHit, Sampler &sampler, RayCounts &counts) const override {
-        // A camera ray that escapes returns 0 (the environment itself is hidden); so does a back face.
-        if (!camHit || dot(camHit->ns, ray.d) >= 0.f) return {0.f, 0.f, 0.f};
-        const Hit &hit = *camHit;
-        const Frame frame(hit.ns);
-        int visible = 0;
-        for (int i = 0; i < m_samples; ++i) {
-            // Cosine-weighted sampling cancels the cosine over its pdf: each unoccluded ray counts rho * L_env.
-            const Vec3f wi = frame.toWorld(squareToCosineHemisphere(sampler.next2D()));
-            ++counts.shadow;
-            if (!m_embree.occluded(spawnRay(hit, wi, 1e30f))) ++visible;
+    /// The j-th occlusion ray of every lane goes to Embree as one packet (their directions differ:
+    /// an incoherent packet).
+    void LiPacket(const SamplePacket &packet, Sampler &sampler, Color *out, RayCounts &counts) const override {
+        const int n = packet.count;
+        bool front[kPacketSize];
+        Frame frames[kPacketSize];
+        int visible[kPacketSize];
+        int traced = 0;
+        for (int i = 0; i < n; ++i) {
+            // A camera ray that escapes returns 0 (the environment itself is hidden); so does a back face.
+            front[i] = packet.found[i] && dot(packet.hits[i].ns, packet.rays[i].d) < 0.f;
+            if (front[i]) frames[i] = Frame(packet.hits[i].ns);
+            visible[i] = 0;
+            traced += front[i];
         }
-        const Color &rho = m_embree.reflectance(hit.geom);
-        return rho * m_environment * (static_cast<float>(visible) / static_cast<float>(m_samples));
+        if (traced > 0) {
+            for (int j = 0; j < m_samples; ++j) {
+                Ray rays[kPacketSize];
+                bool blocked[kPacketSize];
+                for (int i = 0; i < n; ++i) {
+                    if (!front[i]) continue;
+                    // Cosine-weighted sampling cancels the cosine over its pdf: each unoccluded ray
+                    // counts rho * L_env.
+                    const Vec2f u = sampler.sample2D(packet.first + static_cast<uint32_t>(i), 1 + static_cast<uint32_t>(j));
+                    rays[i] = spawnRay(packet.hits[i], frames[i].toWorld(squareToCosineHemisphere(u)), 1e30f);
+                }
+                m_embree.occluded16(rays, front, n, blocked, /*coherent=*/false);
+                for (int i = 0; i < n; ++i) visible[i] += front[i] && !blocked[i];
+            }
+            counts.shadow += static_cast<uint64_t>(traced) * static_cast<uint64_t>(m_samples);
+        }
+        for (int i = 0; i < n; ++i) {
+            out[i] = front[i] ? m_embree.reflectance(packet.hits[i].geom) * m_environment *
+                                    (static_cast<float>(visible[i]) / static_cast<float>(m_samples))
+                              : Color(0.f, 0.f, 0.f);
+        }
     }
 
 private:

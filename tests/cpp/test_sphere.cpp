@@ -69,7 +69,7 @@ TEST_P(SphereAtEveryScale, HitsAtTheExactDistanceWithAUnitNormal) {
         Hit hit, hit8;
         ASSERT_TRUE(embree.intersect(ray, hit));
         bool found = false;
-        embree.intersect8(&ray, 1, &hit8, &found);
+        embree.intersect16(&ray, 1, &hit8, &found);
         ASSERT_TRUE(found);
         EXPECT_NEAR(hit.t, expected, 1e-6 * expected) << r;
         EXPECT_EQ(hit.t, hit8.t);
