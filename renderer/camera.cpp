@@ -32,17 +32,4 @@ Camera::Camera(const CameraSpec &spec, int width, int height)
     m_scaleY = 2.f * m_tanHalfX / m_aspect / m_height;
 }
 
-Ray Camera::generateRay(float x, float y) const {
-    // Camera space: +z forward, +x to the left, +y up; the left edge of the image is +x. The
-    // direction is (lx, ly, 1) in camera space, normalised once in world space.
-    const float lx = m_tanHalfX - x * m_scaleX, ly = m_tanHalfX / m_aspect - y * m_scaleY;
-    const float length = std::sqrt(lx * lx + ly * ly + 1.f);
-    Ray ray;
-    ray.o = m_origin;
-    ray.d = normalize(m_axisX * lx + m_axisY * ly + m_axisZ);
-    ray.tnear = m_near * length;  // clip planes are distances along the optical axis
-    ray.tfar = m_far * length;
-    return ray;
-}
-
 }  // namespace mcval

@@ -4,6 +4,7 @@
 
 #include "embree_scene.h"
 #include "error.h"
+#include "hot.h"
 
 namespace mcval {
 
@@ -24,7 +25,22 @@ void setLane(Packet &p, int i, const Ray &r) {
 
 }  // namespace
 
-void EmbreeScene::intersect16(const Ray *rays, int count, Hit *hits, bool *found) const {
+OcclusionPacket::OcclusionPacket() {
+    for (int i = 0; i < kPacketSize; ++i) {
+        setLane(rays, i, Ray{});
+        valid[i] = 0;
+    }
+}
+
+void EmbreeScene::occluded(OcclusionPacket &packet, bool coherent) const {
+    if (packet.active == 0) return;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    if (coherent) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcOccluded16(packet.valid, m_scene, &context, &packet.rays);
+}
+
+MCVAL_HOT void EmbreeScene::intersect16(const Ray *rays, int count, Hit *hits, bool *found) const {
     MCR_ASSERT(count > 0 && count <= kPacketSize);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);

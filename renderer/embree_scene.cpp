@@ -7,6 +7,7 @@
 #include <string>
 
 #include "error.h"
+#include "hot.h"
 #include "sphere.h"
 
 namespace mcval {
@@ -116,7 +117,7 @@ bool EmbreeScene::intersect(const Ray &ray, Hit &hit) const {
     return true;
 }
 
-void EmbreeScene::fillHit(const Ray &ray, unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const {
+MCVAL_HOT void EmbreeScene::fillHit(const Ray &ray, unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const {
     hit.t = t;
     hit.geom = geom;
     hit.prim = prim;

@@ -14,6 +14,31 @@ namespace mcval {
 /// spawn. 16 is AVX-512's width; Embree splits a packet on narrower machines.
 constexpr int kPacketSize = 16;
 
+/// Up to kPacketSize occlusion rays in Embree's SoA layout, written lane by lane where they are made
+/// (no Ray structs copied in between: partial writes read back whole stall the store buffer).
+struct OcclusionPacket {
+    alignas(64) RTCRay16 rays;
+    alignas(64) int valid[kPacketSize];
+    int active = 0;  ///< lanes set since clear()
+
+    OcclusionPacket();
+    void clear() {
+        for (int &v : valid) v = 0;
+        active = 0;
+    }
+    /// Lane i: the ray from o along d over [0, tfar].
+    void set(int i, const Vec3f &o, const Vec3f &d, float tfar) {
+        rays.org_x[i] = o.x; rays.org_y[i] = o.y; rays.org_z[i] = o.z;
+        rays.dir_x[i] = d.x; rays.dir_y[i] = d.y; rays.dir_z[i] = d.z;
+        rays.tnear[i] = 0.f;
+        rays.tfar[i] = tfar;
+        valid[i] = -1;
+        ++active;
+    }
+    /// After EmbreeScene::occluded: whether lane i's ray was set and is blocked.
+    bool blocked(int i) const { return valid[i] != 0 && rays.tfar[i] < 0.f; }  // Embree sets tfar to -inf on a hit
+};
+
 class EmbreeScene {
 public:
     /// Builds the BVH over all meshes and spheres; they must outlive this object. Geometry ids are
@@ -33,6 +58,8 @@ public:
     /// occluded() for the rays i < count with active[i], as one packet; blocked[i] is false for the
     /// others. `coherent`: the rays start close together and point alike (shadow rays to one light).
     void occluded16(const Ray *rays, const bool *active, int count, bool *blocked, bool coherent) const;
+    /// Traces the set lanes of `packet` (nothing if none); read the answers with packet.blocked(i).
+    void occluded(OcclusionPacket &packet, bool coherent) const;
 
     /// The diffuse reflectance of geometry `geom` (Hit::geom), mesh or sphere alike.
     const Color &reflectance(uint32_t geom) const { return m_reflectance[geom]; }

@@ -14,6 +14,7 @@
 #include "embree_scene.h"
 #include "error.h"
 #include "film.h"
+#include "hot.h"
 #include "integrators/integrator.h"
 #include "scene_limits.h"
 
@@ -80,7 +81,7 @@ struct RenderContext {
 /// Every sample of pixel (x, y) in batch `batch`, splatted into `block` (pbrt's EvaluatePixelSample,
 /// for all the samples of a pixel). The samples of one pixel are coherent: their camera rays are
 /// traced kPacketSize at a time, and the integrator gets them as one packet for its own rays.
-void renderPixel(const RenderContext &ctx, int batch, int x, int y, ImageBlock &block, RayCounts &counts) {
+MCVAL_HOT void renderPixel(const RenderContext &ctx, int batch, int x, int y, ImageBlock &block, RayCounts &counts) {
     Sampler sampler(ctx.sampler, ctx.seed, static_cast<uint64_t>(batch), static_cast<uint64_t>(y) * ctx.width + x);
     for (int first = 0; first < ctx.spp; first += kPacketSize) {
         const int count = std::min(kPacketSize, ctx.spp - first);

@@ -58,13 +58,18 @@ public:
 std::unique_ptr<Integrator> createIntegrator(const IntegratorSpec &spec, const SceneDescription &scene,
                                              const EmbreeScene &embree);
 
-/// A ray leaving `hit` in direction d without re-hitting its surface: its origin moves off the
+/// The origin of a ray leaving `hit` in direction d without re-hitting its surface: moved off the
 /// surface, along the geometric normal, by an offset that scales with the position's magnitude and
 /// with the size of the scene's smallest shape.
-inline Ray spawnRay(const Hit &hit, const Vec3f &d, float tfar) {
+inline Vec3f spawnOrigin(const Hit &hit, const Vec3f &d) {
     const Vec3f side = dot(hit.ng, d) >= 0.f ? hit.ng : -hit.ng;
+    return offsetRayOrigin(hit.p, side, hit.offsetFloor);
+}
+
+/// spawnRay as a Ray.
+inline Ray spawnRay(const Hit &hit, const Vec3f &d, float tfar) {
     Ray r;
-    r.o = offsetRayOrigin(hit.p, side, hit.offsetFloor);
+    r.o = spawnOrigin(hit, d);
     r.d = d;
     r.tnear = 0.f;
     r.tfar = tfar;
