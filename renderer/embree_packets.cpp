@@ -27,7 +27,10 @@ void setLane(Packet &p, int i, const Ray &r) {
 
 OcclusionPacket::OcclusionPacket() {
     for (int i = 0; i < kPacketSize; ++i) {
-        setLane(rays, i, Ray{});
+        rays.time[i] = 0.f;
+        rays.mask[i] = std::numeric_limits<unsigned>::max();
+        rays.id[i] = 0;
+        rays.flags[i] = 0;
         valid[i] = 0;
     }
 }

@@ -80,6 +80,12 @@ EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphe
         rtcAttachGeometry(m_scene, geom);  // ids follow mesh order
         rtcReleaseGeometry(geom);
         m_reflectance.push_back(mesh.reflectance);
+        std::vector<Vec3f> &normals = m_faceNormals.emplace_back(mesh.indices.size() / 3);
+        for (size_t f = 0; f < normals.size(); ++f) {
+            const uint32_t *tri = &mesh.indices[3 * f];
+            const Vec3f &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
+            normals[f] = normalize(cross(p1 - p0, p2 - p0));
+        }
         if (const float size = halfExtent(mesh.positions); size > 0.f) smallest = std::min(smallest, size);
     }
     for (const Sphere &sphere : spheres) {
@@ -133,7 +139,7 @@ MCVAL_HOT void EmbreeScene::fillHit(const Ray &ray, unsigned geom, unsigned prim
     const Vec3f &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
     const float w = 1.f - u - v;
     hit.p = w * p0 + u * p1 + v * p2;
-    hit.ng = normalize(cross(p1 - p0, p2 - p0));
+    hit.ng = m_faceNormals[geom][prim];
     if (mesh.normals.empty()) {
         hit.ns = hit.ng;
     } else {

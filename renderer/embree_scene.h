@@ -21,7 +21,7 @@ struct OcclusionPacket {
     alignas(64) int valid[kPacketSize];
     int active = 0;  ///< lanes set since clear()
 
-    OcclusionPacket();
+    OcclusionPacket();  ///< the fields set() leaves alone, once
     void clear() {
         for (int &v : valid) v = 0;
         active = 0;
@@ -72,6 +72,8 @@ private:
     const std::vector<Mesh> &m_meshes;
     const std::vector<Sphere> &m_spheres;
     std::vector<Color> m_reflectance;  ///< by geometry id: one table whatever the shape
+    /// Unit geometric normal of every triangle, by mesh: computed once, not per hit.
+    std::vector<std::vector<Vec3f>> m_faceNormals;
     float m_offsetFloor = 0.f;         ///< Hit::offsetFloor: from the scene's smallest shape
     RTCDevice m_device = nullptr;
     RTCScene m_scene = nullptr;
