@@ -37,22 +37,24 @@ struct Hit {
 /// and stays tight far from the origin. The other is `floor`, a length given by the size of the
 /// scene's smallest shape (see EmbreeScene), so that the offset scales with the scene: an absolute
 /// floor is a unit-scale choice that swallows millimetre geometry and vanishes on kilometre geometry.
-inline Vec3f offsetRayOrigin(const Vec3f &p, const Vec3f &n, float floor) {
+inline float offsetCoordinate(float x, float nx, float floor) {
     constexpr float kIntScale = 256.f;
-    const auto shift = [floor](float x, float nx) {
-        float moved = x;
-        // Stepping the bits of 0 or a denormal could cross zero into a NaN; there the floor rules anyway.
-        if (std::abs(x) >= std::numeric_limits<float>::min()) {
-            int32_t bits;
-            std::memcpy(&bits, &x, 4);
-            const auto step = static_cast<int32_t>(kIntScale * nx);
-            bits += (x < 0.f) ? -step : step;
-            std::memcpy(&moved, &bits, 4);
-        }
-        const float floored = x + floor * nx;
-        return nx >= 0.f ? std::max(moved, floored) : std::min(moved, floored);
-    };
-    return {shift(p.x, n.x), shift(p.y, n.y), shift(p.z, n.z)};
+    // Stepping the bits of 0 or a denormal could cross zero into a NaN; there the floor rules anyway.
+    // Written without branches, so that a packet's lanes compute it in SIMD.
+    // Unsigned arithmetic: the step of a discarded lane (-0 or a denormal) may wrap, harmlessly.
+    uint32_t bits;
+    std::memcpy(&bits, &x, 4);
+    const auto step = static_cast<uint32_t>(static_cast<int32_t>(kIntScale * nx));
+    const uint32_t stepped = bits + ((x < 0.f) ? 0u - step : step);
+    float moved;
+    std::memcpy(&moved, &stepped, 4);
+    moved = std::abs(x) >= std::numeric_limits<float>::min() ? moved : x;
+    const float floored = x + floor * nx;
+    return nx >= 0.f ? std::max(moved, floored) : std::min(moved, floored);
+}
+
+inline Vec3f offsetRayOrigin(const Vec3f &p, const Vec3f &n, float floor) {
+    return {offsetCoordinate(p.x, n.x, floor), offsetCoordinate(p.y, n.y, floor), offsetCoordinate(p.z, n.z, floor)};
 }
 
 }  // namespace mcval

@@ -11,44 +11,78 @@ namespace mcval {
 
 namespace {
 
+/// A packet's hits in SoA form, the lanes past `count` or without a front-facing hit inactive (0),
+/// so that the per-light loop below runs over all kPacketSize lanes in SIMD.
+struct HitLanes {
+    alignas(64) float px[kPacketSize], py[kPacketSize], pz[kPacketSize];
+    alignas(64) float nx[kPacketSize], ny[kPacketSize], nz[kPacketSize];     // shading normal
+    alignas(64) float gx[kPacketSize], gy[kPacketSize], gz[kPacketSize];     // geometric normal
+    alignas(64) float floor[kPacketSize];
+    alignas(64) int front[kPacketSize];
+
+    explicit HitLanes(const SamplePacket &packet) {
+        for (int i = 0; i < kPacketSize; ++i) {
+            // One-sided diffuse, as Mitsuba's: black seen from behind the shading normal.
+            const bool on = i < packet.count && packet.found[i] && dot(packet.hits[i].ns, packet.rays[i].d) < 0.f;
+            const Hit h = on ? packet.hits[i] : Hit{};
+            px[i] = h.p.x; py[i] = h.p.y; pz[i] = h.p.z;
+            nx[i] = h.ns.x; ny[i] = h.ns.y; nz[i] = h.ns.z;
+            gx[i] = h.ng.x; gy[i] = h.ng.y; gz[i] = h.ng.z;
+            floor[i] = h.offsetFloor;
+            front[i] = on;
+        }
+    }
+};
+
 /// simple's estimate for a packet (a free function: it is compiled per ISA, which a virtual one cannot
 /// be). Per light, the shadow rays of the whole packet go to Embree as one coherent packet: they start
-/// near one another (one pixel) and end at the same point.
+/// near one another (one pixel) and end at the same point. The arithmetic is the scalar formula's,
+/// lane by lane (L = rho / pi * sum I cos / r^2 over unshadowed lights), in the same order.
 MCVAL_HOT void simplePacket(const std::vector<PointLight> &lights, const EmbreeScene &embree, const SamplePacket &packet,
                             Color *out, RayCounts &counts) {
-    const int n = packet.count;
-    bool front[kPacketSize];
-    for (int i = 0; i < n; ++i) {
-        // One-sided diffuse, as Mitsuba's: black seen from behind the shading normal.
-        front[i] = packet.found[i] && dot(packet.hits[i].ns, packet.rays[i].d) < 0.f;
-        out[i] = {0.f, 0.f, 0.f};
-    }
+    const HitLanes h(packet);
+    alignas(64) float sumR[kPacketSize] = {}, sumG[kPacketSize] = {}, sumB[kPacketSize] = {};
+    alignas(64) float weight[kPacketSize];
     OcclusionPacket shadow;
+    RTCRay16 &r = shadow.rays;
     for (const PointLight &light : lights) {
-        float weight[kPacketSize];
-        shadow.clear();
-        for (int i = 0; i < n; ++i) {
-            if (!front[i]) continue;
-            const Hit &hit = packet.hits[i];
-            const Vec3f toLight = light.position - hit.p;
-            const float dist2 = squaredNorm(toLight);
-            if (!(dist2 > 0.f)) continue;
+        int traced = 0;
+        for (int i = 0; i < kPacketSize; ++i) {
+            const float tx = light.position.x - h.px[i], ty = light.position.y - h.py[i],
+                        tz = light.position.z - h.pz[i];
+            const float dist2 = tx * tx + ty * ty + tz * tz;
             const float dist = std::sqrt(dist2);
-            const Vec3f wi = toLight / dist;
-            const float cosTheta = dot(hit.ns, wi);
-            if (cosTheta <= 0.f) continue;
+            const float wx = tx / dist, wy = ty / dist, wz = tz / dist;
+            const float cosTheta = h.nx[i] * wx + h.ny[i] * wy + h.nz[i] * wz;
+            const bool on = (h.front[i] != 0) & (dist2 > 0.f) & (cosTheta > 0.f);
+            // The spawn rule of spawnOrigin: off the surface along the geometric normal, on the side
+            // the ray leaves by.
+            const float side = (h.gx[i] * wx + h.gy[i] * wy + h.gz[i] * wz) >= 0.f ? 1.f : -1.f;
+            r.org_x[i] = offsetCoordinate(h.px[i], side * h.gx[i], h.floor[i]);
+            r.org_y[i] = offsetCoordinate(h.py[i], side * h.gy[i], h.floor[i]);
+            r.org_z[i] = offsetCoordinate(h.pz[i], side * h.gz[i], h.floor[i]);
+            r.dir_x[i] = wx; r.dir_y[i] = wy; r.dir_z[i] = wz;
+            r.tnear[i] = 0.f;
             // Stop just short of the light: nothing behind it may shadow.
-            shadow.set(i, spawnOrigin(hit, wi), wi, dist * (1.f - 1e-4f));
-            weight[i] = cosTheta / dist2;
+            r.tfar[i] = dist * (1.f - 1e-4f);
+            shadow.valid[i] = on ? -1 : 0;
+            weight[i] = on ? cosTheta / dist2 : 0.f;
+            traced += on;
         }
-        if (shadow.active == 0) continue;
-        counts.shadow += static_cast<uint64_t>(shadow.active);
+        if (traced == 0) continue;
+        shadow.active = traced;
+        counts.shadow += static_cast<uint64_t>(traced);
         embree.occluded(shadow, /*coherent=*/true);
-        for (int i = 0; i < n; ++i)
-            if (shadow.valid[i] && !shadow.blocked(i)) out[i] = out[i] + light.intensity * weight[i];
+        for (int i = 0; i < kPacketSize; ++i) {
+            const bool lit = (shadow.valid[i] != 0) & !(r.tfar[i] < 0.f);  // Embree sets tfar to -inf on a hit
+            sumR[i] = lit ? sumR[i] + light.intensity.x * weight[i] : sumR[i];
+            sumG[i] = lit ? sumG[i] + light.intensity.y * weight[i] : sumG[i];
+            sumB[i] = lit ? sumB[i] + light.intensity.z * weight[i] : sumB[i];
+        }
     }
-    for (int i = 0; i < n; ++i)
-        if (front[i]) out[i] = embree.reflectance(packet.hits[i].geom) * out[i] * kInvPi;
+    for (int i = 0; i < packet.count; ++i)
+        out[i] = h.front[i] ? embree.reflectance(packet.hits[i].geom) * Color(sumR[i], sumG[i], sumB[i]) * kInvPi
+                            : Color(0.f, 0.f, 0.f);
 }
 
 class SimpleIntegrator final : public Integrator {
