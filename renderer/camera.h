@@ -14,19 +14,29 @@ public:
 
     /// The primary ray through film position (x, y) in pixels: (0, 0) is the top-left corner
     /// of the image, pixel (i, j) covers [i, i+1] x [j, j+1]. Starts at the near clip plane.
-    /// Inline: the renderer writes it straight into its packet, with no copy through the stack.
     Ray generateRay(float x, float y) const {
-        // Camera space: +z forward, +x to the left, +y up; the left edge of the image is +x. The
-        // direction is (lx, ly, 1) in camera space, normalised once in world space.
-        const float lx = m_tanHalfX - x * m_scaleX, ly = m_tanHalfX / m_aspect - y * m_scaleY;
-        const float length = std::sqrt(lx * lx + ly * ly + 1.f);
+        float length;
         Ray ray;
         ray.o = m_origin;
-        ray.d = normalize(m_axisX * lx + m_axisY * ly + m_axisZ);
+        ray.d = direction(x, y, length);
         ray.tnear = m_near * length;  // clip planes are distances along the optical axis
         ray.tfar = m_far * length;
         return ray;
     }
+
+    /// generateRay's direction; `length` is the camera-space length of (lx, ly, 1), by which the
+    /// clip distances scale. Inline and branch-free: the renderer computes a packet's in SIMD.
+    Vec3f direction(float x, float y, float &length) const {
+        // Camera space: +z forward, +x to the left, +y up; the left edge of the image is +x. The
+        // direction is (lx, ly, 1) in camera space, normalised once in world space.
+        const float lx = m_tanHalfX - x * m_scaleX, ly = m_tanHalfX / m_aspect - y * m_scaleY;
+        length = std::sqrt(lx * lx + ly * ly + 1.f);
+        return normalize(m_axisX * lx + m_axisY * ly + m_axisZ);
+    }
+
+    Vec3f origin() const { return m_origin; }
+    float nearClip() const { return m_near; }
+    float farClip() const { return m_far; }
 
     /// The horizontal field of view in degrees, whatever axis the scene gave.
     float fovX() const { return m_fovX; }

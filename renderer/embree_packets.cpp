@@ -35,6 +35,33 @@ OcclusionPacket::OcclusionPacket() {
     }
 }
 
+RayHitPacket::RayHitPacket() {
+    for (int i = 0; i < kPacketSize; ++i) {
+        rh.ray.time[i] = 0.f;
+        rh.ray.mask[i] = std::numeric_limits<unsigned>::max();
+        rh.ray.id[i] = 0;
+        rh.ray.flags[i] = 0;
+        rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+        valid[i] = 0;
+    }
+}
+
+MCVAL_HOT void EmbreeScene::intersect(RayHitPacket &packet, int count, Ray *rays, Hit *hits, bool *found) const {
+    MCR_ASSERT(count > 0 && count <= kPacketSize);
+    alignas(64) float tfar[kPacketSize];
+    for (int i = 0; i < kPacketSize; ++i) tfar[i] = packet.rh.ray.tfar[i];
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect16(packet.valid, m_scene, &context, &packet.rh);
+    const RTCHit16 &h = packet.rh.hit;
+    for (int i = 0; i < count; ++i) {
+        rays[i] = packet.ray(i, tfar[i]);
+        found[i] = h.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+        if (found[i]) fillHit(rays[i], h.geomID[i], h.primID[i], h.u[i], h.v[i], packet.rh.ray.tfar[i], hits[i]);
+    }
+}
+
 void EmbreeScene::occluded(OcclusionPacket &packet, bool coherent) const {
     if (packet.active == 0) return;
     RTCIntersectContext context;

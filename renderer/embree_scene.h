@@ -39,6 +39,33 @@ struct OcclusionPacket {
     bool blocked(int i) const { return valid[i] != 0 && rays.tfar[i] < 0.f; }  // Embree sets tfar to -inf on a hit
 };
 
+/// Up to kPacketSize closest-hit rays in Embree's SoA layout, written lane by lane where they are
+/// made (the camera's rays), with room for their hits.
+struct RayHitPacket {
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int valid[kPacketSize];
+
+    RayHitPacket();  ///< the fields set() leaves alone, once
+    /// Lane i: the ray o + t d over [tnear, tfar]; `on` false leaves the lane out of the trace.
+    void set(int i, bool on, const Vec3f &o, const Vec3f &d, float tnear, float tfar) {
+        rh.ray.org_x[i] = o.x; rh.ray.org_y[i] = o.y; rh.ray.org_z[i] = o.z;
+        rh.ray.dir_x[i] = d.x; rh.ray.dir_y[i] = d.y; rh.ray.dir_z[i] = d.z;
+        rh.ray.tnear[i] = tnear;
+        rh.ray.tfar[i] = tfar;
+        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        valid[i] = on ? -1 : 0;
+    }
+    /// Lane i's ray as set (before the trace shortens tfar).
+    Ray ray(int i, float tfar) const {
+        Ray r;
+        r.o = {rh.ray.org_x[i], rh.ray.org_y[i], rh.ray.org_z[i]};
+        r.d = {rh.ray.dir_x[i], rh.ray.dir_y[i], rh.ray.dir_z[i]};
+        r.tnear = rh.ray.tnear[i];
+        r.tfar = tfar;
+        return r;
+    }
+};
+
 class EmbreeScene {
 public:
     /// Builds the BVH over all meshes and spheres; they must outlive this object. Geometry ids are
@@ -53,6 +80,9 @@ public:
     /// Closest hits of up to kPacketSize rays traced as one packet (coherent rays, such as the
     /// samples of one pixel, traverse the BVH together); found[i] tells whether ray i hit.
     void intersect16(const Ray *rays, int count, Hit *hits, bool *found) const;
+    /// Traces the first `count` lanes of `packet` (all set), and gives back each lane's ray as set
+    /// in rays[i], its hit in hits[i] if found[i].
+    void intersect(RayHitPacket &packet, int count, Ray *rays, Hit *hits, bool *found) const;
     /// Whether anything lies on the ray in [tnear, tfar].
     bool occluded(const Ray &ray) const;
     /// occluded() for the rays i < count with active[i], as one packet; blocked[i] is false for the

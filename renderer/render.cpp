@@ -83,25 +83,43 @@ struct RenderContext {
 /// traced kPacketSize at a time, and the integrator gets them as one packet for its own rays.
 MCVAL_HOT void renderPixel(const RenderContext &ctx, int batch, int x, int y, ImageBlock &block, RayCounts &counts) {
     Sampler sampler(ctx.sampler, ctx.seed, static_cast<uint64_t>(batch), static_cast<uint64_t>(y) * ctx.width + x);
+    RayHitPacket camera;
     for (int first = 0; first < ctx.spp; first += kPacketSize) {
         const int count = std::min(kPacketSize, ctx.spp - first);
-        Ray rays[kPacketSize];
-        Vec2f film[kPacketSize];
-        for (int i = 0; i < count; ++i) {
-            const Vec2f jitter = sampler.sample2D(static_cast<uint32_t>(first + i), 0);
-            film[i] = {static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y};
-            rays[i] = ctx.camera.generateRay(film[i].x, film[i].y);
+        alignas(64) float filmX[kPacketSize], filmY[kPacketSize];
+        // Every lane computed (the unused ones left out of the trace), each loop branch-free, so
+        // that they run in SIMD.
+        if (sampler.type() == SamplerType::Independent) {
+            for (int i = 0; i < kPacketSize; ++i) {
+                const Vec2f jitter = sampler.independent2D(static_cast<uint32_t>(first + i), 0);
+                filmX[i] = static_cast<float>(x) + jitter.x;
+                filmY[i] = static_cast<float>(y) + jitter.y;
+            }
+        } else {
+            for (int i = 0; i < kPacketSize; ++i) {
+                const Vec2f jitter = sampler.sample2D(static_cast<uint32_t>(first + i), 0);
+                filmX[i] = static_cast<float>(x) + jitter.x;
+                filmY[i] = static_cast<float>(y) + jitter.y;
+            }
         }
+        const Vec3f origin = ctx.camera.origin();
+        const float nearClip = ctx.camera.nearClip(), farClip = ctx.camera.farClip();
+        for (int i = 0; i < kPacketSize; ++i) {
+            float length;
+            const Vec3f d = ctx.camera.direction(filmX[i], filmY[i], length);
+            camera.set(i, i < count, origin, d, nearClip * length, farClip * length);
+        }
+        Ray rays[kPacketSize];
         Hit hits[kPacketSize];
         bool found[kPacketSize];
-        ctx.embree.intersect16(rays, count, hits, found);
+        ctx.embree.intersect(camera, count, rays, hits, found);
         counts.camera += static_cast<uint64_t>(count);
         Color radiance[kPacketSize];
         ctx.integrator.LiPacket({count, static_cast<uint32_t>(first), rays, hits, found}, sampler, radiance, counts);
         if (block.isBox()) {
             block.putBox(x, y, radiance, count);  // a box filter keeps every sample in its own pixel
         } else {
-            for (int i = 0; i < count; ++i) block.put(film[i].x, film[i].y, radiance[i]);
+            for (int i = 0; i < count; ++i) block.put(filmX[i], filmY[i], radiance[i]);
         }
     }
 }

@@ -102,15 +102,21 @@ public:
     /// The current sample's index (startSample's).
     uint32_t index() const { return m_index; }
 
+    SamplerType type() const { return m_type; }
+
+    /// sample2D of the independent sampler: one 64-bit hash per (sample, pair), 24 bits for each
+    /// coordinate. Branch-free, so a packet's lanes compute it in SIMD.
+    Vec2f independent2D(uint32_t index, uint32_t pair) const {
+        using namespace detail;
+        const uint64_t z = mix64(m_key64 + index * 0xD1B54A32D192ED03ULL + pair * 0xABC98388FB8FAC03ULL);
+        return {toUnit(static_cast<uint32_t>(z >> 32)), toUnit(static_cast<uint32_t>(z))};
+    }
+
     /// The value of 2D pair `pair` of sample `index`, without moving the sampler: the samples of a
     /// packet each read their own.
     Vec2f sample2D(uint32_t index, uint32_t pair) const {
         using namespace detail;
-        if (m_type == SamplerType::Independent) {
-            // One 64-bit hash per (sample, pair): 24 bits for each coordinate.
-            const uint64_t z = mix64(m_key64 + index * 0xD1B54A32D192ED03ULL + pair * 0xABC98388FB8FAC03ULL);
-            return {toUnit(static_cast<uint32_t>(z >> 32)), toUnit(static_cast<uint32_t>(z))};
-        }
+        if (m_type == SamplerType::Independent) return independent2D(index, pair);
         const uint32_t pairSeed = hash(m_key, pair);
         // Shuffle the order of the points, then scramble each coordinate (Burley 2020). The first
         // Sobol dimension is the bit reversal of the index, so its scramble needs no reversal in.
