@@ -22,7 +22,7 @@ namespace mcval {
 
 namespace {
 
-constexpr int kTileSize = 32;
+constexpr int kTileSize = 16;
 
 struct Tile {
     int x0, y0, width, height;

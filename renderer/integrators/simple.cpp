@@ -21,15 +21,21 @@ struct HitLanes {
     alignas(64) int front[kPacketSize];
 
     explicit HitLanes(const SamplePacket &packet) {
+        // Hits are read only where found (a lane without one may hold anything); the rest are zeros.
         for (int i = 0; i < kPacketSize; ++i) {
-            // One-sided diffuse, as Mitsuba's: black seen from behind the shading normal.
-            const bool on = i < packet.count && packet.found[i] && dot(packet.hits[i].ns, packet.rays[i].d) < 0.f;
-            const Hit h = on ? packet.hits[i] : Hit{};
+            px[i] = py[i] = pz[i] = nx[i] = ny[i] = nz[i] = gx[i] = gy[i] = gz[i] = floor[i] = 0.f;
+            front[i] = 0;
+        }
+        for (int i = 0; i < packet.count; ++i) {
+            if (!packet.found[i]) continue;
+            const Hit &h = packet.hits[i];
             px[i] = h.p.x; py[i] = h.p.y; pz[i] = h.p.z;
             nx[i] = h.ns.x; ny[i] = h.ns.y; nz[i] = h.ns.z;
             gx[i] = h.ng.x; gy[i] = h.ng.y; gz[i] = h.ng.z;
             floor[i] = h.offsetFloor;
-            front[i] = on;
+            // One-sided diffuse, as Mitsuba's: black seen from behind the shading normal.
+            const Vec3f &d = packet.rays[i].d;
+            front[i] = h.ns.x * d.x + h.ns.y * d.y + h.ns.z * d.z < 0.f;
         }
     }
 };
