@@ -67,9 +67,11 @@ RaySet collectRays(const SceneDescription &scene, const EmbreeScene &embree, con
     return rays;
 }
 
-/// Seconds to trace every ray of the set in parallel, doing nothing with the answers. Camera rays
-/// go in the renderer's packets of 8 (the samples of one pixel), the others one at a time.
-double traceRaw(const EmbreeScene &embree, const RaySet &rays, int spp) {
+/// Seconds to trace every ray of the set in parallel, doing nothing with the answers, in the
+/// renderer's best mode: camera rays in packets of kPacketSize (the samples of one pixel), the
+/// occlusion rays in packets of kPacketSize as they were made (coherent for simple's shadow rays,
+/// which share a light; incoherent for ao's).
+double traceRaw(const EmbreeScene &embree, const RaySet &rays, int spp, bool coherent) {
     const auto start = std::chrono::steady_clock::now();
     const size_t pixels = rays.closest.size() / static_cast<size_t>(spp);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, 64), [&](const auto &r) {
@@ -79,8 +81,18 @@ double traceRaw(const EmbreeScene &embree, const RaySet &rays, int spp) {
             for (int first = 0; first < spp; first += kPacketSize)
                 embree.intersect16(&rays.closest[p * spp + first], std::min(kPacketSize, spp - first), hits, found);
     });
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.occlusion.size(), 1024), [&](const auto &r) {
-        for (size_t i = r.begin(); i != r.end(); ++i) embree.occluded(rays.occlusion[i]);
+    const size_t packets = (rays.occlusion.size() + kPacketSize - 1) / kPacketSize;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, packets, 64), [&](const auto &r) {
+        OcclusionPacket packet;
+        for (size_t p = r.begin(); p != r.end(); ++p) {
+            packet.clear();
+            const size_t first = p * kPacketSize;
+            for (size_t i = first; i < std::min(first + kPacketSize, rays.occlusion.size()); ++i) {
+                const Ray &ray = rays.occlusion[i];
+                packet.set(static_cast<int>(i - first), ray.o, ray.d, ray.tfar);
+            }
+            embree.occluded(packet, coherent);
+        }
     });
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -121,7 +133,7 @@ int main(int argc, char **argv) {
         }
         const RaySet rays = collectRays(scene, embree, name, spp, aoSamples);
         const double rawCount = double(rays.closest.size() + rays.occlusion.size());
-        for (int r = 0; r < repeats; ++r) raw.push_back(rawCount / traceRaw(embree, rays, spp));
+        for (int r = 0; r < repeats; ++r) raw.push_back(rawCount / traceRaw(embree, rays, spp, std::string(name) == "simple"));
         const double o = median(ours), w = median(raw);
         std::printf("%-10s %14.2f %14.2f %8.2f   (%llu rays; raw set %.0f)\n", name, o / 1e6, w / 1e6, o / w,
                     static_cast<unsigned long long>(rayCount), rawCount);
