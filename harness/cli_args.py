@@ -64,8 +64,14 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--engines", nargs="+", default=["mcval", "mitsuba", "mitsuba-scalar"],
                    choices=["mcval", "mitsuba", "mitsuba-scalar"], help="engines to run (default: all three)")
     b.add_argument("--max-spp", type=int, default=256, help="top of the ladder 1, 2, 4, ... (default 256)")
+    b.add_argument("--same-sampler", action="store_true",
+                   help="only the engine comparison: every engine with the independent sampler (by default each "
+                        "also runs its stratified samplers: ours sobol, Mitsuba ldsampler and multijitter)")
     b.add_argument("--runs", type=int, default=3, help="independent runs per step (default 3)")
     b.add_argument("--rays-json", type=Path, help="figures written by build/bench_rays --json, to include")
+    b.add_argument("--throughput-runs", type=int, default=3,
+                   help="timed runs per case of the side-by-side render throughput (highpoly 768², cornell 128²; "
+                        "0 skips it; default 3)")
     b.add_argument("--seed-runs", type=int, default=3,
                    help="runs at the seed document's settings (768x768; 0 skips them; default 3)")
 

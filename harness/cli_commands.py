@@ -42,37 +42,62 @@ def _bench(args, run_dir: Path) -> tuple[bool, dict]:
     # By default the simple and ao cases of our own scenes (the real scenes are validated, not benchmarked).
     cases = [c for c in select_cases(args.scenes)
              if args.scenes or (c.integrator != "normals" and c.group == "synthetic")]
+    from harness.bench.run import SAME_SAMPLER, SAMPLERS
     reference = MitsubaEngine()
-    factories = {"mcval": OurEngine, "mitsuba": lambda: reference, "mitsuba-scalar": lambda: MitsubaEngine("scalar_rgb")}
-    engines = [factories[name]() for name in args.engines]
+    factories = {"mcval": lambda s: OurEngine(sampler=s), "mitsuba": lambda s: MitsubaEngine(sampler=s),
+                 "mitsuba-scalar": lambda s: MitsubaEngine("scalar_rgb", sampler=s)}
+    # Each engine with the same sampler (the engine comparison) and, unless --same-sampler, its stratified
+    # ones (each engine at its best).
+    engines = [factories[name](s) for name in args.engines for s in SAMPLERS[name]
+               if s == SAME_SAMPLER or not args.same_sampler]
     ladder = tuple(2**k for k in range(args.max_spp.bit_length()) if 2**k <= args.max_spp)
     start = time.perf_counter()
     with progress_bar("bench") as progress:
         task = progress.add_task("", total=len(cases) * len(engines) * len(ladder))
         benches = run_bench(cases, engines, reference, args.seed, ladder, args.runs,
                             on_step=lambda m: progress.update(task, advance=1, description=m))
-        seed = seed_comparison(engines[0], args.seed_runs, lambda m: progress.console.print(m)) \
-            if args.seed_runs > 0 and "mcval" in args.engines else None
+        ours = next((e for e in engines if e.name == "mcval"), None)
+        seed = seed_comparison(ours, args.seed_runs, lambda m: progress.console.print(m),
+                               reference if "mitsuba" in args.engines else None) \
+            if args.seed_runs > 0 and ours is not None else None
+        throughput = None
+        if args.throughput_runs > 0 and {"mcval", "mitsuba"} <= set(args.engines):
+            from harness.bench.throughput import CASES, measure
+            throughput = []
+            for case in CASES:
+                progress.console.print(f"throughput: {case[0]}:{case[1]} {case[2]}² {case[3]} spp")
+                throughput.append(measure(*case, runs=args.throughput_runs).to_json())
     rays = ray_rates(args.rays_json)
     meta = {"engines": ", ".join(e.version() for e in engines), "ladder": ladder, "runs per step": args.runs,
             "seconds": round(time.perf_counter() - start, 1)}
-    write_atomic(run_dir / "bench.html", bench_html(benches, rays, seed, meta))
+    write_atomic(run_dir / "bench.html", bench_html(benches, rays, seed, meta, throughput))
     from rich.table import Table
     table = Table(title="Speed against error", header_style="bold")
-    for col in ("scene", "integrator", "efficiency ours/mitsuba", *[f"slope {e.name}" for e in engines]):
+    for col in ("scene", "integrator", "efficiency ours/mitsuba, same sampler", "best against best",
+                *[f"slope {e.label}" for e in engines]):
         table.add_column(col)
     for bch in benches:
         ratio = bch.efficiency_ratio()
-        shown = "below ref. noise" if ratio != ratio else f"[{'green' if ratio >= 2 else 'red'}]{ratio:.2f}[/]"
-        table.add_row(bch.case.scene, bch.case.integrator, shown,
+        shown = "below ref. noise" if ratio != ratio else f"[{'green' if ratio >= 1 else 'red'}]{ratio:.2f}[/]"
+        best = bch.comparison(None)
+        best_text = "below ref. noise" if best["ratio"] != best["ratio"] else \
+            f"{best['ratio']:.2f} ({best['ours']} / {best['reference']})"
+        table.add_row(bch.case.scene, bch.case.integrator, shown, best_text,
                       *[f"{c.fit('spp')[0]:.2f}" for c in bch.curves.values()])
     console.print(table)
-    payload = {"speed": [bch.to_json() for bch in benches], "seed_comparison": seed, "ray_rates": rays}
+    payload = {"speed": [bch.to_json() for bch in benches], "seed_comparison": seed, "ray_rates": rays,
+               "throughput": throughput}
+    for t in throughput or []:
+        console.print(f"throughput {t['scene']}:{t['integrator']} {t['resolution']}² {t['spp']} spp "
+                      f"({t['sampler']}): ours {t['median_seconds']['mcval']:.3f} s, Mitsuba "
+                      f"{t['median_seconds']['mitsuba']:.3f} s, Mitsuba/ours {t['mitsuba_over_ours']:.2f}")
     if rays:
         payload["ray_rate_ratio"] = min(v["ratio"] for v in rays["integrators"].values())
     if seed:
         for name, v in seed.items():
-            console.print(f"seed settings, {name}: ours {v['seconds']:.2f} s (seed document {v['seed_seconds']} s)")
+            mitsuba = f", Mitsuba {v['reference_seconds']:.2f} s" if "reference_seconds" in v else ""
+            console.print(f"seed settings, {name}: ours {v['seconds']:.2f} s{mitsuba} (seed document "
+                          f"{v['seed_seconds']} s)")
     console.print(f"Page: {run_dir / 'bench.html'}")
     return True, payload
 

@@ -34,10 +34,32 @@ def test_fits_efficiency_and_time_to_target():
 def test_bench_command_writes_speed_entries(tmp_path):
     from harness.cli import main
     assert main(["bench", "--only", "cornell:simple", "--engines", "mcval", "mitsuba", "--max-spp", "8",
-                 "--runs", "2", "--seed-runs", "0", "--out", str(tmp_path)]) == 0
+                 "--runs", "2", "--seed-runs", "0", "--throughput-runs", "0", "--out", str(tmp_path)]) == 0
     data = json.loads((tmp_path / "bench-latest" / "results.json").read_text())
     (entry,) = data["speed"]
     assert entry["integrator"] == "simple" and entry["scene"] == "cornell"
     assert entry["efficiency_ratio"] > 0
-    assert set(entry["slope"]) == set(entry["seconds"]) == {"mcval", "mitsuba"}
-    assert (tmp_path / "bench-latest" / "bench.html").read_text().count("<img") == 2
+    labels = {"mcval/independent", "mcval/sobol", "mitsuba/independent", "mitsuba/ldsampler", "mitsuba/multijitter"}
+    assert set(entry["slope"]) == set(entry["seconds"]) == labels
+    same = entry["efficiency_ratio_same_sampler"]
+    assert (same["ours"], same["reference"]) == ("mcval/independent", "mitsuba/independent")
+    assert same["ratio"] == entry["efficiency_ratio"]
+    best = entry["efficiency_ratio_best"]
+    assert best["ours"] in labels and best["reference"] in labels and best["ratio"] > 0
+    page = (tmp_path / "bench-latest" / "bench.html").read_text()
+    assert page.count("<img") == 2 and "best against best" in page
+
+
+def test_same_sampler_and_best_against_best_pick_their_curves():
+    def curve(name, c, s):
+        return Curve(name, "render only", [Step(k, [s * k] * 3, [c / k] * 3, [0.1] * 3) for k in (16, 32, 64)], 0.1)
+    from harness.bench.run import CaseBench
+    bench = CaseBench(None, {"mcval/independent": curve("a", 1.0, 0.01),    # efficiency 100
+                             "mcval/sobol": curve("b", 0.25, 0.01),         # 400
+                             "mitsuba/independent": curve("c", 1.0, 0.02),  # 50
+                             "mitsuba/ldsampler": curve("d", 0.5, 0.01),    # 200
+                             "mitsuba/multijitter": curve("e", 1.0, 0.01)}, np.zeros(3))  # 100
+    assert bench.comparison("independent") == pytest.approx(
+        {"ratio": 2.0, "ours": "mcval/independent", "reference": "mitsuba/independent"})
+    assert bench.comparison(None) == pytest.approx({"ratio": 2.0, "ours": "mcval/sobol", "reference": "mitsuba/ldsampler"})
+    assert bench.efficiency_ratio() == pytest.approx(2.0)

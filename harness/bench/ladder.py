@@ -105,6 +105,6 @@ def run_ladder(engine: Engine, case: ImageCase, reference: Reference, seed: int,
                 images[spp] = image
         steps.append(step)
         if on_step:
-            on_step(f"{engine.name} {case.key} {spp} spp")
+            on_step(f"{engine.label or engine.name} {case.key} {spp} spp")
     timing = getattr(engine, "render_timing", "render seconds")
-    return Curve(engine.name, timing, steps, float(first), images)
+    return Curve(engine.label or engine.name, timing, steps, float(first), images)

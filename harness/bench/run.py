@@ -19,20 +19,46 @@ SEED_SETTINGS = {"simple": {"spp": 32, "seed_seconds": 14.5}, "ao": {"spp": 512,
 SEED_RESOLUTION = 768
 
 
+#: The sampler both engines run with for the engine comparison (like for like).
+SAME_SAMPLER = "independent"
+#: The samplers each engine is benchmarked with: its independent one, and its stratified ones.
+SAMPLERS = {"mcval": ("independent", "sobol"), "mitsuba": ("independent", "ldsampler", "multijitter"),
+            "mitsuba-scalar": ("independent",)}
+
+
 @dataclass
 class CaseBench:
+    """One case's curves, keyed by engine label ("mcval/sobol", "mitsuba/independent", or a bare engine name
+    when the scene's own sampler was used)."""
+
     case: ImageCase
     curves: dict[str, Curve]
     reference_mean: np.ndarray
 
+    def _pick(self, engine: str, sampler: str | None) -> str | None:
+        """The label of `engine` with `sampler` (None: its most efficient curve), if it was run."""
+        mine = [k for k in self.curves if k.split("/")[0] == engine]
+        if sampler is not None:
+            mine = [k for k in mine if k.split("/")[-1] == sampler or k == engine]
+        finite = [k for k in mine if self.curves[k].efficiency() == self.curves[k].efficiency()]
+        return max(finite, key=lambda k: self.curves[k].efficiency()) if finite else (mine[0] if mine else None)
+
+    def comparison(self, sampler: str | None, ours: str = "mcval", other: str = "mitsuba") -> dict:
+        """Efficiency ours over `other`: both with `sampler` (the engine comparison), or each with its most
+        efficient sampler (sampler None: what a user gets). Names the curves compared."""
+        a, b = self._pick(ours, sampler), self._pick(other, sampler)
+        ratio = self.curves[a].efficiency() / self.curves[b].efficiency() if a and b else float("nan")
+        return {"ratio": ratio, "ours": a, "reference": b}
+
     def efficiency_ratio(self, ours: str = "mcval", other: str = "mitsuba") -> float:
-        if ours not in self.curves or other not in self.curves:
-            return float("nan")
-        return self.curves[ours].efficiency() / self.curves[other].efficiency()
+        """The like-for-like ratio (both engines with SAME_SAMPLER)."""
+        return self.comparison(SAME_SAMPLER, ours, other)["ratio"]
 
     def to_json(self) -> dict:
         return {"integrator": self.case.integrator, "scene": self.case.scene,
                 "efficiency_ratio": self.efficiency_ratio(),
+                "efficiency_ratio_same_sampler": self.comparison(SAME_SAMPLER),
+                "efficiency_ratio_best": self.comparison(None),
                 "slope": {k: c.fit("spp")[0] for k, c in self.curves.items()},
                 "seconds": {k: float(np.median(c.steps[-1].seconds)) for k, c in self.curves.items()},
                 "efficiency": {k: c.efficiency() for k, c in self.curves.items()},
@@ -49,24 +75,51 @@ def run_bench(cases: list[ImageCase], engines: list[Engine], reference_engine: E
         reference, _ = load_reference(case, reference_engine)
         if reference is None:
             reference = render_reference(case, reference_engine)
-        curves = {e.name: run_ladder(e, case, reference, seed, ladder, runs, on_step) for e in engines}
+        curves = {e.label or e.name: run_ladder(e, case, reference, seed, ladder, runs, on_step) for e in engines}
         out.append(CaseBench(case, curves, reference.summary.pixel.mean))
     return out
 
 
-def seed_comparison(ours: Engine, runs: int = 3, on_step: Callable[[str], None] | None = None) -> dict:
-    """Our render seconds on the high-poly scene at the seed document's settings (medians of `runs`)."""
+#: Samples per pixel of one Mitsuba render at the seed settings: its wavefront holds every sample of a
+#: render at once, and 768^2 x 512 of them would not fit in memory, so ao's 512 are rendered in passes.
+MITSUBA_PASS_SPP = 64
+
+
+def _render_seconds(engine: Engine, scene: str, integrator: str, spp: int, seed: int) -> float:
+    """Render time of `spp` samples per pixel at the seed resolution, in passes of at most MITSUBA_PASS_SPP
+    for Mitsuba (ours renders them at once)."""
+    params = {"res": str(SEED_RESOLUTION)}
+    if engine.name == "mcval":
+        return engine.render(scene, integrator, spp, 1, seed, params).seconds["render"]
+    passes = max(1, spp // MITSUBA_PASS_SPP)
+    return sum(engine.render(scene, integrator, spp // passes, 1, seed * 1000 + k, params).seconds["render"]
+               for k in range(passes))
+
+
+def seed_comparison(ours: Engine, runs: int = 3, on_step: Callable[[str], None] | None = None,
+                    reference: Engine | None = None) -> dict:
+    """Render seconds on the high-poly scene at the seed document's settings (medians of `runs`), ours and,
+    if given, the reference's beside it (after one warm-up render, which JIT-compiles an llvm variant)."""
     scene = str(SCENES_DIR / "highpoly.xml")
     out = {}
     for integrator, setting in SEED_SETTINGS.items():
-        times = []
-        for run in range(runs):
-            result = ours.render(scene, integrator, setting["spp"], 1, run, {"res": str(SEED_RESOLUTION)})
-            times.append(result.seconds["render"])
-            if on_step:
-                on_step(f"seed settings: {integrator} run {run + 1}/{runs}: {times[-1]:.1f} s")
-        out[integrator] = {"spp": setting["spp"], "resolution": SEED_RESOLUTION, "seconds": float(np.median(times)),
-                           "runs": times, "seed_seconds": setting["seed_seconds"]}
+        entry = {"spp": setting["spp"], "resolution": SEED_RESOLUTION, "seed_seconds": setting["seed_seconds"]}
+        for engine in [ours] + ([reference] if reference else []):
+            if engine is reference:
+                engine.render(scene, integrator, min(setting["spp"], MITSUBA_PASS_SPP), 1, 0,
+                              {"res": str(SEED_RESOLUTION)})  # warm-up
+            times = []
+            for run in range(runs):
+                times.append(_render_seconds(engine, scene, integrator, setting["spp"], run))
+                if on_step:
+                    on_step(f"seed settings: {engine.label or engine.name} {integrator} run {run + 1}/{runs}: "
+                            f"{times[-1]:.1f} s")
+            if engine is ours:
+                entry.update(seconds=float(np.median(times)), runs=times)
+            else:
+                entry.update(reference_seconds=float(np.median(times)), reference_runs=times,
+                             reference=engine.version())
+        out[integrator] = entry
     return out
 
 

@@ -64,6 +64,8 @@ class Engine(ABC):
 
     #: Short name used in reports and results.json.
     name: str
+    #: The name with the sampler it was told to use, if any ("mcval/sobol"): a benchmark's curve label.
+    label: str = ""
 
     def render(self, scene: str, integrator: str, spp: int, batches: int, seed: int,
                params: dict[str, str] | None = None) -> RenderResult:

@@ -43,9 +43,11 @@ class MitsubaEngine(Engine):
     render_timing = ("render only (scene load and BVH build are timed apart); with an llvm variant the first "
                      "render of each sample count also JIT-compiles, so medians of several runs are warm")
 
-    def __init__(self, variant: str = DEFAULT_VARIANT) -> None:
+    def __init__(self, variant: str = DEFAULT_VARIANT, sampler: str | None = None) -> None:
         self.variant = variant
         self.name = "mitsuba" if variant == DEFAULT_VARIANT else f"mitsuba-{variant.split('_')[0]}"
+        self.sampler = sampler  # None: the scene's (mapped); else a Mitsuba sampler plugin name
+        self.label = self.name if sampler is None else f"{self.name}/{sampler}"
         self._mi = load_mitsuba(variant)
         import drjit
         self._dr = drjit
@@ -100,7 +102,7 @@ class MitsubaEngine(Engine):
         JIT compilation of an llvm variant), "render" (all batches), "total"."""
         mi = self._activate()
         start = time.perf_counter()
-        loaded = load_scene(scene, integrator, **(params or {}))
+        loaded = load_scene(scene, integrator, sampler=self.sampler, **(params or {}))
         seconds = {"load": time.perf_counter() - start}
         images = []
         render_start = time.perf_counter()

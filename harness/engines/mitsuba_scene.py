@@ -20,8 +20,9 @@ from harness.integrators import entry
 MITSUBA_SAMPLER = {"sobol": "ldsampler"}
 
 
-def mitsuba_xml(text: str, integrator: str) -> str:
-    """The scene text with our `integrator` mapped onto Mitsuba's plugins."""
+def mitsuba_xml(text: str, integrator: str, sampler: str | None = None) -> str:
+    """The scene text with our `integrator` mapped onto Mitsuba's plugins; `sampler`, if given, is the
+    Mitsuba sampler plugin to use instead of the scene's."""
     mapping = entry(integrator).mitsuba
     root = ET.fromstring(text)
     old = [e for e in root if e.tag == "integrator"]
@@ -40,9 +41,13 @@ def mitsuba_xml(text: str, integrator: str) -> str:
         for shape in root.iter("shape"):
             for e in [e for e in shape if e.tag == "emitter" and e.get("type") == "area"]:
                 shape.remove(e)
+    chosen = sampler
     for sampler in root.iter("sampler"):
         if sampler.get("type") in MITSUBA_SAMPLER:
             sampler.set("type", MITSUBA_SAMPLER[sampler.get("type")])
+    if chosen:
+        for element in root.iter("sampler"):
+            element.set("type", chosen)
     for film in root.iter("film"):
         for e in [e for e in film if e.get("name") == "component_format"]:
             film.remove(e)  # a file's own component_format would be a duplicate property
@@ -50,7 +55,7 @@ def mitsuba_xml(text: str, integrator: str) -> str:
     return ET.tostring(root, encoding="unicode")
 
 
-def load_scene(path: str | Path, integrator: str, **params):
+def load_scene(path: str | Path, integrator: str, sampler: str | None = None, **params):
     """Load our scene file in Mitsuba (variant already set) with `integrator` mapped.
 
     The translated file is written beside the original, so relative mesh paths
@@ -60,7 +65,7 @@ def load_scene(path: str | Path, integrator: str, **params):
 
     path = Path(path)
     tmp = path.with_name(f".tmp_{path.stem}_{integrator}_{os.getpid()}.xml")
-    tmp.write_text(mitsuba_xml(path.read_text(), integrator))
+    tmp.write_text(mitsuba_xml(path.read_text(), integrator, sampler))
     try:
         return mi.load_file(str(tmp), optimize=False, **{k: str(v) for k, v in params.items()})
     finally:

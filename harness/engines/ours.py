@@ -30,10 +30,13 @@ class OurEngine(Engine):
     name = "mcval"
     render_timing = "render only (scene load and BVH build are timed apart)"
 
-    def __init__(self, binary: str | Path | None = None, timeout: float | None = None) -> None:
+    def __init__(self, binary: str | Path | None = None, timeout: float | None = None,
+                 sampler: str | None = None) -> None:
         self._m = _load_module()
         self.binary = binary
         self.timeout = timeout
+        self.sampler = sampler  # None: the scene's; else "independent" or "sobol" (render --sampler)
+        self.label = self.name if sampler is None else f"{self.name}/{sampler}"
 
     def version(self) -> str:
         return f"this repository's renderer (images: {self.binary or render_binary()} as a child process; " \
@@ -65,6 +68,6 @@ class OurEngine(Engine):
         Raises RenderFailed if the child crashes, is killed, times out, exits non-zero or writes no image."""
         start = time.perf_counter()
         out = run_render(str(scene), integrator, spp, batches, seed, {k: str(v) for k, v in (params or {}).items()},
-                         self.timeout, self.binary)
+                         self.timeout, self.binary, self.sampler)
         seconds = {**out.seconds, "total": time.perf_counter() - start}
         return RenderResult(self.name, str(scene), integrator, spp, seed, out.batches, seconds, out.sampler)

@@ -107,8 +107,8 @@ def read_render_exr(path: Path, batches: int) -> ChildRender:
 
 def run_render(scene: str, integrator: str, spp: int, batches: int, seed: int,
                params: dict[str, str] | None = None, timeout: float | None = None,
-               binary: str | Path | None = None) -> ChildRender:
-    """Run `render SCENE --integrator I --spp N --batches K --seed S -D name=value ... -q -o TMP.exr` in a
+               binary: str | Path | None = None, sampler: str | None = None) -> ChildRender:
+    """Run `render SCENE --integrator I --spp N --batches K --seed S [--sampler X] -D name=value ... -q -o TMP.exr` in a
     temporary folder (deleted afterwards) and read the EXR. `timeout` in seconds (default:
     `default_timeout`); `binary` defaults to `render_binary()`. Raises RenderFailed on a crash, a kill,
     a timeout, a non-zero exit or a missing image; RuntimeError if the binary does not exist."""
@@ -122,6 +122,8 @@ def run_render(scene: str, integrator: str, spp: int, batches: int, seed: int,
         out, log = Path(tmp) / "render.exr", Path(tmp) / "output.txt"
         command = [str(binary), str(Path(scene).resolve()), "--integrator", integrator, "--spp", str(spp),
                    "--batches", str(batches), "--seed", str(seed)]
+        if sampler:
+            command += ["--sampler", sampler]
         for name, value in (params or {}).items():
             command += ["-D", f"{name}={value}"]
         command += ["-q", "-o", str(out)]

@@ -13,6 +13,14 @@ from harness.bench.run import CaseBench  # noqa: E402
 from harness.report.image_plots import display  # noqa: E402
 
 COLORS = {"mcval": "tab:blue", "mitsuba": "tab:orange", "mitsuba-scalar": "tab:green"}
+#: Line style per sampler: independent solid, stratified ones dashed or dotted.
+STYLES = {"independent": "o-", "sobol": "s--", "ldsampler": "s--", "multijitter": "^:"}
+
+
+def _look(label: str) -> tuple[str | None, str]:
+    """Colour by engine, line style by sampler, for a curve label "engine/sampler"."""
+    engine, _, sampler = label.partition("/")
+    return COLORS.get(engine), STYLES.get(sampler, "o-")
 
 
 def _png(fig) -> bytes:
@@ -30,12 +38,12 @@ def convergence_png(bench: CaseBench) -> bytes:
         sec = np.array([np.median(s.seconds) for s in curve.steps])
         err = np.array([s.relmse for s in curve.steps])
         med = np.median(err, axis=1)
-        color = COLORS.get(name, None)
+        color, style = _look(name)
         slope = curve.fit("spp")[0]
         for ax, x in ((axes[0], spp), (axes[1], sec)):
             ax.fill_between(x, np.clip(err.min(axis=1), 1e-12, None), np.clip(err.max(axis=1), 1e-12, None),
                             color=color, alpha=0.2)
-            ax.plot(x, np.clip(med, 1e-12, None), "o-", color=color, label=f"{name} (slope {slope:.2f})")
+            ax.plot(x, np.clip(med, 1e-12, None), style, color=color, label=f"{name} (slope {slope:.2f})")
     axes[0].set_xlabel("samples per pixel")
     axes[1].set_xlabel("render seconds (median of runs)")
     for ax in axes:
@@ -50,7 +58,7 @@ def convergence_png(bench: CaseBench) -> bytes:
 
 def equal_time_png(bench: CaseBench) -> bytes:
     """Each engine's image at the ladder step closest to our renderer's time at 64 spp (or its nearest step)."""
-    ours = bench.curves.get("mcval")
+    ours = bench.curves.get("mcval/independent") or bench.curves.get("mcval")
     budget = None
     if ours:
         step = min(ours.steps, key=lambda s: abs(np.log2(s.spp / 64)))
