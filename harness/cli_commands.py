@@ -53,7 +53,8 @@ def _bench(args, run_dir: Path) -> tuple[bool, dict]:
     ladder = tuple(2**k for k in range(args.max_spp.bit_length()) if 2**k <= args.max_spp)
     start = time.perf_counter()
     with progress_bar("bench") as progress:
-        task = progress.add_task("", total=len(cases) * len(engines) * len(ladder))
+        steps = sum(e.renders_exactly(spp) for e in engines for spp in ladder)
+        task = progress.add_task("", total=len(cases) * steps)
         benches = run_bench(cases, engines, reference, args.seed, ladder, args.runs,
                             on_step=lambda m: progress.update(task, advance=1, description=m))
         ours = next((e for e in engines if e.name == "mcval"), None)

@@ -67,6 +67,10 @@ class Engine(ABC):
     #: The name with the sampler it was told to use, if any ("mcval/sobol"): a benchmark's curve label.
     label: str = ""
 
+    def renders_exactly(self, spp: int) -> bool:
+        """Whether a render asked for `spp` samples per pixel takes exactly that many (a sampler may round)."""
+        return True
+
     def render(self, scene: str, integrator: str, spp: int, batches: int, seed: int,
                params: dict[str, str] | None = None) -> RenderResult:
         """Render `scene` with our integrator `integrator` (an entry of harness/integrators/), `batches`

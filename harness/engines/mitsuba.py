@@ -52,6 +52,10 @@ class MitsubaEngine(Engine):
         import drjit
         self._dr = drjit
 
+    def renders_exactly(self, spp: int) -> bool:
+        """Mitsuba's ldsampler rounds a sample count up to a power of 4 (a square power of two)."""
+        return self.sampler != "ldsampler" or (spp & (spp - 1) == 0 and spp.bit_length() % 2 == 1)
+
     def version(self) -> str:
         return f"mitsuba {self._mi.__version__} ({self.variant}), drjit {self._dr.__version__}"
 
