@@ -10,10 +10,6 @@
 
 namespace mcval {
 
-/// Rays traced together as one Embree packet: the samples of a pixel, or the shadow rays they
-/// spawn. 16 is AVX-512's width; Embree splits a packet on narrower machines.
-constexpr int kPacketSize = 16;
-
 /// Up to kPacketSize occlusion rays in Embree's SoA layout, written lane by lane where they are made
 /// (no Ray structs copied in between: partial writes read back whole stall the store buffer).
 struct OcclusionPacket {

@@ -3,10 +3,18 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hot.h"
+#include "scene_limits.h"
+
 namespace mcval {
 
 ImageBlock::ImageBlock(int x0, int y0, int width, int height, const FilterSpec &filter)
     : m_filter(filter), m_radius(filter.radius()) {
+    static_assert(kMaxTaps >= 2 * 4 * kMaxFilterStddev + 2, "a gaussian's taps must fit wxs in put()");
+    if (filter.type == FilterSpec::Type::Gaussian) {  // the same expressions as FilterSpec::eval
+        m_alpha = -1.f / (2.f * filter.stddev * filter.stddev);
+        m_edge = std::exp(m_alpha * m_radius * m_radius);
+    }
     const int border = static_cast<int>(std::ceil(m_radius - 0.5f));
     m_x0 = x0 - border;
     m_y0 = y0 - border;
@@ -15,17 +23,20 @@ ImageBlock::ImageBlock(int x0, int y0, int width, int height, const FilterSpec &
     m_data.assign(static_cast<size_t>(kChannels) * m_width * m_height, 0.0);
 }
 
-void ImageBlock::put(float x, float y, const Color &L) {
+MCVAL_HOT void ImageBlock::put(float x, float y, const Color &L) {
     // Pixel (i, j) has its centre at (i + 0.5, j + 0.5), as in Mitsuba.
     const int ilo = std::max(static_cast<int>(std::ceil(x - 0.5f - m_radius)), m_x0);
     const int ihi = std::min(static_cast<int>(std::floor(x - 0.5f + m_radius)), m_x0 + m_width - 1);
     const int jlo = std::max(static_cast<int>(std::ceil(y - 0.5f - m_radius)), m_y0);
     const int jhi = std::min(static_cast<int>(std::floor(y - 0.5f + m_radius)), m_y0 + m_height - 1);
+    // The separable filter's weights along each axis, once per sample rather than once per pixel.
+    float wxs[kMaxTaps];
+    for (int i = ilo; i <= ihi; ++i) wxs[i - ilo] = weight(static_cast<float>(i) + 0.5f - x);
     for (int j = jlo; j <= jhi; ++j) {
-        const float wy = m_filter.eval(static_cast<float>(j) + 0.5f - y);
+        const float wy = weight(static_cast<float>(j) + 0.5f - y);
         if (wy == 0.f) continue;
         for (int i = ilo; i <= ihi; ++i) {
-            const double w = static_cast<double>(wy) * m_filter.eval(static_cast<float>(i) + 0.5f - x);
+            const double w = static_cast<double>(wy) * wxs[i - ilo];
             if (w == 0.0) continue;
             double *s = &m_data[kChannels * ((j - m_y0) * m_width + (i - m_x0))];
             const double w2 = w * w;

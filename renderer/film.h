@@ -1,6 +1,8 @@
 // Splatting samples through the reconstruction filter, and developing mean and variance.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "scene.h"
@@ -28,10 +30,19 @@ public:
     const double *sums(int i, int j) const { return &m_data[kChannels * (j * m_width + i)]; }
 
     static constexpr int kChannels = 11;
+    /// Pixels a sample reaches along one axis: 2 x the widest filter radius (4 x kMaxFilterStddev) + 1.
+    static constexpr int kMaxTaps = 2 * 16 + 2;
 
 private:
+    /// The filter's weight at offset x (FilterSpec::eval, with its constants computed once).
+    float weight(float x) const {
+        if (m_filter.type == FilterSpec::Type::Box) return std::abs(x) <= 0.5f ? 1.f : 0.f;
+        return std::max(0.f, std::exp(m_alpha * x * x) - m_edge);
+    }
+
     FilterSpec m_filter;
     float m_radius;
+    float m_alpha = 0.f, m_edge = 0.f;  ///< gaussian: -1 / (2 stddev^2), and its value at the radius
     int m_x0, m_y0, m_width, m_height;
     std::vector<double> m_data;
 };

@@ -11,6 +11,10 @@
 
 namespace mcval {
 
+/// Rays traced together as one Embree packet: the samples of a pixel, or the shadow rays they
+/// spawn. 16 is AVX-512's width; Embree splits a packet on narrower machines.
+constexpr int kPacketSize = 16;
+
 /// A ray o + t d for t in [tnear, tfar]; d need not be unit length.
 struct Ray {
     Vec3f o, d;
