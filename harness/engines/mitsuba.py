@@ -48,13 +48,29 @@ class MitsubaEngine(Engine):
         self.name = "mitsuba" if variant == DEFAULT_VARIANT else f"mitsuba-{variant.split('_')[0]}"
         self.sampler = sampler  # None: the scene's (mapped); else a Mitsuba sampler plugin name
         self.label = self.name if sampler is None else f"{self.name}/{sampler}"
+        self._exact: dict[tuple[str, int], bool] = {}
         self._mi = load_mitsuba(variant)
         import drjit
         self._dr = drjit
 
     def renders_exactly(self, spp: int) -> bool:
-        """Mitsuba's ldsampler rounds a sample count up to a power of 4 (a square power of two)."""
-        return self.sampler != "ldsampler" or (spp & (spp - 1) == 0 and spp.bit_length() % 2 == 1)
+        """Whether the sampler keeps `spp` as asked. Several round it: ldsampler up to a power of 4,
+        multijitter to a near-square grid (32 -> 35), stratified and orthogonal to squares. Asked of the
+        plugin itself, so a new sampler or a new Mitsuba needs no table here."""
+        if self.sampler is None:
+            return True
+        if (self.sampler, spp) not in self._exact:
+            mi = self._activate()
+            logger = mi.logger()
+            level = logger.log_level()
+            logger.set_log_level(mi.LogLevel.Error)  # rounding is what is asked here, not worth a warning
+            try:
+                probe = mi.load_dict({"type": self.sampler})
+                probe.set_sample_count(spp)
+            finally:
+                logger.set_log_level(level)
+            self._exact[(self.sampler, spp)] = probe.sample_count() == spp
+        return self._exact[(self.sampler, spp)]
 
     def version(self) -> str:
         return f"mitsuba {self._mi.__version__} ({self.variant}), drjit {self._dr.__version__}"

@@ -1,0 +1,15 @@
+"""The bench's sampler bookkeeping: which ladder steps a Mitsuba sampler renders exactly."""
+import pytest
+
+
+@pytest.mark.parametrize("sampler, exact, rounded", [
+    ("independent", (1, 2, 32, 128), ()),
+    ("ldsampler", (4, 16, 64, 256), (1, 2, 8, 32, 128)),  # 1 -> 4
+    ("multijitter", (1, 2, 4, 8, 16, 64, 256), (32, 128)),  # 32 -> a 5 x 7 grid of 35
+])
+def test_mitsuba_renders_exactly_what_its_sampler_keeps(sampler, exact, rounded):
+    from harness.engines.mitsuba import MitsubaEngine
+    engine = MitsubaEngine(sampler=sampler)
+    assert all(engine.renders_exactly(n) for n in exact)
+    assert not any(engine.renders_exactly(n) for n in rounded)
+    assert MitsubaEngine().renders_exactly(32)  # the scene's own sampler: nothing asked
