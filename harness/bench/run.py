@@ -24,6 +24,9 @@ SAME_SAMPLER = "independent"
 #: The samplers each engine is benchmarked with: its independent one, and its stratified ones.
 SAMPLERS = {"mcval": ("independent", "sobol"), "mitsuba": ("independent", "ldsampler", "multijitter"),
             "mitsuba-scalar": ("independent",)}
+#: The samplers each engine's best is chosen from (by measured efficiency on the case): its stratified ones.
+#: An engine with none of them run falls back on its best curve of any sampler.
+BEST_SAMPLERS = {"mcval": ("sobol",), "mitsuba": ("ldsampler", "multijitter")}
 
 
 @dataclass
@@ -36,16 +39,18 @@ class CaseBench:
     reference_mean: np.ndarray
 
     def _pick(self, engine: str, sampler: str | None) -> str | None:
-        """The label of `engine` with `sampler` (None: its most efficient curve), if it was run."""
+        """The label of `engine` with `sampler` (None: its most efficient of BEST_SAMPLERS), if it was run."""
         mine = [k for k in self.curves if k.split("/")[0] == engine]
         if sampler is not None:
             mine = [k for k in mine if k.split("/")[-1] == sampler or k == engine]
+        else:
+            mine = [k for k in mine if k.split("/")[-1] in BEST_SAMPLERS.get(engine, ())] or mine
         finite = [k for k in mine if self.curves[k].efficiency() == self.curves[k].efficiency()]
         return max(finite, key=lambda k: self.curves[k].efficiency()) if finite else (mine[0] if mine else None)
 
     def comparison(self, sampler: str | None, ours: str = "mcval", other: str = "mitsuba") -> dict:
         """Efficiency ours over `other`: both with `sampler` (the engine comparison), or each with its most
-        efficient sampler (sampler None: what a user gets). Names the curves compared."""
+        efficient stratified sampler (sampler None: what a user gets). Names the curves compared."""
         a, b = self._pick(ours, sampler), self._pick(other, sampler)
         ratio = self.curves[a].efficiency() / self.curves[b].efficiency() if a and b else float("nan")
         return {"ratio": ratio, "ours": a, "reference": b}

@@ -82,8 +82,8 @@ def bench_html(benches: list[CaseBench], rays: dict | None, seed: dict | None, m
 <p>relMSE is measured against the stored Mitsuba reference with the reference's own variance subtracted.
 Efficiency is 1 / (relMSE × seconds), the median over steps of 16 spp and more. Each engine runs with each of its
 samplers (curves labelled engine/sampler). "Same sampler" is ours over Mitsuba llvm_ad_rgb, both with independent
-samples: the engine comparison. "Best against best" pairs each engine's most efficient sampler (ours: independent
-or Owen-scrambled Sobol; Mitsuba: independent, ldsampler or multijitter): what a user gets, named in the cell.
+samples: the engine comparison. "Best against best" pairs each engine's most efficient stratified sampler on the
+case (ours: Owen-scrambled Sobol; Mitsuba: ldsampler or multijitter): what a user gets, named in the cell.
 Slopes near −1 mean an unbiased estimator converging at the usual rate; steeper ones come from stratified
 sampling; flatter ones are a finding (a bias against the reference). "Below ref. noise": the error fell below
 what the reference's own variance lets us measure at 16 spp and more.</p>
