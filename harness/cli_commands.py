@@ -68,10 +68,15 @@ def _bench(args, run_dir: Path) -> tuple[bool, dict]:
             for case in CASES:
                 progress.console.print(f"throughput: {case[0]}:{case[1]} {case[2]}² {case[3]} spp")
                 throughput.append(measure(*case, runs=args.throughput_runs).to_json())
+        slopes = None
+        if "mcval" in args.engines:
+            from harness.bench.sampler_slopes import sampler_slopes
+            progress.console.print("sampler slopes: cornell simple and ao, 32², our samplers")
+            slopes = sampler_slopes()
     rays = ray_rates(args.rays_json)
     meta = {"engines": ", ".join(e.version() for e in engines), "ladder": ladder, "runs per step": args.runs,
             "seconds": round(time.perf_counter() - start, 1)}
-    write_atomic(run_dir / "bench.html", bench_html(benches, rays, seed, meta, throughput))
+    write_atomic(run_dir / "bench.html", bench_html(benches, rays, seed, meta, throughput, slopes))
     from rich.table import Table
     table = Table(title="Speed against error", header_style="bold")
     for col in ("scene", "integrator", "efficiency ours/mitsuba, same sampler", "best against best",
@@ -87,11 +92,13 @@ def _bench(args, run_dir: Path) -> tuple[bool, dict]:
                       *[f"{c.fit('spp')[0]:.2f}" for c in bch.curves.values()])
     console.print(table)
     payload = {"speed": [bch.to_json() for bch in benches], "seed_comparison": seed, "ray_rates": rays,
-               "throughput": throughput}
+               "throughput": throughput, "sampler_slopes": slopes}
     for t in throughput or []:
         console.print(f"throughput {t['scene']}:{t['integrator']} {t['resolution']}² {t['spp']} spp "
                       f"({t['sampler']}): ours {t['median_seconds']['mcval']:.3f} s, Mitsuba "
                       f"{t['median_seconds']['mitsuba']:.3f} s, Mitsuba/ours {t['mitsuba_over_ours']:.2f}")
+    for integrator, by_sampler in (slopes or {}).get("slopes", {}).items():
+        console.print(f"MSE slope on cornell {integrator}: " + ", ".join(f"{k} {v:.2f}" for k, v in by_sampler.items()))
     if rays:
         payload["ray_rate_ratio"] = min(v["ratio"] for v in rays["integrators"].values())
     if seed:

@@ -47,7 +47,9 @@ def test_bench_command_writes_speed_entries(tmp_path):
     best = entry["efficiency_ratio_best"]
     assert best["ours"] in labels and best["reference"] in labels and best["ratio"] > 0
     page = (tmp_path / "bench-latest" / "bench.html").read_text()
-    assert page.count("<img") == 2 and "best against best" in page
+    assert page.count("<img") == 2 and "best against best" in page and "Sampler convergence" in page
+    slopes = data["sampler_slopes"]["slopes"]
+    assert set(slopes) == {"simple", "ao"} and all(set(v) == {"independent", "sobol"} for v in slopes.values())
 
 
 def test_same_sampler_and_best_against_best_pick_their_curves():

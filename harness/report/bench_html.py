@@ -40,8 +40,21 @@ def _throughput_html(throughput: list[dict] | None) -> str:
             f"<th>ours Mrays/s</th><th>Mitsuba Mrays/s</th></tr>{rows}</table>")
 
 
+def _slopes_html(slopes: dict | None) -> str:
+    if not slopes:
+        return "<p>Not measured (our engine was not run).</p>"
+    samplers = list(next(iter(slopes["slopes"].values())))
+    rows = "".join(f"<tr><td>{k}</td>" + "".join(f"<td>{v[s]:.2f}</td>" for s in samplers) + "</tr>"
+                   for k, v in slopes["slopes"].items())
+    return (f"<p>Our samplers on {slopes['scene']} at {slopes['resolution']}², {slopes['spp'][0]} to "
+            f"{slopes['spp'][-1]} spp, MSE against our own {slopes['reference_spp']}-spp image, averaged over "
+            f"{slopes['seeds']} seeds: the slope of log MSE against log spp. Independent samples should give −1 "
+            f"(the test allows −1 ± 0.15); sobol, stratified, steeper than {slopes['expected']['sobol'][2:]}.</p>"
+            "<table><tr><th>integrator</th>" + "".join(f"<th>{s}</th>" for s in samplers) + f"</tr>{rows}</table>")
+
+
 def bench_html(benches: list[CaseBench], rays: dict | None, seed: dict | None, meta: dict,
-               throughput: list[dict] | None = None) -> str:
+               throughput: list[dict] | None = None, slopes: dict | None = None) -> str:
     rows = "".join(
         f"<tr><td><a href='#{b.case.key}'>{b.case.scene}</a></td><td>{b.case.integrator}</td>"
         f"<td class='{'fail' if b.efficiency_ratio() < 1 else 'pass'}'>{_f(b.efficiency_ratio())}</td>"
@@ -88,6 +101,7 @@ Slopes near −1 mean an unbiased estimator converging at the usual rate; steepe
 sampling; flatter ones are a finding (a bias against the reference). "Below ref. noise": the error fell below
 what the reference's own variance lets us measure at 16 spp and more.</p>
 <table><tr><th>scene</th><th>integrator</th><th>efficiency ratio, same sampler</th><th>best against best</th>{head}</tr>{rows}</table>
+<h2>Sampler convergence</h2>{_slopes_html(slopes)}
 <h2>Render throughput, side by side</h2>{_throughput_html(throughput)}
 <h2>Ray throughput</h2>{rays_html}
 {seed_html}
