@@ -2,9 +2,13 @@
 and samples per pixel, render time only (scene load, BVH build and Mitsuba's JIT compilation excluded: one
 warm-up render each first), medians of several runs. This separates per-sample cost from convergence.
 
-Rays per second count the rays our integrator traced (camera plus shadow or occlusion rays); Mitsuba's
-`direct` traces the same number for these integrators (one emitter sample per light, one BSDF-free
-occlusion ray), so the same count is used for both.
+Rays per second divide the same count for both engines: the rays our integrator traced (camera rays plus the
+shadow or occlusion rays of front-facing hits), i.e. the work of our estimate. Mitsuba's `direct` traces about as
+many for simple (one emitter sample, no BSDF sample), but for ao it also traces a BSDF-sampled ray per hit (its
+MIS), so its own count there is up to 1.5 times this one.
+
+Run alone: `python -m harness.bench.throughput [runs]` prints the table (the renderer's Python module must be on
+PYTHONPATH, as `make build` puts it in build/python).
 """
 from __future__ import annotations
 
@@ -14,7 +18,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from harness.images.suite import SCENES_DIR
-from harness.engines.mitsuba_scene import load_scene
+from harness.engines.mitsuba import load_mitsuba
+from harness.engines.mitsuba_scene import MITSUBA_SAMPLER, load_scene
+from harness.engines.ours import _load_module
 
 #: (scene, integrator, resolution, spp): the issue's four cases.
 CASES = (("highpoly", "simple", 768, 32), ("highpoly", "ao", 768, 16),
@@ -44,13 +50,12 @@ class Throughput:
                 "sampler": self.sampler, "seconds": self.seconds, "rays": self.rays,
                 "median_seconds": {e: self.median(e) for e in self.seconds},
                 "samples_per_second": {e: samples / self.median(e) for e in self.seconds},
-                "rays_per_second": {e: self.rays / self.median(e) for e in self.seconds},
+                "rays_per_second": {e: self.rays / self.median(e) for e in self.seconds}, "ray_count": "ours",
                 "mitsuba_over_ours": self.ratio()}
 
 
 def _ours(scene: str, integrator: str, res: int, spp: int, sampler: str, seed: int) -> tuple[float, int]:
-    import mcval_renderer
-    out = mcval_renderer.render(scene, spp=spp, seed=seed, integrator=integrator, params={"res": str(res)},
+    out = _load_module().render(scene, spp=spp, seed=seed, integrator=integrator, params={"res": str(res)},
                                 sampler=sampler)
     s = out["stats"]
     return s["render_seconds"], s["camera_rays"] + s["shadow_rays"]
@@ -58,13 +63,12 @@ def _ours(scene: str, integrator: str, res: int, spp: int, sampler: str, seed: i
 
 def measure(scene_name: str, integrator: str, res: int, spp: int, runs: int = 3, sampler: str = "independent",
             variant: str = "llvm_ad_rgb") -> Throughput:
-    """Both engines on one case: a warm-up render each, then `runs` alternating timed renders."""
+    """Both engines on one case with `sampler` (ours; Mitsuba gets its plugin of that name or the closest,
+    MITSUBA_SAMPLER): a warm-up render each, then `runs` alternating timed renders."""
     import drjit as dr
-    import mitsuba as mi
-    if mi.variant() != variant:
-        mi.set_variant(variant)
+    mi = load_mitsuba(variant)  # finds LLVM 19 for an llvm variant
     scene = str(SCENES_DIR / f"{scene_name}.xml")
-    loaded = load_scene(scene, integrator, res=str(res))
+    loaded = load_scene(scene, integrator, sampler=MITSUBA_SAMPLER.get(sampler, sampler), res=str(res))
 
     def mitsuba(seed: int) -> float:
         start = time.perf_counter()
@@ -84,12 +88,22 @@ def measure(scene_name: str, integrator: str, res: int, spp: int, runs: int = 3,
     return Throughput(scene_name, integrator, res, spp, sampler, seconds, rays)
 
 
+def table(results: list[Throughput]) -> str:
+    """The measurements as a plain-text table: seconds, Mitsuba over ours, Msamples/s and Mrays/s of each."""
+    lines = [f"{'case':<30} {'ours s':>7} {'Mitsuba s':>9} {'Mitsuba/ours':>12} {'Msamples/s ours':>15} "
+             f"{'Mitsuba':>8} {'Mrays/s ours':>12} {'Mitsuba':>8}"]
+    for r in results:
+        j = r.to_json()
+        lines.append(f"{f'{r.scene}:{r.integrator} {r.resolution}² {r.spp} spp':<30} {r.median('mcval'):7.3f} "
+                     f"{r.median('mitsuba'):9.3f} {r.ratio():12.2f} "
+                     f"{j['samples_per_second']['mcval'] / 1e6:15.1f} {j['samples_per_second']['mitsuba'] / 1e6:8.1f} "
+                     f"{j['rays_per_second']['mcval'] / 1e6:12.1f} {j['rays_per_second']['mitsuba'] / 1e6:8.1f}")
+    return "\n".join(lines)
+
+
 if __name__ == "__main__":
     import sys
     runs = int(sys.argv[1]) if len(sys.argv) > 1 else 3
-    print(f"{'case':<28} {'ours s':>8} {'mitsuba s':>10} {'mitsuba/ours':>13} {'ours Mrays/s':>13}")
-    for case in CASES:
-        r = measure(*case, runs=runs)
-        print(f"{case[0]}:{case[1]} {case[2]}² {case[3]}spp".ljust(28),
-              f"{r.median('mcval'):8.3f} {r.median('mitsuba'):10.3f} {r.ratio():13.2f} "
-              f"{r.rays / r.median('mcval') / 1e6:13.1f}")
+    print(table([measure(*case, runs=runs) for case in CASES]))
+    print(f"Render time only, after a warm-up render each; medians of {runs} runs; sampler independent; "
+          "rays/s from our ray count for both.")
