@@ -62,8 +62,10 @@ def test_same_sampler_and_best_against_best_pick_their_curves():
                              "mitsuba/ldsampler": curve("d", 0.5, 0.01),    # 200
                              "mitsuba/multijitter": curve("e", 1.0, 0.01)}, np.zeros(3))  # 100
     assert bench.comparison("independent") == pytest.approx(
-        {"ratio": 2.0, "ours": "mcval/independent", "reference": "mitsuba/independent"})
-    assert bench.comparison(None) == pytest.approx({"ratio": 2.0, "ours": "mcval/sobol", "reference": "mitsuba/ldsampler"})
+        {"ratio": 2.0, "ours": "mcval/independent", "reference": "mitsuba/independent",
+         "ours_sampler": "independent", "reference_sampler": "independent"})
+    assert bench.comparison(None) == pytest.approx({"ratio": 2.0, "ours": "mcval/sobol", "reference": "mitsuba/ldsampler",
+                                                    "ours_sampler": "sobol", "reference_sampler": "ldsampler"})
     assert bench.efficiency_ratio() == pytest.approx(2.0)
     # Best against best picks among the stratified samplers, even where independent did better.
     bench.curves["mitsuba/independent"] = curve("c", 0.1, 0.01)  # 1000

@@ -29,6 +29,11 @@ SAMPLERS = {"mcval": ("independent", "sobol"), "mitsuba": ("independent", "ldsam
 BEST_SAMPLERS = {"mcval": ("sobol",), "mitsuba": ("ldsampler", "multijitter")}
 
 
+def _sampler_of(label: str | None) -> str | None:
+    """The sampler in a curve label ("mitsuba/ldsampler" -> "ldsampler"); "scene" for a bare engine name."""
+    return None if label is None else label.split("/", 1)[1] if "/" in label else "scene"
+
+
 @dataclass
 class CaseBench:
     """One case's curves, keyed by engine label ("mcval/sobol", "mitsuba/independent", or a bare engine name
@@ -53,7 +58,8 @@ class CaseBench:
         efficient stratified sampler (sampler None: what a user gets). Names the curves compared."""
         a, b = self._pick(ours, sampler), self._pick(other, sampler)
         ratio = self.curves[a].efficiency() / self.curves[b].efficiency() if a and b else float("nan")
-        return {"ratio": ratio, "ours": a, "reference": b}
+        return {"ratio": ratio, "ours": a, "reference": b,
+                "ours_sampler": _sampler_of(a), "reference_sampler": _sampler_of(b)}
 
     def efficiency_ratio(self, ours: str = "mcval", other: str = "mitsuba") -> float:
         """The like-for-like ratio (both engines with SAME_SAMPLER)."""
