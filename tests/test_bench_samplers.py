@@ -13,3 +13,17 @@ def test_mitsuba_renders_exactly_what_its_sampler_keeps(sampler, exact, rounded)
     assert all(engine.renders_exactly(n) for n in exact)
     assert not any(engine.renders_exactly(n) for n in rounded)
     assert MitsubaEngine().renders_exactly(32)  # the scene's own sampler: nothing asked
+
+
+def test_mitsuba_renders_with_the_sampler_it_is_given(tmp_path):
+    import re
+    from harness.engines.mitsuba import MitsubaEngine
+    from harness.images.suite import SCENES_DIR
+    scene = SCENES_DIR / "plane_point.xml"
+    result = MitsubaEngine(sampler="multijitter").render(str(scene), "simple", 4, 1, 0, {"res": "8"})
+    assert result.sampler == "MultijitterSampler"
+    # A scene that declares no sampler would get Mitsuba's default under the wrong name: refused.
+    bare = tmp_path / "bare.xml"
+    bare.write_text(re.sub(r"<sampler .*?</sampler>", "", scene.read_text(), flags=re.S))
+    with pytest.raises(RuntimeError, match="declares no <sampler>"):
+        MitsubaEngine(sampler="ldsampler").render(str(bare), "simple", 4, 1, 0, {"res": "8"})

@@ -124,6 +124,11 @@ class MitsubaEngine(Engine):
         start = time.perf_counter()
         loaded = load_scene(scene, integrator, sampler=self.sampler, **(params or {}))
         seconds = {"load": time.perf_counter() - start}
+        sampler = loaded.sensors()[0].sampler().class_name()  # e.g. IndependentSampler
+        if self.sampler is not None and sampler != mi.load_dict({"type": self.sampler}).class_name():
+            # A scene without a <sampler> gets Mitsuba's default: the curve would carry the wrong name.
+            raise RuntimeError(f"{scene}: Mitsuba rendered with its {sampler}, not {self.sampler}: the scene's "
+                               "sensor declares no <sampler> to replace")
         images = []
         render_start = time.perf_counter()
         for k in range(batches):
@@ -134,7 +139,6 @@ class MitsubaEngine(Engine):
                 seconds["first"] = time.perf_counter() - batch_start
         seconds["render"] = time.perf_counter() - render_start
         seconds["total"] = time.perf_counter() - start
-        sampler = loaded.sensors()[0].sampler().class_name()  # e.g. IndependentSampler
         return RenderResult(self.name, str(scene), integrator, spp, seed, np.stack(images), seconds, sampler)
 
 
