@@ -70,3 +70,13 @@ def test_same_sampler_and_best_against_best_pick_their_curves():
     # Best against best picks among the stratified samplers, even where independent did better.
     bench.curves["mitsuba/independent"] = curve("c", 0.1, 0.01)  # 1000
     assert bench.comparison(None)["reference"] == "mitsuba/ldsampler"
+
+
+def test_ratios_compare_the_steps_both_curves_rendered():
+    from harness.bench.run import CaseBench
+    # Efficiency growing with spp, as a stratified sampler's does: 1/(relMSE s) = spp^0.5.
+    steps = lambda spps: [Step(k, [0.01 * k] * 3, [1 / (0.01 * k * k**0.5)] * 3, [0.1] * 3) for k in spps]
+    bench = CaseBench(None, {"mcval/sobol": Curve("a", "render only", steps((16, 32, 64)), 0.1),
+                             "mitsuba/multijitter": Curve("b", "render only", steps((16, 64)), 0.1)}, np.zeros(3))
+    # Medians over their own steps would give 32^0.5 / ((16^0.5 + 64^0.5) / 2) = 0.94; the same curve is 1.
+    assert bench.comparison(None)["ratio"] == pytest.approx(1.0)

@@ -61,10 +61,16 @@ class Curve:
         slope, intercept = np.polyfit(np.log(x[ok]), np.log(err[ok]), 1)
         return float(slope), float(intercept)
 
-    def efficiency(self) -> float:
+    def efficiency(self, only: set[int] | None = None) -> float:
         """1 / (relMSE * seconds), the median over steps of 16 spp and more (where the fit is linear;
-        all steps for a shorter ladder)."""
+        all steps for a shorter ladder); `only`: just these steps, so two curves are compared where both
+        rendered (a stratified curve's efficiency grows with spp, and a rounding sampler skips steps)."""
         spp, sec, err = self.arrays()
+        if only is not None:
+            keep = np.isin(spp, sorted(only))
+            spp, sec, err = spp[keep], sec[keep], err[keep]
+        if not len(spp):
+            return float("nan")
         ok = ((spp >= 16) | (spp.max() < 16)) & (err > 0)
         return float(np.median(1.0 / (err[ok] * sec[ok]))) if ok.any() else float("nan")
 

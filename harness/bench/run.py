@@ -55,9 +55,13 @@ class CaseBench:
 
     def comparison(self, sampler: str | None, ours: str = "mcval", other: str = "mitsuba") -> dict:
         """Efficiency ours over `other`: both with `sampler` (the engine comparison), or each with its most
-        efficient stratified sampler (sampler None: what a user gets). Names the curves compared."""
+        efficient stratified sampler (sampler None: what a user gets), over the steps both rendered. Names the
+        curves compared."""
         a, b = self._pick(ours, sampler), self._pick(other, sampler)
-        ratio = self.curves[a].efficiency() / self.curves[b].efficiency() if a and b else float("nan")
+        ratio = float("nan")
+        if a and b:
+            common = {s.spp for s in self.curves[a].steps} & {s.spp for s in self.curves[b].steps}
+            ratio = self.curves[a].efficiency(common) / self.curves[b].efficiency(common)
         return {"ratio": ratio, "ours": a, "reference": b,
                 "ours_sampler": _sampler_of(a), "reference_sampler": _sampler_of(b)}
 

@@ -93,7 +93,8 @@ def bench_html(benches: list[CaseBench], rays: dict | None, seed: dict | None, m
 <html lang="en"><head><meta charset="utf-8"><title>mcval speed against error</title><style>{CSS}</style></head>
 <body><h1>Speed against error</h1><ul class="meta">{meta_html}</ul>
 <p>relMSE is measured against the stored Mitsuba reference with the reference's own variance subtracted.
-Efficiency is 1 / (relMSE × seconds), the median over steps of 16 spp and more. Each engine runs with each of its
+Efficiency is 1 / (relMSE × seconds), the median over steps of 16 spp and more; a ratio takes it over the steps
+both of its curves rendered (a sampler that rounds a sample count skips that step). Each engine runs with each of its
 samplers (curves labelled engine/sampler). "Same sampler" is ours over Mitsuba llvm_ad_rgb, both with independent
 samples: the engine comparison. "Best against best" pairs each engine's most efficient stratified sampler on the
 case (ours: Owen-scrambled Sobol; Mitsuba: ldsampler or multijitter): what a user gets, named in the cell.
