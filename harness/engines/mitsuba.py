@@ -11,6 +11,8 @@ from harness.engines.base import Engine, RenderResult, WarpFunctions
 from harness.engines.mitsuba_scene import load_scene
 
 DEFAULT_VARIANT = "llvm_ad_rgb"
+#: The sampler plugins of Mitsuba 3 an engine can be told to render with.
+SAMPLERS = ("independent", "stratified", "multijitter", "orthogonal", "ldsampler")
 
 
 def _find_llvm() -> str | None:
@@ -44,6 +46,8 @@ class MitsubaEngine(Engine):
                      "render of each sample count also JIT-compiles, so medians of several runs are warm")
 
     def __init__(self, variant: str = DEFAULT_VARIANT, sampler: str | None = None) -> None:
+        if sampler is not None and sampler not in SAMPLERS:
+            raise ValueError(f"unknown Mitsuba sampler {sampler!r}: one of {', '.join(SAMPLERS)}")
         self.variant = variant
         self.name = "mitsuba" if variant == DEFAULT_VARIANT else f"mitsuba-{variant.split('_')[0]}"
         self.sampler = sampler  # None: the scene's (mapped); else a Mitsuba sampler plugin name
