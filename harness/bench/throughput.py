@@ -7,7 +7,7 @@ shadow or occlusion rays of front-facing hits), i.e. the work of our estimate. M
 many for simple (one emitter sample, no BSDF sample), but for ao it also traces a BSDF-sampled ray per hit (its
 MIS), so its own count there is up to 1.5 times this one.
 
-Run alone: `python -m harness.bench.throughput [runs]` prints the table (the renderer's Python module must be on
+Run alone: `python -m harness.bench.throughput [runs] [sampler]` prints the table (the renderer's Python module must be on
 PYTHONPATH, as `make build` puts it in build/python).
 """
 from __future__ import annotations
@@ -36,21 +36,30 @@ class Throughput:
     sampler: str
     seconds: dict[str, list[float]]   # engine -> render seconds per run
     rays: int                         # rays our renderer traced in one render
+    #: Samples per pixel Mitsuba rendered: its sampler may round `spp` up (ldsampler makes 32 into 64).
+    mitsuba_spp: int = 0
+
+    def rendered_spp(self, engine: str) -> int:
+        return self.mitsuba_spp or self.spp if engine == "mitsuba" else self.spp
 
     def median(self, engine: str) -> float:
         return float(np.median(self.seconds[engine]))
 
     def ratio(self) -> float:
-        """Mitsuba's median render time over ours: above 1, ours is faster per sample."""
-        return self.median("mitsuba") / self.median("mcval")
+        """Mitsuba's median render time over ours, per sample (the same as per render unless Mitsuba's sampler
+        rounded the count): above 1, ours is faster per sample."""
+        return (self.median("mitsuba") / self.rendered_spp("mitsuba")) / (self.median("mcval") / self.spp)
 
     def to_json(self) -> dict:
-        samples = self.resolution ** 2 * self.spp
+        samples = {e: self.resolution ** 2 * self.rendered_spp(e) for e in self.seconds}
+        # Rays of the same estimate per sample: ours scaled by the samples each engine took.
+        rays = {e: self.rays * self.rendered_spp(e) / self.spp for e in self.seconds}
         return {"scene": self.scene, "integrator": self.integrator, "resolution": self.resolution, "spp": self.spp,
+                "spp_rendered": {e: self.rendered_spp(e) for e in self.seconds},
                 "sampler": self.sampler, "seconds": self.seconds, "rays": self.rays,
                 "median_seconds": {e: self.median(e) for e in self.seconds},
-                "samples_per_second": {e: samples / self.median(e) for e in self.seconds},
-                "rays_per_second": {e: self.rays / self.median(e) for e in self.seconds}, "ray_count": "ours",
+                "samples_per_second": {e: samples[e] / self.median(e) for e in self.seconds},
+                "rays_per_second": {e: rays[e] / self.median(e) for e in self.seconds}, "ray_count": "ours",
                 "mitsuba_over_ours": self.ratio()}
 
 
@@ -85,7 +94,8 @@ def measure(scene_name: str, integrator: str, res: int, spp: int, runs: int = 3,
         t, rays = _ours(scene, integrator, res, spp, sampler, run)
         seconds["mcval"].append(t)
         seconds["mitsuba"].append(mitsuba(run))
-    return Throughput(scene_name, integrator, res, spp, sampler, seconds, rays)
+    mitsuba_spp = loaded.sensors()[0].sampler().sample_count()  # as the renders set it
+    return Throughput(scene_name, integrator, res, spp, sampler, seconds, rays, mitsuba_spp)
 
 
 def table(results: list[Throughput]) -> str:
@@ -96,6 +106,7 @@ def table(results: list[Throughput]) -> str:
         j = r.to_json()
         lines.append(f"{f'{r.scene}:{r.integrator} {r.resolution}² {r.spp} spp':<30} {r.median('mcval'):7.3f} "
                      f"{r.median('mitsuba'):9.3f} {r.ratio():12.2f} "
+                     + (f"(Mitsuba {r.mitsuba_spp} spp) " if r.mitsuba_spp != r.spp else "") +
                      f"{j['samples_per_second']['mcval'] / 1e6:15.1f} {j['samples_per_second']['mitsuba'] / 1e6:8.1f} "
                      f"{j['rays_per_second']['mcval'] / 1e6:12.1f} {j['rays_per_second']['mitsuba'] / 1e6:8.1f}")
     return "\n".join(lines)
@@ -104,6 +115,8 @@ def table(results: list[Throughput]) -> str:
 if __name__ == "__main__":
     import sys
     runs = int(sys.argv[1]) if len(sys.argv) > 1 else 3
-    print(table([measure(*case, runs=runs) for case in CASES]))
-    print(f"Render time only, after a warm-up render each; medians of {runs} runs; sampler independent; "
-          "rays/s from our ray count for both.")
+    sampler = sys.argv[2] if len(sys.argv) > 2 else "independent"
+    print(table([measure(*case, runs=runs, sampler=sampler) for case in CASES]))
+    print(f"Render time only, after a warm-up render each; medians of {runs} runs; Mitsuba/ours per sample; "
+          f"sampler {sampler} "
+          f"(Mitsuba: {MITSUBA_SAMPLER.get(sampler, sampler)}); rays/s from our ray count for both.")

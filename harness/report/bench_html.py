@@ -27,7 +27,9 @@ def _throughput_html(throughput: list[dict] | None) -> str:
     if not throughput:
         return "<p>No side-by-side throughput (run <code>python -m harness bench</code> with both engines).</p>"
     rows = "".join(
-        f"<tr><td>{t['scene']}:{t['integrator']}</td><td>{t['resolution']}², {t['spp']} spp, {t['sampler']}</td>"
+        f"<tr><td>{t['scene']}:{t['integrator']}</td><td>{t['resolution']}², {t['spp']} spp, {t['sampler']}"
+        + (f" (Mitsuba's sampler: {t['spp_rendered']['mitsuba']} spp)"
+           if t.get("spp_rendered", {}).get("mitsuba", t["spp"]) != t["spp"] else "") + "</td>"
         f"<td>{t['median_seconds']['mcval']:.3f}</td><td>{t['median_seconds']['mitsuba']:.3f}</td>"
         f"<td class='{'pass' if t['mitsuba_over_ours'] >= 1 else 'fail'}'>{t['mitsuba_over_ours']:.2f}</td>"
         f"<td>{t['samples_per_second']['mcval'] / 1e6:.1f}</td><td>{t['samples_per_second']['mitsuba'] / 1e6:.1f}</td>"
@@ -36,7 +38,7 @@ def _throughput_html(throughput: list[dict] | None) -> str:
     return ("<p>Both engines in one process, the same scene file and sampler, render time only, after a warm-up "
             "render each; medians of the runs. Rays/s divide the rays ours traced, for both engines (Mitsuba's "
             "direct traces about as many for simple; for ao it adds a BSDF-sampled ray per hit, its MIS).</p><table><tr><th>case</th><th>setting</th><th>ours s</th>"
-            "<th>Mitsuba s</th><th>Mitsuba/ours</th><th>ours Msamples/s</th><th>Mitsuba Msamples/s</th>"
+            "<th>Mitsuba s</th><th>Mitsuba/ours per sample</th><th>ours Msamples/s</th><th>Mitsuba Msamples/s</th>"
             f"<th>ours Mrays/s</th><th>Mitsuba Mrays/s</th></tr>{rows}</table>")
 
 
