@@ -63,8 +63,8 @@ MUTATIONS = {
         "images/metrics.py", "float(10 * np.log10(peak**2 / mse))", "float(20 * np.log10(peak**2 / mse))",
         [f"{REF}::test_psnr_is_its_definition"]),
     "efficiency ratio inverted": (
-        "bench/run.py", "ratio = self.curves[a].efficiency() / self.curves[b].efficiency() if a and b",
-        "ratio = self.curves[b].efficiency() / self.curves[a].efficiency() if a and b",
+        "bench/run.py", "ratio = self.curves[a].efficiency(common) / self.curves[b].efficiency(common)",
+        "ratio = self.curves[b].efficiency(common) / self.curves[a].efficiency(common)",
         [f"{REF}::test_efficiency_ratio_has_its_known_answer", f"{TWINS}::test_efficiency_ratio_of_a_twice_slower_twin",
          "tests/test_bench.py::test_same_sampler_and_best_against_best_pick_their_curves"]),
 }
