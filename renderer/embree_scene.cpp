@@ -7,7 +7,6 @@
 #include <string>
 
 #include "error.h"
-#include "hot.h"
 #include "sphere.h"
 
 namespace mcval {
@@ -35,18 +34,6 @@ float halfExtent(const std::vector<Vec3f> &points) {
     return 0.5f * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
 }
 
-RTCRay toRtc(const Ray &ray) {
-    RTCRay r;
-    r.org_x = ray.o.x; r.org_y = ray.o.y; r.org_z = ray.o.z;
-    r.dir_x = ray.d.x; r.dir_y = ray.d.y; r.dir_z = ray.d.z;
-    r.tnear = ray.tnear;
-    r.tfar = ray.tfar;
-    r.time = 0.f;
-    r.mask = std::numeric_limits<unsigned>::max();
-    r.id = 0;
-    r.flags = 0;
-    return r;
-}
 }  // namespace
 
 EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphere> &spheres)
@@ -106,55 +93,6 @@ EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphe
 EmbreeScene::~EmbreeScene() {
     if (m_scene) rtcReleaseScene(m_scene);
     if (m_device) rtcReleaseDevice(m_device);
-}
-
-bool EmbreeScene::intersect(const Ray &ray, Hit &hit) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit rh;
-    rh.ray = toRtc(ray);
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(m_scene, &context, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-
-    fillHit(ray, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, hit);
-    return true;
-}
-
-MCVAL_HOT void EmbreeScene::fillHit(const Ray &ray, unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const {
-    hit.t = t;
-    hit.geom = geom;
-    hit.prim = prim;
-    hit.offsetFloor = m_offsetFloor;
-    if (geom >= m_meshes.size()) {
-        // A sphere: the exact point and normal; its shading normal is its geometric one.
-        sphereHitPoint(m_spheres[geom - m_meshes.size()], ray.o, ray.d, double(t) + double(u), hit.p, hit.ng);
-        hit.ns = hit.ng;
-        return;
-    }
-    const Mesh &mesh = m_meshes[geom];
-    const uint32_t *tri = &mesh.indices[3 * prim];
-    const Vec3f &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
-    const float w = 1.f - u - v;
-    hit.p = w * p0 + u * p1 + v * p2;
-    hit.ng = m_faceNormals[geom][prim];
-    if (mesh.normals.empty()) {
-        hit.ns = hit.ng;
-    } else {
-        const Vec3f n = w * mesh.normals[tri[0]] + u * mesh.normals[tri[1]] + v * mesh.normals[tri[2]];
-        const float len2 = squaredNorm(n);
-        hit.ns = len2 > 0.f ? n / std::sqrt(len2) : hit.ng;
-    }
-}
-
-bool EmbreeScene::occluded(const Ray &ray) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRay r = toRtc(ray);
-    rtcOccluded1(m_scene, &context, &r);
-    return r.tfar < 0.f;  // Embree sets tfar to -inf on a hit
 }
 
 }  // namespace mcval

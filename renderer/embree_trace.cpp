@@ -1,9 +1,11 @@
-// Packet tracing: up to kPacketSize rays in one Embree call, laid out as its SoA packets. Embree
-// traverses a coherent packet's BVH nodes once for all its rays, with the machine's widest SIMD.
+// Tracing: single rays, and packets of up to kPacketSize rays in one Embree call, laid out as its
+// SoA packets (Embree traverses a coherent packet's BVH nodes once for all its rays, with the
+// machine's widest SIMD); and the hit records made from Embree's answers.
 #include <limits>
 
 #include "embree_scene.h"
 #include "error.h"
+#include "sphere.h"
 #include "hot.h"
 
 namespace mcval {
@@ -23,7 +25,71 @@ void setLane(Packet &p, int i, const Ray &r) {
     p.flags[i] = 0;
 }
 
+RTCRay toRtc(const Ray &ray) {
+    RTCRay r;
+    r.org_x = ray.o.x; r.org_y = ray.o.y; r.org_z = ray.o.z;
+    r.dir_x = ray.d.x; r.dir_y = ray.d.y; r.dir_z = ray.d.z;
+    r.tnear = ray.tnear;
+    r.tfar = ray.tfar;
+    r.time = 0.f;
+    r.mask = std::numeric_limits<unsigned>::max();
+    r.id = 0;
+    r.flags = 0;
+    return r;
+}
+
 }  // namespace
+
+// fillHit beside the loops that call it, which may then inline it into each of their ISA clones.
+bool EmbreeScene::intersect(const Ray &ray, Hit &hit) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray = toRtc(ray);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(m_scene, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+
+    fillHit(ray, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, hit);
+    return true;
+}
+
+void EmbreeScene::fillHit(const Ray &ray, unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const {
+    hit.t = t;
+    hit.geom = geom;
+    hit.prim = prim;
+    hit.offsetFloor = m_offsetFloor;
+    if (geom >= m_meshes.size()) {
+        // A sphere: the exact point and normal; its shading normal is its geometric one.
+        sphereHitPoint(m_spheres[geom - m_meshes.size()], ray.o, ray.d, double(t) + double(u), hit.p, hit.ng);
+        hit.ns = hit.ng;
+        return;
+    }
+    const Mesh &mesh = m_meshes[geom];
+    const uint32_t *tri = &mesh.indices[3 * prim];
+    const Vec3f &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
+    const float w = 1.f - u - v;
+    hit.p = w * p0 + u * p1 + v * p2;
+    hit.ng = m_faceNormals[geom][prim];
+    if (mesh.normals.empty()) {
+        hit.ns = hit.ng;
+    } else {
+        const Vec3f n = w * mesh.normals[tri[0]] + u * mesh.normals[tri[1]] + v * mesh.normals[tri[2]];
+        const float len2 = squaredNorm(n);
+        hit.ns = len2 > 0.f ? n / std::sqrt(len2) : hit.ng;
+    }
+}
+
+bool EmbreeScene::occluded(const Ray &ray) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r = toRtc(ray);
+    rtcOccluded1(m_scene, &context, &r);
+    return r.tfar < 0.f;  // Embree sets tfar to -inf on a hit
+}
+
 
 OcclusionPacket::OcclusionPacket() {
     for (int i = 0; i < kPacketSize; ++i) {
