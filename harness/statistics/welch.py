@@ -61,8 +61,9 @@ def moderate(stats: BatchStats, window: int = MODERATION_WINDOW) -> BatchStats:
     is estimated once per image from how much the variances scatter about their priors. The moderated
     variance (d0 s0^2 + d s^2) / (d0 + d) has d0 + d degrees of freedom (d = K - 1). Where a contribution
     is rare and all K batches miss it (s^2 = 0), the neighbours supply the variance; where the variance
-    field is smooth, d0 is large and the estimate nearly exact. Elements whose neighbours all have
-    zero variance, and non-finite ones, keep their own variance and K - 1 degrees of freedom.
+    field is smooth, d0 is large and the estimate nearly exact. Elements with a neighbour of zero
+    variance (at an edge of the noise field), and non-finite ones, keep their own variance and K - 1
+    degrees of freedom.
     """
     v = np.asarray(stats.var_of_mean, np.float64)
     d = float(stats.k - 1)
@@ -79,7 +80,13 @@ def moderate(stats: BatchStats, window: int = MODERATION_WINDOW) -> BatchStats:
         positive = clean > 0
         varied = uniform_filter(positive.astype(np.float64), size=size, mode="nearest") * n - positive
         prior = np.where((count > 0.5) & (varied > 0.5), total / np.maximum(count, 1.0), 0.0)
-    usable = finite & (prior > 0) & np.isfinite(prior)
+        # A neighbour without noise (the background beside an edge, a lit patch with no variance) marks
+        # where the variance field is not exchangeable: there the neighbours' mean says nothing of the
+        # element's own, and granting it their degrees of freedom made a binomial edge pixel, whose 8
+        # batches happened to agree, reject at p = 2e-10 (far_from_origin, ao).
+        silent = finite & ~positive
+        quiet = uniform_filter(silent.astype(np.float64), size=size, mode="nearest") * n - silent
+    usable = finite & (prior > 0) & np.isfinite(prior) & (quiet < 0.5)
     observed = usable & (v > 0)
     d0 = prior_dof(np.log(v[observed] / prior[observed]), d, (n - 1) * d)
     if d0 <= 0.0:
