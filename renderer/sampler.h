@@ -42,12 +42,30 @@ inline uint32_t laineKarras(uint32_t x, uint32_t seed) {
 /// Owen scrambling of the bits of x (most significant first), keyed by seed.
 inline uint32_t owenScramble(uint32_t x, uint32_t seed) { return reverseBits(laineKarras(reverseBits(x), seed)); }
 
-/// The second Sobol dimension (the first is the bit reversal of the index).
-inline uint32_t sobolSecond(uint32_t index) {
+/// The second Sobol dimension (the first is the bit reversal of the index), bit by bit: the XOR of
+/// the direction numbers of the index's set bits.
+inline uint32_t sobolSecondBitwise(uint32_t index) {
     uint32_t result = 0;
     for (uint32_t v = 1u << 31; index != 0; index >>= 1, v ^= v >> 1)
         if (index & 1u) result ^= v;
     return result;
+}
+
+/// sobolSecondBitwise for every value of each byte of the index: the map is linear over GF(2), so the
+/// index's four bytes look up four tables and XOR them (4 loads instead of up to 32 steps).
+struct SobolSecondTables {
+    uint32_t byte[4][256];
+    SobolSecondTables() {
+        for (uint32_t b = 0; b < 4; ++b)
+            for (uint32_t v = 0; v < 256; ++v) byte[b][v] = sobolSecondBitwise(v << (8 * b));
+    }
+};
+
+/// The second Sobol dimension of `index`: the same bits as sobolSecondBitwise.
+inline uint32_t sobolSecond(uint32_t index) {
+    static const SobolSecondTables tables;
+    return tables.byte[0][index & 255u] ^ tables.byte[1][(index >> 8) & 255u] ^
+           tables.byte[2][(index >> 16) & 255u] ^ tables.byte[3][index >> 24];
 }
 
 /// A 64-bit mix (SplitMix64 finaliser) folded to 32 bits.

@@ -171,3 +171,13 @@ TEST(Sampler, NamesRoundTrip) {
     for (SamplerType t : {SamplerType::Independent, SamplerType::Sobol}) EXPECT_EQ(parseSampler(samplerName(t)), t);
     EXPECT_FALSE(parseSampler("multijitter").has_value());
 }
+
+TEST(Sampler, SobolTablesGiveTheBitwiseValues) {
+    // The byte tables are the bitwise definition, for indices of every magnitude.
+    uint32_t x = 12345u;
+    for (int k = 0; k < 100000; ++k) {
+        x = x * 1664525u + 1013904223u;
+        const uint32_t index = k < 1024 ? static_cast<uint32_t>(k) : x;
+        ASSERT_EQ(detail::sobolSecond(index), detail::sobolSecondBitwise(index)) << index;
+    }
+}
