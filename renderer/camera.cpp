@@ -21,15 +21,15 @@ float horizontalFov(float fov, const std::string &axis, float width, float heigh
 }  // namespace
 
 Camera::Camera(const CameraSpec &spec, int width, int height)
-    : m_toWorld(spec.toWorld), m_origin(spec.toWorld.point({0.f, 0.f, 0.f})),
+    : m_origin(spec.toWorld.point({0.f, 0.f, 0.f})),
       m_fovX(horizontalFov(spec.fov, spec.fovAxis, float(width), float(height))),
       m_tanHalfX(std::tan(0.5f * m_fovX * kDegToRad)), m_aspect(float(width) / float(height)),
-      m_width(float(width)), m_height(float(height)), m_near(spec.nearClip), m_far(spec.farClip) {
+      m_near(spec.nearClip), m_far(spec.farClip) {
     m_axisX = spec.toWorld.vector({1.f, 0.f, 0.f});
     m_axisY = spec.toWorld.vector({0.f, 1.f, 0.f});
     m_axisZ = spec.toWorld.vector({0.f, 0.f, 1.f});
-    m_scaleX = 2.f * m_tanHalfX / m_width;
-    m_scaleY = 2.f * m_tanHalfX / m_aspect / m_height;
+    m_scaleX = 2.f * m_tanHalfX / float(width);
+    m_scaleY = 2.f * m_tanHalfX / m_aspect / float(height);
 }
 
 }  // namespace mcval

@@ -42,9 +42,8 @@ public:
     float fovX() const { return m_fovX; }
 
 private:
-    Transform m_toWorld;
     Vec3f m_origin;
-    float m_fovX, m_tanHalfX, m_aspect, m_width, m_height, m_near, m_far;
+    float m_fovX, m_tanHalfX, m_aspect, m_near, m_far;
     Vec3f m_axisX, m_axisY, m_axisZ;  ///< the camera's axes in world space (to_world's columns)
     float m_scaleX, m_scaleY;         ///< camera-space units per pixel
 };

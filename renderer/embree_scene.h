@@ -81,9 +81,6 @@ public:
     void intersect(RayHitPacket &packet, int count, Ray *rays, Hit *hits, bool *found) const;
     /// Whether anything lies on the ray in [tnear, tfar].
     bool occluded(const Ray &ray) const;
-    /// occluded() for the rays i < count with active[i], as one packet; blocked[i] is false for the
-    /// others. `coherent`: the rays start close together and point alike (shadow rays to one light).
-    void occluded16(const Ray *rays, const bool *active, int count, bool *blocked, bool coherent) const;
     /// Traces the set lanes of `packet` (nothing if none); read the answers with packet.blocked(i).
     void occluded(OcclusionPacket &packet, bool coherent) const;
 

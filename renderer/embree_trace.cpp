@@ -12,6 +12,15 @@ namespace mcval {
 
 namespace {
 
+/// The fields of lane i of an Embree SoA ray packet that no ray of ours varies.
+template <typename Packet>
+void setFixedFields(Packet &p, int i) {
+    p.time[i] = 0.f;
+    p.mask[i] = std::numeric_limits<unsigned>::max();
+    p.id[i] = 0;
+    p.flags[i] = 0;
+}
+
 /// Writes ray `r` into lane i of an Embree SoA ray packet.
 template <typename Packet>
 void setLane(Packet &p, int i, const Ray &r) {
@@ -19,10 +28,7 @@ void setLane(Packet &p, int i, const Ray &r) {
     p.dir_x[i] = r.d.x; p.dir_y[i] = r.d.y; p.dir_z[i] = r.d.z;
     p.tnear[i] = r.tnear;
     p.tfar[i] = r.tfar;
-    p.time[i] = 0.f;
-    p.mask[i] = std::numeric_limits<unsigned>::max();
-    p.id[i] = 0;
-    p.flags[i] = 0;
+    setFixedFields(p, i);
 }
 
 RTCRay toRtc(const Ray &ray) {
@@ -40,7 +46,6 @@ RTCRay toRtc(const Ray &ray) {
 
 }  // namespace
 
-// fillHit beside the loops that call it, which may then inline it into each of their ISA clones.
 bool EmbreeScene::intersect(const Ray &ray, Hit &hit) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -56,6 +61,7 @@ bool EmbreeScene::intersect(const Ray &ray, Hit &hit) const {
     return true;
 }
 
+// fillHit beside the loops that call it, which may then inline it into each of their ISA clones.
 void EmbreeScene::fillHit(const Ray &ray, unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const {
     hit.t = t;
     hit.geom = geom;
@@ -90,23 +96,16 @@ bool EmbreeScene::occluded(const Ray &ray) const {
     return r.tfar < 0.f;  // Embree sets tfar to -inf on a hit
 }
 
-
 OcclusionPacket::OcclusionPacket() {
     for (int i = 0; i < kPacketSize; ++i) {
-        rays.time[i] = 0.f;
-        rays.mask[i] = std::numeric_limits<unsigned>::max();
-        rays.id[i] = 0;
-        rays.flags[i] = 0;
+        setFixedFields(rays, i);
         valid[i] = 0;
     }
 }
 
 RayHitPacket::RayHitPacket() {
     for (int i = 0; i < kPacketSize; ++i) {
-        rh.ray.time[i] = 0.f;
-        rh.ray.mask[i] = std::numeric_limits<unsigned>::max();
-        rh.ray.id[i] = 0;
-        rh.ray.flags[i] = 0;
+        setFixedFields(rh.ray, i);
         rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
         valid[i] = 0;
     }
@@ -154,27 +153,6 @@ MCVAL_HOT void EmbreeScene::intersect16(const Ray *rays, int count, Hit *hits, b
         found[i] = rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
         if (found[i]) fillHit(rays[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.u[i], rh.hit.v[i], rh.ray.tfar[i], hits[i]);
     }
-}
-
-void EmbreeScene::occluded16(const Ray *rays, const bool *active, int count, bool *blocked, bool coherent) const {
-    MCR_ASSERT(count > 0 && count <= kPacketSize);
-    alignas(64) int valid[kPacketSize];
-    alignas(64) RTCRay16 r;
-    int first = -1;
-    for (int i = 0; i < count && first < 0; ++i)
-        if (active[i]) first = i;
-    for (int i = 0; i < count; ++i) blocked[i] = false;
-    if (first < 0) return;
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    if (coherent) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    for (int i = 0; i < kPacketSize; ++i) {
-        const bool on = i < count && active[i];
-        valid[i] = on ? -1 : 0;
-        setLane(r, i, rays[on ? i : first]);
-    }
-    rtcOccluded16(valid, m_scene, &context, &r);
-    for (int i = 0; i < count; ++i) blocked[i] = active[i] && r.tfar[i] < 0.f;  // Embree sets tfar to -inf on a hit
 }
 
 }  // namespace mcval

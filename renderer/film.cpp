@@ -11,7 +11,7 @@ namespace mcval {
 ImageBlock::ImageBlock(int x0, int y0, int width, int height, const FilterSpec &filter)
     : m_filter(filter), m_radius(filter.radius()) {
     static_assert(kMaxTaps >= 2 * 4 * kMaxFilterStddev + 2, "a gaussian's taps must fit wxs in put()");
-    if (filter.type == FilterSpec::Type::Gaussian) {  // the same expressions as FilterSpec::eval
+    if (filter.type == FilterSpec::Type::Gaussian) {  // weight()'s constants, once per block
         m_alpha = -1.f / (2.f * filter.stddev * filter.stddev);
         m_edge = std::exp(m_alpha * m_radius * m_radius);
     }

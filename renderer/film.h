@@ -34,7 +34,8 @@ public:
     static constexpr int kMaxTaps = 2 * 16 + 2;
 
 private:
-    /// The filter's weight at offset x (FilterSpec::eval, with its constants computed once).
+    /// The filter's 1D weight at offset x (pixels); the 2D weight is separable. The gaussian is
+    /// Mitsuba's windowed one, shifted so that it reaches 0 at the radius.
     float weight(float x) const {
         if (m_filter.type == FilterSpec::Type::Box) return std::abs(x) <= 0.5f ? 1.f : 0.f;
         return std::max(0.f, std::exp(m_alpha * x * x) - m_edge);

@@ -55,8 +55,6 @@ struct FilterSpec {
     enum class Type { Box, Gaussian } type = Type::Gaussian;
     float stddev = 0.5f;
     float radius() const { return type == Type::Box ? 0.5f : 4.f * stddev; }
-    /// The 1D filter weight at offset x (pixels); the 2D weight is separable.
-    float eval(float x) const;
 };
 
 struct FilmSpec {
