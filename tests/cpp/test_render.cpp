@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "image_counts.h"
 #include "integrators/registry.h"
 #include "render.h"
 #include "scene.h"
@@ -51,11 +52,9 @@ TEST(Render, EverySceneAndIntegratorIsFinite) {
             options.batches = 2;
             options.integrator = integrator;
             const RenderOutput out = render(scene, options);
-            size_t bad = 0, nonzero = 0;
-            for (float v : out.mean.rgb) {
-                bad += !std::isfinite(v);
-                nonzero += v != 0.f;
-            }
+            const ImageCounts counts = countValues(out.mean.rgb);
+            size_t bad = counts.nonFinite;
+            const size_t nonzero = counts.nonZero;
             for (float v : out.variance.rgb) bad += !(std::isfinite(v) && v >= 0.f);
             EXPECT_EQ(bad, 0u) << entry.path() << " " << integrator;
             EXPECT_GT(nonzero, out.mean.rgb.size() / 10) << entry.path() << " " << integrator;
