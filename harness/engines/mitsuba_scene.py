@@ -41,13 +41,9 @@ def mitsuba_xml(text: str, integrator: str, sampler: str | None = None) -> str:
         for shape in root.iter("shape"):
             for e in [e for e in shape if e.tag == "emitter" and e.get("type") == "area"]:
                 shape.remove(e)
-    chosen = sampler
-    for sampler in root.iter("sampler"):
-        if sampler.get("type") in MITSUBA_SAMPLER:
-            sampler.set("type", MITSUBA_SAMPLER[sampler.get("type")])
-    if chosen:
-        for element in root.iter("sampler"):
-            element.set("type", chosen)
+    for element in root.iter("sampler"):
+        kind = sampler or element.get("type")
+        element.set("type", MITSUBA_SAMPLER.get(kind, kind))
     for film in root.iter("film"):
         for e in [e for e in film if e.get("name") == "component_format"]:
             film.remove(e)  # a file's own component_format would be a duplicate property
