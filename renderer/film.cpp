@@ -70,6 +70,14 @@ void ImageBlock::putBox(int x, int y, const Color *L, int count) {
     }
 }
 
+void ImageBlock::putPacket(int x, int y, const float *fx, const float *fy, const Color *L, int count) {
+    if (isBox()) {
+        putBox(x, y, L, count);  // a box filter keeps every sample in its own pixel
+        return;
+    }
+    for (int k = 0; k < count; ++k) put(fx[k], fy[k], L[k]);
+}
+
 Film::Film(int width, int height)
     : m_width(width), m_height(height), m_data(static_cast<size_t>(ImageBlock::kChannels) * width * height, 0.0) {}
 

@@ -20,6 +20,8 @@ public:
     /// Adds `count` samples L[0..count) of pixel (x, y) with weight 1: put() for a box filter, whose
     /// weight is 1 inside the pixel the sample lies in and 0 elsewhere.
     void putBox(int x, int y, const Color *L, int count);
+    /// Adds `count` samples of pixel (x, y): L[k] at film position (fx[k], fy[k]), each inside the pixel.
+    void putPacket(int x, int y, const float *fx, const float *fy, const Color *L, int count);
     bool isBox() const { return m_filter.type == FilterSpec::Type::Box; }
 
     int x0() const { return m_x0; }

@@ -116,11 +116,7 @@ MCVAL_HOT void renderPixel(const RenderContext &ctx, int batch, int x, int y, Im
         counts.camera += static_cast<uint64_t>(count);
         Color radiance[kPacketSize];
         ctx.integrator.LiPacket({count, static_cast<uint32_t>(first), rays, hits, found}, sampler, radiance, counts);
-        if (block.isBox()) {
-            block.putBox(x, y, radiance, count);  // a box filter keeps every sample in its own pixel
-        } else {
-            for (int i = 0; i < count; ++i) block.put(filmX[i], filmY[i], radiance[i]);
-        }
+        block.putPacket(x, y, filmX, filmY, radiance, count);
     }
 }
 
