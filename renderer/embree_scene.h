@@ -5,6 +5,7 @@
 
 #include <embree3/rtcore.h>
 
+#include "hit_packet.h"
 #include "ray.h"
 #include "scene.h"
 
@@ -51,15 +52,6 @@ struct RayHitPacket {
         rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         valid[i] = on ? -1 : 0;
     }
-    /// Lane i's ray as set (before the trace shortens tfar).
-    Ray ray(int i, float tfar) const {
-        Ray r;
-        r.o = {rh.ray.org_x[i], rh.ray.org_y[i], rh.ray.org_z[i]};
-        r.d = {rh.ray.dir_x[i], rh.ray.dir_y[i], rh.ray.dir_z[i]};
-        r.tnear = rh.ray.tnear[i];
-        r.tfar = tfar;
-        return r;
-    }
 };
 
 class EmbreeScene {
@@ -76,9 +68,9 @@ public:
     /// Closest hits of up to kPacketSize rays traced as one packet (coherent rays, such as the
     /// samples of one pixel, traverse the BVH together); found[i] tells whether ray i hit.
     void intersect16(const Ray *rays, int count, Hit *hits, bool *found) const;
-    /// Traces the first `count` lanes of `packet` (all set), and gives back each lane's ray as set
-    /// in rays[i], its hit in hits[i] if found[i].
-    void intersect(RayHitPacket &packet, int count, Ray *rays, Hit *hits, bool *found) const;
+    /// Traces the first `count` lanes of `packet` (all set) and gives back, lane by lane, each ray as
+    /// set and its hit (hits.found[i]; lanes past `count` have none).
+    void intersect(RayHitPacket &packet, int count, HitPacket &hits) const;
     /// Whether anything lies on the ray in [tnear, tfar].
     bool occluded(const Ray &ray) const;
     /// Traces the set lanes of `packet` (nothing if none); read the answers with packet.blocked(i).

@@ -46,23 +46,9 @@ RTCRay toRtc(const Ray &ray) {
 
 }  // namespace
 
-bool EmbreeScene::intersect(const Ray &ray, Hit &hit) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit rh;
-    rh.ray = toRtc(ray);
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(m_scene, &context, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-
-    fillHit(ray, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, hit);
-    return true;
-}
-
-// fillHit beside the loops that call it, which may then inline it into each of their ISA clones.
-void EmbreeScene::fillHit(const Ray &ray, unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const {
+// Defined before the loops that call it and always inlined, so that each of their ISA clones has its own
+// copy and the hit's fields stay in registers until they are stored.
+__attribute__((always_inline)) inline void EmbreeScene::fillHit(const Ray &ray, unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const {
     hit.t = t;
     hit.geom = geom;
     hit.prim = prim;
@@ -88,6 +74,21 @@ void EmbreeScene::fillHit(const Ray &ray, unsigned geom, unsigned prim, float u,
     }
 }
 
+bool EmbreeScene::intersect(const Ray &ray, Hit &hit) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray = toRtc(ray);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(m_scene, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+
+    fillHit(ray, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, hit);
+    return true;
+}
+
 bool EmbreeScene::occluded(const Ray &ray) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -111,19 +112,29 @@ RayHitPacket::RayHitPacket() {
     }
 }
 
-MCVAL_HOT void EmbreeScene::intersect(RayHitPacket &packet, int count, Ray *rays, Hit *hits, bool *found) const {
+MCVAL_HOT void EmbreeScene::intersect(RayHitPacket &packet, int count, HitPacket &hits) const {
     MCR_ASSERT(count > 0 && count <= kPacketSize);
-    alignas(64) float tfar[kPacketSize];
-    for (int i = 0; i < kPacketSize; ++i) tfar[i] = packet.rh.ray.tfar[i];
+    const RTCRay16 &r = packet.rh.ray;
+    for (int i = 0; i < kPacketSize; ++i) {  // the rays as set, before the trace shortens tfar
+        hits.ox[i] = r.org_x[i]; hits.oy[i] = r.org_y[i]; hits.oz[i] = r.org_z[i];
+        hits.dx[i] = r.dir_x[i]; hits.dy[i] = r.dir_y[i]; hits.dz[i] = r.dir_z[i];
+        hits.tnear[i] = r.tnear[i];
+        hits.tfar[i] = r.tfar[i];
+    }
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcIntersect16(packet.valid, m_scene, &context, &packet.rh);
     const RTCHit16 &h = packet.rh.hit;
-    for (int i = 0; i < count; ++i) {
-        rays[i] = packet.ray(i, tfar[i]);
-        found[i] = h.geomID[i] != RTC_INVALID_GEOMETRY_ID;
-        if (found[i]) fillHit(rays[i], h.geomID[i], h.primID[i], h.u[i], h.v[i], packet.rh.ray.tfar[i], hits[i]);
+    hits.offsetFloor = m_offsetFloor;
+    for (int i = 0; i < kPacketSize; ++i) {
+        if (i < count && h.geomID[i] != RTC_INVALID_GEOMETRY_ID) {
+            Hit hit;
+            fillHit(hits.ray(i), h.geomID[i], h.primID[i], h.u[i], h.v[i], r.tfar[i], hit);
+            hits.setHit(i, hit);
+        } else {
+            hits.clearHit(i);
+        }
     }
 }
 

@@ -84,6 +84,7 @@ struct RenderContext {
 MCVAL_HOT void renderPixel(const RenderContext &ctx, int batch, int x, int y, ImageBlock &block, RayCounts &counts) {
     Sampler sampler(ctx.sampler, ctx.seed, static_cast<uint64_t>(batch), static_cast<uint64_t>(y) * ctx.width + x);
     RayHitPacket camera;
+    HitPacket lanes;
     for (int first = 0; first < ctx.spp; first += kPacketSize) {
         const int count = std::min(kPacketSize, ctx.spp - first);
         alignas(64) float filmX[kPacketSize], filmY[kPacketSize];
@@ -109,13 +110,10 @@ MCVAL_HOT void renderPixel(const RenderContext &ctx, int batch, int x, int y, Im
             const Vec3f d = ctx.camera.direction(filmX[i], filmY[i], length);
             camera.set(i, i < count, origin, d, nearClip * length, farClip * length);
         }
-        Ray rays[kPacketSize];
-        Hit hits[kPacketSize];
-        bool found[kPacketSize];
-        ctx.embree.intersect(camera, count, rays, hits, found);
+        ctx.embree.intersect(camera, count, lanes);
         counts.camera += static_cast<uint64_t>(count);
         Color radiance[kPacketSize];
-        ctx.integrator.LiPacket({count, static_cast<uint32_t>(first), rays, hits, found}, sampler, radiance, counts);
+        ctx.integrator.LiPacket({count, static_cast<uint32_t>(first), lanes}, sampler, radiance, counts);
         block.putPacket(x, y, filmX, filmY, radiance, count);
     }
 }

@@ -23,8 +23,8 @@ MCVAL_HOT void aoPacket(const EmbreeScene &embree, const Color &environment, int
     int traced = 0;
     for (int i = 0; i < n; ++i) {
         // A camera ray that escapes returns 0 (the environment itself is hidden); so does a back face.
-        front[i] = packet.found[i] && dot(packet.hits[i].ns, packet.rays[i].d) < 0.f;
-        if (front[i]) frames[i] = Frame(packet.hits[i].ns);
+        front[i] = packet.lanes.front(i);
+        if (front[i]) frames[i] = Frame({packet.lanes.nx[i], packet.lanes.ny[i], packet.lanes.nz[i]});
         visible[i] = 0;
         traced += front[i];
     }
@@ -38,7 +38,7 @@ MCVAL_HOT void aoPacket(const EmbreeScene &embree, const Color &environment, int
                 // counts rho * L_env.
                 const Vec2f u = sampler.sample2D(packet.first + static_cast<uint32_t>(i), 1 + static_cast<uint32_t>(j));
                 const Vec3f wi = frames[i].toWorld(squareToCosineHemisphere(u));
-                rays.set(i, spawnOrigin(packet.hits[i], wi), wi, 1e30f);
+                rays.set(i, packet.lanes.spawnOrigin(i, wi), wi, 1e30f);
             }
             embree.occluded(rays, /*coherent=*/false);
             for (int i = 0; i < n; ++i) visible[i] += front[i] && !rays.blocked(i);
@@ -46,7 +46,7 @@ MCVAL_HOT void aoPacket(const EmbreeScene &embree, const Color &environment, int
         counts.shadow += static_cast<uint64_t>(traced) * static_cast<uint64_t>(samples);
     }
     for (int i = 0; i < n; ++i) {
-        out[i] = front[i] ? embree.reflectance(packet.hits[i].geom) * environment *
+        out[i] = front[i] ? embree.reflectance(packet.lanes.geom[i]) * environment *
                                 (static_cast<float>(visible[i]) / static_cast<float>(samples))
                           : Color(0.f, 0.f, 0.f);
     }

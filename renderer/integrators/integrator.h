@@ -18,14 +18,12 @@ struct RayCounts {
     uint64_t total() const { return camera + shadow; }
 };
 
-/// Samples of one pixel traced together: lane i is sample `first + i`, its camera ray rays[i] and,
-/// if found[i], its first hit hits[i].
+/// Samples of one pixel traced together: lane i is sample `first + i`, its camera ray and, if
+/// lanes.found[i], its first hit.
 struct SamplePacket {
     int count;        ///< lanes in use, 1..kPacketSize
     uint32_t first;   ///< the sample index of lane 0
-    const Ray *rays;
-    const Hit *hits;
-    const bool *found;
+    const HitPacket &lanes;
 };
 
 /// Estimates the radiance arriving along camera rays. The renderer traces camera rays itself (in
@@ -39,9 +37,14 @@ public:
     /// One sample of the radiance along camera ray `ray`, whose first hit is `hit` (nullptr if it
     /// escaped); the sampler is at its sample, pair 1. Counts the rays it traces beyond the camera ray.
     virtual Color Li(const Ray &ray, const Hit *hit, Sampler &sampler, RayCounts &counts) const {
-        const bool found = hit != nullptr;
+        HitPacket lanes;  // lane 0 is this sample; the others hold no ray and no hit
+        for (int i = 0; i < kPacketSize; ++i) {
+            lanes.setRay(i, i == 0 ? ray : Ray{});
+            lanes.clearHit(i);
+        }
+        if (hit) lanes.setHit(0, *hit);
         Color out;
-        LiPacket({1, sampler.index(), &ray, hit, &found}, sampler, &out, counts);
+        LiPacket({1, sampler.index(), lanes}, sampler, &out, counts);
         return out;
     }
     /// Li for every lane of `packet` into out[0..count); the sampler's values for lane i are those of
@@ -49,7 +52,8 @@ public:
     virtual void LiPacket(const SamplePacket &packet, Sampler &sampler, Color *out, RayCounts &counts) const {
         for (int i = 0; i < packet.count; ++i) {
             sampler.startSample(packet.first + static_cast<uint32_t>(i), 1);
-            out[i] = Li(packet.rays[i], packet.found[i] ? &packet.hits[i] : nullptr, sampler, counts);
+            const Hit hit = packet.lanes.hit(i);
+            out[i] = Li(packet.lanes.ray(i), packet.lanes.found[i] ? &hit : nullptr, sampler, counts);
         }
     }
 };

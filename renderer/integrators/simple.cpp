@@ -11,42 +11,15 @@ namespace mcval {
 
 namespace {
 
-/// A packet's hits in SoA form, the lanes past `count` or without a front-facing hit inactive (0),
-/// so that the per-light loop below runs over all kPacketSize lanes in SIMD.
-struct HitLanes {
-    alignas(64) float px[kPacketSize], py[kPacketSize], pz[kPacketSize];
-    alignas(64) float nx[kPacketSize], ny[kPacketSize], nz[kPacketSize];     // shading normal
-    alignas(64) float gx[kPacketSize], gy[kPacketSize], gz[kPacketSize];     // geometric normal
-    alignas(64) float floor[kPacketSize];
-    alignas(64) int front[kPacketSize];
-
-    explicit HitLanes(const SamplePacket &packet) {
-        // Hits are read only where found (a lane without one may hold anything); the rest are zeros.
-        for (int i = 0; i < kPacketSize; ++i) {
-            px[i] = py[i] = pz[i] = nx[i] = ny[i] = nz[i] = gx[i] = gy[i] = gz[i] = floor[i] = 0.f;
-            front[i] = 0;
-        }
-        for (int i = 0; i < packet.count; ++i) {
-            if (!packet.found[i]) continue;
-            const Hit &h = packet.hits[i];
-            px[i] = h.p.x; py[i] = h.p.y; pz[i] = h.p.z;
-            nx[i] = h.ns.x; ny[i] = h.ns.y; nz[i] = h.ns.z;
-            gx[i] = h.ng.x; gy[i] = h.ng.y; gz[i] = h.ng.z;
-            floor[i] = h.offsetFloor;
-            // One-sided diffuse, as Mitsuba's: black seen from behind the shading normal.
-            const Vec3f &d = packet.rays[i].d;
-            front[i] = h.ns.x * d.x + h.ns.y * d.y + h.ns.z * d.z < 0.f;
-        }
-    }
-};
-
 /// simple's estimate for a packet (a free function: it is compiled per ISA, which a virtual one cannot
 /// be). Per light, the shadow rays of the whole packet go to Embree as one coherent packet: they start
 /// near one another (one pixel) and end at the same point. The arithmetic is the scalar formula's,
 /// lane by lane (L = rho / pi * sum I cos / r^2 over unshadowed lights), in the same order.
 MCVAL_HOT void simplePacket(const std::vector<PointLight> &lights, const EmbreeScene &embree, const SamplePacket &packet,
                             Color *out, RayCounts &counts) {
-    const HitLanes h(packet);
+    const HitPacket &h = packet.lanes;
+    alignas(64) int front[kPacketSize];
+    for (int i = 0; i < kPacketSize; ++i) front[i] = i < packet.count && h.front(i);
     alignas(64) float sumR[kPacketSize] = {}, sumG[kPacketSize] = {}, sumB[kPacketSize] = {};
     alignas(64) float weight[kPacketSize];
     OcclusionPacket shadow;
@@ -60,13 +33,13 @@ MCVAL_HOT void simplePacket(const std::vector<PointLight> &lights, const EmbreeS
             const float dist = std::sqrt(dist2);
             const float wx = tx / dist, wy = ty / dist, wz = tz / dist;
             const float cosTheta = h.nx[i] * wx + h.ny[i] * wy + h.nz[i] * wz;
-            const bool on = (h.front[i] != 0) & (dist2 > 0.f) & (cosTheta > 0.f);
+            const bool on = (front[i] != 0) & (dist2 > 0.f) & (cosTheta > 0.f);
             // The spawn rule of spawnOrigin: off the surface along the geometric normal, on the side
             // the ray leaves by.
             const float side = (h.gx[i] * wx + h.gy[i] * wy + h.gz[i] * wz) >= 0.f ? 1.f : -1.f;
-            r.org_x[i] = offsetCoordinate(h.px[i], side * h.gx[i], h.floor[i]);
-            r.org_y[i] = offsetCoordinate(h.py[i], side * h.gy[i], h.floor[i]);
-            r.org_z[i] = offsetCoordinate(h.pz[i], side * h.gz[i], h.floor[i]);
+            r.org_x[i] = offsetCoordinate(h.px[i], side * h.gx[i], h.offsetFloor);
+            r.org_y[i] = offsetCoordinate(h.py[i], side * h.gy[i], h.offsetFloor);
+            r.org_z[i] = offsetCoordinate(h.pz[i], side * h.gz[i], h.offsetFloor);
             r.dir_x[i] = wx; r.dir_y[i] = wy; r.dir_z[i] = wz;
             r.tnear[i] = 0.f;
             // Stop just short of the light: nothing behind it may shadow.
@@ -87,7 +60,7 @@ MCVAL_HOT void simplePacket(const std::vector<PointLight> &lights, const EmbreeS
         }
     }
     for (int i = 0; i < packet.count; ++i)
-        out[i] = h.front[i] ? embree.reflectance(packet.hits[i].geom) * Color(sumR[i], sumG[i], sumB[i]) * kInvPi
+        out[i] = front[i] ? embree.reflectance(h.geom[i]) * Color(sumR[i], sumG[i], sumB[i]) * kInvPi
                             : Color(0.f, 0.f, 0.f);
 }
 
