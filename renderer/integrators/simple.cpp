@@ -52,11 +52,14 @@ MCVAL_HOT void simplePacket(const std::vector<PointLight> &lights, const EmbreeS
         shadow.active = traced;
         counts.shadow += static_cast<uint64_t>(traced);
         embree.occluded(shadow, /*coherent=*/true);
+        // Branch-free, so it runs in SIMD: an unlit lane adds I * 0 = +0, which leaves its sum's bits alone.
+        const float ir = light.intensity.x, ig = light.intensity.y, ib = light.intensity.z;
         for (int i = 0; i < kPacketSize; ++i) {
             const bool lit = (shadow.valid[i] != 0) & !(r.tfar[i] < 0.f);  // Embree sets tfar to -inf on a hit
-            sumR[i] = lit ? sumR[i] + light.intensity.x * weight[i] : sumR[i];
-            sumG[i] = lit ? sumG[i] + light.intensity.y * weight[i] : sumG[i];
-            sumB[i] = lit ? sumB[i] + light.intensity.z * weight[i] : sumB[i];
+            const float w = lit ? weight[i] : 0.f;
+            sumR[i] += ir * w;
+            sumG[i] += ig * w;
+            sumB[i] += ib * w;
         }
     }
     for (int i = 0; i < packet.count; ++i)
