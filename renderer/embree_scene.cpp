@@ -50,6 +50,16 @@ EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphe
     // unit-scale offset, which the image tests match, and a large floor does not inflate it (its rays
     // would clear contact shadows). Scaling the scene scales the floor, so the image does not change.
     float smallest = std::numeric_limits<float>::infinity();
+    size_t triangles = 0, smooth = 0;
+    for (const Mesh &mesh : meshes) {
+        triangles += mesh.indices.size() / 3;
+        smooth += mesh.normals.empty() ? 0 : mesh.indices.size() / 3;
+    }
+    // The tables are indexed with 32 bits, which the packet's SIMD gathers take.
+    if (triangles >= kFlat) throw std::runtime_error("the scene has " + std::to_string(triangles) +
+                                                     " triangles; at most 4294967294 are supported");
+    m_triangles.reserve(triangles + 1);
+    m_normals.reserve(smooth + 1);
     for (const Mesh &mesh : meshes) {
         RTCGeometry geom = rtcNewGeometry(m_device, RTC_GEOMETRY_TYPE_TRIANGLE);
         // Embree's own buffers are padded for its SIMD loads; ours are not, so copy.
@@ -67,14 +77,19 @@ EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphe
         rtcAttachGeometry(m_scene, geom);  // ids follow mesh order
         rtcReleaseGeometry(geom);
         m_reflectance.push_back(mesh.reflectance);
-        std::vector<Vec3f> &normals = m_faceNormals.emplace_back(mesh.indices.size() / 3);
-        for (size_t f = 0; f < normals.size(); ++f) {
+        m_firstTriangle.push_back(static_cast<uint32_t>(m_triangles.size()));
+        m_firstNormals.push_back(mesh.normals.empty() ? kFlat : static_cast<uint32_t>(m_normals.size()));
+        for (size_t f = 0; f < mesh.indices.size() / 3; ++f) {
             const uint32_t *tri = &mesh.indices[3 * f];
             const Vec3f &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
-            normals[f] = normalize(cross(p1 - p0, p2 - p0));
+            m_triangles.push_back({p0, p1, p2, normalize(cross(p1 - p0, p2 - p0))});
+            if (!mesh.normals.empty())
+                m_normals.push_back({mesh.normals[tri[0]], mesh.normals[tri[1]], mesh.normals[tri[2]]});
         }
         if (const float size = halfExtent(mesh.positions); size > 0.f) smallest = std::min(smallest, size);
     }
+    m_triangles.push_back({});
+    m_normals.push_back({});
     for (const Sphere &sphere : spheres) {
         attachSphere(m_device, m_scene, sphere);  // ids after the meshes'
         m_reflectance.push_back(sphere.reflectance);

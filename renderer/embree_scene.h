@@ -84,11 +84,28 @@ private:
     /// sphere at t + u (u holds what float32 rounded off t).
     void fillHit(const Ray &ray, unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const;
 
+    /// The hits of a traced packet's first `count` lanes into `hits`: the triangles' in SIMD over all
+    /// lanes (gathers from the flat tables below), then the rare lanes that need more one by one.
+    void fillHits(const RTCRayHit16 &rh, int count, HitPacket &hits) const;
+
+    /// A triangle as a hit reads it: its corners and unit face normal (computed once) in one record,
+    /// so that the packet's hits can be gathered in SIMD rather than walked through index arrays.
+    struct TriangleRecord {
+        Vec3f p0, p1, p2, ng;
+    };
+    /// The vertex normals of a triangle of a smooth mesh (one with normals), likewise.
+    struct TriangleNormals {
+        Vec3f n0, n1, n2;
+    };
+    static constexpr uint32_t kFlat = ~0u;  ///< m_firstNormals of a mesh without normals
+
     const std::vector<Mesh> &m_meshes;
     const std::vector<Sphere> &m_spheres;
     std::vector<Color> m_reflectance;  ///< by geometry id: one table whatever the shape
-    /// Unit geometric normal of every triangle, by mesh: computed once, not per hit.
-    std::vector<std::vector<Vec3f>> m_faceNormals;
+    /// Every mesh's triangles, then a zero record that lanes without a triangle read harmlessly.
+    std::vector<TriangleRecord> m_triangles;
+    std::vector<TriangleNormals> m_normals;            ///< the smooth meshes' triangles, then a zero record
+    std::vector<uint32_t> m_firstTriangle, m_firstNormals;  ///< by mesh: where its records start
     float m_offsetFloor = 0.f;         ///< Hit::offsetFloor: from the scene's smallest shape
     RTCDevice m_device = nullptr;
     RTCScene m_scene = nullptr;

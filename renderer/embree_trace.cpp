@@ -59,18 +59,66 @@ __attribute__((always_inline)) inline void EmbreeScene::fillHit(const Ray &ray, 
         hit.ns = hit.ng;
         return;
     }
-    const Mesh &mesh = m_meshes[geom];
-    const uint32_t *tri = &mesh.indices[3 * prim];
-    const Vec3f &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
+    const TriangleRecord &tri = m_triangles[m_firstTriangle[geom] + prim];
     const float w = 1.f - u - v;
-    hit.p = w * p0 + u * p1 + v * p2;
-    hit.ng = m_faceNormals[geom][prim];
-    if (mesh.normals.empty()) {
+    hit.p = w * tri.p0 + u * tri.p1 + v * tri.p2;
+    hit.ng = tri.ng;
+    if (m_firstNormals[geom] == kFlat) {
         hit.ns = hit.ng;
     } else {
-        const Vec3f n = w * mesh.normals[tri[0]] + u * mesh.normals[tri[1]] + v * mesh.normals[tri[2]];
+        const TriangleNormals &n3 = m_normals[m_firstNormals[geom] + prim];
+        const Vec3f n = w * n3.n0 + u * n3.n1 + v * n3.n2;
         const float len2 = squaredNorm(n);
         hit.ns = len2 > 0.f ? n / std::sqrt(len2) : hit.ng;
+    }
+}
+
+// fillHit's arithmetic for the mesh lanes, in the same order (the same bits), over all lanes at once.
+MCVAL_HOT void EmbreeScene::fillHits(const RTCRayHit16 &rh, int count, HitPacket &hits) const {
+    const RTCHit16 &h = rh.hit;
+    const uint32_t meshes = static_cast<uint32_t>(m_meshes.size());
+    const uint32_t none = static_cast<uint32_t>(m_triangles.size() - 1), noNormals = static_cast<uint32_t>(m_normals.size() - 1);
+    const TriangleRecord *tris = m_triangles.data();
+    const TriangleNormals *smooth = m_normals.data();
+    const uint32_t *firstTriangle = m_firstTriangle.data(), *firstNormals = m_firstNormals.data();
+    int others = 0;  // lanes on a sphere
+    for (int i = 0; i < kPacketSize; ++i) {
+        const bool found = (i < count) & (h.geomID[i] != RTC_INVALID_GEOMETRY_ID);
+        const bool mesh = found & (h.geomID[i] < meshes);
+        const uint32_t g = mesh ? h.geomID[i] : 0;
+        const uint32_t first = mesh ? firstTriangle[g] : 0, firstN = mesh ? firstNormals[g] : kFlat;
+        const TriangleRecord &tri = tris[mesh ? first + h.primID[i] : none];
+        const bool isSmooth = firstN != kFlat;
+        const TriangleNormals &n3 = smooth[isSmooth ? firstN + h.primID[i] : noNormals];
+        // A lane without a hit may hold anything in u and v (Embree writes hits only); it reads the zero record.
+        const float hu = h.u[i], hv = h.v[i];  // read unconditionally: plain SIMD loads
+        const float u = found ? hu : 0.f, v = found ? hv : 0.f, w = 1.f - u - v;
+        hits.px[i] = ((tri.p0.x * w) + (tri.p1.x * u)) + (tri.p2.x * v);
+        hits.py[i] = ((tri.p0.y * w) + (tri.p1.y * u)) + (tri.p2.y * v);
+        hits.pz[i] = ((tri.p0.z * w) + (tri.p1.z * u)) + (tri.p2.z * v);
+        hits.gx[i] = tri.ng.x; hits.gy[i] = tri.ng.y; hits.gz[i] = tri.ng.z;
+        const float nx = ((n3.n0.x * w) + (n3.n1.x * u)) + (n3.n2.x * v);
+        const float ny = ((n3.n0.y * w) + (n3.n1.y * u)) + (n3.n2.y * v);
+        const float nz = ((n3.n0.z * w) + (n3.n1.z * u)) + (n3.n2.z * v);
+        const float len2 = nx * nx + ny * ny + nz * nz;
+        const bool interpolated = isSmooth & (len2 > 0.f);
+        const float len = std::sqrt(interpolated ? len2 : 1.f);
+        hits.nx[i] = interpolated ? nx / len : tri.ng.x;
+        hits.ny[i] = interpolated ? ny / len : tri.ng.y;
+        hits.nz[i] = interpolated ? nz / len : tri.ng.z;
+        hits.t[i] = found ? rh.ray.tfar[i] : 0.f;
+        hits.geom[i] = found ? h.geomID[i] : 0;
+        hits.prim[i] = found ? h.primID[i] : 0;
+        hits.found[i] = found;
+        others += found & !mesh;
+    }
+    hits.offsetFloor = m_offsetFloor;
+    if (others == 0) return;
+    for (int i = 0; i < count; ++i) {
+        if (!hits.found[i] || hits.geom[i] < meshes) continue;
+        Hit hit;
+        fillHit(hits.ray(i), h.geomID[i], h.primID[i], h.u[i], h.v[i], rh.ray.tfar[i], hit);
+        hits.setHit(i, hit);
     }
 }
 
@@ -125,17 +173,7 @@ MCVAL_HOT void EmbreeScene::intersect(RayHitPacket &packet, int count, HitPacket
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcIntersect16(packet.valid, m_scene, &context, &packet.rh);
-    const RTCHit16 &h = packet.rh.hit;
-    hits.offsetFloor = m_offsetFloor;
-    for (int i = 0; i < kPacketSize; ++i) {
-        if (i < count && h.geomID[i] != RTC_INVALID_GEOMETRY_ID) {
-            Hit hit;
-            fillHit(hits.ray(i), h.geomID[i], h.primID[i], h.u[i], h.v[i], r.tfar[i], hit);
-            hits.setHit(i, hit);
-        } else {
-            hits.clearHit(i);
-        }
-    }
+    fillHits(packet.rh, count, hits);
 }
 
 void EmbreeScene::occluded(OcclusionPacket &packet, bool coherent) const {
