@@ -13,14 +13,17 @@ ImageBlock::ImageBlock(int x0, int y0, int width, int height, const FilterSpec &
     static_assert(kMaxTaps >= 2 * 4 * kMaxFilterStddev + 2, "a gaussian's taps must fit wxs in put()");
     if (filter.type == FilterSpec::Type::Gaussian) {  // weight()'s constants, once per block
         m_alpha = -1.f / (2.f * filter.stddev * filter.stddev);
-        m_edge = std::exp(m_alpha * m_radius * m_radius);
+        m_edge = expNonPositive(m_alpha * m_radius * m_radius);
+        m_taps = static_cast<int>(std::floor(m_radius + 0.5f));
+        const size_t taps = 2 * static_cast<size_t>(m_taps) + 1;
+        m_scratch.assign(4 * taps * kMaxPacket + 8, 0.0);  // putGaussian: a, a^2, b, b^2 per tap and lane
     }
     const int border = static_cast<int>(std::ceil(m_radius - 0.5f));
     m_x0 = x0 - border;
     m_y0 = y0 - border;
     m_width = width + 2 * border;
     m_height = height + 2 * border;
-    m_data.assign(static_cast<size_t>(kChannels) * m_width * m_height, 0.0);
+    m_data.assign(static_cast<size_t>(kStride) * m_width * m_height, 0.0);
 }
 
 MCVAL_HOT void ImageBlock::put(float x, float y, const Color &L) {
@@ -38,7 +41,7 @@ MCVAL_HOT void ImageBlock::put(float x, float y, const Color &L) {
         for (int i = ilo; i <= ihi; ++i) {
             const double w = static_cast<double>(wy) * wxs[i - ilo];
             if (w == 0.0) continue;
-            double *s = &m_data[kChannels * ((j - m_y0) * m_width + (i - m_x0))];
+            double *s = &m_data[kStride * ((j - m_y0) * m_width + (i - m_x0))];
             const double w2 = w * w;
             s[0] += w;
             s[4] += w2;
@@ -60,7 +63,7 @@ void ImageBlock::putBox(int x, int y, const Color *L, int count) {
             sum[c] += l;
             sum2[c] += l * l;
         }
-    double *s = &m_data[kChannels * ((y - m_y0) * m_width + (x - m_x0))];
+    double *s = &m_data[kStride * ((y - m_y0) * m_width + (x - m_x0))];
     s[0] += count;
     s[4] += count;
     for (int c = 0; c < 3; ++c) {
@@ -75,7 +78,7 @@ void ImageBlock::putPacket(int x, int y, const float *fx, const float *fy, const
         putBox(x, y, L, count);  // a box filter keeps every sample in its own pixel
         return;
     }
-    for (int k = 0; k < count; ++k) put(fx[k], fy[k], L[k]);
+    putGaussian(x, y, fx, fy, L, count);
 }
 
 Film::Film(int width, int height)

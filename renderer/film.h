@@ -3,11 +3,34 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "scene.h"
 
 namespace mcval {
+
+/// e^x for x <= 0, to 2 ulp (Cephes' expf: x = n ln2 + r, a degree-7 polynomial in r, times 2^n), in
+/// plain multiplies and adds, so that a loop of them vectorises and every target_clone gives the
+/// same bits. Below -87 (where 2^n would leave the normal floats) it returns e^-87 (~1.6e-38).
+inline float expNonPositive(float x) {
+    x = std::max(x, -87.f);
+    const float n = (x * 1.44269504f + 12582912.f) - 12582912.f;  // x / ln2 rounded to an integer
+    float r = x - n * 0.693359375f;  // exact: ln2's high part has 9 bits, n at most 8
+    r = r - n * -2.12194440e-4f;
+    float p = 1.9875691500e-4f;
+    p = p * r + 1.3981999507e-3f;
+    p = p * r + 8.3334519073e-3f;
+    p = p * r + 4.1665795894e-2f;
+    p = p * r + 1.6666665459e-1f;
+    p = p * r + 5.0000001201e-1f;
+    p = p * (r * r) + r + 1.f;
+    const int32_t bits = (static_cast<int32_t>(n) + 127) << 23;
+    float scale;
+    std::memcpy(&scale, &bits, sizeof scale);
+    return p * scale;
+}
 
 /// Per-pixel sums (in double) for the pixels a tile's samples can reach: the tile plus a
 /// border as wide as the filter. Each tile has its own block, so threads never share one.
@@ -20,7 +43,8 @@ public:
     /// Adds `count` samples L[0..count) of pixel (x, y) with weight 1: put() for a box filter, whose
     /// weight is 1 inside the pixel the sample lies in and 0 elsewhere.
     void putBox(int x, int y, const Color *L, int count);
-    /// Adds `count` samples of pixel (x, y): L[k] at film position (fx[k], fy[k]), each inside the pixel.
+    /// Adds `count` (at most kMaxPacket) samples of pixel (x, y): L[k] at film position (fx[k], fy[k]),
+    /// each inside the pixel. The same sums as put() per sample, to rounding.
     void putPacket(int x, int y, const float *fx, const float *fy, const Color *L, int count);
     bool isBox() const { return m_filter.type == FilterSpec::Type::Box; }
 
@@ -29,23 +53,32 @@ public:
     int width() const { return m_width; }
     int height() const { return m_height; }
     /// The sums at block pixel (i, j): w, w L (3), w^2, w^2 L (3), w^2 L^2 (3).
-    const double *sums(int i, int j) const { return &m_data[kChannels * (j * m_width + i)]; }
+    const double *sums(int i, int j) const { return &m_data[kStride * (j * m_width + i)]; }
 
     static constexpr int kChannels = 11;
+    /// Doubles per pixel in a block: the sums and a 0, so that putGaussian adds whole SIMD vectors
+    /// (4 + 8) to a pixel, at the same offsets every time (their stores then forward to its loads).
+    static constexpr int kStride = 12;
     /// Pixels a sample reaches along one axis: 2 x the widest filter radius (4 x kMaxFilterStddev) + 1.
     static constexpr int kMaxTaps = 2 * 16 + 2;
+    /// Most samples putPacket() takes at once.
+    static constexpr int kMaxPacket = 16;
 
 private:
     /// The filter's 1D weight at offset x (pixels); the 2D weight is separable. The gaussian is
     /// Mitsuba's windowed one, shifted so that it reaches 0 at the radius.
     float weight(float x) const {
         if (m_filter.type == FilterSpec::Type::Box) return std::abs(x) <= 0.5f ? 1.f : 0.f;
-        return std::max(0.f, std::exp(m_alpha * x * x) - m_edge);
+        return std::max(0.f, expNonPositive(m_alpha * x * x) - m_edge);
     }
+    /// putPacket() for a gaussian filter (film_splat.cpp).
+    void putGaussian(int x, int y, const float *fx, const float *fy, const Color *L, int count);
 
     FilterSpec m_filter;
     float m_radius;
     float m_alpha = 0.f, m_edge = 0.f;  ///< gaussian: -1 / (2 stddev^2), and its value at the radius
+    int m_taps = 0;                     ///< gaussian: the pixels x - m_taps .. x + m_taps a pixel x's samples reach
+    std::vector<double> m_scratch;      ///< gaussian: putGaussian()'s per-packet weights
     int m_x0, m_y0, m_width, m_height;
     std::vector<double> m_data;
 };
