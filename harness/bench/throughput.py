@@ -1,6 +1,6 @@
 """Render throughput of both engines side by side, in one process: the same scene file, sampler, resolution
-and samples per pixel, render time only (scene load, BVH build and Mitsuba's JIT compilation excluded: one
-warm-up render each first), medians of several runs. This separates per-sample cost from convergence.
+and samples per pixel, render time only (scene load, BVH build and Mitsuba's JIT compilation excluded: each timed
+render follows an untimed one of the same engine), medians of several runs. This separates per-sample cost from convergence.
 
 Rays per second divide the same count for both engines: the rays our integrator traced (camera rays plus the
 shadow or occlusion rays of front-facing hits), i.e. the work of our estimate. Mitsuba's `direct` traces about as
@@ -73,7 +73,7 @@ def _ours(scene: str, integrator: str, res: int, spp: int, sampler: str, seed: i
 def measure(scene_name: str, integrator: str, res: int, spp: int, runs: int = 3, sampler: str = "independent",
             variant: str = "llvm_ad_rgb") -> Throughput:
     """Both engines on one case with `sampler` (ours; Mitsuba gets its plugin of that name or the closest,
-    MITSUBA_SAMPLER): a warm-up render each, then `runs` alternating timed renders."""
+    MITSUBA_SAMPLER): `runs` rounds, each an untimed then a timed render of ours, then of Mitsuba."""
     import drjit as dr
     mi = load_mitsuba(variant)  # finds LLVM 19 for an llvm variant
     scene = str(SCENES_DIR / f"{scene_name}.xml")
@@ -86,13 +86,16 @@ def measure(scene_name: str, integrator: str, res: int, spp: int, runs: int = 3,
         dr.sync_thread()
         return time.perf_counter() - start
 
-    _ours(scene, integrator, res, spp, sampler, 0)
-    mitsuba(0)
     seconds: dict[str, list[float]] = {"mcval": [], "mitsuba": []}
     rays = 0
     for run in range(1, runs + 1):
+        # Each timed render follows an untimed one of the same engine, so that it meets neither the other
+        # engine's thread pool still spinning nor its own asleep (waking a worker thread costs this
+        # machine several ms, a third of a 128² render); both engines are treated alike.
+        _ours(scene, integrator, res, spp, sampler, 1000 + run)
         t, rays = _ours(scene, integrator, res, spp, sampler, run)
         seconds["mcval"].append(t)
+        mitsuba(1000 + run)
         seconds["mitsuba"].append(mitsuba(run))
     mitsuba_spp = loaded.sensors()[0].sampler().sample_count()  # as the renders set it
     return Throughput(scene_name, integrator, res, spp, sampler, seconds, rays, mitsuba_spp)
@@ -117,6 +120,6 @@ if __name__ == "__main__":
     runs = int(sys.argv[1]) if len(sys.argv) > 1 else 3
     sampler = sys.argv[2] if len(sys.argv) > 2 else "independent"
     print(table([measure(*case, runs=runs, sampler=sampler) for case in CASES]))
-    print(f"Render time only, after a warm-up render each; medians of {runs} runs; Mitsuba/ours per sample; "
+    print(f"Render time only, each timed render after an untimed one of the same engine; medians of {runs} runs; Mitsuba/ours per sample; "
           f"sampler {sampler} "
           f"(Mitsuba: {MITSUBA_SAMPLER.get(sampler, sampler)}); rays/s from our ray count for both.")
