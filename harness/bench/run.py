@@ -11,7 +11,7 @@ import numpy as np
 from harness.bench.ladder import LADDER, RUNS, Curve, run_ladder
 from harness.engines.base import Engine
 from harness.images.suite import SCENES_DIR, ImageCase
-from harness.images.references import load_reference, render_reference
+from harness.bench.truth import bench_truth
 
 #: The seed document's own figures: its simple integrator at 768x768 and 32 spp, its AO at 768x768
 #: and 512 spp, both on a ~0.5M-triangle bust (seconds).
@@ -42,6 +42,7 @@ class CaseBench:
     case: ImageCase
     curves: dict[str, Curve]
     reference_mean: np.ndarray
+    truth: str = ""  # what the errors are measured against (bench_truth)
 
     def _pick(self, engine: str, sampler: str | None) -> str | None:
         """The label of `engine` with `sampler` (None: its most efficient of BEST_SAMPLERS), if it was run."""
@@ -70,7 +71,7 @@ class CaseBench:
         return self.comparison(SAME_SAMPLER, ours, other)["ratio"]
 
     def to_json(self) -> dict:
-        return {"integrator": self.case.integrator, "scene": self.case.scene,
+        return {"integrator": self.case.integrator, "scene": self.case.scene, "truth": self.truth,
                 "efficiency_ratio": self.efficiency_ratio(),
                 "efficiency_ratio_same_sampler": self.comparison(SAME_SAMPLER),
                 "efficiency_ratio_best": self.comparison(None),
@@ -87,11 +88,9 @@ def run_bench(cases: list[ImageCase], engines: list[Engine], reference_engine: E
     """Every case with every engine, one render at a time."""
     out = []
     for case in cases:
-        reference, _ = load_reference(case, reference_engine)
-        if reference is None:
-            reference = render_reference(case, reference_engine)
+        reference, truth = bench_truth(case, reference_engine)
         curves = {e.label or e.name: run_ladder(e, case, reference, seed, ladder, runs, on_step) for e in engines}
-        out.append(CaseBench(case, curves, reference.summary.pixel.mean))
+        out.append(CaseBench(case, curves, reference.summary.pixel.mean, truth))
     return out
 
 

@@ -71,7 +71,7 @@ def bench_html(benches: list[CaseBench], rays: dict | None, seed: dict | None, m
         timing = "; ".join(f"{name}: {c.timing}; first render {c.first_seconds:.2f} s" for name, c in b.curves.items())
         sections.append(f"<h3 id='{b.case.key}'>{b.case.scene} — {b.case.integrator}: efficiency ratio "
                         f"{_f(b.efficiency_ratio())} with the same sampler, {_best(b)} best against best</h3>"
-                        f"<p class='meta'>{html.escape(timing)}</p>"
+                        f"<p class='meta'>Errors against: {html.escape(b.truth)}. {html.escape(timing)}</p>"
                         + _img(convergence_png(b), f"convergence of {b.case.key}")
                         + "<p>Equal time (the step of each engine closest to ours at 64 spp):</p>"
                         + _img(equal_time_png(b), f"equal-time images of {b.case.key}"))
