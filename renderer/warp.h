@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sincos.h"
 #include "vector.h"
 
 namespace mcval {
@@ -41,8 +42,9 @@ inline float tentInverse(float u) {
 
 /// Unit direction from cos(theta) and the azimuth phi = 2 pi v.
 inline Vec3f sphericalDirection(float cosTheta, float sinTheta, float v) {
-    const float phi = 2.f * kPi * v;
-    return {sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta};
+    float sinPhi, cosPhi;
+    sinCos2Pi(v, sinPhi, cosPhi);
+    return {sinTheta * cosPhi, sinTheta * sinPhi, cosTheta};
 }
 }  // namespace detail
 
@@ -66,8 +68,9 @@ inline float squareToTentPdf(const Vec2f &p) {
 /// Uniform on the unit disk: radius sqrt(u.x), angle 2 pi u.y.
 inline Vec2f squareToUniformDisk(const Vec2f &u) {
     const float r = std::sqrt(std::max(u.x, 0.f));
-    const float phi = 2.f * kPi * u.y;
-    return {r * std::cos(phi), r * std::sin(phi)};
+    float sinPhi, cosPhi;
+    detail::sinCos2Pi(u.y, sinPhi, cosPhi);
+    return {r * cosPhi, r * sinPhi};
 }
 /// Density w.r.t. area: 1/pi on the unit disk, 0 outside.
 inline float squareToUniformDiskPdf(const Vec2f &p) {

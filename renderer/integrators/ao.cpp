@@ -1,6 +1,7 @@
 // ao: ambient occlusion under the constant emitter (radiance 1 without one), cosine-weighted:
 // L = rho * L_env * mean(V(w_i)) over `samples` occlusion rays per camera sample.
-#include "../frame.h"
+#include <cmath>
+
 #include "../hot.h"
 #include "../scene_limits.h"
 #include "../warp.h"
@@ -13,40 +14,68 @@ namespace {
 
 /// ao's estimate for a packet (a free function: it is compiled per ISA, which a virtual one cannot be).
 /// The j-th occlusion ray of every lane goes to Embree as one packet (their directions differ: an
-/// incoherent packet).
+/// incoherent packet). Each loop runs over all kPacketSize lanes without branches, so that it compiles to
+/// SIMD; a lane without a front-facing hit traces nothing and returns 0.
 MCVAL_HOT void aoPacket(const EmbreeScene &embree, const Color &environment, int samples, const SamplePacket &packet,
-                    const Sampler &sampler, Color *out, RayCounts &counts) {
-    const int n = packet.count;
-    bool front[kPacketSize];
-    Frame frames[kPacketSize];
-    int visible[kPacketSize];
+                        const Sampler &sampler, Color *out, RayCounts &counts) {
+    const HitPacket &h = packet.lanes;
+    alignas(64) int front[kPacketSize], visible[kPacketSize];
+    // The tangent frame around each lane's shading normal (Frame's construction, lane by lane).
+    alignas(64) float sx[kPacketSize], sy[kPacketSize], sz[kPacketSize], tx[kPacketSize], ty[kPacketSize],
+        tz[kPacketSize];
     int traced = 0;
-    for (int i = 0; i < n; ++i) {
+    for (int i = 0; i < kPacketSize; ++i) {
         // A camera ray that escapes returns 0 (the environment itself is hidden); so does a back face.
-        front[i] = packet.lanes.front(i);
-        if (front[i]) frames[i] = Frame({packet.lanes.nx[i], packet.lanes.ny[i], packet.lanes.nz[i]});
+        front[i] = (i < packet.count) & h.front(i);
         visible[i] = 0;
         traced += front[i];
+        const float nx = h.nx[i], ny = h.ny[i], nz = h.nz[i];
+        const float sign = std::copysign(1.f, nz);
+        const float a = -1.f / (sign + nz);
+        const float b = nx * ny * a;
+        sx[i] = 1.f + sign * nx * nx * a; sy[i] = sign * b; sz[i] = -sign * nx;
+        tx[i] = b; ty[i] = sign + ny * ny * a; tz[i] = -ny;
     }
     if (traced > 0) {
         OcclusionPacket rays;
+        RTCRay16 &r = rays.rays;
+        alignas(64) float ux[kPacketSize], uy[kPacketSize];
         for (int j = 0; j < samples; ++j) {
-            rays.clear();
-            for (int i = 0; i < n; ++i) {
-                if (!front[i]) continue;
+            const auto pair = 1 + static_cast<uint32_t>(j);
+            if (sampler.type() == SamplerType::Independent) {
+                for (int i = 0; i < kPacketSize; ++i) {
+                    const Vec2f u = sampler.independent2D(packet.first + static_cast<uint32_t>(i), pair);
+                    ux[i] = u.x;
+                    uy[i] = u.y;
+                }
+            } else {
+                for (int i = 0; i < kPacketSize; ++i) {
+                    const Vec2f u = sampler.sample2D(packet.first + static_cast<uint32_t>(i), pair);
+                    ux[i] = u.x;
+                    uy[i] = u.y;
+                }
+            }
+            for (int i = 0; i < kPacketSize; ++i) {
                 // Cosine-weighted sampling cancels the cosine over its pdf: each unoccluded ray
                 // counts rho * L_env.
-                const Vec2f u = sampler.sample2D(packet.first + static_cast<uint32_t>(i), 1 + static_cast<uint32_t>(j));
-                const Vec3f wi = frames[i].toWorld(squareToCosineHemisphere(u));
-                rays.set(i, packet.lanes.spawnOrigin(i, wi), wi, 1e30f);
+                const Vec3f l = squareToCosineHemisphere({ux[i], uy[i]});
+                const Vec3f wi{sx[i] * l.x + tx[i] * l.y + h.nx[i] * l.z, sy[i] * l.x + ty[i] * l.y + h.ny[i] * l.z,
+                               sz[i] * l.x + tz[i] * l.y + h.nz[i] * l.z};
+                const Vec3f o = h.spawnOrigin(i, wi);
+                r.org_x[i] = o.x; r.org_y[i] = o.y; r.org_z[i] = o.z;
+                r.dir_x[i] = wi.x; r.dir_y[i] = wi.y; r.dir_z[i] = wi.z;
+                r.tnear[i] = 0.f;
+                r.tfar[i] = 1e30f;
+                rays.valid[i] = front[i] ? -1 : 0;
             }
+            rays.active = traced;
             embree.occluded(rays, /*coherent=*/false);
-            for (int i = 0; i < n; ++i) visible[i] += front[i] && !rays.blocked(i);
+            for (int i = 0; i < kPacketSize; ++i) visible[i] += front[i] & !(r.tfar[i] < 0.f);  // -inf: blocked
         }
         counts.shadow += static_cast<uint64_t>(traced) * static_cast<uint64_t>(samples);
     }
-    for (int i = 0; i < n; ++i) {
-        out[i] = front[i] ? embree.reflectance(packet.lanes.geom[i]) * environment *
+    for (int i = 0; i < packet.count; ++i) {
+        out[i] = front[i] ? embree.reflectance(h.geom[i]) * environment *
                                 (static_cast<float>(visible[i]) / static_cast<float>(samples))
                           : Color(0.f, 0.f, 0.f);
     }

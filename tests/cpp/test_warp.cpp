@@ -181,3 +181,24 @@ TEST(Sampler, SobolTablesGiveTheBitwiseValues) {
         ASSERT_EQ(detail::sobolSecond(index), detail::sobolSecondBitwise(index)) << index;
     }
 }
+
+// The warps' own sin and cos of 2 pi v (sincos.h) against the library's in double, over [0, 1) and its
+// quarter-turn boundaries, and the signs in one quadrant.
+TEST(Warp, SinCos2PiMatchesTheLibraryWithinAFewUlps) {
+    double worst = 0.0;
+    const auto check = [&](float v) {
+        float s, c;
+        mcval::detail::sinCos2Pi(v, s, c);
+        const double phi = 2.0 * 3.14159265358979323846 * double(v);
+        worst = std::max({worst, std::abs(double(s) - std::sin(phi)), std::abs(double(c) - std::cos(phi))});
+    };
+    for (int i = 0; i < 1 << 20; ++i) check(float(i) / float(1 << 20));
+    for (float q : {0.f, 0.125f, 0.25f, 0.375f, 0.5f, 0.625f, 0.75f, 0.875f, 1.f})
+        for (float v : {q, std::nextafter(q, 0.f), std::nextafter(q, 1.f)}) check(v);
+    check(mcval::kOneMinusEpsilon);
+    EXPECT_LT(worst, 4e-7) << worst;  // a few ulps of 1 (a wrong quadrant or coefficient is off by far more)
+    float s, c;
+    mcval::detail::sinCos2Pi(0.3f, s, c);  // the second quadrant: sin > 0, cos < 0
+    EXPECT_GT(s, 0.9f);
+    EXPECT_LT(c, -0.3f);
+}
