@@ -1,5 +1,7 @@
 #include "sphere.h"
 
+#include "hot.h"
+
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -69,7 +71,7 @@ void bounds(const RTCBoundsFunctionArguments *args) {
     b->lower_z = down(double(s.center.z) - r); b->upper_z = up(double(s.center.z) + r);
 }
 
-/// Ray i of an Embree packet of N (N is 1 for rtcIntersect1, up to 8 for rtcIntersect8).
+/// Ray i of an Embree packet of N (N is 1 for rtcIntersect1, up to 16 for rtcIntersect16).
 struct RayView {
     RTCRayN *ray;
     unsigned N, i;
@@ -79,7 +81,96 @@ struct RayView {
     float &tfar() const { return RTCRayN_tfar(ray, N, i); }
 };
 
-void intersect(const RTCIntersectFunctionNArguments *args) {
+/// intersectSphere for lanes [0, N) of an Embree RTCRayN at once, branch-free so that GCC turns the
+/// loop into SIMD: the same operations in the same order (so the same bits), every root computed
+/// and the early returns folded into the lane's mask. hit[i] is -1 where intersectSphere would
+/// return true with t = t[i], else 0 (t[i] is then meaningless). Lanes Embree left invalid hold
+/// whatever Embree left there; they are computed like the others and their results ignored.
+template <unsigned N>
+__attribute__((always_inline)) inline void sphereRoots(const Sphere &s, const float *__restrict ray,
+                                                       double *__restrict tOut, long long *__restrict hitOut) {
+    const double cx = s.center.x, cy = s.center.y, cz = s.center.z, r = s.radius;
+    for (unsigned i = 0; i < N; ++i) {
+        const double dx = ray[4 * N + i], dy = ray[5 * N + i], dz = ray[6 * N + i];
+        const double ox = double(ray[0 * N + i]) - cx, oy = double(ray[1 * N + i]) - cy,
+                     oz = double(ray[2 * N + i]) - cz;
+        const double a = dx * dx + dy * dy + dz * dz;
+        const double b = 2.0 * (dx * ox + dy * oy + dz * oz);
+        const double k = b / (2.0 * a);
+        const double vx = ox - k * dx, vy = oy - k * dy, vz = oz - k * dz;
+        const double closest = __builtin_sqrt(vx * vx + vy * vy + vz * vz);
+        const double disc = 4.0 * a * (r + closest) * (r - closest);
+        const double root = __builtin_sqrt(disc);
+        // b - root is b + -root exactly (IEEE defines it so); the select is of operands, not of
+        // results, so GCC has no operation to sink into a branch (which -ftrapping-math keeps from
+        // being if-converted on AVX2).
+        const double q = -0.5 * (b + (b < 0.0 ? -root : root));
+        const double dist = __builtin_sqrt(ox * ox + oy * oy + oz * oz);
+        const double t0 = q / a, t1 = (dist - r) * (dist + r) / q;
+        const bool swap = t0 > t1;
+        const double lo = swap ? t1 : t0, hi = swap ? t0 : t1;
+        const double tnear = ray[3 * N + i], tfar = ray[8 * N + i];
+        const bool loIn = (lo >= tnear) & (lo <= tfar), hiIn = (hi >= tnear) & (hi <= tfar);
+        const bool hit = (a > 0.0) & (disc >= 0.0) & (q != 0.0) & (loIn | hiIn);
+        tOut[i] = loIn ? lo : hi;
+        hitOut[i] = hit ? -1 : 0;
+    }
+}
+
+/// Embree's intersect callback for a packet of N (16 or 8), the lanes at once.
+template <unsigned N>
+__attribute__((always_inline)) inline void intersectPacket(const RTCIntersectFunctionNArguments *args) {
+    const Sphere &s = *static_cast<const Sphere *>(args->geometryUserPtr);
+    float *__restrict ray = reinterpret_cast<float *>(args->rayhit);
+    float *__restrict hitf = ray + 12 * N;
+    unsigned *__restrict hitu = reinterpret_cast<unsigned *>(args->rayhit) + 12 * N;
+    const int *__restrict valid = args->valid;
+    double t[N];
+    long long found[N];
+    sphereRoots<N>(s, ray, t, found);
+    float tf[N], u[N];
+    int store[N];
+    for (unsigned i = 0; i < N; ++i) {
+        tf[i] = float(t[i]);
+        // u keeps what float32 rounded off t, so the hit point is rebuilt from t in double.
+        u[i] = float(t[i] - double(tf[i]));
+        // Not where tf rounded up past the closest hit so far.
+        store[i] = (valid[i] == -1) & (found[i] != 0) & !(tf[i] > ray[8 * N + i]);
+    }
+    // The stores apart, of values computed above: masked stores, nothing to compute under a mask.
+    const unsigned primID = args->primID, geomID = args->geomID, instID = args->context->instID[0];
+    for (unsigned i = 0; i < N; ++i) {
+        if (store[i]) {
+            ray[8 * N + i] = tf[i];
+            hitf[3 * N + i] = u[i];
+            hitf[4 * N + i] = 0.f;
+            hitf[0 * N + i] = 0.f;
+            hitf[1 * N + i] = 0.f;
+            hitf[2 * N + i] = 1.f;
+            hitu[5 * N + i] = primID;
+            hitu[6 * N + i] = geomID;
+            hitu[7 * N + i] = instID;
+        }
+    }
+}
+
+/// Embree's occluded callback for a packet of N (16 or 8), the lanes at once.
+template <unsigned N>
+__attribute__((always_inline)) inline void occludedPacket(const RTCOccludedFunctionNArguments *args) {
+    const Sphere &s = *static_cast<const Sphere *>(args->geometryUserPtr);
+    float *__restrict ray = reinterpret_cast<float *>(args->ray);
+    const int *__restrict valid = args->valid;
+    double t[N];
+    long long found[N];
+    sphereRoots<N>(s, ray, t, found);
+    for (unsigned i = 0; i < N; ++i)
+        if ((valid[i] == -1) & (found[i] != 0))
+            ray[8 * N + i] = -std::numeric_limits<float>::infinity();  // Embree's mark of an occluded ray
+}
+
+MCVAL_HOT void intersect(const RTCIntersectFunctionNArguments *args) {
+    if (args->N == 16) return intersectPacket<16>(args);
+    if (args->N == 8) return intersectPacket<8>(args);
     const Sphere &s = *static_cast<const Sphere *>(args->geometryUserPtr);
     RTCRayN *rays = RTCRayHitN_RayN(args->rayhit, args->N);
     RTCHitN *hits = RTCRayHitN_HitN(args->rayhit, args->N);
@@ -103,7 +194,9 @@ void intersect(const RTCIntersectFunctionNArguments *args) {
     }
 }
 
-void occluded(const RTCOccludedFunctionNArguments *args) {
+MCVAL_HOT void occluded(const RTCOccludedFunctionNArguments *args) {
+    if (args->N == 16) return occludedPacket<16>(args);
+    if (args->N == 8) return occludedPacket<8>(args);
     const Sphere &s = *static_cast<const Sphere *>(args->geometryUserPtr);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
