@@ -44,7 +44,7 @@ def _bench(args, run_dir: Path) -> tuple[bool, dict]:
              if args.scenes or (c.integrator != "normals" and c.group == "synthetic")]
     from harness.bench.run import SAME_SAMPLER, SAMPLERS
     reference = MitsubaEngine()
-    factories = {"mcval": lambda s: OurEngine(sampler=s), "mitsuba": lambda s: MitsubaEngine(sampler=s),
+    factories = {"mcval": lambda s: OurEngine(sampler=s, in_process=True), "mitsuba": lambda s: MitsubaEngine(sampler=s),
                  "mitsuba-scalar": lambda s: MitsubaEngine("scalar_rgb", sampler=s)}
     # Each engine with the same sampler (the engine comparison) and, unless --same-sampler, its stratified
     # ones (each engine at its best).

@@ -80,3 +80,15 @@ def test_ratios_compare_the_steps_both_curves_rendered():
                              "mitsuba/multijitter": Curve("b", "render only", steps((16, 64)), 0.1)}, np.zeros(3))
     # Medians over their own steps would give 32^0.5 / ((16^0.5 + 64^0.5) / 2) = 0.94; the same curve is 1.
     assert bench.comparison(None)["ratio"] == pytest.approx(1.0)
+
+
+def test_our_engine_in_process_renders_the_same_bits_as_the_child_process():
+    """The bench renders ours in process (warm threads, as Mitsuba's); the images must be the child's."""
+    from harness.engines.ours import OurEngine
+    for batches in (1, 3):
+        child = OurEngine(sampler="independent").render("scenes/cornell.xml", "ao", 16, batches, 7, {"res": "32"})
+        inner = OurEngine(sampler="independent", in_process=True).render("scenes/cornell.xml", "ao", 16, batches, 7,
+                                                                        {"res": "32"})
+        assert inner.batches.shape == child.batches.shape == (batches, 32, 32, 3)
+        assert np.array_equal(inner.batches, child.batches)
+        assert inner.sampler == child.sampler == "independent" and inner.seconds["render"] > 0

@@ -31,12 +31,15 @@ class OurEngine(Engine):
     render_timing = "render only (scene load and BVH build are timed apart)"
 
     def __init__(self, binary: str | Path | None = None, timeout: float | None = None,
-                 sampler: str | None = None) -> None:
+                 sampler: str | None = None, in_process: bool = False) -> None:
         self._m = _load_module()
         self.binary = binary
         self.timeout = timeout
         self.sampler = sampler  # None: the scene's; else "independent" or "sobol" (render --sampler)
         self.label = self.name if sampler is None else f"{self.name}/{sampler}"
+        # In process (the bench): renders through the Python module, as Mitsuba's do, so that both engines
+        # time warm thread pools; a crash then ends the process, which the child process would contain.
+        self.in_process = in_process
 
     def version(self) -> str:
         return f"this repository's renderer (images: {self.binary or render_binary()} as a child process; " \
@@ -67,7 +70,20 @@ class OurEngine(Engine):
         inside the renderer; "total" (wall clock, with process start and EXR write and read).
         Raises RenderFailed if the child crashes, is killed, times out, exits non-zero or writes no image."""
         start = time.perf_counter()
+        if self.in_process:
+            return self._render_in_process(scene, integrator, spp, batches, seed, params, start)
         out = run_render(str(scene), integrator, spp, batches, seed, {k: str(v) for k, v in (params or {}).items()},
                          self.timeout, self.binary, self.sampler)
         seconds = {**out.seconds, "total": time.perf_counter() - start}
         return RenderResult(self.name, str(scene), integrator, spp, seed, out.batches, seconds, out.sampler)
+
+    def _render_in_process(self, scene: str, integrator: str, spp: int, batches: int, seed: int,
+                           params: dict[str, str] | None, start: float) -> RenderResult:
+        kwargs = {"sampler": self.sampler} if self.sampler else {}
+        out = self._m.render(str(scene), spp=spp, batches=batches, seed=seed, integrator=integrator,
+                             params={k: str(v) for k, v in (params or {}).items()}, **kwargs)
+        s = out["stats"]
+        seconds = {"load": s["load_seconds"], "build": s["bvh_seconds"], "render": s["render_seconds"],
+                   "total": time.perf_counter() - start}
+        return RenderResult(self.name, str(scene), integrator, spp, seed, np.asarray(out["batches"]), seconds,
+                            s["sampler"])
