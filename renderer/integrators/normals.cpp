@@ -12,6 +12,11 @@ public:
     Color Li(const Ray &, const Hit *hit, Sampler &, RayCounts &) const override {
         return hit ? hit->ns : Color(0.f, 0.f, 0.f);
     }
+    /// Li for a packet, read straight from its SoA hits (a lane without a hit holds a zero normal).
+    void LiPacket(const SamplePacket &packet, Sampler &, Color *out, RayCounts &) const override {
+        const HitPacket &h = packet.lanes;
+        for (int i = 0; i < packet.count; ++i) out[i] = Color(h.nx[i], h.ny[i], h.nz[i]);
+    }
 };
 
 }  // namespace
