@@ -92,3 +92,17 @@ def test_our_engine_in_process_renders_the_same_bits_as_the_child_process():
         assert inner.batches.shape == child.batches.shape == (batches, 32, 32, 3)
         assert np.array_equal(inner.batches, child.batches)
         assert inner.sampler == child.sampler == "independent" and inner.seconds["render"] > 0
+
+
+def test_efficiency_is_the_geometric_mean_over_steps_of_the_mean_error():
+    """Steps below 16 spp are left out; each step's relMSE is the mean of its runs (the MSE), not their
+    median; the steps are pooled by a geometric mean, not a median of per-step values."""
+    steps = [Step(8, [9.0] * 3, [9.0] * 3, [0.0] * 3),                        # below 16 spp: ignored
+             Step(16, [0.1, 0.1, 0.1], [1.0, 1.0, 4.0], [0.0] * 3),           # mean 2 (median 1)
+             Step(32, [0.2, 0.2, 0.9], [1.0, 1.0, 1.0], [0.0] * 3),           # median time 0.2
+             Step(64, [0.4, 0.4, 0.4], [0.25, 0.25, 0.25], [0.0] * 3)]
+    curve = Curve("x", "render only", steps, 0.1)
+    per_step = [1 / (2.0 * 0.1), 1 / (1.0 * 0.2), 1 / (0.25 * 0.4)]
+    assert curve.efficiency() == pytest.approx(float(np.exp(np.mean(np.log(per_step)))))
+    assert curve.efficiency({16, 32}) == pytest.approx(float(np.sqrt(per_step[0] * per_step[1])))
+    assert curve.efficiency() != pytest.approx(float(np.median(per_step)))
