@@ -17,6 +17,7 @@
 #include "hot.h"
 #include "integrators/integrator.h"
 #include "scene_limits.h"
+#include "worker_warmth.h"
 
 namespace mcval {
 
@@ -196,6 +197,7 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
     out.stats.integrator = spec.type;
     out.stats.sampler = samplerName(sampler);
 
+    workersStart();
     auto start = std::chrono::steady_clock::now();
     const EmbreeScene embree(scene.meshes, scene.spheres);
     const auto integrator = createIntegrator(spec, scene, embree);  // validates the name before any work
@@ -228,6 +230,7 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
     for (size_t k = 0; k < out.batches.size(); ++k)
         requireFinite(out.batches[k], "batch " + std::to_string(k), scene.file);
     out.stats.renderSeconds = secondsSince(start);
+    if (options.keepWarmMilliseconds > 0) keepWorkersWarm(options.keepWarmMilliseconds);
     for (const RayCounts &c : counts) {
         out.stats.cameraRays += c.camera;
         out.stats.shadowRays += c.shadow;

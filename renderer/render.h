@@ -19,6 +19,9 @@ struct RenderOptions {
     std::string sampler;         ///< overrides the scene's <sampler> when not empty: independent or sobol
     /// Called with the fraction done (0..1), from worker threads, one call at a time.
     std::function<void(double)> progress;
+    /// Milliseconds a worker thread keeps spinning after the render, for a caller that renders again
+    /// soon (the Python module); 0 lets it sleep at once (the command line, which exits).
+    int keepWarmMilliseconds = 0;
 };
 
 /// An RGB float image, row-major from the top-left pixel.

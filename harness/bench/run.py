@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import json
+import time
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
@@ -9,6 +10,7 @@ from typing import Callable
 import numpy as np
 
 from harness.bench.ladder import LADDER, RUNS, Curve, run_ladder
+from harness.bench.throughput import QUIET_SECONDS
 from harness.engines.base import Engine
 from harness.images.suite import SCENES_DIR, ImageCase
 from harness.bench.truth import bench_truth
@@ -89,7 +91,10 @@ def run_bench(cases: list[ImageCase], engines: list[Engine], reference_engine: E
     out = []
     for case in cases:
         reference, truth = bench_truth(case, reference_engine)
-        curves = {e.label or e.name: run_ladder(e, case, reference, seed, ladder, runs, on_step) for e in engines}
+        curves = {}
+        for e in engines:
+            time.sleep(QUIET_SECONDS)  # the previous engine's threads have stopped spinning
+            curves[e.label or e.name] = run_ladder(e, case, reference, seed, ladder, runs, on_step)
         out.append(CaseBench(case, curves, reference.summary.pixel.mean, truth))
     return out
 

@@ -1,6 +1,6 @@
 """Render throughput of both engines side by side, in one process: the same scene file, sampler, resolution
 and samples per pixel, render time only (scene load, BVH build and Mitsuba's JIT compilation excluded: each timed
-render follows an untimed one of the same engine), medians of several runs. This separates per-sample cost from convergence.
+render follows a pause and then an untimed one of the same engine), medians of several runs. This separates per-sample cost from convergence.
 
 Rays per second divide the same count for both engines: the rays our integrator traced (camera rays plus the
 shadow or occlusion rays of front-facing hits), i.e. the work of our estimate. Mitsuba's `direct` traces about as
@@ -21,6 +21,9 @@ from harness.images.suite import SCENES_DIR
 from harness.engines.mitsuba import load_mitsuba
 from harness.engines.mitsuba_scene import MITSUBA_SAMPLER, load_scene
 from harness.engines.ours import _load_module
+
+#: Seconds to wait before an engine's renders, so that the other engine's threads have stopped spinning.
+QUIET_SECONDS = 0.25
 
 #: (scene, integrator, resolution, spp): the issue's four cases.
 CASES = (("highpoly", "simple", 768, 32), ("highpoly", "ao", 768, 16),
@@ -89,12 +92,15 @@ def measure(scene_name: str, integrator: str, res: int, spp: int, runs: int = 3,
     seconds: dict[str, list[float]] = {"mcval": [], "mitsuba": []}
     rays = 0
     for run in range(1, runs + 1):
-        # Each timed render follows an untimed one of the same engine, so that it meets neither the other
-        # engine's thread pool still spinning nor its own asleep (waking a worker thread costs this
-        # machine several ms, a third of a 128² render); both engines are treated alike.
+        # Each engine's timed render follows a pause longer than either engine keeps its threads spinning
+        # after a render (ours 100 ms), then an untimed render of its own: so it meets neither the other
+        # engine's threads still spinning nor its own asleep (waking a worker thread costs this machine
+        # several ms, a third of a 128² render). Both engines are treated alike.
+        time.sleep(QUIET_SECONDS)
         _ours(scene, integrator, res, spp, sampler, 1000 + run)
         t, rays = _ours(scene, integrator, res, spp, sampler, run)
         seconds["mcval"].append(t)
+        time.sleep(QUIET_SECONDS)
         mitsuba(1000 + run)
         seconds["mitsuba"].append(mitsuba(run))
     mitsuba_spp = loaded.sensors()[0].sampler().sample_count()  # as the renders set it

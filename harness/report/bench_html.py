@@ -36,7 +36,7 @@ def _throughput_html(throughput: list[dict] | None) -> str:
         f"<td>{t['rays_per_second']['mcval'] / 1e6:.1f}</td><td>{t['rays_per_second']['mitsuba'] / 1e6:.1f}</td></tr>"
         for t in throughput)
     return ("<p>Both engines in one process, the same scene file and sampler, render time only, each timed "
-            "render right after an untimed one of the same engine (so neither meets the other's thread pool still "
+            "render after a pause and an untimed one of the same engine (so neither meets the other's threads still "
             "spinning, nor its own asleep); medians of the runs. Rays/s divide the rays ours traced, for both engines (Mitsuba's "
             "direct traces about as many for simple; for ao it adds a BSDF-sampled ray per hit, its MIS).</p><table><tr><th>case</th><th>setting</th><th>ours s</th>"
             "<th>Mitsuba s</th><th>Mitsuba/ours per sample</th><th>ours Msamples/s</th><th>Mitsuba Msamples/s</th>"

@@ -21,6 +21,10 @@ namespace {
 
 using Array = nb::ndarray<nb::numpy, float>;
 
+/// How long a worker keeps spinning after a render from Python, which often renders again soon (the
+/// bench's ladder computes its errors between renders for ~30 ms): see worker_warmth.h.
+constexpr int kKeepWarmMilliseconds = 100;
+
 /// Copies images into one new (count, H, W, 3) or (H, W, 3) array.
 Array toNumpy(const std::vector<const Image *> &images, bool stacked) {
     const size_t h = images[0]->height, w = images[0]->width, n = images.size();
@@ -48,6 +52,7 @@ nb::dict renderScene(const std::string &path, std::optional<int> spp, uint64_t s
         options.batches = batches;
         options.integrator = integrator;
         options.sampler = sampler;
+        options.keepWarmMilliseconds = kKeepWarmMilliseconds;
         out = render(scene, options);
     }
     nb::dict result;

@@ -1,4 +1,5 @@
 // Rendering: the same bits whatever the thread count, and no NaN or Inf anywhere.
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include "integrators/registry.h"
 #include "render.h"
 #include "scene.h"
+#include "worker_warmth.h"
 
 using namespace mcval;
 namespace fs = std::filesystem;
@@ -61,4 +63,26 @@ TEST(Render, EverySceneAndIntegratorIsFinite) {
             EXPECT_EQ(out.batches.size(), 2u);
         }
     }
+}
+
+// A render that keeps a worker warm returns at once (the spinning is fire and forget), the next render
+// stops the spinning and gives the same bits as one without it, whatever the thread count.
+TEST(Render, KeepingAWorkerWarmNeitherBlocksNorChangesTheImage) {
+    const SceneDescription scene = smallScene("sphere_plane.xml");
+    RenderOptions options;
+    options.spp = 4;
+    options.seed = 3;
+    options.integrator = "ao";
+    const RenderOutput plain = render(scene, options);
+    options.keepWarmMilliseconds = 60000;  // a minute: a caller that waited for it would time out
+    const auto start = std::chrono::steady_clock::now();
+    const RenderOutput warm = render(scene, options);
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30.0);
+    options.keepWarmMilliseconds = 0;
+    for (int threads : {1, 2}) {
+        options.threads = threads;
+        const RenderOutput next = render(scene, options);  // starts while the worker spins, and stops it
+        EXPECT_EQ(0, std::memcmp(plain.mean.rgb.data(), next.mean.rgb.data(), plain.mean.rgb.size() * sizeof(float)));
+    }
+    EXPECT_EQ(0, std::memcmp(plain.mean.rgb.data(), warm.mean.rgb.data(), plain.mean.rgb.size() * sizeof(float)));
 }
