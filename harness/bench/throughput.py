@@ -126,6 +126,6 @@ if __name__ == "__main__":
     runs = int(sys.argv[1]) if len(sys.argv) > 1 else 3
     sampler = sys.argv[2] if len(sys.argv) > 2 else "independent"
     print(table([measure(*case, runs=runs, sampler=sampler) for case in CASES]))
-    print(f"Render time only, each timed render after an untimed one of the same engine; medians of {runs} runs; Mitsuba/ours per sample; "
+    print(f"Render time only, each timed render after a pause and an untimed one of the same engine; medians of {runs} runs; Mitsuba/ours per sample; "
           f"sampler {sampler} "
           f"(Mitsuba: {MITSUBA_SAMPLER.get(sampler, sampler)}); rays/s from our ray count for both.")
