@@ -7,6 +7,7 @@
 #include <cstring>
 #include <vector>
 
+#include "ray.h"
 #include "scene.h"
 
 namespace mcval {
@@ -61,8 +62,8 @@ public:
     static constexpr int kStride = 12;
     /// Pixels a sample reaches along one axis: 2 x the widest filter radius (4 x kMaxFilterStddev) + 1.
     static constexpr int kMaxTaps = 2 * 16 + 2;
-    /// Most samples putPacket() takes at once.
-    static constexpr int kMaxPacket = 16;
+    /// Most samples putPacket() takes at once: a packet of rays.
+    static constexpr int kMaxPacket = kPacketSize;
 
 private:
     /// The filter's 1D weight at offset x (pixels); the 2D weight is separable. The gaussian is

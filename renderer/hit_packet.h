@@ -67,11 +67,9 @@ struct HitPacket {
     /// Whether lane i hit the front of its surface (the side its shading normal points to): one-sided
     /// diffuse surfaces, as Mitsuba's, are black from behind.
     bool front(int i) const { return (found[i] != 0) & (nx[i] * dx[i] + ny[i] * dy[i] + nz[i] * dz[i] < 0.f); }
-    /// The origin of a ray leaving lane i's hit toward d: spawnOrigin's rule, on this layout.
+    /// The origin of a ray leaving lane i's hit toward d (ray.h's spawnOrigin).
     Vec3f spawnOrigin(int i, const Vec3f &d) const {
-        const float side = gx[i] * d.x + gy[i] * d.y + gz[i] * d.z >= 0.f ? 1.f : -1.f;
-        return {offsetCoordinate(px[i], side * gx[i], offsetFloor), offsetCoordinate(py[i], side * gy[i], offsetFloor),
-                offsetCoordinate(pz[i], side * gz[i], offsetFloor)};
+        return mcval::spawnOrigin({px[i], py[i], pz[i]}, {gx[i], gy[i], gz[i]}, offsetFloor, d);
     }
 };
 

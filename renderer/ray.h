@@ -61,4 +61,12 @@ inline Vec3f offsetRayOrigin(const Vec3f &p, const Vec3f &n, float floor) {
     return {offsetCoordinate(p.x, n.x, floor), offsetCoordinate(p.y, n.y, floor), offsetCoordinate(p.z, n.z, floor)};
 }
 
+/// The origin of a ray leaving surface point p (unit geometric normal ng) in direction d without
+/// re-hitting its surface: moved off the surface along ng, on the side d leaves by, by an offset that
+/// scales with the position's magnitude and with `floor` (the size of the scene's smallest shape).
+inline Vec3f spawnOrigin(const Vec3f &p, const Vec3f &ng, float floor, const Vec3f &d) {
+    const Vec3f side = dot(ng, d) >= 0.f ? ng : -ng;
+    return offsetRayOrigin(p, side, floor);
+}
+
 }  // namespace mcval

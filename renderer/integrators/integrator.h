@@ -62,13 +62,8 @@ public:
 std::unique_ptr<Integrator> createIntegrator(const IntegratorSpec &spec, const SceneDescription &scene,
                                              const EmbreeScene &embree);
 
-/// The origin of a ray leaving `hit` in direction d without re-hitting its surface: moved off the
-/// surface, along the geometric normal, by an offset that scales with the position's magnitude and
-/// with the size of the scene's smallest shape.
-inline Vec3f spawnOrigin(const Hit &hit, const Vec3f &d) {
-    const Vec3f side = dot(hit.ng, d) >= 0.f ? hit.ng : -hit.ng;
-    return offsetRayOrigin(hit.p, side, hit.offsetFloor);
-}
+/// The origin of a ray leaving `hit` in direction d (ray.h's spawnOrigin).
+inline Vec3f spawnOrigin(const Hit &hit, const Vec3f &d) { return spawnOrigin(hit.p, hit.ng, hit.offsetFloor, d); }
 
 /// spawnRay as a Ray.
 inline Ray spawnRay(const Hit &hit, const Vec3f &d, float tfar) {

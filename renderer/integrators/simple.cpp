@@ -34,12 +34,8 @@ MCVAL_HOT void simplePacket(const std::vector<PointLight> &lights, const EmbreeS
             const float wx = tx / dist, wy = ty / dist, wz = tz / dist;
             const float cosTheta = h.nx[i] * wx + h.ny[i] * wy + h.nz[i] * wz;
             const bool on = (front[i] != 0) & (dist2 > 0.f) & (cosTheta > 0.f);
-            // The spawn rule of spawnOrigin: off the surface along the geometric normal, on the side
-            // the ray leaves by.
-            const float side = (h.gx[i] * wx + h.gy[i] * wy + h.gz[i] * wz) >= 0.f ? 1.f : -1.f;
-            r.org_x[i] = offsetCoordinate(h.px[i], side * h.gx[i], h.offsetFloor);
-            r.org_y[i] = offsetCoordinate(h.py[i], side * h.gy[i], h.offsetFloor);
-            r.org_z[i] = offsetCoordinate(h.pz[i], side * h.gz[i], h.offsetFloor);
+            const Vec3f o = h.spawnOrigin(i, {wx, wy, wz});
+            r.org_x[i] = o.x; r.org_y[i] = o.y; r.org_z[i] = o.z;
             r.dir_x[i] = wx; r.dir_y[i] = wy; r.dir_z[i] = wz;
             r.tnear[i] = 0.f;
             // Stop just short of the light: nothing behind it may shadow.
