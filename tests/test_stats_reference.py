@@ -415,7 +415,7 @@ def _entry(scene="cornell", passed=True, mean=(0.5, 0.5, 0.5), se=(1e-3, 1e-3, 1
 def test_regression_report_flags_each_change_by_its_rule():
     from harness.images.regression import MEAN_SIGMAS, TIME_FACTOR, TIME_FLOOR, compare_runs
 
-    assert (MEAN_SIGMAS, TIME_FACTOR, TIME_FLOOR) == (4.0, 1.5, 0.05)
+    assert (MEAN_SIGMAS, TIME_FACTOR, TIME_FLOOR) == (4.0, 1.5, 0.25)
     base = {"images": [_entry(relmse=2e-3), _entry("plane", passed=False)]}
 
     def flags(*current):
@@ -437,16 +437,18 @@ def test_regression_report_flags_each_change_by_its_rule():
     again = compare_runs([_entry(passed=False, mean=None, error="timed out"), _entry("plane", seconds=9.0)], failed)
     assert [r["flags"] for r in again] == [[], ["time 1.00s -> 9.00s"]]
     assert again[0]["relmse_before"] == 2e-3
-    # Times: beyond a factor 1.5 and 0.05 s either way.
+    # Times: beyond a factor 1.5 and 0.25 s either way.
     slow = {"images": [_entry(seconds=2.0), _entry("plane", seconds=0.5)]}
     assert [r["flags"] for r in compare_runs([_entry(seconds=2.5), _entry("plane", seconds=0.9)], slow)] == \
         [[], ["time 0.50s -> 0.90s"]]
+    assert [r["flags"] for r in compare_runs([_entry(seconds=1.2), _entry("plane", seconds=0.74)], slow)] == \
+        [["time 2.00s -> 1.20s"], []]
     assert flags(_entry(seconds=1.6)) == [("cornell", ["time 1.00s -> 1.60s"])]
     assert flags(_entry(seconds=0.6)) == [("cornell", ["time 1.00s -> 0.60s"])]
     assert flags(_entry(seconds=1.45), _entry("plane", passed=False, seconds=0.7)) == [("cornell", []), ("plane", [])]
-    small = {"images": [_entry(seconds=0.02)]}
-    assert compare_runs([_entry(seconds=0.06)], small)[0]["flags"] == []
-    assert compare_runs([_entry(seconds=0.08)], small)[0]["flags"] == ["time 0.02s -> 0.08s"]
+    small = {"images": [_entry(seconds=0.07)]}
+    assert compare_runs([_entry(seconds=0.3)], small)[0]["flags"] == []  # 4x, but only 0.23 s
+    assert compare_runs([_entry(seconds=0.33)], small)[0]["flags"] == ["time 0.07s -> 0.33s"]
     # The mean: its flag names the standard errors and the relative change.
     moved = compare_runs([_entry(mean=(0.5, 0.5, 0.51))], base)[0]["flags"]
     assert moved == [f"image mean moved {0.01 / np.hypot(1e-3, 1e-3):.1f} standard errors (+0.67%)"]
