@@ -85,8 +85,10 @@ private:
     void fillHit(const Ray &ray, unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const;
 
     /// The hits of a traced packet's first `count` lanes into `hits`: the triangles' in SIMD over all
-    /// lanes (gathers from the flat tables below), then the rare lanes that need more one by one.
+    /// lanes (gathers from the flat tables below), then the lanes on a sphere.
     void fillHits(const RTCRayHit16 &rh, int count, HitPacket &hits) const;
+    /// fillHits' pass over the lanes on a sphere: their exact points and normals.
+    void fillSphereHits(const RTCRayHit16 &rh, HitPacket &hits) const;
 
     /// A triangle as a hit reads it: its corners and unit face normal (computed once) in one record,
     /// so that the packet's hits can be gathered in SIMD rather than walked through index arrays.

@@ -73,7 +73,8 @@ __attribute__((always_inline)) inline void EmbreeScene::fillHit(const Ray &ray, 
     }
 }
 
-// fillHit's arithmetic for the mesh lanes, in the same order (the same bits), over all lanes at once.
+// fillHit's arithmetic for the mesh lanes, in the same order (the same bits), over all lanes at once;
+// then the lanes on a sphere.
 MCVAL_HOT void EmbreeScene::fillHits(const RTCRayHit16 &rh, int count, HitPacket &hits) const {
     const RTCHit16 &h = rh.hit;
     const uint32_t meshes = static_cast<uint32_t>(m_meshes.size());
@@ -113,12 +114,39 @@ MCVAL_HOT void EmbreeScene::fillHits(const RTCRayHit16 &rh, int count, HitPacket
         others += found & !mesh;
     }
     hits.offsetFloor = m_offsetFloor;
-    if (others == 0) return;
-    for (int i = 0; i < count; ++i) {
-        if (!hits.found[i] || hits.geom[i] < meshes) continue;
-        Hit hit;
-        fillHit(hits.ray(i), h.geomID[i], h.primID[i], h.u[i], h.v[i], rh.ray.tfar[i], hit);
-        hits.setHit(i, hit);
+    if (others != 0) fillSphereHits(rh, hits);
+}
+
+// sphereHitPoint's arithmetic (the same bits) over the lanes on a sphere, in double SIMD; the other
+// lanes compute on the first sphere and keep what they have.
+MCVAL_HOT void EmbreeScene::fillSphereHits(const RTCRayHit16 &rh, HitPacket &hits) const {
+    const uint32_t meshes = static_cast<uint32_t>(m_meshes.size());
+    alignas(64) double cx[kPacketSize], cy[kPacketSize], cz[kPacketSize], r[kPacketSize], sign[kPacketSize];
+    alignas(64) int onSphere[kPacketSize];
+    for (int i = 0; i < kPacketSize; ++i) {
+        onSphere[i] = hits.found[i] & (hits.geom[i] >= meshes);
+        const Sphere &s = m_spheres[onSphere[i] ? hits.geom[i] - meshes : 0];
+        cx[i] = s.center.x; cy[i] = s.center.y; cz[i] = s.center.z;
+        r[i] = s.radius;
+        sign[i] = s.flipNormals ? -1.0 : 1.0;
+    }
+    for (int i = 0; i < kPacketSize; ++i) {
+        const double t = double(rh.ray.tfar[i]) + double(rh.hit.u[i]);  // Embree's t, refined by the callback
+        const double vx = hits.ox[i] + t * hits.dx[i] - cx[i];
+        const double vy = hits.oy[i] + t * hits.dy[i] - cy[i];
+        const double vz = hits.oz[i] + t * hits.dz[i] - cz[i];
+        const double len = std::sqrt(vx * vx + vy * vy + vz * vz);
+        // Operands selected, never results: GCC will not if-convert a division in one arm of a ?:.
+        const bool ok = len > 0.0;
+        const double l = ok ? len : 1.0;
+        const double qx = vx / l, qy = vy / l, qz = vz / l;
+        const double ux = ok ? qx : 0.0, uy = ok ? qy : 0.0, uz = ok ? qz : 1.0;
+        const float px = float(cx[i] + r[i] * ux), py = float(cy[i] + r[i] * uy), pz = float(cz[i] + r[i] * uz);
+        const float nx = float(sign[i] * ux), ny = float(sign[i] * uy), nz = float(sign[i] * uz);
+        const bool s = onSphere[i];
+        hits.px[i] = s ? px : hits.px[i]; hits.py[i] = s ? py : hits.py[i]; hits.pz[i] = s ? pz : hits.pz[i];
+        hits.gx[i] = s ? nx : hits.gx[i]; hits.gy[i] = s ? ny : hits.gy[i]; hits.gz[i] = s ? nz : hits.gz[i];
+        hits.nx[i] = s ? nx : hits.nx[i]; hits.ny[i] = s ? ny : hits.ny[i]; hits.nz[i] = s ? nz : hits.nz[i];
     }
 }
 
