@@ -12,7 +12,7 @@ from rich.markup import escape
 
 from harness.cli_args import build_parser
 from harness.cli_commands import _bench, _calibrate, _integrators, _references
-from harness.cli_output import console, err, progress_bar
+from harness.cli_output import console, err, progress_bar, task_progress
 from harness.results import latest_run, new_run_dir, point_link, write_atomic, write_json
 from harness.statistics.constants import WARP_SAMPLES
 
@@ -64,6 +64,7 @@ def _print_real_scenes(real, not_applicable, alpha: float) -> None:
 
 def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path | None,
                 not_applicable=(), invariance: dict | None = None) -> tuple[bool, dict]:
+    from harness.distributed.cluster import open_executor
     from harness.engines.mitsuba import MitsubaEngine
     from harness.engines.ours import OurEngine
     from harness.images.outputs import write_image_outputs
@@ -75,12 +76,11 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
 
     ours, mitsuba = OurEngine(), MitsubaEngine(args.variant)
     start = time.perf_counter()
-    with progress_bar("images") as progress:
-        task = progress.add_task("", total=len(cases))
-        results, alpha = run_images(cases, ours, mitsuba, args.seed,
-                                    on_progress=lambda c: progress.update(task, advance=1, description=c.key),
-                                    on_message=lambda m: progress.console.print(f"[yellow]{escape(m)}[/]",
-                                                                                soft_wrap=True))
+    with open_executor(args, len(cases)) as executor, task_progress("images", executor) as show:
+        results, alpha = run_images(cases, ours, mitsuba, args.seed, on_status=show,
+                                    on_message=lambda m: console.print(f"[yellow]{escape(m)}[/]", soft_wrap=True),
+                                    executor=executor)
+        where = executor.description
     seconds = time.perf_counter() - start
     synthetic, real = split(results)
     if synthetic:
@@ -91,7 +91,7 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
         console.print(f"[yellow]{escape(name)}[/]: no harness entry (not validated; see `python -m harness "
                       "integrators`)")
     meta = {"engine": ours.version(), "reference": mitsuba.version(), "seed": args.seed,
-            "image seconds": round(seconds, 1)}
+            "image seconds": round(seconds, 1), "ran on": where}
     payload = write_image_outputs(run_dir, results, alpha, warps, meta, baseline, invariance)
     if real or not_applicable:
         payload["real_scenes"] = real_scenes_json(results, not_applicable)

@@ -4,6 +4,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from harness.distributed.cluster import add_executor_options
 from harness.statistics.constants import WARP_SAMPLES
 
 
@@ -31,6 +32,7 @@ def build_parser() -> argparse.ArgumentParser:
         q.add_argument("--baseline", type=Path, metavar="RESULTS_JSON",
                        help="compare with this run's results.json (default: the previous run's)")
         q.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant (default: llvm_ad_rgb)")
+        add_executor_options(q)
 
     w = sub.add_parser("warps", help="the warp conformance matrix alone",
                        description="Check every warp of the renderer against its pdf (chi-square, normalisation, "

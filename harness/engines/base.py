@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from typing import Any, Callable
 
 import numpy as np
@@ -27,7 +27,7 @@ class WarpFunctions:
 class RenderResult:
     """K independent renders of one scene by one engine, and what they cost.
 
-    batches: (K, H, W, 3) float32, linear RGB, each batch with `spp` samples per pixel.
+    batches: (K, H, W, 3) float32, linear RGB, each batch with `spp` samples per pixel (None once dropped).
     seconds: wall-clock times by phase ("load", "build" or "jit", "render", "total"); what each
     includes is the engine's to say in its docstring.
     """
@@ -37,14 +37,32 @@ class RenderResult:
     integrator: str
     spp: int
     seed: int
-    batches: np.ndarray
+    batches: np.ndarray | None
     seconds: dict[str, float]
     #: The sampler the engine rendered with (its plugin name), "" where that does not apply.
     sampler: str = ""
+    #: What is kept of dropped batches (see `light`): their mean image, per-batch image means, count.
+    kept: tuple[np.ndarray, np.ndarray, int] | None = field(default=None, repr=False)
 
     @property
     def mean(self) -> np.ndarray:
-        return self.batches.mean(axis=0)
+        return self.kept[0] if self.batches is None else self.batches.mean(axis=0)
+
+    @property
+    def batch_means(self) -> np.ndarray:
+        """(K, 3) float64: each batch's image mean (summed in float64: float32 sums round by layout)."""
+        return self.kept[1] if self.batches is None else self.batches.mean(axis=(1, 2), dtype=np.float64)
+
+    @property
+    def count(self) -> int:
+        return self.kept[2] if self.batches is None else len(self.batches)
+
+    def light(self) -> "RenderResult":
+        """This result without its batches, keeping what reports read of them: a worker's answer for a
+        case that passed travels back at 1/K of the size."""
+        if self.batches is None:
+            return self
+        return replace(self, batches=None, kept=(self.mean, self.batch_means, self.count))
 
 
 class RenderFailed(RuntimeError):

@@ -57,6 +57,11 @@ class MitsubaEngine(Engine):
         import drjit
         self._dr = drjit
 
+    def __reduce__(self):
+        # To a worker as its arguments: each worker process loads Mitsuba, sets the variant and JIT-compiles
+        # its own kernels (both are per process), and finds LLVM itself (load_mitsuba).
+        return MitsubaEngine, (self.variant, self.sampler)
+
     def renders_exactly(self, spp: int) -> bool:
         """Whether the sampler keeps `spp` as asked. Several round it: ldsampler up to a power of 4,
         multijitter to a near-square grid (32 -> 35), stratified and orthogonal to squares. Asked of the

@@ -41,6 +41,10 @@ class OurEngine(Engine):
         # time warm thread pools; a crash then ends the process, which the child process would contain.
         self.in_process = in_process
 
+    def __reduce__(self):
+        # To a worker as its arguments: the module and the default binary are the worker's own.
+        return OurEngine, (self.binary, self.timeout, self.sampler, self.in_process)
+
     def version(self) -> str:
         return f"this repository's renderer (images: {self.binary or render_binary()} as a child process; " \
                "warps: the mcval_renderer module)"

@@ -71,7 +71,9 @@ def expected_provenance(case: ImageCase, engine: Engine) -> dict:
 
 
 def reference_path(case: ImageCase) -> Path:
-    return REFERENCES_DIR / case.scene / f"{case.integrator}.exr"
+    """Where the case's stored reference is: under REFERENCES_DIR, or in a worker's copy of the files."""
+    folder = REFERENCES_DIR if case.root == ROOT else case.root / "references"
+    return folder / case.scene / f"{case.integrator}.exr"
 
 
 def summary_sha256(summary: Summary) -> str:

@@ -11,6 +11,7 @@ import numpy as np
 from harness.images.compare import Comparison, compare_summaries, summarize
 from harness.images.oracle import Finding, decide
 from harness.engines.analytic import AnalyticEngine
+from harness.distributed.executor import Executor, SerialExecutor, Status, Task
 from harness.engines.base import Engine, RenderFailed, RenderResult
 from harness.images.suite import OUR_SPP, ImageCase
 from harness.images.references import RESOLUTION, Reference, load_reference, render_reference
@@ -55,7 +56,7 @@ class ImageResult:
                     "reference": self.reference_source, "note": self.note, "seed": self.seed, "alpha": self.alpha,
                     "idiff": self.idiff}
         mitsuba = self.comparisons.get("mitsuba")
-        batch_means = self.ours.batches.mean(axis=(1, 2), dtype=np.float64)  # float32 sums round by layout
+        batch_means = self.ours.batch_means
         return {
             "integrator": self.case.integrator, "scene": self.case.scene, "pass": self.passed,
             "tests": {name: c.to_json() for name, c in self.comparisons.items()},
@@ -63,7 +64,7 @@ class ImageResult:
             "seconds": {"mcval": self.ours.seconds, **{k: r.seconds for k, r in self.references.items()}},
             "reference": self.reference_source, "note": self.note, "error": None, "seed": self.seed,
             "alpha": self.alpha, "spp": {"mcval": self.ours.spp, **{k: r.spp for k, r in self.references.items()}},
-            "batches": {"mcval": len(self.ours.batches), **{k: r.summary.image.k for k, r in self.references.items()}},
+            "batches": {"mcval": self.ours.count, **{k: r.summary.image.k for k, r in self.references.items()}},
             "image_mean": batch_means.mean(axis=0).tolist(),
             "image_mean_se": (batch_means.std(axis=0, ddof=1) / np.sqrt(len(batch_means))).tolist(),
             "idiff": self.idiff, "finding": self.finding.to_json() if self.finding else None,
@@ -79,7 +80,7 @@ class ImageResult:
             return {"verdict": "n/a", "reason": self.error or "no reference image"}
         from harness.images.idiff import idiff
         try:
-            return idiff(self.ours.batches.mean(axis=0), ref.summary.mean_image)
+            return idiff(self.ours.mean, ref.summary.mean_image)
         except Exception as e:  # a side report never breaks the run
             return {"verdict": "n/a", "reason": f"idiff failed: {e}"}
 
@@ -98,21 +99,40 @@ def _reason(e: Exception) -> str:
 
 
 def run_images(cases: list[ImageCase], ours: Engine, mitsuba: Engine, seed: int = 0,
-               on_progress: Callable[[ImageCase], None] | None = None,
-               on_message: Callable[[str], None] | None = None) -> tuple[list[ImageResult], float]:
-    """Every case; all comparisons of the run share a family-wise false-alarm rate of SIGNIFICANCE
-    (Sidak). Returns the results and the per-comparison alpha. A render that fails (our RenderFailed, or any
-    exception of a reference engine) fails its case with the reason, and the run goes on."""
-    analytic = AnalyticEngine()
+               on_status: Callable[[Status], None] | None = None,
+               on_message: Callable[[str], None] | None = None,
+               executor: Executor | None = None) -> tuple[list[ImageResult], float]:
+    """Every case, one task each on `executor` (default: here, one after another); all comparisons of the
+    run share a family-wise false-alarm rate of SIGNIFICANCE (Sidak). Returns the results, in the order of
+    `cases`, and the per-comparison alpha. A render that fails (our RenderFailed, or any exception of a
+    reference engine), or a task whose worker dies, fails its case with the reason, and the run goes on."""
+    from harness.images.case_task import CaseJob, run_case_job, scene_bundle
+
+    executor = executor or SerialExecutor()
     params = {"res": str(RESOLUTION)}
-    has_closed_form = {c: analytic.supports(str(c.path), params, c.integrator) for c in cases}
+    has_closed_form = {c: AnalyticEngine.supports(str(c.path), params, c.integrator) for c in cases}
     alpha = sidak_level(SIGNIFICANCE, len(cases) + sum(has_closed_form.values()))
+    bundles: dict[str, object] = {}
+    if executor.ships_files:
+        for case in cases:
+            if case.scene not in bundles:
+                bundles[case.scene] = executor.share(scene_bundle(case))
+    tasks = [Task(case.key, run_case_job,
+                  (CaseJob(case, case_seed(case, seed), alpha, seed, has_closed_form[case], ours, mitsuba),
+                   bundles.get(case.scene)))
+             for case in cases]
+    outcomes = executor.run(tasks, on_status)
     geometry_failed: set[str] = set()
     results = []
-    for case in cases:
-        s = case_seed(case, seed)
-        result = _run_case(case, ours, mitsuba, analytic if has_closed_form[case] else None, params, s, alpha,
-                           seed, on_message)
+    for case, outcome in zip(cases, outcomes):
+        if outcome.ok:
+            result, messages = outcome.value
+        else:
+            result, messages = ImageResult(case, None, {}, {}, "none", case_seed(case, seed), None, alpha, seed,
+                                           f"task failed: {outcome.error}"), []
+        for m in messages:
+            if on_message:
+                on_message(m)
         if case.scene in geometry_failed:
             result.note = GEOMETRY_NOTE
         if case.integrator == "normals" and result.error is None and not result.passed:
@@ -123,8 +143,6 @@ def run_images(cases: list[ImageCase], ours: Engine, mitsuba: Engine, seed: int 
         if result.finding is not None and on_message:
             on_message(f"{case.key}: {result.finding.text}")
         results.append(result)
-        if on_progress:
-            on_progress(case)
     return results, alpha
 
 

@@ -7,7 +7,7 @@ entry's reason, never run. Budgets and Mitsuba mappings live in each integrator'
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from harness.integrators import match
@@ -79,18 +79,24 @@ class ImageCase:
     scene: str        # file stem in the group's folder
     integrator: str
     group: str = "synthetic"  # "synthetic" (scenes/) or "real" (scenes/real/)
+    #: Where the project's files are: ROOT, or a worker's copy of them (harness/distributed/bundle.py).
+    root: Path = field(default=ROOT, compare=False, repr=False)
 
     @property
     def key(self) -> str:
         return f"{self.scene}:{self.integrator}"
 
     @property
+    def folder(self) -> Path:
+        return self.root / GROUP_DIRS[self.group].relative_to(ROOT)
+
+    @property
     def path(self) -> Path:
-        return GROUP_DIRS[self.group] / f"{self.scene}.xml"
+        return self.folder / f"{self.scene}.xml"
 
     @property
     def mitsuba_path(self) -> Path:
-        return GROUP_DIRS[self.group] / f"{MITSUBA_SCENE.get(self.scene, self.scene)}.xml"
+        return self.folder / f"{MITSUBA_SCENE.get(self.scene, self.scene)}.xml"
 
 
 def scene_names(group: str = "synthetic") -> list[str]:

@@ -82,7 +82,7 @@ def _entry(r: ImageResult) -> str:
         parts.append(
             f"<p class='meta'>against {_esc(name)} ({ref.spp} spp × {ref.summary.image.k} batches"
             f"{', ' + _esc(r.reference_source) if name == 'mitsuba' else ''}); ours {r.ours.spp} spp × "
-            f"{len(r.ours.batches)} batches, seed {r.seed}; smallest detectable bias of the image mean "
+            f"{r.ours.count} batches, seed {r.seed}; smallest detectable bias of the image mean "
             f"{comparison.detectable_bias:.2%}</p>"
             + _bad_pixels(comparison) + _picture(r, name, comparison) +
             f"<div style='display:flex;gap:2em;align-items:flex-start'><table><tr><th>scale</th><th>tests</th><th>level</th><th>min p</th>"

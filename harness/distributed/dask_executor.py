@@ -1,0 +1,94 @@
+"""Tasks on a Dask cluster: an embedded one on this machine's loopback, or an existing one.
+
+Each task runs in a worker process; a render that crashes its worker (or is killed with it) fails that
+task after Dask's retries on other workers, not the run. Large inputs shared by several tasks (scene
+bundles) go to the cluster once, as scattered data."""
+from __future__ import annotations
+
+import os
+from typing import Any, Callable
+
+from harness.distributed.executor import Executor, Outcome, Status, Task, one_line
+
+#: A worker that dies under a task is retried on another this many times in all, then the task fails:
+#: a render that kills its worker would otherwise take down every worker in turn.
+ALLOWED_FAILURES = 2
+
+
+def _worker_count() -> int:
+    return max(1, len(os.sched_getaffinity(0)))
+
+
+class DaskExecutor(Executor):
+    """`scheduler`: an address (tcp:// or tls://) of a running scheduler, or None for an embedded cluster
+    of `workers` single-threaded worker processes; everything listens on 127.0.0.1 only, on ports the
+    system picks (the scheduler's HTTP endpoints too: health and metrics, no dashboard without bokeh).
+    `security`: a distributed.Security for tls:// (CA, certificate, key)."""
+
+    ships_files = True
+
+    def __init__(self, scheduler: str | None = None, workers: int | None = None, security=None) -> None:
+        import dask
+        from distributed import Client, LocalCluster
+
+        dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES - 1})
+        self._cluster = None
+        if scheduler is None:
+            n = workers or _worker_count()
+            # Renders are multithreaded processes of their own: one task per worker at a time.
+            self._cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                         dashboard_address="127.0.0.1:0", scheduler_port=0, silence_logs=40)
+            self._client = Client(self._cluster)
+            self.description = f"embedded Dask cluster ({n} workers on 127.0.0.1)"
+        else:
+            self._client = Client(scheduler, security=security, timeout="30s")
+            self.description = f"Dask scheduler {scheduler}"
+        self.slots = max(1, sum(w.get("nthreads", 1) for w in self._client.scheduler_info()["workers"].values()))
+
+    @property
+    def client(self):
+        return self._client
+
+    def share(self, value: Any) -> Any:
+        """A handle to `value` on the cluster (sent once), to pass in several tasks' args."""
+        return self._client.scatter(value, hash=False)
+
+    def run(self, tasks: list[Task], on_status: Callable[[Status], None] | None = None) -> list[Outcome]:
+        from distributed import as_completed
+
+        status = Status(len(tasks))
+        futures = [self._client.submit(t.fn, *t.args, key=f"{t.key}-{i}-{id(tasks)}", pure=False, retries=0)
+                   for i, t in enumerate(tasks)]
+        index = {f.key: i for i, f in enumerate(futures)}
+        out: list[Outcome | None] = [None] * len(tasks)
+        status.running = min(self.slots, len(tasks))
+        if on_status:
+            on_status(status)
+        for future in as_completed(futures):
+            i = index[future.key]
+            try:
+                out[i] = Outcome(future.result())
+            except (KeyboardInterrupt, SystemExit):
+                raise
+            except Exception as e:
+                out[i] = Outcome(error=_why(e))
+                status.failed += 1
+            status.done += 1
+            status.running = min(self.slots, len(tasks) - status.done)
+            status.last = tasks[i].key
+            if on_status:
+                on_status(status)
+        return out  # type: ignore[return-value]
+
+    def close(self) -> None:
+        self._client.close()
+        if self._cluster is not None:
+            self._cluster.close()
+
+
+def _why(e: Exception) -> str:
+    from distributed import KilledWorker
+
+    if isinstance(e, KilledWorker):
+        return f"its worker died while running it ({ALLOWED_FAILURES} workers tried)"
+    return one_line(e)

@@ -1,0 +1,44 @@
+"""One image case as a task that runs anywhere: in this process, or on a Dask worker with the scene's
+files sent by content. What comes back is the case's result without our batches when it passed (the
+report needs only their means), and the messages the case printed."""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from harness.distributed.bundle import Bundle, bundle_files
+from harness.engines.analytic import AnalyticEngine
+from harness.engines.base import Engine
+from harness.images.references import RESOLUTION, reference_path
+from harness.images.suite import ROOT, ImageCase
+
+
+@dataclass
+class CaseJob:
+    case: ImageCase
+    seed: int                # the case's own seed (run.case_seed)
+    alpha: float             # per-comparison level of the whole run
+    run_seed: int
+    closed_form: bool        # whether the analytic engine renders this case too
+    ours: Engine
+    mitsuba: Engine
+
+
+def scene_bundle(case: ImageCase) -> Bundle:
+    """The files every case of `case.scene` reads: its scene files, their meshes, its stored references."""
+    stored = reference_path(case).parent
+    extra = {f"references/{case.scene}/{p.name}": p for p in sorted(stored.glob("*"))} if stored.is_dir() else {}
+    return bundle_files(ROOT, [case.path, case.mitsuba_path], extra)
+
+
+def run_case_job(job: CaseJob, bundle: Bundle | None = None):
+    """(ImageResult, messages). With a bundle, the case reads the bundle's copy of its files."""
+    from harness.images.run import _run_case
+
+    case = job.case if bundle is None else replace(job.case, root=bundle.materialize())
+    messages: list[str] = []
+    result = _run_case(case, job.ours, job.mitsuba, AnalyticEngine() if job.closed_form else None,
+                       {"res": str(RESOLUTION)}, job.seed, job.alpha, job.run_seed, messages.append)
+    result.case = job.case
+    if result.ours is not None and (result.passed or result.error is not None):
+        result.ours = result.ours.light()  # a failed comparison keeps its batches for results/<run>/images/
+    return result, messages

@@ -1,0 +1,110 @@
+"""Jobs on Dask: the same answer as in this process, a render killed on a worker fails its case only,
+a worker dying under a task fails that task only, and the embedded cluster listens on loopback only."""
+from __future__ import annotations
+
+import json
+import os
+from types import SimpleNamespace
+
+import psutil
+import pytest
+
+from dask_cluster import loopback_cluster
+from render_wrappers import write_wrapper
+from harness.cli import main
+from harness.distributed.cluster import MIN_TASKS_FOR_CLUSTER, open_executor
+from harness.distributed.executor import SerialExecutor, Task
+
+
+def _stripped(value):
+    """results.json without what differs between any two runs: times and speeds, run names, where it ran."""
+    if isinstance(value, dict):
+        return {k: _stripped(v) for k, v in value.items() if k not in ("seconds", "run", "throughput")}
+    if isinstance(value, list):
+        return [_stripped(v) for v in value]
+    return value
+
+
+def test_validate_on_a_scheduler_gives_the_local_answer(tmp_path):
+    args = ["validate", "--only", "plane_point", "cornell:normals", "sphere_floor_unit:simple",
+            "--invariance-only", "plane_point:simple", "scale", "--seed", "3"]
+    with loopback_cluster(tmp_path) as address:
+        assert main(args + ["--scheduler", address, "--out", str(tmp_path / "cluster")]) == 0
+    assert main(args + ["--serial", "--out", str(tmp_path / "local")]) == 0
+    far, near = (json.loads((tmp_path / d / "latest" / "results.json").read_text()) for d in ("cluster", "local"))
+    assert len(near["images"]) == 5 and all(e["pass"] for e in near["images"])
+    assert {e["reference"] for e in near["images"]} == {"stored reference"}  # the bundle carried them
+    assert _stripped(far) == _stripped(near)
+
+
+def test_a_render_killed_on_a_worker_fails_its_case_only(tmp_path, capsys):
+    wrapper = write_wrapper(tmp_path, "kill", "ao")
+    with loopback_cluster(tmp_path, env={"MCVAL_RENDER": str(wrapper), "MCVAL_RENDER_TIMEOUT": "60"}) as address:
+        code = main(["images", "--only", "plane_point", "--scheduler", address, "--out", str(tmp_path / "r")])
+    assert code == 1
+    entries = {e["integrator"]: e for e in json.loads((tmp_path / "r" / "latest" / "results.json").read_text())["images"]}
+    assert entries["ao"]["pass"] is False and "killed by signal SIGKILL" in entries["ao"]["error"]
+    assert entries["simple"]["pass"] and entries["normals"]["pass"]
+    assert "plane_point:ao" in capsys.readouterr().out
+
+
+def test_a_worker_dying_under_a_task_fails_that_case_only():
+    from dask_engines import DiesOn
+    from harness.distributed.dask_executor import DaskExecutor
+    from harness.engines.mitsuba import MitsubaEngine
+    from harness.images.run import run_images
+    from harness.images.suite import ImageCase
+
+    cases = [ImageCase("plane_point", "normals"), ImageCase("plane_point", "simple")]
+    with DaskExecutor(workers=2) as executor:
+        results, _ = run_images(cases, DiesOn("simple"), MitsubaEngine(), executor=executor)
+    normals, simple = results
+    assert normals.passed and normals.error is None
+    assert not simple.passed and simple.error.startswith("task failed: its worker died")
+
+
+def test_the_embedded_cluster_listens_on_loopback_only():
+    from harness.distributed.dask_executor import DaskExecutor
+
+    with DaskExecutor(workers=2) as executor:
+        pids = [os.getpid(), *executor.client.run(os.getpid).values()]
+        nannies = [psutil.Process(p).parent().pid for p in pids[1:]]
+        listening = [c for pid in {*pids, *nannies} for c in psutil.Process(pid).net_connections("inet")
+                     if c.status == psutil.CONN_LISTEN]
+    assert len(listening) >= 3  # the scheduler and each worker
+    assert {c.laddr.ip for c in listening} == {"127.0.0.1"}, listening
+    assert 8787 not in {c.laddr.port for c in listening}  # no fixed port, none a dashboard would take
+
+
+def _args(**kw):
+    return SimpleNamespace(**{"scheduler": None, "workers": None, "serial": False, "tls_ca_file": None,
+                              "tls_cert": None, "tls_key": None, **kw})
+
+
+@pytest.mark.parametrize("kw, message", [
+    ({"serial": True, "scheduler": "tcp://127.0.0.1:1"}, "contradict"),
+    ({"scheduler": "127.0.0.1:8786"}, "expected tcp://HOST:PORT"),
+    ({"scheduler": "tcp://127.0.0.1:1", "tls_ca_file": "ca.pem"}, "tls:// --scheduler only"),
+    ({"scheduler": "tls://127.0.0.1:1", "tls_ca_file": "ca.pem"}, "needs --tls-ca-file, --tls-cert and --tls-key"),
+    ({"workers": 0}, "at least 1"),
+])
+def test_executor_options_that_contradict_are_refused(kw, message):
+    with pytest.raises(ValueError, match=message):
+        open_executor(_args(**kw), 100)
+
+
+def test_small_runs_and_serial_runs_stay_in_this_process():
+    assert isinstance(open_executor(_args(), MIN_TASKS_FOR_CLUSTER - 1), SerialExecutor)
+    assert isinstance(open_executor(_args(serial=True), 1000), SerialExecutor)
+
+
+def _boom(x):
+    raise RuntimeError(f"bad input {x}\nsecond line")
+
+
+def test_a_failing_task_gives_its_reason_and_the_rest_run():
+    seen = []
+    out = SerialExecutor().run([Task("a", abs, (-2,)), Task("b", _boom, (7,)), Task("c", abs, (3,))], seen.append)
+    assert [o.value for o in out] == [2, None, 3]
+    assert out[1].error == "RuntimeError: bad input 7"
+    assert (seen[-1].done, seen[-1].failed, seen[-1].total) == (3, 1, 3)
