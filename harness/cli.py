@@ -76,7 +76,7 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
 
     ours, mitsuba = OurEngine(), MitsubaEngine(args.variant)
     start = time.perf_counter()
-    with open_executor(args, len(cases)) as executor, task_progress("images", executor) as show:
+    with open_executor(args) as executor, task_progress("images", executor) as show:
         results, alpha = run_images(cases, ours, mitsuba, args.seed, on_status=show,
                                     on_message=lambda m: console.print(f"[yellow]{escape(m)}[/]", soft_wrap=True),
                                     executor=executor)

@@ -15,6 +15,11 @@ from harness.distributed.executor import Executor, Outcome, Status, Task, one_li
 ALLOWED_FAILURES = 2
 
 
+#: Thread counts a worker of the embedded cluster sets to its share of the cores: its renders' (ours and
+#: Mitsuba's) and numpy's (the closed form), which would each take every core and fight the other workers.
+SHARE_CORES = ("MCVAL_THREADS", "OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+
+
 def _worker_count() -> int:
     return max(1, len(os.sched_getaffinity(0)))
 
@@ -35,8 +40,10 @@ class DaskExecutor(Executor):
         self._cluster = None
         if scheduler is None:
             n = workers or _worker_count()
-            # Renders are multithreaded processes of their own: one task per worker at a time.
+            # One task per worker at a time, and each render on its share of the cores (not all of them).
+            cores = _worker_count()
             self._cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                         env={k: str(max(1, cores // n)) for k in SHARE_CORES},
                                          dashboard_address="127.0.0.1:0", scheduler_port=0, silence_logs=40)
             self._client = Client(self._cluster)
             self.description = f"embedded Dask cluster ({n} workers on 127.0.0.1)"

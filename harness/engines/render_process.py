@@ -24,6 +24,9 @@ from harness.engines.base import RenderFailed
 ROOT = Path(__file__).resolve().parents[2]
 RENDER_ENV = "MCVAL_RENDER"
 TIMEOUT_ENV = "MCVAL_RENDER_TIMEOUT"
+#: Threads per render (default: every core); set for the workers of an embedded cluster, which share
+#: this machine's cores.
+THREADS_ENV = "MCVAL_THREADS"
 #: Seconds every render is allowed, whatever its size.
 BASE_TIMEOUT = 600.0
 #: Further seconds allowed per camera sample (spp x batches x pixels): 100x what the slowest
@@ -126,6 +129,8 @@ def run_render(scene: str, integrator: str, spp: int, batches: int, seed: int,
             command += ["--sampler", sampler]
         for name, value in (params or {}).items():
             command += ["-D", f"{name}={value}"]
+        if os.environ.get(THREADS_ENV):
+            command += ["--threads", os.environ[THREADS_ENV]]
         command += ["-q", "-o", str(out)]
         with open(log, "wb") as log_file:
             # Its own session: a timeout or Ctrl-C ends the renderer and anything it started.
