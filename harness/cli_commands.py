@@ -111,29 +111,75 @@ def _bench(args, run_dir: Path) -> tuple[bool, dict]:
 
 
 def _calibrate(args, run_dir: Path) -> bool:
+    """The warp checks' and the image comparisons' false-alarm rates (both unless --warps or --images)."""
     from harness.engines.ours import OurEngine
-    from harness.report.calibration_html import warp_calibration_html
-    from harness.report.calibration_table import calibration_table
-    from harness.warps.calibration import calibrate_warps
-    from harness.warps.suite import select
+    from harness.report.calibration_html import calibration_page, warp_calibration_html
 
-    specs = select(args.only)
+    warps, images = (args.warps or not args.images), (args.images or not args.warps)
     ours = OurEngine()
     reference = None
     if not args.no_mitsuba:
         from harness.engines.mitsuba import MitsubaEngine
         reference = MitsubaEngine()
-    with progress_bar("calibrate") as progress:
-        task = progress.add_task("", total=len(specs) * args.seeds)
-        cal = calibrate_warps(ours, reference, specs, args.seeds, args.samples,
-                              on_seed=lambda: progress.update(task, advance=1))
-    meta = {"engine": ours.version(), "reference": reference.version() if reference else "none",
-            "seeds per warp": args.seeds, "samples": args.samples, "seconds": round(cal.seconds, 1)}
-    write_atomic(run_dir / "calibration.html", warp_calibration_html(cal, meta))
-    payload = {"run": run_dir.name, "pass": cal.within, "warps": cal.to_json(), "meta": meta}
+    payload: dict = {"run": run_dir.name}
+    meta: dict = {"engine": ours.version(), "reference": reference.version() if reference else "none"}
+    ok, sections = True, []
+    if images:
+        if reference is None:
+            raise ValueError("--images needs Mitsuba (its null comparisons include Mitsuba against itself): "
+                             "drop --no-mitsuba")
+        cal_images = _calibrate_images(args, ours, reference)
+        from harness.report.image_calibration_html import image_calibration_sections
+        payload["images"] = cal_images
+        sections = image_calibration_sections(cal_images)
+        meta.update({"image comparisons": cal_images["comparisons"], "image seconds": round(cal_images["seconds"], 1),
+                     "image comparisons ran on": cal_images["ran_on"]})
+        ok &= cal_images["pass"]
+    if warps:
+        cal = _calibrate_warps(args, ours, reference)
+        payload["warps"] = cal.to_json()
+        meta.update({"seeds per warp": args.seeds, "samples": args.samples, "warp seconds": round(cal.seconds, 1)})
+        ok &= cal.within
+        page = warp_calibration_html(cal, meta, sections)
+    else:
+        page = calibration_page("Calibration of the image comparisons", "Each rejection of a null comparison "
+                                "is a false alarm.", sections, meta)
+    payload.update({"pass": ok, "meta": meta})
+    write_atomic(run_dir / "calibration.html", page)
     write_json(run_dir / "calibration.json", payload)
     if args.json:
         write_json(args.json, payload)
+    console.print(f"Page: {run_dir / 'calibration.html'}")
+    return ok
+
+
+def _calibrate_warps(args, ours, reference):
+    from harness.report.calibration_table import calibration_table
+    from harness.warps.calibration import calibrate_warps
+    from harness.warps.suite import select
+
+    specs = select(args.only)
+    with progress_bar("calibrate warps") as progress:
+        task = progress.add_task("", total=len(specs) * args.seeds)
+        cal = calibrate_warps(ours, reference, specs, args.seeds, args.samples,
+                              on_seed=lambda: progress.update(task, advance=1))
     console.print(calibration_table(cal))
-    console.print(f"{len(specs)} warps x {args.seeds} seeds in {cal.seconds:.0f} s. Page: {run_dir / 'calibration.html'}")
-    return cal.within
+    console.print(f"{len(specs)} warps x {args.seeds} seeds in {cal.seconds:.0f} s.")
+    return cal
+
+
+def _calibrate_images(args, ours, reference) -> dict:
+    from harness.cli_output import task_progress
+    from harness.distributed.cluster import open_executor
+    from harness.images.calibration import calibrate_images
+    from harness.report.calibration_table import image_calibration_table
+
+    with open_executor(args) as executor, task_progress("calibrate images", executor) as show:
+        cal = calibrate_images(ours, reference, args.comparisons, args.seed, executor, show)
+        where = executor.description
+    out = {**cal.to_json(), "ran_on": where}
+    console.print(image_calibration_table(out))
+    for line in cal.failed:
+        console.print(f"[red]failed[/] {line}")
+    console.print(f"{out['comparisons']} null image comparisons in {cal.seconds:.0f} s on {where}.")
+    return out

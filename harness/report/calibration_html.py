@@ -52,8 +52,9 @@ def calibration_page(title: str, intro: str, sections: list[str], meta: dict) ->
             f"<ul class='meta'>{meta_html}</ul>{''.join(sections)}</body></html>")
 
 
-def warp_calibration_html(cal, meta: dict) -> str:
-    """The warp part of the calibration page: the table (pooled rows first) and the p-value histograms."""
+def warp_calibration_html(cal, meta: dict, more: list[str] = ()) -> str:
+    """The calibration page with its warp part (the table, pooled rows first, and the p-value histograms),
+    then the sections `more` (the image part)."""
     from harness.statistics.calibration_rates import CALIBRATION_LEVELS
     head = "".join(f"<th>rate at {level:g}</th>" for level in CALIBRATION_LEVELS)
     rows = "".join(
@@ -69,5 +70,5 @@ def warp_calibration_html(cal, meta: dict) -> str:
              "(Clopper-Pearson) interval, simultaneous at 95 % over all the intervals of the page; green where the "
              f"nominal level lies inside it. Result: {verdict}.")
     return calibration_page("Calibration of the warp checks", intro,
-                            ["<h2>False-alarm rates</h2>", table, "<h2>Null p-values</h2>", p_value_histograms(panels)],
-                            meta)
+                            ["<h2>False-alarm rates</h2>", table, "<h2>Null p-values</h2>", p_value_histograms(panels),
+                             *more], meta)

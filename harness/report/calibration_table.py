@@ -16,3 +16,26 @@ def calibration_table(cal) -> Table:
         cells = [f"[{'green' if r.within else 'red'}]{r.observed:.3f}[/] ({r.low:.2f}-{r.high:.2f})" for r in e.rates]
         table.add_row(e.warp, e.check, str(len(e.p_values)), *cells, f"{e.uniformity:.2g}")
     return table
+
+
+def image_calibration_table(cal: dict) -> Table:
+    """The image calibration's whole-comparison rates per kind, and its power per integrator."""
+    table = Table(title="Calibration of the image comparisons (whole comparison; rate [interval])",
+                  header_style="bold")
+    table.add_column("kind")
+    table.add_column("comparisons")
+    for level in CALIBRATION_LEVELS:
+        table.add_column(f"at {level:g}")
+    for kind in dict.fromkeys(b["kind"] for b in cal["blocks"]):
+        cells = [b for b in cal["blocks"] if b["kind"] == kind and b["scale"] == "whole"]
+        table.add_row(kind, str(cells[0]["comparisons"]), *[
+            f"[{'green' if b['within'] else 'red'}]{b['false_alarm_rate']:.3f}[/] [{b['interval'][0]:.3f}, "
+            f"{b['interval'][1]:.3f}]" for b in cells])
+    for integrator, v in cal["power"].items():
+        table.add_row(f"power {integrator}", str(v["comparisons"]),
+                      f"whole image {_bias(v['global_bias_90'])}", f"one tile {_bias(v['tile_bias_90'])}", "")
+    return table
+
+
+def _bias(b) -> str:
+    return "beyond 0.3" if b is None else f"{b:.2g}"

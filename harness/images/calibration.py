@@ -1,0 +1,123 @@
+"""How often the image comparison rejects when nothing is wrong, measured, and the smallest biases it finds.
+
+Null comparisons of three kinds (KINDS: ours against ours at independent seeds, Mitsuba against Mitsuba,
+ours against the closed form), cycled over CASES, each compared at every calibration level: the observed
+false-alarm rate per kind, per scale (pixel, tile, image) and for the whole comparison, with exact
+(Clopper-Pearson) intervals simultaneous over every interval of the calibration, beside the nominal level.
+Power: per integrator, the smallest relative bias of the whole image and of one 8x8 tile that the
+validation's per-comparison level finds in 90 % of ours-against-ours comparisons."""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from harness.distributed.executor import Executor, SerialExecutor, Status, Task
+from harness.engines.analytic import AnalyticEngine
+from harness.engines.base import Engine
+from harness.images.compare import SCALES
+from harness.images.null_task import BIASES, KINDS, NullJob, null_comparison
+from harness.images.references import RESOLUTION
+from harness.images.suite import ImageCase, select_cases
+from harness.statistics.calibration_rates import CALIBRATION_CONFIDENCE, CALIBRATION_LEVELS, Rate, clopper_pearson
+from harness.statistics.constants import SIGNIFICANCE, sidak_level
+
+#: The cases each kind cycles over (ours-analytic: those with a closed form).
+CASES = {
+    "ours-ours": ("cornell:normals", "cornell:simple", "cornell:ao", "sphere_floor_unit:simple", "crevice:ao",
+                  "plane_point:simple"),
+    "mitsuba-mitsuba": ("plane_point:simple", "cornell:ao", "sphere_floor_unit:simple"),
+    "ours-analytic": ("plane_point:simple", "plane_ao:ao", "sphere_floor_unit:simple", "plane_point:normals"),
+}
+#: Detected in this fraction of comparisons: the power figures' bias.
+POWER = 0.9
+
+
+def validation_alpha() -> float:
+    """The per-comparison level of a default `validate` (its Sidak share of the family-wise SIGNIFICANCE)."""
+    cases = select_cases(None)
+    params = {"res": str(RESOLUTION)}
+    closed = sum(AnalyticEngine.supports(str(c.path), params, c.integrator) for c in cases)
+    return sidak_level(SIGNIFICANCE, len(cases) + closed)
+
+
+def _case(key: str) -> ImageCase:
+    scene, integrator = key.split(":")
+    return ImageCase(scene, integrator)
+
+
+@dataclass
+class ImageCalibration:
+    results: list[dict]      # one per null comparison (null_task.null_comparison)
+    alpha: float             # the validation's per-comparison level (power)
+    seconds: float
+    failed: list[str]        # tasks that gave no result, and why
+
+    def blocks(self) -> list[dict]:
+        """Per kind and for all kinds together, per scale and for the whole comparison: the rates."""
+        groups = [(kind, [r for r in self.results if r["kind"] == kind]) for kind in KINDS]
+        groups.append(("all", self.results))
+        parts = (*SCALES, "whole")
+        intervals = len(groups) * len(parts) * len(CALIBRATION_LEVELS)
+        each = 1.0 - (1.0 - CALIBRATION_CONFIDENCE) / intervals
+        out = []
+        for kind, rs in groups:
+            for part in parts:
+                for level in CALIBRATION_LEVELS:
+                    # A scale runs at its Sidak share of the comparison's level.
+                    nominal = level if part == "whole" else sidak_level(level, len(SCALES))
+                    k = sum(r["rejected"][str(level)][part] for r in rs)
+                    rate = Rate(nominal, len(rs), k, *clopper_pearson(k, len(rs), each))
+                    out.append({"kind": kind, "scale": part, "comparison_level": level, **rate.to_json()})
+        return out
+
+    def power(self) -> dict:
+        """Per integrator: the detection fraction at each planted bias, and the smallest found POWER of the time."""
+        out = {}
+        for integrator in sorted({r["integrator"] for r in self.results if r["kind"] == "ours-ours"}):
+            rs = [r for r in self.results if r["kind"] == "ours-ours" and r["integrator"] == integrator]
+            entry = {"comparisons": len(rs), "biases": list(BIASES)}
+            for what in ("global", "tile"):
+                found = np.mean([r[what] for r in rs], axis=0)
+                entry[f"{what}_found"] = found.tolist()
+                hits = [b for b, f in zip(BIASES, found) if f >= POWER]
+                entry[f"{what}_bias_{int(POWER * 100)}"] = hits[0] if hits else None
+            out[integrator] = entry
+        return out
+
+    @property
+    def within(self) -> bool:
+        """Every whole-comparison rate lies within its interval of the nominal level, and nothing failed."""
+        return not self.failed and all(b["within"] for b in self.blocks() if b["scale"] == "whole")
+
+    def to_json(self) -> dict:
+        whole = [b for b in self.blocks() if b["kind"] == "all" and b["scale"] == "whole"]
+        return {"comparisons": len(self.results), "false_alarm_rate": whole[-1]["false_alarm_rate"],
+                "level": whole[-1]["level"], "pass": self.within, "blocks": self.blocks(), "power": self.power(),
+                "power_level": self.alpha, "image_min_p": [r["image_min_p"] for r in self.results],
+                "failed": self.failed, "seconds": self.seconds}
+
+
+def calibrate_images(ours: Engine, mitsuba: Engine, per_kind: int, seed: int = 0,
+                     executor: Executor | None = None, on_status: Callable[[Status], None] | None = None,
+                     resolution: int = RESOLUTION) -> ImageCalibration:
+    """`per_kind` null comparisons of each kind, each with its own seeds."""
+    from harness.images.case_task import scene_bundle
+
+    executor = executor or SerialExecutor()
+    alpha = validation_alpha()
+    jobs = [NullJob(kind, _case(CASES[kind][i % len(CASES[kind])]), 1_000_003 * seed + 2 * (i + per_kind * k),
+                    resolution, alpha, ours, mitsuba)
+            for k, kind in enumerate(KINDS) for i in range(per_kind)]
+    bundles = {}
+    if executor.ships_files:
+        for job in jobs:
+            if job.case.scene not in bundles:
+                bundles[job.case.scene] = executor.share(scene_bundle(job.case))
+    start = time.perf_counter()
+    outcomes = executor.run([Task(f"{j.kind} {j.case.key}", null_comparison, (j, bundles.get(j.case.scene)))
+                             for j in jobs], on_status)
+    failed = [f"{j.kind} {j.case.key} seed {j.seed}: {o.error}" for j, o in zip(jobs, outcomes) if not o.ok]
+    return ImageCalibration([o.value for o in outcomes if o.ok], alpha, time.perf_counter() - start, failed)

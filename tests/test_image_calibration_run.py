@@ -1,0 +1,62 @@
+"""`calibrate --images`: null comparisons of real renders give rates within their intervals (several
+seeds), a biased renderer is caught by the same figures, and the JSON and page say so."""
+import json
+
+import pytest
+
+from harness.cli import main
+from harness.engines.mitsuba import MitsubaEngine
+from harness.engines.ours import OurEngine
+from harness.images.calibration import calibrate_images
+
+
+class _Scaled(OurEngine):
+    """Our renderer with every image scaled by `factor`: a known-wrong twin (ours against the closed
+    form then disagrees; ours against itself still agrees)."""
+
+    def __init__(self, factor: float) -> None:
+        super().__init__()
+        self.factor = factor
+
+    def render(self, *args, **kwargs):
+        result = super().render(*args, **kwargs)
+        result.batches = result.batches * self.factor
+        return result
+
+
+@pytest.fixture(scope="module")
+def mitsuba():
+    return MitsubaEngine()
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_null_comparisons_are_within_their_intervals(mitsuba, seed):
+    cal = calibrate_images(OurEngine(), mitsuba, per_kind=3, seed=seed, resolution=64)
+    assert not cal.failed and len(cal.results) == 9
+    assert cal.within, [b for b in cal.blocks() if not b["within"]]
+    power = cal.power()
+    assert set(power) == {"normals", "simple", "ao"}
+    assert all(0 < v["global_bias_90"] < 0.3 for v in power.values())
+
+
+def test_a_biased_renderer_is_outside_the_interval(mitsuba):
+    cal = calibrate_images(_Scaled(1.05), mitsuba, per_kind=3, seed=0, resolution=64)
+    blocks = {(b["kind"], b["scale"], b["comparison_level"]): b for b in cal.blocks()}
+    assert blocks[("ours-analytic", "whole", 0.01)]["rejections"] == 3
+    assert not blocks[("ours-analytic", "whole", 0.01)]["within"]
+    assert blocks[("ours-ours", "whole", 0.01)]["within"]  # scaled on both sides: still a null pair
+    assert not cal.within
+
+
+def test_the_command_writes_its_figures_and_page(tmp_path):
+    out = tmp_path / "results"
+    assert main(["calibrate", "--images", "--comparisons", "2", "--out", str(out)]) == 0
+    run = out / "calibration-latest"
+    data = json.loads((run / "calibration.json").read_text())
+    images = data["images"]
+    assert images["comparisons"] == 6 and isinstance(images["false_alarm_rate"], float)
+    assert "warps" not in data
+    for block in images["blocks"]:
+        assert isinstance(block["comparisons"], int) and isinstance(block["false_alarm_rate"], float)
+    page = (run / "calibration.html").read_text()
+    assert "Power at the validation" in page and "ours-analytic" in page
