@@ -63,8 +63,7 @@ def _print_real_scenes(real, not_applicable, alpha: float) -> None:
 
 
 def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path | None,
-                not_applicable=(), invariance: dict | None = None) -> tuple[bool, dict]:
-    from harness.distributed.cluster import open_executor
+                not_applicable=(), invariance: dict | None = None, executor=None) -> tuple[bool, dict]:
     from harness.engines.mitsuba import MitsubaEngine
     from harness.engines.ours import OurEngine
     from harness.images.outputs import write_image_outputs
@@ -76,7 +75,7 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
 
     ours, mitsuba = OurEngine(), MitsubaEngine(args.variant)
     start = time.perf_counter()
-    with open_executor(args) as executor, task_progress("images", executor) as show:
+    with task_progress("images", executor) as show:
         results, alpha = run_images(cases, ours, mitsuba, args.seed, on_status=show,
                                     on_message=lambda m: console.print(f"[yellow]{escape(m)}[/]", soft_wrap=True),
                                     executor=executor)
@@ -111,7 +110,7 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
     return not failed, payload
 
 
-def _run_invariance(args, only, run_dir: Path, engines=None) -> tuple[bool, dict]:
+def _run_invariance(args, only, run_dir: Path, executor, engines=None) -> tuple[bool, dict]:
     """The invariance matrix: each engine against itself under every transformation. Only our renderer's
     breaks fail; a reference's are printed and stored as findings."""
     from harness.engines.ours import OurEngine
@@ -128,10 +127,8 @@ def _run_invariance(args, only, run_dir: Path, engines=None) -> tuple[bool, dict
             engines.append(MitsubaEngine(args.variant))
     gating = engines[0].name
     start = time.perf_counter()
-    with progress_bar("invariances") as progress:
-        task = progress.add_task("", total=len(cases) * len(engines))
-        cells, alpha = run_invariances(engines, cases, invariances, args.seed,
-                                       on_progress=lambda m: progress.update(task, advance=1, description=m))
+    with task_progress("invariances", executor) as show:
+        cells, alpha = run_invariances(engines, cases, invariances, args.seed, on_status=show, executor=executor)
     seconds = time.perf_counter() - start
     for table in invariance_tables(cells, alpha, gating):
         console.print(table)
@@ -164,7 +161,16 @@ def _unfinished(what: str, out: Path, run_dir: Path | None, previous: str | None
 
 
 def _run(args, out: Path, started: list[Path]) -> int:
-    """The command; its run folder goes into `started` as soon as it exists."""
+    """The command; its run folder goes into `started` as soon as it exists. The commands that render
+    image cases run them on one executor (serial, or Dask: harness/distributed/) for the whole run."""
+    if args.command not in ("images", "validate", "invariance"):
+        return _run_command(args, out, started, None)
+    from harness.distributed.cluster import open_executor
+    with open_executor(args) as executor:
+        return _run_command(args, out, started, executor)
+
+
+def _run_command(args, out: Path, started: list[Path], executor) -> int:
     from harness.images.suite import not_applicable_cases, select_cases
     from harness.warps.suite import select
     if args.command == "integrators":
@@ -185,7 +191,7 @@ def _run(args, out: Path, started: list[Path]) -> int:
         select_invariance(args.only if args.command == "invariance" else args.invariance_only)  # bad names: no run
     if args.command == "invariance":
         started.append(run_dir := new_run_dir(out))
-        ok, invariance = _run_invariance(args, args.only, run_dir)
+        ok, invariance = _run_invariance(args, args.only, run_dir, executor)
         payload = {"run": run_dir.name, "pass": ok, "invariance": invariance}
         write_json(run_dir / "results.json", payload)
         write_atomic(run_dir / "report.html", '<!DOCTYPE html><meta charset="utf-8">'
@@ -217,11 +223,11 @@ def _run(args, out: Path, started: list[Path]) -> int:
     if args.command == "validate" and not args.no_invariance:
         # Before the images, so report.html (written with them) carries the matrix.
         console.rule("[bold]Invariances[/] (each engine against itself)")
-        invariance_ok, payload["invariance"] = _run_invariance(args, args.invariance_only, run_dir)
+        invariance_ok, payload["invariance"] = _run_invariance(args, args.invariance_only, run_dir, executor)
         ok &= invariance_ok
     if cases:
         images_ok, images = _run_images(args, cases, run_dir, warps, baseline, not_applicable,
-                                        payload.get("invariance"))
+                                        payload.get("invariance"), executor)
         ok &= images_ok
         payload.update(images)
     if not cases and warps is not None:

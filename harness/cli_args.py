@@ -137,6 +137,7 @@ def build_parser() -> argparse.ArgumentParser:
     n.add_argument("--json", type=Path, metavar="PATH", help="also write the results as JSON to PATH")
     n.add_argument("--no-mitsuba", action="store_true", help="check our renderer alone")
     n.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant (default: llvm_ad_rgb)")
+    add_executor_options(n)
 
     v = sub.add_parser("validate", help="everything: what `make validate` runs",
                        description="Warp conformance, image validation (our scenes, then the real scenes of "

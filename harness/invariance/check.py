@@ -10,12 +10,14 @@ from __future__ import annotations
 import tempfile
 import xml.etree.ElementTree as ET
 import zlib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Callable
 
 import numpy as np
 
+from harness.distributed.bundle import Bundle
+from harness.distributed.executor import Executor, SerialExecutor, Status, Task
 from harness.engines.base import Engine, RenderFailed
 from harness.images.compare import Comparison, compare_summaries, summarize
 from harness.invariance.float32 import float32_limit
@@ -161,18 +163,43 @@ def comparisons_of(cases: list[InvarianceCase], invariances: list[Invariance]) -
 
 
 def run_invariances(engines: list[Engine], cases: list[InvarianceCase], invariances: list[Invariance],
-                    seed: int = 0, on_progress: Callable[[str], None] | None = None,
-                    batches: int = IMAGE_BATCHES) -> tuple[list[Cell], float]:
-    """Every engine x case x invariance that applies to the case's integrator. Each engine's comparisons share
-    a family-wise false-alarm rate of SIGNIFICANCE (Sidak); returns the cells and the per-comparison level."""
+                    seed: int = 0, on_status: Callable[[Status], None] | None = None,
+                    batches: int = IMAGE_BATCHES, executor: Executor | None = None) -> tuple[list[Cell], float]:
+    """Every engine x case x invariance that applies to the case's integrator, one task per engine and case
+    on `executor` (default: here, one after another). Each engine's comparisons share a family-wise
+    false-alarm rate of SIGNIFICANCE (Sidak); returns the cells, in a fixed order, and the per-comparison level."""
+    from harness.distributed.bundle import bundle_files
+
+    executor = executor or SerialExecutor()
     alpha = sidak_level(SIGNIFICANCE, comparisons_of(cases, invariances))
+    bundles = {}
+    if executor.ships_files:
+        for case in cases:
+            if case.scene not in bundles:
+                bundles[case.scene] = executor.share(bundle_files(case.scene.resolve().parent, [case.scene.resolve()]))
+    tasks = [Task(f"{engine.name} {case.key}", cell_group_task,
+                  (engine, case, [inv for inv in invariances if case.integrator in inv.integrators], alpha, seed,
+                   batches, bundles.get(case.scene)))
+             for engine in engines for case in cases]
     cells: list[Cell] = []
-    with tempfile.TemporaryDirectory(prefix="mcval-invariance-") as tmp:
-        for engine in engines:
-            for case in cases:
-                chosen = [inv for inv in invariances if case.integrator in inv.integrators]
-                if chosen:
-                    cells += run_cell_group(engine, case, chosen, alpha, seed, Path(tmp), batches)
-                if on_progress:
-                    on_progress(f"{engine.name} {case.key}")
+    for task, outcome in zip(tasks, executor.run(tasks, on_status)):
+        engine, case, chosen = task.args[:3]
+        if outcome.ok:
+            cells += outcome.value
+            continue
+        for inv in chosen:  # the task itself failed (its worker died): its cells fail with the reason
+            cells.append(Cell(engine.name, inv.name, case, base_error=f"task failed: {outcome.error}"))
     return cells, alpha
+
+
+def cell_group_task(engine: Engine, case: InvarianceCase, chosen: list[Invariance], alpha: float, seed: int,
+                    batches: int, bundle: Bundle | None = None) -> list[Cell]:
+    """run_cell_group as a task: with a bundle, on the bundle's copy of the scene (and its meshes)."""
+    if not chosen:
+        return []
+    local = case if bundle is None else replace(case, scene=bundle.materialize() / case.scene.name)
+    with tempfile.TemporaryDirectory(prefix="mcval-invariance-") as tmp:
+        cells = run_cell_group(engine, local, chosen, alpha, seed, Path(tmp), batches)
+    for cell in cells:
+        cell.case = case
+    return cells
