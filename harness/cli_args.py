@@ -56,6 +56,7 @@ def build_parser() -> argparse.ArgumentParser:
                                    "with their provenance. The only command that writes references/.")
     r.add_argument("--scenes", "--only", dest="scenes", nargs="+", metavar="CASE", help="as for `images`")
     r.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant (default: llvm_ad_rgb)")
+    add_executor_options(r)
 
     b = sub.add_parser("bench", help="speed against error: convergence curves and efficiency ratios",
                        description="Render every case at a ladder of sample counts with our renderer and Mitsuba "
@@ -76,6 +77,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "0 skips it; default 3)")
     b.add_argument("--seed-runs", type=int, default=3,
                    help="runs at the seed document's settings (768x768; 0 skips them; default 3)")
+    add_executor_options(b)
 
     c = sub.add_parser("calibrate", help="measure the false-alarm rate of every statistical check",
                        description="Measure, not assume, how often each statistical check rejects when nothing is "

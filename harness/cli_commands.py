@@ -8,20 +8,28 @@ from harness.cli_output import console, progress_bar
 from harness.results import write_atomic, write_json
 
 def _references(args) -> int:
+    from harness.cli_output import task_progress
+    from harness.distributed.cluster import open_executor
+    from harness.distributed.executor import Task
     from harness.engines.mitsuba import MitsubaEngine
+    from harness.images.case_task import reference_task, scene_bundle
     from harness.images.suite import select_cases
-    from harness.images.references import render_reference, write_reference
+    from harness.images.references import write_reference
 
     cases = select_cases(args.scenes)
     mitsuba = MitsubaEngine(args.variant)
-    with progress_bar("references") as progress:
-        task = progress.add_task("", total=len(cases))
-        for case in cases:
-            progress.update(task, description=case.key)
-            path = write_reference(case, mitsuba, render_reference(case, mitsuba))
-            progress.console.print(f"wrote {path}")
-            progress.update(task, advance=1)
-    return 0
+    with open_executor(args) as executor, task_progress("references", executor) as show:
+        bundles = {c.scene: executor.share(scene_bundle(c)) for c in cases} if executor.ships_files else {}
+        tasks = [Task(c.key, reference_task, (c, mitsuba, bundles.get(c.scene))) for c in cases]
+        outcomes = executor.run(tasks, show)
+    failed = 0
+    for case, outcome in zip(cases, outcomes):
+        if outcome.ok:
+            console.print(f"wrote {write_reference(case, mitsuba, outcome.value)}")
+        else:
+            failed += 1
+            console.print(f"[red]failed[/] {case.key}: {outcome.error}")
+    return 1 if failed else 0
 
 
 def _integrators() -> int:
@@ -52,11 +60,18 @@ def _bench(args, run_dir: Path) -> tuple[bool, dict]:
                if s == SAME_SAMPLER or not args.same_sampler]
     ladder = tuple(2**k for k in range(args.max_spp.bit_length()) if 2**k <= args.max_spp)
     start = time.perf_counter()
-    with progress_bar("bench") as progress:
+    if args.workers is not None:
+        raise ValueError("bench --workers: workers on one machine would time their renders against each other; "
+                         "bench runs serially, or with --scheduler on a cluster of one single-threaded worker "
+                         "per machine")
+    from harness.distributed.cluster import open_executor
+    with open_executor(args) as executor, progress_bar("bench") as progress:
         steps = sum(e.renders_exactly(spp) for e in engines for spp in ladder)
-        task = progress.add_task("", total=len(cases) * steps)
+        task = progress.add_task("", total=len(cases) * (1 if executor.ships_files else steps))
         benches = run_bench(cases, engines, reference, args.seed, ladder, args.runs,
-                            on_step=lambda m: progress.update(task, advance=1, description=m))
+                            on_step=lambda m: progress.update(task, advance=1, description=m), executor=executor,
+                            on_status=lambda st: progress.update(task, completed=st.done, description=st.last)
+                            if executor.ships_files else None)
         ours = next((e for e in engines if e.name == "mcval"), None)
         seed = seed_comparison(ours, args.seed_runs, lambda m: progress.console.print(m),
                                reference if "mitsuba" in args.engines else None) \

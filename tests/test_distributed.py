@@ -25,16 +25,31 @@ def _stripped(value):
     return value
 
 
-def test_validate_on_a_scheduler_gives_the_local_answer(tmp_path):
+@pytest.fixture(scope="module")
+def cluster(tmp_path_factory):
+    with loopback_cluster(tmp_path_factory.mktemp("cluster")) as address:
+        yield address
+
+
+def test_validate_on_a_scheduler_gives_the_local_answer(cluster, tmp_path):
     args = ["validate", "--only", "plane_point", "cornell:normals", "sphere_floor_unit:simple",
             "--invariance-only", "plane_point:simple", "scale", "--seed", "3"]
-    with loopback_cluster(tmp_path) as address:
-        assert main(args + ["--scheduler", address, "--out", str(tmp_path / "cluster")]) == 0
+    assert main(args + ["--scheduler", cluster, "--out", str(tmp_path / "cluster")]) == 0
     assert main(args + ["--serial", "--out", str(tmp_path / "local")]) == 0
     far, near = (json.loads((tmp_path / d / "latest" / "results.json").read_text()) for d in ("cluster", "local"))
     assert len(near["images"]) == 5 and all(e["pass"] for e in near["images"])
     assert {e["reference"] for e in near["images"]} == {"stored reference"}  # the bundle carried them
     assert _stripped(far) == _stripped(near)
+
+
+def test_bench_runs_each_case_on_one_worker(cluster, tmp_path):
+    args = ["bench", "--only", "plane_point:simple", "cornell:ao", "--engines", "mcval", "--max-spp", "2",
+            "--runs", "1", "--same-sampler", "--seed-runs", "0", "--throughput-runs", "0"]
+    assert main(args + ["--scheduler", cluster, "--out", str(tmp_path / "r")]) == 0
+    speed = json.loads((tmp_path / "r" / "latest" / "results.json").read_text())["speed"]
+    assert sorted((c["scene"], [len(k["steps"]) for k in c["curves"]]) for c in speed) == \
+        [("cornell", [2]), ("plane_point", [2])]
+    assert main(args + ["--workers", "2", "--out", str(tmp_path / "w")]) == 2  # timings would fight: refused
 
 
 def test_a_render_killed_on_a_worker_fails_its_case_only(tmp_path, capsys):

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import json
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable
 
@@ -11,6 +11,8 @@ import numpy as np
 
 from harness.bench.ladder import LADDER, RUNS, Curve, run_ladder
 from harness.bench.throughput import QUIET_SECONDS
+from harness.distributed.bundle import Bundle
+from harness.distributed.executor import Executor, SerialExecutor, Status, Task
 from harness.engines.base import Engine
 from harness.images.suite import SCENES_DIR, ImageCase
 from harness.bench.truth import bench_truth
@@ -86,17 +88,39 @@ class CaseBench:
 
 
 def run_bench(cases: list[ImageCase], engines: list[Engine], reference_engine: Engine, seed: int = 0,
-              ladder=LADDER, runs: int = RUNS, on_step: Callable[[str], None] | None = None) -> list[CaseBench]:
-    """Every case with every engine, one render at a time."""
+              ladder=LADDER, runs: int = RUNS, on_step: Callable[[str], None] | None = None,
+              executor: Executor | None = None, on_status: Callable[[Status], None] | None = None) -> list[CaseBench]:
+    """Every case with every engine. Each case is one task: its engines' ladders one render at a time on
+    one worker, so the engines it compares share a machine (`executor`: default here, one after another;
+    `on_step` reports each step when the case runs in this process)."""
+    executor = executor or SerialExecutor()
+    bundles = {}
+    if executor.ships_files:
+        from harness.images.case_task import scene_bundle
+        for case in cases:
+            if case.scene not in bundles:
+                bundles[case.scene] = executor.share(scene_bundle(case))
+    tasks = [Task(case.key, bench_case, (case, engines, reference_engine, seed, ladder, runs,
+                                         None if executor.ships_files else on_step, bundles.get(case.scene)))
+             for case in cases]
     out = []
-    for case in cases:
-        reference, truth = bench_truth(case, reference_engine)
-        curves = {}
-        for e in engines:
-            time.sleep(QUIET_SECONDS)  # the previous engine's threads have stopped spinning
-            curves[e.label or e.name] = run_ladder(e, case, reference, seed, ladder, runs, on_step)
-        out.append(CaseBench(case, curves, reference.summary.pixel.mean, truth))
+    for task, outcome in zip(tasks, executor.run(tasks, on_status)):
+        if not outcome.ok:
+            raise RuntimeError(f"bench {task.key}: {outcome.error}")
+        out.append(outcome.value)
     return out
+
+
+def bench_case(case: ImageCase, engines: list[Engine], reference_engine: Engine, seed: int, ladder, runs: int,
+               on_step: Callable[[str], None] | None = None, bundle: Bundle | None = None) -> CaseBench:
+    """One case's ladders, every engine in turn (with a bundle: on the bundle's copy of the files)."""
+    local = case if bundle is None else replace(case, root=bundle.materialize())
+    reference, truth = bench_truth(local, reference_engine)
+    curves = {}
+    for e in engines:
+        time.sleep(QUIET_SECONDS)  # the previous engine's threads have stopped spinning
+        curves[e.label or e.name] = run_ladder(e, local, reference, seed, ladder, runs, on_step)
+    return CaseBench(case, curves, reference.summary.pixel.mean, truth)
 
 
 #: Samples per pixel of one Mitsuba render at the seed settings: its wavefront holds every sample of a

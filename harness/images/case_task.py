@@ -42,3 +42,10 @@ def run_case_job(job: CaseJob, bundle: Bundle | None = None):
     if result.ours is not None and (result.passed or result.error is not None):
         result.ours = result.ours.light()  # a failed comparison keeps its batches for results/<run>/images/
     return result, messages
+
+
+def reference_task(case: ImageCase, engine: Engine, bundle: Bundle | None = None):
+    """The reference engine's render of `case` at the reference budget, summarised (references command)."""
+    from harness.images.references import render_reference
+
+    return render_reference(case if bundle is None else replace(case, root=bundle.materialize()), engine)
