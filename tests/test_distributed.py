@@ -9,7 +9,7 @@ from types import SimpleNamespace
 import psutil
 import pytest
 
-from dask_cluster import loopback_cluster
+from dask_cluster import loopback_cluster, make_certificates
 from render_wrappers import write_wrapper
 from harness.cli import main
 from harness.distributed.cluster import open_executor
@@ -50,6 +50,18 @@ def test_bench_runs_each_case_on_one_worker(cluster, tmp_path):
     assert sorted((c["scene"], [len(k["steps"]) for k in c["curves"]]) for c in speed) == \
         [("cornell", [2]), ("plane_point", [2])]
     assert main(args + ["--workers", "2", "--out", str(tmp_path / "w")]) == 2  # timings would fight: refused
+
+
+def test_a_tls_scheduler_runs_the_cases_and_refuses_plain_tcp(tmp_path):
+    tls = make_certificates(tmp_path)
+    with loopback_cluster(tmp_path, workers=1, tls=tls) as address:
+        assert address.startswith("tls://127.0.0.1:")
+        files = ["--tls-ca-file", str(tls[0]), "--tls-cert", str(tls[1]), "--tls-key", str(tls[2])]
+        out = tmp_path / "r"
+        assert main(["images", "--only", "plane_point:simple", "--scheduler", address, *files, "--out", str(out)]) == 0
+        assert json.loads((out / "latest" / "results.json").read_text())["images"][0]["pass"]
+        plain = address.replace("tls://", "tcp://")
+        assert main(["images", "--only", "plane_point:simple", "--scheduler", plain, "--out", str(out)]) == 2
 
 
 def test_a_render_killed_on_a_worker_fails_its_case_only(tmp_path, capsys):
