@@ -60,3 +60,6 @@ def test_the_command_writes_its_figures_and_page(tmp_path):
         assert isinstance(block["comparisons"], int) and isinstance(block["false_alarm_rate"], float)
     page = (run / "calibration.html").read_text()
     assert "Power at the validation" in page and "ours-analytic" in page
+    # The next report links it.
+    assert main(["images", "--only", "plane_point:normals", "--out", str(out)]) == 0
+    assert "../calibration-latest/calibration.html" in (out / "latest" / "report.html").read_text()

@@ -8,7 +8,7 @@ from __future__ import annotations
 import os
 from typing import Any, Callable
 
-from harness.distributed.executor import Executor, Outcome, Status, Task, one_line
+from harness.distributed.executor import Executor, Outcome, Status, Task
 
 #: A worker that dies under a task is retried on another this many times in all, then the task fails:
 #: a render that kills its worker would otherwise take down every worker in turn.
@@ -57,11 +57,13 @@ class DaskExecutor(Executor):
         return self._client
 
     def share(self, value: Any) -> Any:
-        """A handle to `value` on the cluster (sent once), to pass in several tasks' args."""
-        return self._client.scatter(value, hash=False)
+        """A handle to `value` on the cluster, to pass in several tasks' args: sent once to every worker,
+        so that a worker dying takes no data with it that a task (or the recomputation of a result lost
+        with it) still needs."""
+        return self._client.scatter(value, hash=False, broadcast=True)
 
     def run(self, tasks: list[Task], on_status: Callable[[Status], None] | None = None) -> list[Outcome]:
-        from distributed import as_completed
+        from distributed import KilledWorker, as_completed
 
         status = Status(len(tasks))
         futures = [self._client.submit(t.fn, *t.args, key=f"{t.key}-{i}-{id(tasks)}", pure=False, retries=0)
@@ -75,12 +77,11 @@ class DaskExecutor(Executor):
             i = index[future.key]
             try:
                 out[i] = Outcome(future.result())
-            except (KeyboardInterrupt, SystemExit):
-                raise
-            except Exception as e:
-                out[i] = Outcome(error=_why(e))
+            except KilledWorker:
+                out[i] = Outcome(error=f"its worker died while running it ({ALLOWED_FAILURES} workers tried)")
                 status.failed += 1
             status.done += 1
+            # Tasks are submitted at once and the cluster runs as many as it has threads: the rest wait.
             status.running = min(self.slots, len(tasks) - status.done)
             status.last = tasks[i].key
             if on_status:
@@ -91,11 +92,3 @@ class DaskExecutor(Executor):
         self._client.close()
         if self._cluster is not None:
             self._cluster.close()
-
-
-def _why(e: Exception) -> str:
-    from distributed import KilledWorker
-
-    if isinstance(e, KilledWorker):
-        return f"its worker died while running it ({ALLOWED_FAILURES} workers tried)"
-    return one_line(e)

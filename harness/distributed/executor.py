@@ -1,7 +1,8 @@
 """Running a list of independent tasks, here or on Dask, with their outcomes in the order given.
 
-A task that raises, or whose worker dies under it, gives an Outcome with `error` (one line) instead of
-a value: the caller fails that job and the run goes on."""
+A task whose worker dies under it gives an Outcome with `error` (one line) instead of a value: the
+caller fails that job and the run goes on. A task that raises raises here, wherever it ran: the jobs
+catch what they expect (a failed render), so anything else is a bug and stops the run."""
 from __future__ import annotations
 
 import time
@@ -44,11 +45,6 @@ class Status:
         return (time.perf_counter() - self.started) / self.done * (self.total - self.done)
 
 
-def one_line(e: BaseException) -> str:
-    text = str(e).strip().splitlines()
-    return f"{type(e).__name__}: {text[0]}" if text else type(e).__name__
-
-
 class Executor(ABC):
     #: "serial", "local cluster (N workers)" or the scheduler's address: for reports.
     description: str
@@ -87,13 +83,7 @@ class SerialExecutor(Executor):
             status.running = 1
             if on_status:
                 on_status(status)
-            try:
-                out.append(Outcome(task.fn(*task.args)))
-            except (KeyboardInterrupt, SystemExit):
-                raise
-            except Exception as e:
-                out.append(Outcome(error=one_line(e)))
-                status.failed += 1
+            out.append(Outcome(task.fn(*task.args)))
             status.done, status.running, status.last = status.done + 1, 0, task.key
             if on_status:
                 on_status(status)

@@ -19,7 +19,7 @@ from harness.statistics.constants import IMAGE_BATCHES, TILE_SIZE
 #: The pairs of engines whose renders of one case must agree.
 KINDS = ("ours-ours", "mitsuba-mitsuba", "ours-analytic")
 #: Relative biases planted for the power curves.
-BIASES = tuple(float(b) for b in np.geomspace(1e-4, 0.3, 15))
+BIASES = tuple(float(b) for b in np.geomspace(1e-4, 1.0, 17))
 
 
 @dataclass

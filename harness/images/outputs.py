@@ -38,7 +38,10 @@ def write_image_outputs(run_dir: Path, results: list[ImageResult], alpha: float,
     baseline_name = baseline.get("run") if baseline else None
     bench = run_dir.parent / "bench-latest" / "bench.html"
     bench_href = "../bench-latest/bench.html" if bench.exists() else None
+    calibration = run_dir.parent / "calibration-latest" / "calibration.html"
+    calibration_href = "../calibration-latest/calibration.html" if calibration.exists() else None
     write_atomic(run_dir / "report.html",
-                 report_html(results, alpha, warps, meta, regression, baseline_name, bench_href, invariance))
+                 report_html(results, alpha, warps, meta, regression, baseline_name, bench_href, invariance,
+                             calibration_href))
     write_atomic(run_dir / "junit.xml", junit_xml(results, warps["warps"] if warps else None))
     return {"images": images, "image_alpha": alpha, "regression": regression, "baseline": baseline_name}

@@ -38,4 +38,4 @@ def image_calibration_table(cal: dict) -> Table:
 
 
 def _bias(b) -> str:
-    return "beyond 0.3" if b is None else f"{b:.2g}"
+    return "beyond 1" if b is None else f"{b:.2g}"

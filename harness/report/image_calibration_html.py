@@ -74,4 +74,4 @@ def image_calibration_sections(cal: dict) -> list[str]:
 
 
 def _fmt(b) -> str:
-    return "beyond 0.3" if b is None else f"{b:.2g}"
+    return "beyond 1" if b is None else f"{b:.2g}"

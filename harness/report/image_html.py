@@ -110,10 +110,11 @@ def _regression_html(regression: list[dict] | None, baseline: str | None) -> str
 
 def report_html(results: list[ImageResult], alpha: float, warps: dict | None, meta: dict,
                 regression: list[dict] | None, baseline: str | None, bench_href: str | None = None,
-                invariance: dict | None = None) -> str:
+                invariance: dict | None = None, calibration_href: str | None = None) -> str:
     """The whole page. Within each integrator's section, failures come first. `bench_href` links the
     latest speed-against-error page, if there is one; `invariance` is the run's invariance block, whose
-    matrix ends the page (its own page, invariance.html, is linked)."""
+    matrix ends the page (its own page, invariance.html, is linked); `calibration_href` links the latest
+    `calibrate` page, if there is one."""
     failed = sum(not r.passed for r in results)
     summary = [f"<li>Images: {len(results) - failed} of {len(results)} comparisons pass "
                f"(per-comparison α {alpha:.2g}, family-wise 0.01 over the run)</li>"]
@@ -126,6 +127,9 @@ def report_html(results: list[ImageResult], alpha: float, warps: dict | None, me
                        f'{invariance_summary(invariance)} {_verdict(invariance["pass"])}</li>')
     if bench_href:
         summary.append(f'<li><a href="{_esc(bench_href)}">Speed against error</a> (the latest `make bench`)</li>')
+    if calibration_href:
+        summary.append(f'<li><a href="{_esc(calibration_href)}">Calibration</a>: the measured false-alarm rates '
+                       'and power of these tests (the latest `python -m harness calibrate`)</li>')
     summary += [f"<li>{_esc(k)}: {_esc(v)}</li>" for k, v in meta.items()]
     sections = []
     for integrator in INTEGRATORS:
