@@ -88,9 +88,6 @@ class MitsubaEngine(Engine):
         """Mitsuba's variant is process-wide: make sure ours is the one in force."""
         if self._mi.variant() != self.variant:
             self._mi.set_variant(self.variant)
-        threads = os.environ.get("MCVAL_THREADS")  # render_process.THREADS_ENV
-        if threads and self._dr.thread_count() != int(threads):
-            self._dr.set_thread_count(int(threads))
         return self._mi
 
     def warp(self, name: str, alpha: float | None = None) -> WarpFunctions | None:

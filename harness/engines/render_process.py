@@ -24,8 +24,8 @@ from harness.engines.base import RenderFailed
 ROOT = Path(__file__).resolve().parents[2]
 RENDER_ENV = "MCVAL_RENDER"
 TIMEOUT_ENV = "MCVAL_RENDER_TIMEOUT"
-#: Threads per render (default: every core); set for the workers of an embedded cluster, which share
-#: this machine's cores.
+#: Threads per render of ours (default: every core; the image does not depend on it); set for the workers
+#: of an embedded cluster, which share this machine's cores.
 THREADS_ENV = "MCVAL_THREADS"
 #: Seconds every render is allowed, whatever its size.
 BASE_TIMEOUT = 600.0

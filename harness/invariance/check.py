@@ -148,6 +148,7 @@ def run_cell_group(engine: Engine, case: InvarianceCase, invariances: list[Invar
                                     case_seed(engine.name, case, f"{inv.name}{v.label}", seed), params).batches
             except Exception as e:
                 reason = e.reason if isinstance(e, RenderFailed) else f"{type(e).__name__}: {str(e).strip()[:200]}"
+                reason = reason.replace(f"{folder}/", "")  # the rewritten file's name, not its scratch folder
                 cell.variants.append(VariantResult(v, None, float("nan"), reason, limit))
                 continue
             mapped = v.expected(case.integrator, out.astype(np.float64), has_environment)
