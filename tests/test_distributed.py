@@ -19,7 +19,7 @@ from harness.distributed.executor import SerialExecutor, Task
 def _stripped(value, rounded: bool = False):
     """results.json without what differs between any two runs: times and speeds, run names. Mitsuba's own
     renders (its invariance cells) are rounded to 6 digits: its llvm variant's sums change in the last bits
-    from one run to the next even in one process (a ratio by 1e-9), wherever it runs."""
+    from one run to the next (two serial runs: ratios by 1e-9), wherever it runs."""
     if isinstance(value, dict):
         rounded = rounded or value.get("engine", "").startswith("mitsuba")
         return {k: _stripped(v, rounded) for k, v in value.items() if k not in ("seconds", "run", "throughput")}
