@@ -77,7 +77,7 @@ def _run_images(args, cases, run_dir: Path, warps: dict | None, baseline: Path |
     start = time.perf_counter()
     with task_progress("images", executor) as show:
         results, alpha = run_images(cases, ours, mitsuba, args.seed, on_status=show,
-                                    on_message=lambda m: console.print(f"[yellow]{escape(m)}[/]", soft_wrap=True),
+                                    on_message=lambda m: err.print(f"[yellow]{escape(m)}[/]", soft_wrap=True),
                                     executor=executor)
         where = executor.description
     seconds = time.perf_counter() - start
