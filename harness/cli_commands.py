@@ -12,14 +12,14 @@ def _references(args) -> int:
     from harness.distributed.cluster import open_executor
     from harness.distributed.executor import Task
     from harness.engines.mitsuba import MitsubaEngine
-    from harness.images.case_task import reference_task, scene_bundle
+    from harness.images.case_task import reference_task, share_scene_bundles
     from harness.images.suite import select_cases
     from harness.images.references import write_reference
 
     cases = select_cases(args.scenes)
     mitsuba = MitsubaEngine(args.variant)
     with open_executor(args) as executor, task_progress("references", executor) as show:
-        bundles = {c.scene: executor.share(scene_bundle(c)) for c in cases} if executor.ships_files else {}
+        bundles = share_scene_bundles(executor, cases)
         tasks = [Task(c.key, reference_task, (c, mitsuba, bundles.get(c.scene))) for c in cases]
         outcomes = executor.run(tasks, show)
     failed = 0

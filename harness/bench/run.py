@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import json
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
@@ -14,6 +14,7 @@ from harness.bench.throughput import QUIET_SECONDS
 from harness.distributed.bundle import Bundle
 from harness.distributed.executor import Executor, SerialExecutor, Status, Task
 from harness.engines.base import Engine
+from harness.images.case_task import on_files, share_scene_bundles
 from harness.images.suite import SCENES_DIR, ImageCase
 from harness.bench.truth import bench_truth
 
@@ -94,12 +95,7 @@ def run_bench(cases: list[ImageCase], engines: list[Engine], reference_engine: E
     one worker, so the engines it compares share a machine (`executor`: default here, one after another;
     `on_step` reports each step when the case runs in this process)."""
     executor = executor or SerialExecutor()
-    bundles = {}
-    if executor.ships_files:
-        from harness.images.case_task import scene_bundle
-        for case in cases:
-            if case.scene not in bundles:
-                bundles[case.scene] = executor.share(scene_bundle(case))
+    bundles = share_scene_bundles(executor, cases)
     tasks = [Task(case.key, bench_case, (case, engines, reference_engine, seed, ladder, runs,
                                          None if executor.ships_files else on_step, bundles.get(case.scene)))
              for case in cases]
@@ -114,7 +110,7 @@ def run_bench(cases: list[ImageCase], engines: list[Engine], reference_engine: E
 def bench_case(case: ImageCase, engines: list[Engine], reference_engine: Engine, seed: int, ladder, runs: int,
                on_step: Callable[[str], None] | None = None, bundle: Bundle | None = None) -> CaseBench:
     """One case's ladders, every engine in turn (with a bundle: on the bundle's copy of the files)."""
-    local = case if bundle is None else replace(case, root=bundle.materialize())
+    local = on_files(case, bundle)
     reference, truth = bench_truth(local, reference_engine)
     curves = {}
     for e in engines:

@@ -41,9 +41,9 @@ class DaskExecutor(Executor):
         dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES - 1})
         self._cluster = None
         if scheduler is None:
-            n = workers or _worker_count()
-            # One task per worker at a time, and each render on its share of the cores (not all of them).
             cores = _worker_count()
+            n = workers or cores
+            # One task per worker at a time, and each of our renders on its share of the cores.
             self._cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1",
                                          env={k: str(max(1, cores // n)) for k in SHARE_CORES},
                                          dashboard_address="127.0.0.1:0", scheduler_port=0, silence_logs=40)

@@ -15,14 +15,14 @@ from typing import Callable
 import numpy as np
 
 from harness.distributed.executor import Executor, SerialExecutor, Status, Task
-from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine
 from harness.images.compare import SCALES
 from harness.images.null_task import BIASES, KINDS, NullJob, null_comparison
 from harness.images.references import RESOLUTION
+from harness.images.run import closed_forms, comparison_level
 from harness.images.suite import ImageCase, select_cases
 from harness.statistics.calibration_rates import CALIBRATION_CONFIDENCE, CALIBRATION_LEVELS, Rate, clopper_pearson
-from harness.statistics.constants import SIGNIFICANCE, sidak_level
+from harness.statistics.constants import sidak_level
 
 #: The cases each kind cycles over (ours-analytic: those with a closed form). None is noiseless on both
 #: sides (normals, or ao, on a lone plane: both engines exact, nothing could reject, which would only
@@ -38,11 +38,9 @@ POWER = 0.9
 
 
 def validation_alpha() -> float:
-    """The per-comparison level of a default `validate` (its Sidak share of the family-wise SIGNIFICANCE)."""
+    """The per-comparison level of a default `validate`."""
     cases = select_cases(None)
-    params = {"res": str(RESOLUTION)}
-    closed = sum(AnalyticEngine.supports(str(c.path), params, c.integrator) for c in cases)
-    return sidak_level(SIGNIFICANCE, len(cases) + closed)
+    return comparison_level(cases, closed_forms(cases))
 
 
 def _case(key: str) -> ImageCase:
@@ -106,18 +104,14 @@ def calibrate_images(ours: Engine, mitsuba: Engine, per_kind: int, seed: int = 0
                      executor: Executor | None = None, on_status: Callable[[Status], None] | None = None,
                      resolution: int = RESOLUTION) -> ImageCalibration:
     """`per_kind` null comparisons of each kind, each with its own seeds."""
-    from harness.images.case_task import scene_bundle
+    from harness.images.case_task import share_scene_bundles
 
     executor = executor or SerialExecutor()
     alpha = validation_alpha()
     jobs = [NullJob(kind, _case(CASES[kind][i % len(CASES[kind])]), 1_000_003 * seed + 2 * (i + per_kind * k),
                     resolution, alpha, ours, mitsuba)
             for k, kind in enumerate(KINDS) for i in range(per_kind)]
-    bundles = {}
-    if executor.ships_files:
-        for job in jobs:
-            if job.case.scene not in bundles:
-                bundles[job.case.scene] = executor.share(scene_bundle(job.case))
+    bundles = share_scene_bundles(executor, [j.case for j in jobs])
     start = time.perf_counter()
     outcomes = executor.run([Task(f"{j.kind} {j.case.key}", null_comparison, (j, bundles.get(j.case.scene)))
                              for j in jobs], on_status)

@@ -23,6 +23,22 @@ class CaseJob:
     mitsuba: Engine
 
 
+def share_scene_bundles(executor, cases) -> dict[str, object]:
+    """Per scene of `cases`, a handle to its bundle on the executor's cluster, each sent once; nothing
+    for an executor that runs here (its tasks read the files in place)."""
+    bundles: dict[str, object] = {}
+    if executor.ships_files:
+        for case in cases:
+            if case.scene not in bundles:
+                bundles[case.scene] = executor.share(scene_bundle(case))
+    return bundles
+
+
+def on_files(case: ImageCase, bundle: Bundle | None) -> ImageCase:
+    """`case` reading the bundle's copy of its files (written on first use), or its own without one."""
+    return case if bundle is None else replace(case, root=bundle.materialize())
+
+
 def scene_bundle(case: ImageCase) -> Bundle:
     """The files every case of `case.scene` reads: its scene files, their meshes, its stored references."""
     stored = reference_path(case).parent
@@ -34,7 +50,7 @@ def run_case_job(job: CaseJob, bundle: Bundle | None = None):
     """(ImageResult, messages). With a bundle, the case reads the bundle's copy of its files."""
     from harness.images.run import _run_case
 
-    case = job.case if bundle is None else replace(job.case, root=bundle.materialize())
+    case = on_files(job.case, bundle)
     messages: list[str] = []
     result = _run_case(case, job.ours, job.mitsuba, AnalyticEngine() if job.closed_form else None,
                        {"res": str(RESOLUTION)}, job.seed, job.alpha, job.run_seed, messages.append)
@@ -48,4 +64,4 @@ def reference_task(case: ImageCase, engine: Engine, bundle: Bundle | None = None
     """The reference engine's render of `case` at the reference budget, summarised (references command)."""
     from harness.images.references import render_reference
 
-    return render_reference(case if bundle is None else replace(case, root=bundle.materialize()), engine)
+    return render_reference(on_files(case, bundle), engine)

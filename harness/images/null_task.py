@@ -3,13 +3,14 @@
 twice, also whether a planted bias (the whole image, or one 8x8 tile) is found at the default level."""
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
 from harness.distributed.bundle import Bundle
 from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine
+from harness.images.case_task import on_files
 from harness.images.compare import SCALES, compare_summaries, summarize
 from harness.images.references import REFERENCE_BATCHES
 from harness.images.suite import OUR_SPP, ImageCase
@@ -41,7 +42,7 @@ def _render(engine: Engine, case: ImageCase, spp: int, batches: int, seed: int, 
 def null_comparison(job: NullJob, bundle: Bundle | None = None) -> dict:
     """The rejections of one null comparison by scale and level, its image-scale smallest p-value, and
     (ours twice) which planted biases the default level finds."""
-    case = job.case if bundle is None else replace(job.case, root=bundle.materialize())
+    case = on_files(job.case, bundle)
     spp, signed = OUR_SPP[case.integrator], case.integrator == "normals"
     # The test side as the validation renders ours; the reference side with more batches, as a reference has.
     test_engine, ref_engine = {"ours-ours": (job.ours, job.ours), "mitsuba-mitsuba": (job.mitsuba, job.mitsuba),

@@ -98,6 +98,17 @@ def _reason(e: Exception) -> str:
     return f"{type(e).__name__}: {text[0]}" if text else type(e).__name__
 
 
+def closed_forms(cases: list[ImageCase]) -> dict[ImageCase, bool]:
+    """Per case, whether the analytic engine has its closed form (then a second reference)."""
+    params = {"res": str(RESOLUTION)}
+    return {c: AnalyticEngine.supports(str(c.path), params, c.integrator) for c in cases}
+
+
+def comparison_level(cases: list[ImageCase], has_closed_form: dict[ImageCase, bool]) -> float:
+    """The per-comparison level of a run of `cases`: its Sidak share of the family-wise SIGNIFICANCE."""
+    return sidak_level(SIGNIFICANCE, len(cases) + sum(has_closed_form.values()))
+
+
 def run_images(cases: list[ImageCase], ours: Engine, mitsuba: Engine, seed: int = 0,
                on_status: Callable[[Status], None] | None = None,
                on_message: Callable[[str], None] | None = None,
@@ -106,17 +117,12 @@ def run_images(cases: list[ImageCase], ours: Engine, mitsuba: Engine, seed: int 
     run share a family-wise false-alarm rate of SIGNIFICANCE (Sidak). Returns the results, in the order of
     `cases`, and the per-comparison alpha. A render that fails (our RenderFailed, or any exception of a
     reference engine), or a task whose worker dies, fails its case with the reason, and the run goes on."""
-    from harness.images.case_task import CaseJob, run_case_job, scene_bundle
+    from harness.images.case_task import CaseJob, run_case_job, share_scene_bundles
 
     executor = executor or SerialExecutor()
-    params = {"res": str(RESOLUTION)}
-    has_closed_form = {c: AnalyticEngine.supports(str(c.path), params, c.integrator) for c in cases}
-    alpha = sidak_level(SIGNIFICANCE, len(cases) + sum(has_closed_form.values()))
-    bundles: dict[str, object] = {}
-    if executor.ships_files:
-        for case in cases:
-            if case.scene not in bundles:
-                bundles[case.scene] = executor.share(scene_bundle(case))
+    has_closed_form = closed_forms(cases)
+    alpha = comparison_level(cases, has_closed_form)
+    bundles = share_scene_bundles(executor, cases)
     tasks = [Task(case.key, run_case_job,
                   (CaseJob(case, case_seed(case, seed), alpha, seed, has_closed_form[case], ours, mitsuba),
                    bundles.get(case.scene)))

@@ -7,6 +7,7 @@ import html
 import numpy as np
 
 from harness.report.calibration_html import _png, p_value_histograms
+from harness.report.calibration_table import bias_text
 from harness.statistics.calibration_rates import CALIBRATION_LEVELS
 
 
@@ -47,8 +48,8 @@ def image_calibration_sections(cal: dict) -> list[str]:
     verdict = ("every whole-comparison rate is within its interval of the nominal level" if cal["pass"] else
                "<b>a whole-comparison rate is outside its interval, or comparisons failed</b>")
     power_rows = "".join(
-        f"<tr><td>{html.escape(k)}</td><td>{v['comparisons']}</td><td>{_fmt(v['global_bias_90'])}</td>"
-        f"<td>{_fmt(v['tile_bias_90'])}</td></tr>" for k, v in cal["power"].items())
+        f"<tr><td>{html.escape(k)}</td><td>{v['comparisons']}</td><td>{bias_text(v['global_bias_90'])}</td>"
+        f"<td>{bias_text(v['tile_bias_90'])}</td></tr>" for k, v in cal["power"].items())
     failed = "".join(f"<li>{html.escape(f)}</li>" for f in cal["failed"])
     p = np.asarray(cal["image_min_p"], float)
     return [
@@ -71,7 +72,3 @@ def image_calibration_sections(cal: dict) -> list[str]:
         f"{power_rows}</table>",
         _power_plot(cal["power"]),
     ]
-
-
-def _fmt(b) -> str:
-    return "beyond 1" if b is None else f"{b:.2g}"

@@ -22,7 +22,7 @@ namespace {
 using Array = nb::ndarray<nb::numpy, float>;
 
 /// How long a worker keeps spinning after a render from Python, which often renders again soon (the
-/// bench's ladder computes its errors between renders for ~30 ms): see worker_warmth.h.
+/// bench renders step after step): see worker_warmth.h.
 constexpr int kKeepWarmMilliseconds = 100;
 
 /// Copies images into one new (count, H, W, 3) or (H, W, 3) array.
