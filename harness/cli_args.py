@@ -88,7 +88,9 @@ def build_parser() -> argparse.ArgumentParser:
                                    "biases found 90 %% of the time. Each rate with an exact interval beside the "
                                    "nominal level. Writes calibration.html and calibration.json (blocks with "
                                    "`comparisons` and `false_alarm_rate`); results/calibration-latest points at the "
-                                   "newest. Exits 1 if a rate is off.")
+                                   "newest. Exits 1 if a rate lies above its nominal level beyond its interval (the check "
+                                   "raises more false alarms than it says) or a comparison failed; a rate below its "
+                                   "interval (conservative: it costs power, not false FAILs) is shown in yellow.")
     common(c)
     c.add_argument("--warps", action="store_true", help="calibrate the warp checks (with --images: both; the default)")
     c.add_argument("--images", action="store_true", help="calibrate the image comparisons (default: both)")

@@ -154,7 +154,7 @@ def _calibrate(args, run_dir: Path) -> bool:
         cal = _calibrate_warps(args, ours, reference)
         payload["warps"] = cal.to_json()
         meta.update({"seeds per warp": args.seeds, "samples": args.samples, "warp seconds": round(cal.seconds, 1)})
-        ok &= cal.within
+        ok &= cal.sound
         page = warp_calibration_html(cal, meta, sections)
     else:
         page = calibration_page("Calibration of the image comparisons", "Each rejection of a null comparison "

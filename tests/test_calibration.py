@@ -20,9 +20,10 @@ def test_clopper_pearson_against_its_closed_forms():
 def test_uniform_p_values_are_within_and_skewed_ones_are_not(seed):
     p = np.random.default_rng(seed).random(2000)
     assert all(r.within for r in rates(p, intervals=3)) and uniformity_p(p) > 1e-3
-    # A test that rejects too often (p squared: rate sqrt(level)) and one that never does.
-    assert not any(r.within for r in rates(p ** 2, intervals=3))
-    assert not any(r.within for r in rates(np.sqrt(p), intervals=3))
+    assert all(r.verdict == "within" and not r.liberal for r in rates(p, intervals=3))
+    # A test that rejects too often (p squared: rate sqrt(level)) and one that rejects too rarely.
+    assert all(r.verdict == "liberal" for r in rates(p ** 2, intervals=3))
+    assert all(r.verdict == "conservative" and not r.liberal for r in rates(np.sqrt(p), intervals=3))
 
 
 class _Wrong(Engine):

@@ -34,6 +34,7 @@ def test_null_comparisons_are_within_their_intervals(mitsuba, seed):
     cal = calibrate_images(OurEngine(), mitsuba, per_kind=3, seed=seed, resolution=64)
     assert not cal.failed and len(cal.results) == 9
     assert cal.within, [b for b in cal.blocks() if not b["within"]]
+    assert cal.sound and cal.to_json()["pass"]
     power = cal.power()
     assert set(power) == {"normals", "simple", "ao"}
     assert all(0 < v["global_bias_90"] < 0.3 for v in power.values())
@@ -44,8 +45,9 @@ def test_a_biased_renderer_is_outside_the_interval(mitsuba):
     blocks = {(b["kind"], b["scale"], b["comparison_level"]): b for b in cal.blocks()}
     assert blocks[("ours-analytic", "whole", 0.01)]["rejections"] == 3
     assert not blocks[("ours-analytic", "whole", 0.01)]["within"]
+    assert blocks[("ours-analytic", "whole", 0.01)]["verdict"] == "liberal"
     assert blocks[("ours-ours", "whole", 0.01)]["within"]  # scaled on both sides: still a null pair
-    assert not cal.within
+    assert not cal.within and not cal.sound and not cal.to_json()["pass"]
 
 
 def test_the_command_writes_its_figures_and_page(tmp_path):

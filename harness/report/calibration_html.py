@@ -38,9 +38,10 @@ def p_value_histograms(panels: list[tuple[str, np.ndarray]], columns: int = 4) -
 
 
 def rate_cells(rates: list[Rate]) -> str:
-    """Table cells: observed rate and interval per level, red where the nominal level lies outside."""
+    """Table cells: observed rate and interval per level, coloured by its verdict (Rate.verdict)."""
+    from harness.statistics.calibration_rates import VERDICT_CLASS
     return "".join(
-        f"<td class='{'pass' if r.within else 'fail'}' title='{r.rejections} of {r.count}; interval "
+        f"<td class='{VERDICT_CLASS[r.verdict]}' title='{r.rejections} of {r.count}; interval "
         f"[{r.low:.3f}, {r.high:.3f}]'>{r.observed:.3f} <span class='meta'>[{r.low:.3f}, {r.high:.3f}]</span></td>"
         for r in rates)
 
@@ -63,12 +64,17 @@ def warp_calibration_html(cal, meta: dict, more: list[str] = ()) -> str:
     table = (f"<table><tr><th>warp</th><th>check</th><th>null tests</th>{head}<th>KS p (uniform p-values)</th></tr>"
              f"{rows}</table>")
     panels = [(f"{e.warp}: {e.check}", e.p_values) for e in cal.pooled + cal.entries]
-    verdict = ("every observed rate is within its interval of the nominal level" if cal.within else
-               "<b>some observed rates are outside their interval: the check's stated level is not what it does</b>")
+    if not cal.sound:
+        verdict = "<b>some observed rates lie above their interval: the check raises more false alarms than it says</b>"
+    elif cal.within:
+        verdict = "every observed rate is within its interval of the nominal level"
+    else:
+        verdict = "no rate is above its nominal level; some are below their interval (conservative, in yellow)"
     intro = (f"Every correct warp of the matrix at {cal.seeds} seeds ({cal.samples:,} samples each, the matrix's "
              "budget and cells): each rejection is a false alarm. A cell shows the observed rate and its exact "
              "(Clopper-Pearson) interval, simultaneous at 95 % over all the intervals of the page; green where the "
-             f"nominal level lies inside it. Result: {verdict}.")
+             "nominal level lies inside it, yellow where the interval lies below it, red above it. "
+             f"Result: {verdict}.")
     return calibration_page("Calibration of the warp checks", intro,
                             ["<h2>False-alarm rates</h2>", table, "<h2>Null p-values</h2>", p_value_histograms(panels),
                              *more], meta)

@@ -3,17 +3,18 @@ from __future__ import annotations
 
 from rich.table import Table
 
-from harness.statistics.calibration_rates import CALIBRATION_LEVELS
+from harness.statistics.calibration_rates import CALIBRATION_LEVELS, VERDICT_COLOUR
 
 
 def calibration_table(cal) -> Table:
-    """Pooled rows first, then each warp; red where the nominal level lies outside the interval."""
+    """Pooled rows first, then each warp; green where the nominal level lies inside the interval, yellow
+    where the interval lies below it (conservative), red above it (liberal)."""
     table = Table(title="False-alarm rates of the warp checks (observed, simultaneous 95 % interval)",
                   header_style="bold")
     for col in ("warp", "check", "tests", *[f"at {level:g}" for level in CALIBRATION_LEVELS], "KS p"):
         table.add_column(col)
     for e in cal.pooled + cal.entries:
-        cells = [f"[{'green' if r.within else 'red'}]{r.observed:.3f}[/] ({r.low:.2f}-{r.high:.2f})" for r in e.rates]
+        cells = [f"[{VERDICT_COLOUR[r.verdict]}]{r.observed:.3f}[/] ({r.low:.2f}-{r.high:.2f})" for r in e.rates]
         table.add_row(e.warp, e.check, str(len(e.p_values)), *cells, f"{e.uniformity:.2g}")
     return table
 
@@ -29,7 +30,7 @@ def image_calibration_table(cal: dict) -> Table:
     for kind in dict.fromkeys(b["kind"] for b in cal["blocks"]):
         cells = [b for b in cal["blocks"] if b["kind"] == kind and b["scale"] == "whole"]
         table.add_row(kind, str(cells[0]["comparisons"]), *[
-            f"[{'green' if b['within'] else 'red'}]{b['false_alarm_rate']:.3f}[/] [{b['interval'][0]:.3f}, "
+            f"[{VERDICT_COLOUR[b['verdict']]}]{b['false_alarm_rate']:.3f}[/] [{b['interval'][0]:.3f}, "
             f"{b['interval'][1]:.3f}]" for b in cells])
     for integrator, v in cal["power"].items():
         table.add_row(f"power {integrator}", str(v["comparisons"]),

@@ -8,7 +8,7 @@ import numpy as np
 
 from harness.report.calibration_html import _png, p_value_histograms
 from harness.report.calibration_table import bias_text
-from harness.statistics.calibration_rates import CALIBRATION_LEVELS
+from harness.statistics.calibration_rates import CALIBRATION_LEVELS, VERDICT_CLASS
 
 
 def _rates_table(blocks: list[dict]) -> str:
@@ -18,7 +18,7 @@ def _rates_table(blocks: list[dict]) -> str:
         for scale in dict.fromkeys(b["scale"] for b in blocks):
             cells = [b for b in blocks if b["kind"] == kind and b["scale"] == scale]
             tds = "".join(
-                f"<td class='{'pass' if b['within'] else 'fail'}' title='{b['rejections']} of {b['comparisons']}; "
+                f"<td class='{VERDICT_CLASS[b['verdict']]}' title='{b['rejections']} of {b['comparisons']}; "
                 f"nominal {b['level']:.4g}'>{b['false_alarm_rate']:.3f} <span class='meta'>[{b['interval'][0]:.3f}, "
                 f"{b['interval'][1]:.3f}] nominal {b['level']:.3g}</span></td>" for b in cells)
             rows.append(f"<tr><td>{html.escape(kind)}</td><td>{scale}</td><td>{cells[0]['comparisons']}</td>{tds}</tr>")
@@ -45,8 +45,13 @@ def _power_plot(power: dict) -> str:
 
 def image_calibration_sections(cal: dict) -> list[str]:
     """HTML sections for results of harness.images.calibration (its to_json())."""
-    verdict = ("every whole-comparison rate is within its interval of the nominal level" if cal["pass"] else
-               "<b>a whole-comparison rate is outside its interval, or comparisons failed</b>")
+    if not cal["pass"]:
+        verdict = "<b>a rate lies above its nominal level beyond its interval (liberal), or comparisons failed</b>"
+    elif cal["within"]:
+        verdict = "every whole-comparison rate is within its interval of the nominal level"
+    else:
+        verdict = ("no rate is above its nominal level; some are below it beyond their interval (conservative, "
+                   "in yellow): fewer false alarms than stated, paid for in power")
     power_rows = "".join(
         f"<tr><td>{html.escape(k)}</td><td>{v['comparisons']}</td><td>{bias_text(v['global_bias_90'])}</td>"
         f"<td>{bias_text(v['tile_bias_90'])}</td></tr>" for k, v in cal["power"].items())
@@ -57,7 +62,8 @@ def image_calibration_sections(cal: dict) -> list[str]:
         f"<p>{cal['comparisons']} null comparisons: two independent renders of one case by engines that must "
         "agree (ours twice, Mitsuba twice, ours and the closed form). Each is compared at every level; the whole "
         "comparison rejects when any scale does, a scale at its Sidak share of the level. Intervals are exact and "
-        f"simultaneous at 95 % over the table. Result: {verdict}.</p>",
+        "simultaneous at 95 % over the table: green where the nominal level lies inside the interval, yellow "
+        f"where the interval lies below it, red above it. Result: {verdict}.</p>",
         _rates_table(cal["blocks"]),
         (f"<h3>Comparisons that gave no result</h3><ul>{failed}</ul>" if failed else ""),
         "<h2>Image scale: smallest p-value of the three channels</h2>",

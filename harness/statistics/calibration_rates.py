@@ -31,9 +31,26 @@ class Rate:
         """The nominal level lies inside the interval: the rate is what the check claims."""
         return self.low <= self.level <= self.high
 
+    @property
+    def liberal(self) -> bool:
+        """The whole interval lies above the nominal level: the check raises more false alarms than it says."""
+        return self.low > self.level
+
+    @property
+    def verdict(self) -> str:
+        """"within", "liberal", or "conservative" (the interval lies below the level: fewer false alarms
+        than it says, which costs power but never a false FAIL)."""
+        return "within" if self.within else "liberal" if self.liberal else "conservative"
+
     def to_json(self) -> dict:
         return {"level": self.level, "comparisons": self.count, "rejections": self.rejections,
-                "false_alarm_rate": self.observed, "interval": [self.low, self.high], "within": self.within}
+                "false_alarm_rate": self.observed, "interval": [self.low, self.high], "within": self.within,
+                "verdict": self.verdict}
+
+
+#: Terminal colour and page class of each verdict.
+VERDICT_COLOUR = {"within": "green", "conservative": "yellow", "liberal": "red"}
+VERDICT_CLASS = {"within": "pass", "conservative": "warn", "liberal": "fail"}
 
 
 def clopper_pearson(k: int, n: int, confidence: float) -> tuple[float, float]:

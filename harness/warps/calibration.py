@@ -41,11 +41,16 @@ class CheckCalibration:
     def within(self) -> bool:
         return all(r.within for r in self.rates)
 
+    @property
+    def sound(self) -> bool:
+        """No rate lies above its nominal level beyond its interval."""
+        return not any(r.liberal for r in self.rates)
+
     def to_json(self) -> dict:
         return {"warp": self.warp, "check": self.check, "comparisons": len(self.p_values),
                 "false_alarm_rate": self.rates[-1].observed, "nominal_level": self.rates[-1].level,
                 "rates": [r.to_json() for r in self.rates], "uniformity_p": self.uniformity,
-                "within": self.within}
+                "within": self.within, "sound": self.sound}
 
 
 @dataclass
@@ -62,8 +67,14 @@ class WarpCalibration:
     def within(self) -> bool:
         return all(e.within for e in self.entries + self.pooled)
 
+    @property
+    def sound(self) -> bool:
+        """No check raises more false alarms than its nominal level (a conservative one costs power only)."""
+        return all(e.sound for e in self.entries + self.pooled)
+
     def to_json(self) -> dict:
         return {"seeds": self.seeds, "samples": self.samples, "seconds": self.seconds, "within": self.within,
+                "pass": self.sound,
                 "levels": list(CALIBRATION_LEVELS), "pooled": [e.to_json() for e in self.pooled],
                 "warps": [e.to_json() for e in self.entries]}
 
