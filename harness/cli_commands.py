@@ -126,7 +126,15 @@ def _bench(args, run_dir: Path) -> tuple[bool, dict]:
 
 
 def _calibrate(args, run_dir: Path) -> bool:
-    """The warp checks' and the image comparisons' false-alarm rates (both unless --warps or --images)."""
+    """The warp checks' and the image comparisons' false-alarm rates (both unless --warps or --images), on
+    one executor."""
+    from harness.distributed.cluster import open_executor
+
+    with open_executor(args) as executor:
+        return _calibrate_on(args, run_dir, executor)
+
+
+def _calibrate_on(args, run_dir: Path, executor) -> bool:
     from harness.engines.ours import OurEngine
     from harness.report.calibration_html import calibration_page, warp_calibration_html
 
@@ -143,7 +151,7 @@ def _calibrate(args, run_dir: Path) -> bool:
         if reference is None:
             raise ValueError("--images needs Mitsuba (its null comparisons include Mitsuba against itself): "
                              "drop --no-mitsuba")
-        cal_images = _calibrate_images(args, ours, reference)
+        cal_images = _calibrate_images(args, ours, reference, executor)
         from harness.report.image_calibration_html import image_calibration_sections
         payload["images"] = cal_images
         sections = image_calibration_sections(cal_images)
@@ -151,9 +159,10 @@ def _calibrate(args, run_dir: Path) -> bool:
                      "image comparisons ran on": cal_images["ran_on"]})
         ok &= cal_images["pass"]
     if warps:
-        cal = _calibrate_warps(args, ours, reference)
+        cal = _calibrate_warps(args, ours, reference, executor)
         payload["warps"] = cal.to_json()
-        meta.update({"seeds per warp": args.seeds, "samples": args.samples, "warp seconds": round(cal.seconds, 1)})
+        meta.update({"seeds per warp": args.seeds, "samples": args.samples, "warp seconds": round(cal.seconds, 1),
+                     "warps ran on": executor.description})
         ok &= cal.sound
         page = warp_calibration_html(cal, meta, sections)
     else:
@@ -168,30 +177,30 @@ def _calibrate(args, run_dir: Path) -> bool:
     return ok
 
 
-def _calibrate_warps(args, ours, reference):
+def _calibrate_warps(args, ours, reference, executor):
+    from harness.cli_output import task_progress
     from harness.report.calibration_table import calibration_table
     from harness.warps.calibration import calibrate_warps
     from harness.warps.suite import select
 
     specs = select(args.only)
-    with progress_bar("calibrate warps") as progress:
-        task = progress.add_task("", total=len(specs) * args.seeds)
-        cal = calibrate_warps(ours, reference, specs, args.seeds, args.samples,
-                              on_seed=lambda: progress.update(task, advance=1))
+    with task_progress("calibrate warps", executor) as show:
+        cal = calibrate_warps(ours, reference, specs, args.seeds, args.samples, executor, show)
     console.print(calibration_table(cal))
-    console.print(f"{len(specs)} warps x {args.seeds} seeds in {cal.seconds:.0f} s.")
+    for line in cal.failed:
+        console.print(f"[red]failed[/] {line}")
+    console.print(f"{len(specs)} warps x {args.seeds} seeds in {cal.seconds:.0f} s on {executor.description}.")
     return cal
 
 
-def _calibrate_images(args, ours, reference) -> dict:
+def _calibrate_images(args, ours, reference, executor) -> dict:
     from harness.cli_output import task_progress
-    from harness.distributed.cluster import open_executor
     from harness.images.calibration import calibrate_images
     from harness.report.calibration_table import image_calibration_table
 
-    with open_executor(args) as executor, task_progress("calibrate images", executor) as show:
+    with task_progress("calibrate images", executor) as show:
         cal = calibrate_images(ours, reference, args.comparisons, args.seed, executor, show)
-        where = executor.description
+    where = executor.description
     out = {**cal.to_json(), "ran_on": where}
     console.print(image_calibration_table(out))
     for line in cal.failed:

@@ -57,6 +57,21 @@ def test_bench_runs_each_case_on_one_worker(cluster, tmp_path):
     assert main(args + ["--workers", "2", "--out", str(tmp_path / "w")]) == 2  # timings would fight: refused
 
 
+def test_calibrate_on_a_scheduler_gives_the_local_rates(cluster, tmp_path):
+    """Warps (one task each, with Mitsuba's) and image null comparisons on the cluster: the figures of a
+    serial run, times aside."""
+    args = ["calibrate", "--only", "tent", "uniform_disk", "--seeds", "4", "--samples",
+            "20000", "--comparisons", "1"]
+    assert main(args + ["--scheduler", cluster, "--out", str(tmp_path / "cluster")]) == 0
+    assert main(args + ["--serial", "--out", str(tmp_path / "local")]) == 0
+    far, near = (json.loads((tmp_path / d / "calibration-latest" / "calibration.json").read_text())
+                 for d in ("cluster", "local"))
+    assert [w["warp"] for w in near["warps"]["warps"]] == ["tent"] * 2 + ["uniform_disk"] * 2
+    assert far["warps"]["warps"] == near["warps"]["warps"] and far["warps"]["pooled"] == near["warps"]["pooled"]
+    assert far["images"]["blocks"] == near["images"]["blocks"] and near["images"]["comparisons"] == 3
+    assert far["meta"]["warps ran on"].startswith("Dask scheduler") and near["meta"]["warps ran on"] == "serial"
+
+
 def test_a_tls_scheduler_runs_the_cases_and_refuses_plain_tcp(tmp_path):
     tls = make_certificates(tmp_path)
     with loopback_cluster(tmp_path, workers=1, tls=tls) as address:

@@ -65,7 +65,8 @@ def warp_calibration_html(cal, meta: dict, more: list[str] = ()) -> str:
              f"{rows}</table>")
     panels = [(f"{e.warp}: {e.check}", e.p_values) for e in cal.pooled + cal.entries]
     if not cal.sound:
-        verdict = "<b>some observed rates lie above their interval: the check raises more false alarms than it says</b>"
+        verdict = ("<b>some observed rates lie above their interval (the check raises more false alarms than it "
+                   "says), or warps gave no p-values</b>")
     elif cal.within:
         verdict = "every observed rate is within its interval of the nominal level"
     else:
@@ -75,6 +76,8 @@ def warp_calibration_html(cal, meta: dict, more: list[str] = ()) -> str:
              "(Clopper-Pearson) interval, simultaneous at 95 % over all the intervals of the page; green where the "
              "nominal level lies inside it, yellow where the interval lies below it, red above it. "
              f"Result: {verdict}.")
+    failed = "".join(f"<li>{html.escape(f)}</li>" for f in cal.failed)
+    failed = f"<h3>Warps that gave no p-values</h3><ul>{failed}</ul>" if failed else ""
     return calibration_page("Calibration of the warp checks", intro,
-                            ["<h2>False-alarm rates</h2>", table, "<h2>Null p-values</h2>", p_value_histograms(panels),
-                             *more], meta)
+                            ["<h2>False-alarm rates</h2>", table, failed, "<h2>Null p-values</h2>",
+                             p_value_histograms(panels), *more], meta)

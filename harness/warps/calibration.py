@@ -5,16 +5,18 @@ For each warp of the matrix the seed-independent part of its statistical checks
 fresh samples from our warp and from Mitsuba's and runs the chi-square
 goodness-of-fit and homogeneity tests exactly as the matrix does. The warps are
 correct, so every rejection is a false alarm; `rates` states how often that
-happens at each nominal level, with exact intervals.
+happens at each nominal level, with exact intervals. Each warp is one task on an
+executor (harness.distributed), so a cluster runs the warps side by side.
 """
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
 
+from harness.distributed.executor import Executor, SerialExecutor, Status, Task
 from harness.warps import checks as wc
 from harness.statistics.calibration_rates import CALIBRATION_LEVELS, Rate, rates, uniformity_p
 from harness.warps.domains import get_domain
@@ -62,6 +64,7 @@ class WarpCalibration:
     seeds: int
     samples: int
     seconds: float
+    failed: list[str] = field(default_factory=list)  # warps that gave no p-values, and why
 
     @property
     def within(self) -> bool:
@@ -69,12 +72,13 @@ class WarpCalibration:
 
     @property
     def sound(self) -> bool:
-        """No check raises more false alarms than its nominal level (a conservative one costs power only)."""
-        return all(e.sound for e in self.entries + self.pooled)
+        """Every warp gave its p-values and no check raises more false alarms than its nominal level (a
+        conservative one costs power only)."""
+        return not self.failed and all(e.sound for e in self.entries + self.pooled)
 
     def to_json(self) -> dict:
         return {"seeds": self.seeds, "samples": self.samples, "seconds": self.seconds, "within": self.within,
-                "pass": self.sound,
+                "pass": self.sound, "failed": self.failed,
                 "levels": list(CALIBRATION_LEVELS), "pooled": [e.to_json() for e in self.pooled],
                 "warps": [e.to_json() for e in self.entries]}
 
@@ -107,10 +111,16 @@ def null_p_values(spec: WarpSpec, ours: Engine, reference: Engine | None, seeds:
 
 
 def calibrate_warps(ours: Engine, reference: Engine | None, specs: list[WarpSpec], seeds: int = 200,
-                    samples: int = WARP_SAMPLES, on_seed: Callable[[], None] | None = None) -> WarpCalibration:
-    """Every spec at `seeds` seeds; rates per warp and check, and pooled per check over the warps."""
+                    samples: int = WARP_SAMPLES, executor: Executor | None = None,
+                    on_status: Callable[[Status], None] | None = None) -> WarpCalibration:
+    """Every spec at `seeds` seeds, one task per spec on `executor` (serial by default); rates per warp and
+    check, and pooled per check over the warps."""
+    executor = executor or SerialExecutor()
     start = time.perf_counter()
-    p_values = {spec.key: null_p_values(spec, ours, reference, range(seeds), samples, on_seed) for spec in specs}
+    outcomes = executor.run([Task(f"warp {spec.key}", null_p_values, (spec, ours, reference, range(seeds), samples))
+                             for spec in specs], on_status)
+    p_values = {spec.key: o.value for spec, o in zip(specs, outcomes) if o.ok}
+    failed = [f"{spec.key}: {o.error}" for spec, o in zip(specs, outcomes) if not o.ok]
     checks = [c for c in STATISTICAL_CHECKS if any(c in v for v in p_values.values())]
     intervals = (sum(len(v) for v in p_values.values()) + len(checks)) * len(CALIBRATION_LEVELS)
 
@@ -120,4 +130,4 @@ def calibrate_warps(ours: Engine, reference: Engine | None, specs: list[WarpSpec
     entries = [entry(key, check, p) for key, v in p_values.items() for check, p in v.items()]
     pooled = [entry("all warps", check, np.concatenate([v[check] for v in p_values.values() if check in v]))
               for check in checks]
-    return WarpCalibration(entries, pooled, seeds, samples, time.perf_counter() - start)
+    return WarpCalibration(entries, pooled, seeds, samples, time.perf_counter() - start, failed)
