@@ -173,7 +173,9 @@ def _moderate_by_definition(v, k, window=3):
         d0 = cap
     else:
         d0 = brentq(lambda x: polygamma(1, x / 2) - excess, 1e-6, cap)
-    return (d0 * prior + d * v) / (d0 + d), d + d0
+    # The neighbours' mean is E[sigma^2] = s0^2 d0 / (d0 - 2) under the prior; its scale s0^2 is what is pooled.
+    s0 = prior * (d0 - 2) / d0 if d0 > 2 else prior
+    return (d0 * s0 + d * v) / (d0 + d), d + d0
 
 
 @pytest.mark.parametrize("spread, shape", [(0.0, (10, 12, 3)), (0.3, (10, 12, 3)), (1.5, (10, 12, 3)),
