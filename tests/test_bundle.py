@@ -1,5 +1,4 @@
 """Scene files sent by content: a worker's copy holds the same bytes under the same relative paths."""
-from pathlib import Path
 
 from harness.distributed.bundle import bundle_files
 from harness.images.case_task import scene_bundle
