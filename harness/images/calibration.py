@@ -90,20 +90,28 @@ class ImageCalibration:
     @property
     def within(self) -> bool:
         """Every whole-comparison rate lies within its interval of the nominal level, and nothing failed."""
-        return not self.failed and all(b["within"] for b in self.blocks() if b["scale"] == "whole")
+        return self._within(self.blocks())
 
     @property
     def sound(self) -> bool:
         """Nothing failed and no rate (of a scale or the whole comparison) lies above its nominal level
         beyond its interval. A conservative rate costs power, which the power figures show, never a false FAIL."""
-        return not self.failed and not any(b["verdict"] == "liberal" for b in self.blocks())
+        return self._sound(self.blocks())
+
+    def _within(self, blocks: list[dict]) -> bool:
+        return not self.failed and all(b["within"] for b in blocks if b["scale"] == "whole")
+
+    def _sound(self, blocks: list[dict]) -> bool:
+        return not self.failed and not any(b["verdict"] == "liberal" for b in blocks)
 
     def to_json(self) -> dict:
-        whole = [b for b in self.blocks() if b["kind"] == "all" and b["scale"] == "whole"]
+        blocks = self.blocks()
+        whole = [b for b in blocks if b["kind"] == "all" and b["scale"] == "whole"]
         return {"comparisons": len(self.results), "false_alarm_rate": whole[-1]["false_alarm_rate"],
-                "level": whole[-1]["level"], "pass": self.sound, "within": self.within, "blocks": self.blocks(), "power": self.power(),
-                "power_level": self.alpha, "image_min_p": [r["image_min_p"] for r in self.results],
-                "failed": self.failed, "seconds": self.seconds}
+                "level": whole[-1]["level"], "pass": self._sound(blocks), "within": self._within(blocks),
+                "blocks": blocks, "power": self.power(), "power_level": self.alpha,
+                "image_min_p": [r["image_min_p"] for r in self.results], "failed": self.failed,
+                "seconds": self.seconds}
 
 
 def calibrate_images(ours: Engine, mitsuba: Engine, per_kind: int, seed: int = 0,

@@ -46,6 +46,16 @@ def rate_cells(rates: list[Rate]) -> str:
         for r in rates)
 
 
+def verdict_sentence(sound: bool, within: bool, missing: str, judged: str = "rate") -> str:
+    """The calibration's result in a sentence: `within` says of every `judged` rate; `missing` names what
+    can fail to give a result."""
+    if not sound:
+        return f"<b>a rate lies above its interval (liberal: more false alarms than stated), or {missing}</b>"
+    if within:
+        return f"every {judged} is within its interval of the nominal level"
+    return "no rate is above its nominal level; some are below their interval (conservative, in yellow)"
+
+
 def calibration_page(title: str, intro: str, sections: list[str], meta: dict) -> str:
     meta_html = "".join(f"<li>{html.escape(str(k))}: {html.escape(str(v))}</li>" for k, v in meta.items())
     return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{html.escape(title)}</title>"
@@ -56,7 +66,7 @@ def calibration_page(title: str, intro: str, sections: list[str], meta: dict) ->
 def warp_calibration_html(cal, meta: dict, more: list[str] = ()) -> str:
     """The calibration page with its warp part (the table, pooled rows first, and the p-value histograms),
     then the sections `more` (the image part)."""
-    from harness.statistics.calibration_rates import CALIBRATION_LEVELS
+    from harness.statistics.calibration_rates import CALIBRATION_LEVELS, VERDICT_KEY
     head = "".join(f"<th>rate at {level:g}</th>" for level in CALIBRATION_LEVELS)
     rows = "".join(
         f"<tr><td>{html.escape(e.warp)}</td><td>{e.check}</td><td>{len(e.p_values)}</td>{rate_cells(e.rates)}"
@@ -64,17 +74,10 @@ def warp_calibration_html(cal, meta: dict, more: list[str] = ()) -> str:
     table = (f"<table><tr><th>warp</th><th>check</th><th>null tests</th>{head}<th>KS p (uniform p-values)</th></tr>"
              f"{rows}</table>")
     panels = [(f"{e.warp}: {e.check}", e.p_values) for e in cal.pooled + cal.entries]
-    if not cal.sound:
-        verdict = ("<b>some observed rates lie above their interval (the check raises more false alarms than it "
-                   "says), or warps gave no p-values</b>")
-    elif cal.within:
-        verdict = "every observed rate is within its interval of the nominal level"
-    else:
-        verdict = "no rate is above its nominal level; some are below their interval (conservative, in yellow)"
+    verdict = verdict_sentence(cal.sound, cal.within, "warps gave no p-values")
     intro = (f"Every correct warp of the matrix at {cal.seeds} seeds ({cal.samples:,} samples each, the matrix's "
              "budget and cells): each rejection is a false alarm. A cell shows the observed rate and its exact "
-             "(Clopper-Pearson) interval, simultaneous at 95 % over all the intervals of the page; green where the "
-             "nominal level lies inside it, yellow where the interval lies below it, red above it. "
+             f"(Clopper-Pearson) interval, simultaneous at 95 % over all the intervals of the page ({VERDICT_KEY}). "
              f"Result: {verdict}.")
     failed = "".join(f"<li>{html.escape(f)}</li>" for f in cal.failed)
     failed = f"<h3>Warps that gave no p-values</h3><ul>{failed}</ul>" if failed else ""

@@ -3,18 +3,14 @@ from __future__ import annotations
 
 from rich.table import Table
 
-from harness.statistics.calibration_rates import CALIBRATION_LEVELS, VERDICT_COLOUR
-
-#: What the colours of a rate mean, under each table.
-LEGEND = ("green: the nominal level is inside the interval; yellow: below it (conservative: fewer false alarms "
-          "than stated, which passes); red: above it (liberal, which fails)")
+from harness.statistics.calibration_rates import CALIBRATION_LEVELS, VERDICT_COLOUR, VERDICT_KEY
 
 
 def calibration_table(cal) -> Table:
     """Pooled rows first, then each warp; green where the nominal level lies inside the interval, yellow
     where the interval lies below it (conservative), red above it (liberal)."""
     table = Table(title="False-alarm rates of the warp checks (observed, simultaneous 95 % interval)",
-                  header_style="bold", caption=LEGEND)
+                  header_style="bold", caption=VERDICT_KEY)
     for col in ("warp", "check", "tests", *[f"at {level:g}" for level in CALIBRATION_LEVELS], "KS p"):
         table.add_column(col)
     for e in cal.pooled + cal.entries:
@@ -26,7 +22,7 @@ def calibration_table(cal) -> Table:
 def image_calibration_table(cal: dict) -> Table:
     """The image calibration's whole-comparison rates per kind, and its power per integrator."""
     table = Table(title="Calibration of the image comparisons (whole comparison; rate \\[interval])",
-                  header_style="bold", caption=LEGEND)
+                  header_style="bold", caption=VERDICT_KEY)
     table.add_column("kind")
     table.add_column("comparisons")
     for level in CALIBRATION_LEVELS:

@@ -6,9 +6,9 @@ import html
 
 import numpy as np
 
-from harness.report.calibration_html import _png, p_value_histograms
+from harness.report.calibration_html import _png, p_value_histograms, verdict_sentence
 from harness.report.calibration_table import bias_text
-from harness.statistics.calibration_rates import CALIBRATION_LEVELS, VERDICT_CLASS
+from harness.statistics.calibration_rates import CALIBRATION_LEVELS, VERDICT_CLASS, VERDICT_KEY
 
 
 def _rates_table(blocks: list[dict]) -> str:
@@ -45,13 +45,7 @@ def _power_plot(power: dict) -> str:
 
 def image_calibration_sections(cal: dict) -> list[str]:
     """HTML sections for results of harness.images.calibration (its to_json())."""
-    if not cal["pass"]:
-        verdict = "<b>a rate lies above its nominal level beyond its interval (liberal), or comparisons failed</b>"
-    elif cal["within"]:
-        verdict = "every whole-comparison rate is within its interval of the nominal level"
-    else:
-        verdict = ("no rate is above its nominal level; some are below it beyond their interval (conservative, "
-                   "in yellow): fewer false alarms than stated, paid for in power")
+    verdict = verdict_sentence(cal["pass"], cal["within"], "comparisons failed", "whole-comparison rate")
     power_rows = "".join(
         f"<tr><td>{html.escape(k)}</td><td>{v['comparisons']}</td><td>{bias_text(v['global_bias_90'])}</td>"
         f"<td>{bias_text(v['tile_bias_90'])}</td></tr>" for k, v in cal["power"].items())
@@ -62,8 +56,7 @@ def image_calibration_sections(cal: dict) -> list[str]:
         f"<p>{cal['comparisons']} null comparisons: two independent renders of one case by engines that must "
         "agree (ours twice, Mitsuba twice, ours and the closed form). Each is compared at every level; the whole "
         "comparison rejects when any scale does, a scale at its Sidak share of the level. Intervals are exact and "
-        "simultaneous at 95 % over the table: green where the nominal level lies inside the interval, yellow "
-        f"where the interval lies below it, red above it. Result: {verdict}.</p>",
+        f"simultaneous at 95 % over the table ({VERDICT_KEY}). Result: {verdict}.</p>",
         _rates_table(cal["blocks"]),
         (f"<h3>Comparisons that gave no result</h3><ul>{failed}</ul>" if failed else ""),
         "<h2>Image scale: smallest p-value of the three channels</h2>",
