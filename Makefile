@@ -24,9 +24,11 @@ FUZZ_SEED ?= 1
 validate: build
 	$(PY) -m harness validate
 
-## test: the C++ unit tests (ctest), the Python suites (pytest), then the sanitizer run and a short fuzz pass
+## test: the C++ unit tests (ctest), the harness's layer contract (lint-imports), the Python suites (pytest),
+## then the sanitizer run and a short fuzz pass
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure
+	$(VENV)/bin/lint-imports
 	$(PY) -m pytest
 	$(MAKE) --no-print-directory sanitize
 	$(MAKE) --no-print-directory fuzz FUZZ_RUNS=300
@@ -59,7 +61,7 @@ bench: build
 ## mutate: mutation testing (mutmut, not in CI) of the statistics, checks and reports against the fast tests;
 ## the kill rate per module and the survivors in results/mutation/ (MUTATE= narrows the modules)
 MUTATE ?= harness.statistics.welch* harness.statistics.chi2* harness.statistics.constants* \
-	harness.statistics.family_level* harness.images.compare* harness.images.regression* harness.images.metrics* \
+	harness.statistics.family_level* harness.comparison.compare* harness.images.regression* harness.comparison.metrics* \
 	harness.warps.checks* harness.bench.ladder*
 mutate: $(VENV)/.installed
 	@$(VENV)/bin/mutmut --version >/dev/null 2>&1 || $(PY) -m pip install --quiet "mutmut>=3.8,<4"

@@ -3,7 +3,7 @@ diffuse floor, the same image at every scale. Run from anywhere: python scenes/m
 
 Every length scales with R and the light's intensity with R^2, so the radiance is the same at every scale;
 what changes is only how each renderer's ray offsets compare with R (contact shadow and occlusion).
-The closed forms (harness/engines/analytic_sphere.py) need the floor to reach 1e4 radii from the contact
+The closed forms (harness/closed_forms/sphere.py) need the floor to reach 1e4 radii from the contact
 point; it reaches 2e4.
 """
 from pathlib import Path
@@ -16,7 +16,7 @@ TEMPLATE = """<?xml version="1.0" encoding="utf-8"?>
   a grey diffuse floor z = 0 (z up), tangent at the origin, written by
   scenes/make_sphere_floor.py (every length is R times that of the unit scene,
   the light's intensity R^2 times, so the image is the same at every scale).
-  Closed forms (harness/engines/analytic_sphere.py), rho the surface's reflectance:
+  Closed forms (harness/closed_forms/sphere.py), rho the surface's reflectance:
     ao, floor point at distance D from the centre:  rho * (1 - (R/D)^3)
     ao, sphere point with normal n:                  rho * (1 + n_z) / 2
     simple: rho / pi * I * max(0, cos) / r^2, floor points behind the sphere dark.

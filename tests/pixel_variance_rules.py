@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-import harness.images.compare as compare
+import harness.comparison.compare as compare
 from harness.images.suite import OUR_SPP
 from harness.statistics.constants import sidak_level
 from harness.statistics.welch import moderate, sample_floor, welch_p_values

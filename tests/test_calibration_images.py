@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy import stats as sps
 
-from harness.images.compare import SCALES
+from harness.comparison.compare import SCALES
 from harness.statistics.constants import sidak_level
 from tests.image_calibration import detection_rate, null_rates, synthetic_pairs, tile_detection_rate
 

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from scipy import stats as sps
 
-from harness.images.compare import compare_batches
+from harness.comparison.compare import compare_batches
 from harness.engines.mitsuba_scene import mitsuba_xml
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"

@@ -1,4 +1,4 @@
-"""harness.images.compare's pieces (tile means, summaries, one scale's tests, the detectable bias, the reports)
+"""harness.comparison.compare's pieces (tile means, summaries, one scale's tests, the detectable bias, the reports)
 and harness.statistics.welch's, each against its definition or an independent computation (scipy, a loop)."""
 import json
 
@@ -7,7 +7,7 @@ import pytest
 from scipy import stats as sps
 from scipy.optimize import brentq
 
-from harness.images.compare import (Comparison, ScaleTest, _half_power_bias, _noiseless, _scale_test, compare_batches,
+from harness.comparison.compare import (Comparison, ScaleTest, _half_power_bias, _noiseless, _scale_test, compare_batches,
                              compare_summaries, summarize, tile_means)
 from harness.statistics.constants import sidak_level
 from harness.statistics.welch import BatchStats, welch_p_values

@@ -1,13 +1,13 @@
 """The sphere resting on a floor: its closed forms against numeric integration, and the analytic engine's
-image against brute-force Monte Carlo written here, apart from harness/engines/analytic_sphere.py."""
+image against brute-force Monte Carlo written here, apart from harness/closed_forms/sphere.py."""
 import importlib.util
 
 import numpy as np
 import pytest
 
 from harness.engines.analytic import AnalyticEngine, load
-from harness.engines.analytic_scene import NotAnalytic, load_plane_scene
-from harness.engines.analytic_sphere import ao_visible, segment_crosses_sphere
+from harness.closed_forms.plane_scene import NotAnalytic, load_plane_scene
+from harness.closed_forms.sphere import ao_visible, segment_crosses_sphere
 from harness.images.suite import SCENES_DIR
 
 SCALES = ("milli", "unit", "kilo")

@@ -7,9 +7,9 @@ import pytest
 
 import harness.engines.analytic as analytic_module
 from harness.engines.analytic import AnalyticEngine
-from harness.engines.analytic_sphere import floor_frame
+from harness.closed_forms.sphere import floor_frame
 from harness.engines.base import RenderFailed
-from harness.images.compare import compare_summaries, summarize
+from harness.comparison.compare import compare_summaries, summarize
 from harness.images.run import run_images
 from harness.images.suite import SCENES_DIR, ImageCase
 from harness.integrators import entry

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy import stats as sps
 
-from harness.images.compare import compare_batches
+from harness.comparison.compare import compare_batches
 from harness.statistics.family_level import channel_correlation, channel_union, element_rates, family_level
 from harness.statistics.constants import SIGNIFICANCE, sidak_level
 

@@ -1,11 +1,11 @@
-"""harness.images.idiff against hand figures and against OpenImageIO's own idiff binary."""
+"""harness.comparison.idiff against hand figures and against OpenImageIO's own idiff binary."""
 import subprocess
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from harness.images.idiff import IDIFF_TESTSUITE, idiff
+from harness.comparison.idiff import IDIFF_TESTSUITE, idiff
 
 
 def test_figures_match_hand_computation():

@@ -7,8 +7,8 @@ import pytest
 
 from harness.engines.mitsuba import MitsubaEngine
 from harness.engines.ours import OurEngine
-from harness.images.compare import compare_summaries, summarize
-from harness.images.idiff import idiff
+from harness.comparison.compare import compare_summaries, summarize
+from harness.comparison.idiff import idiff
 from harness.images.references import load_reference
 from harness.images.run import case_seed, run_images
 from harness.images.suite import OUR_SPP, ImageCase

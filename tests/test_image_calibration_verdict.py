@@ -1,7 +1,7 @@
 """The image calibration's verdict from its counts alone: a check that raises more false alarms than its
 level fails it; one that raises fewer (conservative) is reported as such and passes; failed comparisons fail."""
 from harness.images.calibration import ImageCalibration
-from harness.images.compare import SCALES
+from harness.comparison.compare import SCALES
 from harness.images.null_task import BIASES, KINDS
 from harness.statistics.calibration_rates import CALIBRATION_LEVELS
 

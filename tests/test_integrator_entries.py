@@ -10,7 +10,7 @@ from harness.engines.mitsuba_scene import mitsuba_xml
 from harness.images.suite import (INTEGRATORS, OUR_SPP, REFERENCE_SPP, ImageCase, not_applicable_cases,
                                   select_cases)
 from harness.integrators import entries, match
-from harness.integrators.listing import integrators_table
+from harness.report.integrator_table import integrators_table
 
 ROOT = Path(__file__).resolve().parent.parent
 CORNELL_BOX = ROOT / "scenes" / "real" / "cornell_box.xml"

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from harness.images.metrics import flip_map
+from harness.comparison.metrics import flip_map
 
 
 @pytest.mark.parametrize("scale", [1e-30, 1e-6, 1e6])

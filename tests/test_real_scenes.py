@@ -126,7 +126,7 @@ def test_component_format_is_honoured(fmt, dtype, tmp_path):
         pixels = f.channels()["RGB"].pixels
         assert pixels.dtype == dtype
     # The harness reads it through OpenImageIO: the same values, as float32.
-    from harness.images.exr import read_layers
+    from harness.exr import read_layers
     layers, attributes = read_layers(tmp_path / "o.exr")
     assert layers["RGB"].dtype == np.float32 and np.array_equal(layers["RGB"], pixels.astype(np.float32))
     assert "mcval.renderSeconds" in attributes

@@ -3,7 +3,7 @@ variance the better-sampled side predicts for it, and nothing else changes."""
 import numpy as np
 import pytest
 
-from harness.images.compare import compare_batches
+from harness.comparison.compare import compare_batches
 from harness.statistics.constants import MISSED_CONTRIBUTION
 from harness.statistics.welch import BatchStats, sample_floor
 

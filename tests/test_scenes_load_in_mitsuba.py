@@ -9,7 +9,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from harness.engines.mitsuba_scene import INTEGRATORS, load_scene
+from harness.engines.mitsuba_scene import load_scene
+from harness.images.suite import INTEGRATORS
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"
 SCENE_FILES = sorted(p for p in SCENES.glob("*.xml") if not p.name.startswith("."))

@@ -13,8 +13,8 @@ from scipy.special import polygamma
 from harness.bench.ladder import Curve, Step
 from harness.bench.run import CaseBench
 from harness.statistics.chi2 import goodness_of_fit, goodness_of_fit_batch, homogeneity
-from harness.images.compare import compare_batches
-from harness.images.metrics import image_metrics
+from harness.comparison.compare import compare_batches
+from harness.comparison.metrics import image_metrics
 from harness.statistics.constants import MIN_EXPECTED, ROUNDING_TOLERANCE, SIGNIFICANCE, sidak_level
 from harness.statistics.welch import BatchStats, critical_t, moderate, prior_dof, welch_dof, welch_p_values
 
@@ -484,7 +484,7 @@ def test_regression_baseline_loading(tmp_path):
 def test_metrics_follow_their_definitions():
     from skimage.metrics import structural_similarity
 
-    from harness.images.metrics import RELMSE_EPSILON, _tonemapped
+    from harness.comparison.metrics import RELMSE_EPSILON, _tonemapped
 
     rng = np.random.default_rng(4)
     reference = rng.uniform(0.0, 2.0, (16, 16, 3))
@@ -529,7 +529,7 @@ def test_flip_ssim_and_ciede_take_their_documented_settings():
     import flip_evaluator as flip
     from skimage.metrics import structural_similarity
 
-    from harness.images.metrics import flip_map
+    from harness.comparison.metrics import flip_map
 
     rng = np.random.default_rng(6)
     reference = rng.uniform(0.5, 3.0, (16, 16, 3))

@@ -11,7 +11,7 @@ from scipy.optimize import brentq
 
 from harness.bench.ladder import Curve, Step
 from harness.bench.run import CaseBench
-from harness.images.compare import compare_batches
+from harness.comparison.compare import compare_batches
 from harness.warps.domains import get_domain
 from harness.statistics.constants import IMAGE_POWER_TARGET
 from harness.images.regression import MEAN_SIGMAS, compare_runs

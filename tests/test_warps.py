@@ -228,7 +228,7 @@ def test_reports_show_warnings_apart():
     from harness.report.junit import junit_xml
     from harness.report.warp_html import warp_report_html
     from harness.report.warp_table import warp_table
-    from harness.warps.outputs import warp_payload
+    from harness.report.warp_outputs import warp_payload
     results = [check_warp(tent_corner_sample, tent_pdf, "tent", samples=20_000, name="tent corner"),
                check_warp(disk_sample, disk_pdf, "disk", samples=20_000, name="disk")]
     console = Console(record=True, width=200)

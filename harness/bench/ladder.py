@@ -10,7 +10,7 @@ import numpy as np
 
 from harness.engines.base import Engine
 from harness.images.suite import ImageCase
-from harness.images.metrics import RELMSE_EPSILON, flip_map
+from harness.comparison.metrics import RELMSE_EPSILON, flip_map
 from harness.images.references import RESOLUTION, Reference
 
 #: Samples per pixel of the ladder, and independent runs per step.

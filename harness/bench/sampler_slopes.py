@@ -24,8 +24,8 @@ def _image(module, scene: str, integrator: str, spp: int, seed: int, sampler: st
 
 def mse_slope(scene: str, integrator: str, sampler: str, reference: np.ndarray | None = None) -> float:
     """The slope of log MSE against log spp for `sampler`, with the deterministic seeds 10 spp + k."""
-    from harness.engines.ours import _load_module
-    module = _load_module()
+    from harness.native import renderer_module
+    module = renderer_module()
     if reference is None:
         reference = our_reference(scene, integrator)
     mse = [np.mean([np.mean((_image(module, scene, integrator, s, 10 * s + k, sampler) - reference) ** 2)
@@ -35,8 +35,8 @@ def mse_slope(scene: str, integrator: str, sampler: str, reference: np.ndarray |
 
 def our_reference(scene: str, integrator: str) -> np.ndarray:
     """Our own image of 2 x REFERENCE_SPP sobol samples, far below the steps' error (seeds apart from theirs)."""
-    from harness.engines.ours import _load_module
-    module = _load_module()
+    from harness.native import renderer_module
+    module = renderer_module()
     return np.mean([_image(module, scene, integrator, REFERENCE_SPP, 1000 + k, "sobol") for k in range(2)], axis=0)
 
 

@@ -20,7 +20,7 @@ import numpy as np
 from harness.images.suite import SCENES_DIR
 from harness.engines.mitsuba import load_mitsuba
 from harness.engines.mitsuba_scene import MITSUBA_SAMPLER, load_scene
-from harness.engines.ours import _load_module
+from harness.native import renderer_module
 
 #: Seconds to wait before an engine's renders, so that the other engine's threads have stopped spinning.
 QUIET_SECONDS = 0.25
@@ -67,7 +67,7 @@ class Throughput:
 
 
 def _ours(scene: str, integrator: str, res: int, spp: int, sampler: str, seed: int) -> tuple[float, int]:
-    out = _load_module().render(scene, spp=spp, seed=seed, integrator=integrator, params={"res": str(res)},
+    out = renderer_module().render(scene, spp=spp, seed=seed, integrator=integrator, params={"res": str(res)},
                                 sampler=sampler)
     s = out["stats"]
     return s["render_seconds"], s["camera_rays"] + s["shadow_rays"]

@@ -9,7 +9,7 @@ from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine
 from harness.images.references import (REFERENCE_BATCHES, REFERENCE_SEED, RESOLUTION, Reference, load_reference,
                                         render_reference)
-from harness.images.compare import summarize
+from harness.comparison.compare import summarize
 from harness.images.suite import ImageCase
 
 #: Samples per pixel of each of the analytic engine's batches: 16 batches of 256 are 16 times the ladder's

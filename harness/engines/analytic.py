@@ -11,8 +11,8 @@ import time
 
 import numpy as np
 
-from harness.engines.analytic_scene import NotAnalytic, PlaneScene, load_plane_scene
-from harness.engines.analytic_sphere import check_resting, hit_sphere
+from harness.closed_forms.plane_scene import NotAnalytic, PlaneScene, load_plane_scene
+from harness.closed_forms.sphere import check_resting, hit_sphere
 from harness.engines.base import Engine, RenderResult
 from harness.integrators import entry
 

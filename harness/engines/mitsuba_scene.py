@@ -11,7 +11,6 @@ import os
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from harness.images.suite import INTEGRATORS  # noqa: F401  (re-exported: the suite's integrators)
 from harness.integrators import entry
 
 

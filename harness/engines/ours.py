@@ -9,15 +9,7 @@ import numpy as np
 
 from harness.engines.base import Engine, RenderResult, WarpFunctions
 from harness.engines.render_process import render_binary, run_render
-
-
-def _load_module():
-    try:
-        import mcval_renderer
-    except ImportError as e:
-        raise RuntimeError("the renderer's Python module `mcval_renderer` is not built or not on the path: "
-                           "run `make build` (it builds it into build/python)") from e
-    return mcval_renderer
+from harness.native import renderer_module
 
 
 class OurEngine(Engine):
@@ -32,7 +24,7 @@ class OurEngine(Engine):
 
     def __init__(self, binary: str | Path | None = None, timeout: float | None = None,
                  sampler: str | None = None, in_process: bool = False) -> None:
-        self._m = _load_module()
+        self._m = renderer_module()
         self.binary = binary
         self.timeout = timeout
         self.sampler = sampler  # None: the scene's; else "independent" or "sobol" (render --sampler)

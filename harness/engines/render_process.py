@@ -89,7 +89,7 @@ def _last_line(path: Path) -> str:
 
 def read_render_exr(path: Path, batches: int) -> ChildRender:
     """The batches (`batch<k>.R/G/B` layers, or `R,G,B` for one batch) and timings of a `render` EXR."""
-    from harness.images.exr import read_layers
+    from harness.exr import read_layers
 
     try:
         layers, header = read_layers(path)

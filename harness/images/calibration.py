@@ -16,7 +16,7 @@ import numpy as np
 
 from harness.distributed.executor import Executor, SerialExecutor, Status, Task
 from harness.engines.base import Engine
-from harness.images.compare import SCALES
+from harness.comparison.compare import SCALES
 from harness.images.null_task import BIASES, KINDS, NullJob, null_comparison
 from harness.images.references import RESOLUTION
 from harness.images.run import closed_forms, comparison_level

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from harness.images.compare import Comparison, Summary, compare_summaries
+from harness.comparison.compare import Comparison, Summary, compare_summaries
 
 
 @dataclass

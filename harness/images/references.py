@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from harness.images.compare import SUMMARY_FORMAT, Summary, summarize
+from harness.comparison.compare import SUMMARY_FORMAT, Summary, summarize
 from harness.engines.base import Engine
 from harness.images.suite import REFERENCE_SPP, ROOT, ImageCase
 from harness.results import write_atomic
@@ -136,7 +136,7 @@ def _json_stats(meta: dict, name: str, shape: tuple[int, ...], k: int, meta_path
 
 def _read_exr(path: Path, meta: dict, meta_path: Path) -> tuple[np.ndarray, np.ndarray]:
     """The mean and variance layers, after the file's size and SHA-256 matched those the .json records."""
-    from harness.images.exr import read_layers
+    from harness.exr import read_layers
 
     size, digest = meta.get("exr_bytes"), meta.get("exr_sha256")
     if not isinstance(size, int) or not isinstance(digest, str):
@@ -218,7 +218,7 @@ def render_reference(case: ImageCase, engine: Engine) -> Reference:
 
 def write_reference(case: ImageCase, engine: Engine, reference: Reference) -> Path:
     """Store a reference as references/<scene>/<integrator>.exr and .json, each written atomically."""
-    from harness.images.exr import write_layers
+    from harness.exr import write_layers
 
     s = reference.summary
     # Exactly what will be read back: float32 pixels, tile means rounded to 7 decimals.

@@ -8,7 +8,7 @@ from typing import Callable
 
 import numpy as np
 
-from harness.images.compare import Comparison, compare_summaries, summarize
+from harness.comparison.compare import Comparison, compare_summaries, summarize
 from harness.images.oracle import Finding, decide
 from harness.engines.analytic import AnalyticEngine
 from harness.distributed.executor import Executor, SerialExecutor, Status, Task
@@ -78,7 +78,7 @@ class ImageResult:
         ref = self.references.get("mitsuba") or next(iter(self.references.values()), None)
         if self.error is not None or self.ours is None or ref is None:
             return {"verdict": "n/a", "reason": self.error or "no reference image"}
-        from harness.images.idiff import idiff
+        from harness.comparison.idiff import idiff
         try:
             return idiff(self.ours.mean, ref.summary.mean_image)
         except Exception as e:  # a side report never breaks the run

@@ -1,5 +1,5 @@
 """ao: ambient occlusion under a constant environment (radiance 1 when the scene has none)."""
-from harness.engines.analytic_sphere import ao_visible
+from harness.closed_forms.sphere import ao_visible
 from harness.integrators.entry import AnalyticForm, IntegratorEntry, MitsubaMapping
 
 ENTRY = IntegratorEntry(

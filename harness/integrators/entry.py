@@ -36,7 +36,7 @@ class MitsubaMapping:
 
 
 #: shade(scene, points (..., 3), normals (3,) or (..., 3)) -> radiance (..., 3), at points of one surface
-#: (`scene.surface`) of an analytic scene (harness/engines/analytic_scene.py).
+#: (`scene.surface`) of an analytic scene (harness/closed_forms/plane_scene.py).
 Shade = Callable[[object, np.ndarray, np.ndarray], np.ndarray]
 #: sample(scene, points, normals, u (..., 1) uniform in [0, 1)) -> one sample of the renderers' estimator.
 Sample = Callable[[object, np.ndarray, np.ndarray, np.ndarray], np.ndarray]

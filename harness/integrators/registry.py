@@ -92,9 +92,9 @@ def entry(name: str) -> IntegratorEntry:
 
 def renderer_integrators() -> tuple[str, ...]:
     """The integrators of the renderer's registry, in its order (mcval_renderer.integrators())."""
-    from harness.engines.ours import _load_module
+    from harness.native import renderer_module
 
-    module = _load_module()
+    module = renderer_module()
     if not hasattr(module, "integrators"):
         raise RuntimeError(f"{module.__file__} has no integrators(): it was built before the renderer's integrator "
                            "registry; run `make build`")

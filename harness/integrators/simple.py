@@ -1,7 +1,7 @@
 """simple: direct light from point lights on diffuse surfaces, shadow rays, nothing else."""
 import numpy as np
 
-from harness.engines.analytic_sphere import lit
+from harness.closed_forms.sphere import lit
 from harness.integrators.entry import AnalyticForm, IntegratorEntry, MitsubaMapping, has_point_light
 
 

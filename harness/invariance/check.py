@@ -19,7 +19,7 @@ import numpy as np
 from harness.distributed.bundle import Bundle
 from harness.distributed.executor import Executor, SerialExecutor, Status, Task
 from harness.engines.base import Engine, RenderFailed
-from harness.images.compare import Comparison, compare_summaries, summarize
+from harness.comparison.compare import Comparison, compare_summaries, summarize
 from harness.invariance.float32 import float32_limit
 from harness.invariance.rewrite import rewrite
 from harness.invariance.variants import Invariance, Variant

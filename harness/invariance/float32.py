@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from harness.engines.analytic_scene import NotAnalytic, sphere_geometry
+from harness.closed_forms.plane_scene import NotAnalytic, sphere_geometry
 
 #: Smallest sphere radius over its centre's largest coordinate that float32 represents (see above).
 MIN_RADIUS_TO_CENTRE = 1e-4

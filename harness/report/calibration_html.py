@@ -39,7 +39,7 @@ def p_value_histograms(panels: list[tuple[str, np.ndarray]], columns: int = 4) -
 
 def rate_cells(rates: list[Rate]) -> str:
     """Table cells: observed rate and interval per level, coloured by its verdict (Rate.verdict)."""
-    from harness.statistics.calibration_rates import VERDICT_CLASS
+    from harness.report.verdict_style import VERDICT_CLASS
     return "".join(
         f"<td class='{VERDICT_CLASS[r.verdict]}' title='{r.rejections} of {r.count}; interval "
         f"[{r.low:.3f}, {r.high:.3f}]'>{r.observed:.3f} <span class='meta'>[{r.low:.3f}, {r.high:.3f}]</span></td>"
@@ -66,7 +66,8 @@ def calibration_page(title: str, intro: str, sections: list[str], meta: dict) ->
 def warp_calibration_html(cal, meta: dict, more: list[str] = ()) -> str:
     """The calibration page with its warp part (the table, pooled rows first, and the p-value histograms),
     then the sections `more` (the image part)."""
-    from harness.statistics.calibration_rates import CALIBRATION_LEVELS, VERDICT_KEY
+    from harness.report.verdict_style import VERDICT_KEY
+    from harness.statistics.calibration_rates import CALIBRATION_LEVELS
     head = "".join(f"<th>rate at {level:g}</th>" for level in CALIBRATION_LEVELS)
     rows = "".join(
         f"<tr><td>{html.escape(e.warp)}</td><td>{e.check}</td><td>{len(e.p_values)}</td>{rate_cells(e.rates)}"

@@ -3,7 +3,8 @@ from __future__ import annotations
 
 from rich.table import Table
 
-from harness.statistics.calibration_rates import CALIBRATION_LEVELS, VERDICT_COLOUR, VERDICT_KEY
+from harness.report.verdict_style import VERDICT_COLOUR, VERDICT_KEY
+from harness.statistics.calibration_rates import CALIBRATION_LEVELS
 
 
 def calibration_table(cal) -> Table:

@@ -1,7 +1,7 @@
 """idiff's verdict in words, for the terminal table and the HTML report."""
 from __future__ import annotations
 
-from harness.images.idiff import IDIFF_TESTSUITE
+from harness.comparison.idiff import IDIFF_TESTSUITE
 
 LEGEND = (f"idiff: OpenImageIO's image diff at its test suite's thresholds (fail {IDIFF_TESTSUITE['fail']:g} "
           f"on more than {IDIFF_TESTSUITE['failpercent']:g} % of pixels or any value off by "

@@ -8,7 +8,8 @@ import numpy as np
 
 from harness.report.calibration_html import _png, p_value_histograms, verdict_sentence
 from harness.report.calibration_table import bias_text
-from harness.statistics.calibration_rates import CALIBRATION_LEVELS, VERDICT_CLASS, VERDICT_KEY
+from harness.report.verdict_style import VERDICT_CLASS, VERDICT_KEY
+from harness.statistics.calibration_rates import CALIBRATION_LEVELS
 
 
 def _rates_table(blocks: list[dict]) -> str:

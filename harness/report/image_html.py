@@ -6,8 +6,8 @@ import html
 
 import numpy as np
 
-from harness.images.compare import Comparison
-from harness.images.finite import SIDES
+from harness.comparison.compare import Comparison
+from harness.comparison.finite import SIDES
 from harness.images.run import ImageResult
 from harness.images.suite import INTEGRATORS
 from harness.report.idiff_text import LEGEND, idiff_sentence

@@ -9,8 +9,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from harness.images.compare import Comparison  # noqa: E402
-from harness.images.metrics import flip_map  # noqa: E402
+from harness.comparison.compare import Comparison  # noqa: E402
+from harness.comparison.metrics import flip_map  # noqa: E402
 
 
 def display(img: np.ndarray, signed: bool) -> np.ndarray:

@@ -5,7 +5,7 @@ from rich import box
 from rich.markup import escape
 from rich.table import Table
 
-from harness.images.finite import SIDES
+from harness.comparison.finite import SIDES
 from harness.images.run import ImageResult
 from harness.report.idiff_text import LEGEND, idiff_short
 

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 
-from harness.images.compare import Comparison
+from harness.comparison.compare import Comparison
 from harness.images.run import ImageResult
 
 

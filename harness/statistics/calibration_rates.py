@@ -48,13 +48,6 @@ class Rate:
                 "verdict": self.verdict}
 
 
-#: Terminal colour and page class of each verdict, and what the colours mean (under tables, on pages).
-VERDICT_COLOUR = {"within": "green", "conservative": "yellow", "liberal": "red"}
-VERDICT_CLASS = {"within": "pass", "conservative": "warn", "liberal": "fail"}
-VERDICT_KEY = ("green: the nominal level is inside the interval; yellow: the interval lies below it (conservative: "
-               "fewer false alarms than stated, which passes); red: above it (liberal, which fails)")
-
-
 def clopper_pearson(k: int, n: int, confidence: float) -> tuple[float, float]:
     """Exact (Clopper-Pearson) interval of a binomial proportion k/n."""
     if n == 0:

@@ -39,8 +39,8 @@ import numpy as np
 from scipy import stats as sps
 
 from harness.statistics.family_level import channel_correlation, channel_union, family_level
-from harness.images.finite import FiniteCheck, damage_of_summary
-from harness.images.metrics import image_metrics
+from harness.comparison.finite import FiniteCheck, damage_of_summary
+from harness.comparison.metrics import image_metrics
 from harness.statistics.constants import IMAGE_POWER_TARGET, ROUNDING_TOLERANCE, SIGNIFICANCE, TILE_SIZE, sidak_level
 from harness.statistics.welch import BatchStats, critical_t, moderate, sample_floor, welch_dof, welch_p_values
 

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from harness.engines.analytic_scene import NotAnalytic, PlaneScene
+from harness.closed_forms.plane_scene import NotAnalytic, PlaneScene
 
 #: The floor's half-size over the sphere's radius below which the finite floor could show.
 MIN_FLOOR_RATIO = 1e4

@@ -1,4 +1,4 @@
-"""Where the command line writes: the console for tables, stderr for progress bars."""
+"""Where the commands write: the console for tables, stderr for progress bars."""
 from __future__ import annotations
 
 import sys

@@ -1,0 +1,6 @@
+"""The verbs of `python -m harness`, one module each: NAME, HELP, `add_arguments(parser)` and
+`run(args, run_folder) -> exit status`. The only package that prints."""
+from harness.commands import bench, calibrate, images, integrators, invariance, references, validate, warps
+
+#: In the order `--help` lists them.
+COMMANDS = (warps, images, references, bench, calibrate, integrators, invariance, validate)

@@ -1,0 +1,119 @@
+"""`bench`: speed against error, convergence curves and efficiency ratios (timed one job at a time)."""
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+from harness.commands.options import add_common
+from harness.commands.output import console, progress_bar
+from harness.commands.run_folder import RunFolder
+from harness.distributed.cluster import add_executor_options
+from harness.results import write_atomic
+
+NAME = "bench"
+HELP = "speed against error: convergence curves and efficiency ratios"
+ENGINES = ("mcval", "mitsuba", "mitsuba-scalar")
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.description = ("Render every case at a ladder of sample counts with our renderer and Mitsuba (llvm and "
+                     "scalar), several runs per step, one job at a time; write bench.html.")
+    add_common(p)
+    p.add_argument("--scenes", "--only", dest="scenes", nargs="+", metavar="CASE",
+                   help="as for `images` (default: the simple and ao cases of every scene)")
+    p.add_argument("--engines", nargs="+", default=list(ENGINES), choices=list(ENGINES),
+                   help="engines to run (default: all three)")
+    p.add_argument("--max-spp", type=int, default=256, help="top of the ladder 1, 2, 4, ... (default 256)")
+    p.add_argument("--same-sampler", action="store_true",
+                   help="only the engine comparison: every engine with the independent sampler (by default each "
+                        "also runs its stratified samplers: ours sobol, Mitsuba ldsampler and multijitter)")
+    p.add_argument("--runs", type=int, default=3, help="independent runs per step (default 3)")
+    p.add_argument("--rays-json", type=Path, help="figures written by build/bench_rays --json, to include")
+    p.add_argument("--throughput-runs", type=int, default=3,
+                   help="timed runs per case of the side-by-side render throughput (highpoly 768², cornell 128²; "
+                        "0 skips it; default 3)")
+    p.add_argument("--seed-runs", type=int, default=3,
+                   help="runs at the seed document's settings (768x768; 0 skips them; default 3)")
+    add_executor_options(p)
+
+
+def _engines(args):
+    """Each engine with the same sampler (the engine comparison) and, unless --same-sampler, its stratified
+    ones (each engine at its best)."""
+    from harness.bench.run import SAME_SAMPLER, SAMPLERS
+    from harness.engines.mitsuba import MitsubaEngine
+    from harness.engines.ours import OurEngine
+
+    factories = {"mcval": lambda s: OurEngine(sampler=s, in_process=True), "mitsuba": lambda s: MitsubaEngine(sampler=s),
+                 "mitsuba-scalar": lambda s: MitsubaEngine("scalar_rgb", sampler=s)}
+    return [factories[name](s) for name in args.engines for s in SAMPLERS[name]
+            if s == SAME_SAMPLER or not args.same_sampler]
+
+
+def _measure(args, cases, engines, reference, ladder):
+    """The ladders, the seed settings, the throughput and the sampler slopes, as asked."""
+    from harness.bench.run import run_bench, seed_comparison
+    from harness.distributed.cluster import open_executor
+
+    with open_executor(args) as executor, progress_bar("bench") as progress:
+        steps = sum(e.renders_exactly(spp) for e in engines for spp in ladder)
+        task = progress.add_task("", total=len(cases) * (1 if executor.ships_files else steps))
+        benches = run_bench(cases, engines, reference, args.seed, ladder, args.runs,
+                            on_step=lambda m: progress.update(task, advance=1, description=m), executor=executor,
+                            on_status=lambda st: progress.update(task, completed=st.done, description=st.last)
+                            if executor.ships_files else None)
+        ours = next((e for e in engines if e.name == "mcval"), None)
+        seed = seed_comparison(ours, args.seed_runs, lambda m: progress.console.print(m),
+                               reference if "mitsuba" in args.engines else None) \
+            if args.seed_runs > 0 and ours is not None else None
+        throughput = None
+        if args.throughput_runs > 0 and {"mcval", "mitsuba"} <= set(args.engines):
+            from harness.bench.throughput import CASES, measure
+            throughput = []
+            for case in CASES:
+                progress.console.print(f"throughput: {case[0]}:{case[1]} {case[2]}² {case[3]} spp")
+                throughput.append(measure(*case, runs=args.throughput_runs).to_json())
+        slopes = None
+        if "mcval" in args.engines:
+            from harness.bench.sampler_slopes import sampler_slopes
+            progress.console.print("sampler slopes: cornell simple and ao, 32², our samplers")
+            slopes = sampler_slopes()
+    return benches, seed, throughput, slopes
+
+
+def run(args: argparse.Namespace, run: RunFolder) -> int:
+    from harness.bench.run import ray_rates
+    from harness.engines.mitsuba import MitsubaEngine
+    from harness.images.suite import select_cases
+    from harness.report.bench_html import bench_html
+    from harness.report.bench_table import bench_lines, bench_table
+
+    run_dir = run.start()
+    # By default the simple and ao cases of our own scenes (the real scenes are validated, not benchmarked).
+    cases = [c for c in select_cases(args.scenes)
+             if args.scenes or (c.integrator != "normals" and c.group == "synthetic")]
+    reference = MitsubaEngine()
+    engines = _engines(args)
+    ladder = tuple(2**k for k in range(args.max_spp.bit_length()) if 2**k <= args.max_spp)
+    start = time.perf_counter()
+    if args.workers is not None:
+        raise ValueError("bench --workers: workers on one machine would time their renders against each other; "
+                         "bench runs serially, or with --scheduler on a cluster of one single-threaded worker "
+                         "per machine")
+    benches, seed, throughput, slopes = _measure(args, cases, engines, reference, ladder)
+    rays = ray_rates(args.rays_json)
+    meta = {"engines": ", ".join(e.version() for e in engines), "ladder": ladder, "runs per step": args.runs,
+            "seconds": round(time.perf_counter() - start, 1)}
+    write_atomic(run_dir / "bench.html", bench_html(benches, rays, seed, meta, throughput, slopes))
+    console.print(bench_table(benches, engines))
+    payload = {"speed": [bch.to_json() for bch in benches], "seed_comparison": seed, "ray_rates": rays,
+               "throughput": throughput, "sampler_slopes": slopes}
+    for line in bench_lines(payload):
+        console.print(line)
+    if rays:
+        payload["ray_rate_ratio"] = min(v["ratio"] for v in rays["integrators"].values())
+    console.print(f"Page: {run_dir / 'bench.html'}")
+    run.finish({"run": run_dir.name, "pass": True, **payload}, links=("bench-latest", "latest"),
+               index=("bench.html", "Speed against error"))
+    return 0

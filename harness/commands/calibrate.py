@@ -1,0 +1,120 @@
+"""`calibrate`: the measured false-alarm rate of every statistical check (warps, image comparisons) and the
+power of the image comparison."""
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from harness.commands.options import add_common
+from harness.commands.output import console, task_progress
+from harness.commands.run_folder import RunFolder
+from harness.distributed.cluster import add_executor_options
+from harness.results import write_atomic
+from harness.statistics.constants import WARP_SAMPLES
+
+NAME = "calibrate"
+HELP = "measure the false-alarm rate of every statistical check"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.description = (
+        "Measure, not assume, how often each statistical check rejects when nothing is wrong. Warps: every "
+        "correct warp of the matrix at many seeds (chi-square, homogeneity with Mitsuba). Images: null "
+        "comparisons (ours against ours at independent seeds, Mitsuba against Mitsuba, ours against the closed "
+        "form) per scale and for the whole comparison, and the smallest whole-image and 8x8-tile biases found "
+        "90 %% of the time. Each rate with an exact interval beside the nominal level. Writes calibration.html "
+        "and calibration.json (blocks with `comparisons` and `false_alarm_rate`); results/calibration-latest "
+        "points at the newest. Exits 1 if a rate lies above its nominal level beyond its interval (the check "
+        "raises more false alarms than it says) or a comparison failed; a rate below its interval "
+        "(conservative: it costs power, not false FAILs) is shown in yellow.")
+    add_common(p)
+    p.add_argument("--warps", action="store_true", help="calibrate the warp checks (with --images: both; the default)")
+    p.add_argument("--images", action="store_true", help="calibrate the image comparisons (default: both)")
+    p.add_argument("--only", nargs="+", metavar="WARP", help="only these warps, e.g. tent beckmann:0.01")
+    p.add_argument("--seeds", type=int, default=200, help="null runs per warp (default 200)")
+    p.add_argument("--samples", type=int, default=WARP_SAMPLES,
+                   help=f"samples per run, as in the matrix (default {WARP_SAMPLES})")
+    p.add_argument("--comparisons", type=int, default=80,
+                   help="null image comparisons of each of the three kinds (default 80: 240 in all)")
+    p.add_argument("--json", type=Path, metavar="PATH", help="also write the figures as JSON to PATH")
+    p.add_argument("--no-mitsuba", action="store_true", help="skip the checks against Mitsuba (warps only)")
+    add_executor_options(p)
+
+
+def run(args: argparse.Namespace, run: RunFolder) -> int:
+    """Both calibrations unless --warps or --images, on one executor."""
+    from harness.distributed.cluster import open_executor
+
+    run_dir = run.start()
+    with open_executor(args) as executor:
+        ok, payload, page = _calibrate(args, run_dir, executor)
+    write_atomic(run_dir / "calibration.html", page)
+    run.finish(payload, links=("calibration-latest",), json_copy=args.json, name="calibration.json")
+    console.print(f"Page: {run_dir / 'calibration.html'}")
+    return 0 if ok else 1
+
+
+def _calibrate(args, run_dir: Path, executor) -> tuple[bool, dict, str]:
+    from harness.engines.mitsuba import MitsubaEngine
+    from harness.engines.ours import OurEngine
+    from harness.report.calibration_html import calibration_page, warp_calibration_html
+    from harness.report.image_calibration_html import image_calibration_sections
+
+    warps, images = (args.warps or not args.images), (args.images or not args.warps)
+    ours = OurEngine()
+    reference = None if args.no_mitsuba else MitsubaEngine()
+    payload: dict = {"run": run_dir.name}
+    meta: dict = {"engine": ours.version(), "reference": reference.version() if reference else "none"}
+    ok, sections = True, []
+    if images:
+        if reference is None:
+            raise ValueError("--images needs Mitsuba (its null comparisons include Mitsuba against itself): "
+                             "drop --no-mitsuba")
+        cal_images = _calibrate_images(args, ours, reference, executor)
+        payload["images"] = cal_images
+        sections = image_calibration_sections(cal_images)
+        meta.update({"image comparisons": cal_images["comparisons"], "image seconds": round(cal_images["seconds"], 1),
+                     "image comparisons ran on": cal_images["ran_on"]})
+        ok &= cal_images["pass"]
+    if warps:
+        cal = _calibrate_warps(args, ours, reference, executor)
+        payload["warps"] = cal.to_json()
+        meta.update({"seeds per warp": args.seeds, "samples": args.samples, "warp seconds": round(cal.seconds, 1),
+                     "warps ran on": executor.description})
+        ok &= cal.sound
+        page = warp_calibration_html(cal, meta, sections)
+    else:
+        page = calibration_page("Calibration of the image comparisons", "Each rejection of a null comparison "
+                                "is a false alarm.", sections, meta)
+    payload.update({"pass": ok, "meta": meta})
+    return ok, payload, page
+
+
+def _calibrate_warps(args, ours, reference, executor):
+    from harness.report.calibration_table import calibration_table
+    from harness.warps.calibration import calibrate_warps
+    from harness.warps.suite import select
+
+    specs = select(args.only)
+    with task_progress("calibrate warps", executor) as show:
+        cal = calibrate_warps(ours, reference, specs, args.seeds, args.samples, executor, show)
+    console.print(calibration_table(cal))
+    for line in cal.failed:
+        console.print(f"[red]failed[/] {line}")
+    console.print(f"{len(specs)} warps x {args.seeds} seeds in {cal.seconds:.0f} s on {executor.description}.")
+    return cal
+
+
+def _calibrate_images(args, ours, reference, executor) -> dict:
+    from harness.images.calibration import calibrate_images
+    from harness.report.calibration_table import image_calibration_table
+
+    with task_progress("calibrate images", executor) as show:
+        cal = calibrate_images(ours, reference, args.comparisons, args.seed, executor, show)
+    where = executor.description
+    out = {**cal.to_json(), "ran_on": where}
+    console.print(image_calibration_table(out))
+    for line in cal.failed:
+        console.print(f"[red]failed[/] {line}")
+    console.print(f"{out['comparisons']} null image comparisons in {cal.seconds:.0f} s on {where}.")
+    return out

@@ -1,0 +1,76 @@
+"""The image comparisons as a section of a run (`images`, `validate`): run the cases, print their tables,
+write report.html and junit.xml."""
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from rich.markup import escape
+
+from harness.commands.output import console, err, task_progress
+
+
+def _print_real_scenes(real, not_applicable, alpha: float) -> None:
+    """The real scenes under their own heading: their table, then the cases that do not apply and why."""
+    from harness.report.image_table import image_table
+
+    console.rule("[bold]Real scenes[/] (scenes/real/)")
+    if real:
+        table = image_table(real, alpha)
+        table.title = f"Real scenes against Mitsuba 3 (per-comparison α {alpha:.2g}, family-wise 0.01)"
+        console.print(table)
+    for case, reason in not_applicable:
+        console.print(f"{escape(case.key)}: not applicable: {escape(reason)} (not run)")
+
+
+def _print_regression(payload: dict) -> None:
+    regression = payload["regression"] or []
+    new = [e for e in regression if e["flags"] == ["new case"]]
+    if new:
+        console.print(f"{len(new)} case(s) new since {payload['baseline']}")
+    for entry in regression:
+        if entry["flags"] and entry not in new:
+            console.print(f"[yellow]changed[/] {entry['scene']}:{entry['integrator']}: {'; '.join(entry['flags'])}")
+
+
+def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: Path | None,
+                      not_applicable=(), invariance: dict | None = None, executor=None) -> tuple[bool, dict]:
+    """Every case against its references; returns (all pass, the results.json fields)."""
+    from harness.engines.mitsuba import MitsubaEngine
+    from harness.engines.ours import OurEngine
+    from harness.images.real_scenes import real_scenes_json, split
+    from harness.images.run import run_images
+    from harness.integrators import match
+    from harness.report.image_html import reproduce_command
+    from harness.report.image_outputs import write_image_outputs
+    from harness.report.image_table import image_table
+
+    ours, mitsuba = OurEngine(), MitsubaEngine(args.variant)
+    start = time.perf_counter()
+    with task_progress("images", executor) as show:
+        results, alpha = run_images(cases, ours, mitsuba, args.seed, on_status=show,
+                                    on_message=lambda m: err.print(f"[yellow]{escape(m)}[/]", soft_wrap=True),
+                                    executor=executor)
+        where = executor.description
+    seconds = time.perf_counter() - start
+    synthetic, real = split(results)
+    if synthetic:
+        console.print(image_table(synthetic, alpha))
+    if real or not_applicable:
+        _print_real_scenes(real, not_applicable, alpha)
+    for name in match().without_entry:
+        console.print(f"[yellow]{escape(name)}[/]: no harness entry (not validated; see `python -m harness "
+                      "integrators`)")
+    meta = {"engine": ours.version(), "reference": mitsuba.version(), "seed": args.seed,
+            "image seconds": round(seconds, 1), "ran on": where}
+    payload = write_image_outputs(run_dir, results, alpha, warps, meta, baseline, invariance)
+    if real or not_applicable:
+        payload["real_scenes"] = real_scenes_json(results, not_applicable)
+    _print_regression(payload)
+    failed = [r for r in results if not r.passed]
+    console.print(f"{len(results) - len(failed)} of {len(results)} image comparisons pass, in {seconds:.1f} s. "
+                  f"Report: {run_dir / 'report.html'}")
+    for r in failed:
+        why = "; ".join(x for x in (r.error, r.note) if x)
+        console.print(f"[red]FAIL[/] {r.case.key}{' — ' + escape(why) if why else ''}: {reproduce_command(r)}")
+    return not failed, payload

@@ -1,0 +1,26 @@
+"""`images`: every scene with every integrator against Mitsuba 3 (stored references) and closed forms."""
+from __future__ import annotations
+
+import argparse
+
+from harness.commands.options import add_common, add_image_options
+from harness.commands.run_folder import RunFolder
+
+NAME = "images"
+HELP = "every scene with every integrator against Mitsuba 3"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.description = ("Render the scene suite with our renderer and compare with Mitsuba 3 (stored references when "
+                     "their provenance matches) and closed forms.")
+    add_common(p)
+    add_image_options(p)
+
+
+def run(args: argparse.Namespace, run: RunFolder) -> int:
+    from harness.commands.sections import run_sections
+    from harness.distributed.cluster import open_executor
+    from harness.images.suite import select_cases
+
+    with open_executor(args) as executor:
+        return run_sections(args, run, executor, [], select_cases(args.scenes))

@@ -1,0 +1,52 @@
+"""The invariances as a section of a run (`invariance`, `validate`): each engine against itself under every
+transformation; only the tested engine's breaks fail, a reference's are findings."""
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from rich.markup import escape
+
+from harness.commands.output import console, task_progress
+from harness.results import write_atomic
+
+
+def run_invariance_section(args, only, run_dir: Path, executor, engines=None) -> tuple[bool, dict]:
+    """Returns (the tested engine breaks none, the results.json block); writes invariance.html."""
+    from harness.engines.ours import OurEngine
+    from harness.invariance.check import run_invariances
+    from harness.invariance.findings import failure_lines, invariance_payload
+    from harness.invariance.suite import select
+    from harness.report.invariance_html import invariance_html
+    from harness.report.invariance_table import invariance_tables
+
+    cases, invariances = select(only)
+    if engines is None:
+        engines = [OurEngine()]
+        if not getattr(args, "no_mitsuba", False):
+            from harness.engines.mitsuba import MitsubaEngine
+            engines.append(MitsubaEngine(args.variant))
+    gating = engines[0].name
+    start = time.perf_counter()
+    with task_progress("invariances", executor) as show:
+        cells, alpha = run_invariances(engines, cases, invariances, args.seed, on_status=show, executor=executor)
+    seconds = time.perf_counter() - start
+    for table in invariance_tables(cells, alpha, gating):
+        console.print(table)
+    meta = {"engines": [e.version() for e in engines], "seed": args.seed, "seconds": round(seconds, 1)}
+    payload = invariance_payload(cells, alpha, gating, meta)
+    write_atomic(run_dir / "invariance.html", invariance_html(payload))
+    for line in payload["findings"]:
+        console.print(f"[yellow]finding[/] {escape(line)}", soft_wrap=True)
+    for line in payload["float32_limits"]:
+        console.print(f"[cyan]float32[/] {escape(line)}", soft_wrap=True)
+    ours = [c for c in cells if c.engine == gating]
+    failed = failure_lines(cells, gating)
+    beyond = sum(c.status == "float32" for c in ours)
+    console.print(f"{len(ours) - len(failed) - beyond} of {len(ours)} invariance checks of {gating} pass"
+                  + (f", {beyond} broke only where float32 cannot represent the scene" if beyond else "")
+                  + f", in {seconds:.1f} s.")
+    for line in failed:
+        console.print(f"[red]FAIL[/] invariance {escape(line)}", soft_wrap=True)
+    console.print(f"Page: {run_dir / 'invariance.html'}")
+    return payload["pass"], payload

@@ -1,0 +1,33 @@
+"""Options that several commands share."""
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from harness.distributed.cluster import add_executor_options
+
+
+def add_common(q: argparse.ArgumentParser) -> None:
+    """--out and --seed: every command that writes a run folder."""
+    q.add_argument("--out", type=Path, default=Path("results"), help="folder for run folders (default: results)")
+    q.add_argument("--seed", type=int, default=0, help="seed of every random choice (default: 0)")
+
+
+def add_case_choice(q: argparse.ArgumentParser, default: str) -> None:
+    """--scenes/--only: the image cases to run."""
+    q.add_argument("--scenes", "--only", dest="scenes", nargs="+", metavar="CASE",
+                   help=f"scenes, integrators or scene:integrator cases, e.g. cornell ao plane_point:simple "
+                        f"cornell_box (default: {default})")
+
+
+def add_variant(q: argparse.ArgumentParser) -> None:
+    q.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant (default: llvm_ad_rgb)")
+
+
+def add_image_options(q: argparse.ArgumentParser) -> None:
+    """What `images` and `validate` take: cases, the regression baseline, Mitsuba's variant, the executor."""
+    add_case_choice(q, "all, scenes/ and scenes/real/")
+    q.add_argument("--baseline", type=Path, metavar="RESULTS_JSON",
+                   help="compare with this run's results.json (default: the previous run's)")
+    add_variant(q)
+    add_executor_options(q)

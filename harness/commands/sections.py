@@ -1,0 +1,44 @@
+"""The run that `warps`, `images` and `validate` share: the warp matrix, the invariances, the image cases (each
+as asked), in one run folder with one results.json and report.html."""
+from __future__ import annotations
+
+from harness.commands.image_section import run_image_section
+from harness.commands.invariance_section import run_invariance_section
+from harness.commands.output import console
+from harness.commands.run_folder import RunFolder
+
+
+def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=None, invariances: bool = False,
+                 json_copy=None) -> int:
+    """Run the warps of `specs`, the invariances (if `invariances`, narrowed by `invariance_only`) and the
+    image `cases`; `latest` moves to the run once it is whole, `images-latest` too if it has images."""
+    from harness.commands.warp_section import run_warp_section
+    from harness.images.suite import not_applicable_cases
+
+    not_applicable = not_applicable_cases(args.scenes) if cases else []
+    # The regression baseline is the newest complete run with images (a warps-only run has none).
+    baseline = getattr(args, "baseline", None) or ((run.out / "images-latest").resolve() / "results.json")
+    run_dir = run.start()
+    payload: dict = {"run": run_dir.name}
+    ok = True
+    warps = None
+    if specs:
+        warps_ok, warps = run_warp_section(args, specs, run_dir)
+        ok &= warps_ok
+        payload.update(warps=warps["warps"], warp_level=warps["level"])
+    if invariances:
+        # Before the images, so report.html (written with them) carries the matrix.
+        console.rule("[bold]Invariances[/] (each engine against itself)")
+        invariance_ok, payload["invariance"] = run_invariance_section(args, invariance_only, run_dir, executor)
+        ok &= invariance_ok
+    if cases:
+        images_ok, images = run_image_section(args, cases, run_dir, warps, baseline, not_applicable,
+                                              payload.get("invariance"), executor)
+        ok &= images_ok
+        payload.update(images)
+    payload["pass"] = ok
+    index = ("warps.html", "Warp conformance") if not cases and warps is not None else None
+    run.finish(payload, links=("latest", "images-latest") if cases else ("latest",), index=index,
+               json_copy=json_copy)
+    console.print(f"Results: {run_dir / 'results.json'} — {'PASS' if ok else 'FAIL'}")
+    return 0 if ok else 1

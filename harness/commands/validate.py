@@ -1,0 +1,34 @@
+"""`validate`: everything, what `make validate` runs: the warp matrix, the invariances, the image cases."""
+from __future__ import annotations
+
+import argparse
+
+from harness.commands.options import add_common, add_image_options
+from harness.commands.run_folder import RunFolder
+
+NAME = "validate"
+HELP = "everything: what `make validate` runs"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.description = ("Warp conformance, image validation (our scenes, then the real scenes of scenes/real/ as "
+                     "their own section) and the invariances (see `invariance --help`); writes "
+                     "results/<run>/report.html.")
+    add_common(p)
+    add_image_options(p)
+    p.add_argument("--invariance-only", nargs="+", metavar="NAME",
+                   help="narrow the Invariances section as `invariance --only` does (default: its default cases)")
+    p.add_argument("--no-invariance", action="store_true", help="skip the Invariances section")
+
+
+def run(args: argparse.Namespace, run: RunFolder) -> int:
+    from harness.commands.sections import run_sections
+    from harness.distributed.cluster import open_executor
+    from harness.images.suite import select_cases
+    from harness.invariance.suite import select as select_invariance
+    from harness.warps.suite import select
+
+    with open_executor(args) as executor:
+        select_invariance(args.invariance_only)  # bad names: no run
+        return run_sections(args, run, executor, select(None), select_cases(args.scenes),
+                            invariance_only=args.invariance_only, invariances=not args.no_invariance)

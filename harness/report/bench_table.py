@@ -1,0 +1,37 @@
+"""The terminal table of a bench run: efficiency ratios per case and each engine's convergence slope."""
+from __future__ import annotations
+
+from rich.table import Table
+
+
+def bench_table(benches, engines) -> Table:
+    """One row per case: ours/Mitsuba efficiency with the same sampler, best against best, each engine's slope."""
+    table = Table(title="Speed against error", header_style="bold")
+    for col in ("scene", "integrator", "efficiency ours/mitsuba, same sampler", "best against best",
+                *[f"slope {e.label}" for e in engines]):
+        table.add_column(col)
+    for bch in benches:
+        ratio = bch.efficiency_ratio()
+        shown = "below ref. noise" if ratio != ratio else f"[{'green' if ratio >= 1 else 'red'}]{ratio:.2f}[/]"
+        best = bch.comparison(None)
+        best_text = "below ref. noise" if best["ratio"] != best["ratio"] else \
+            f"{best['ratio']:.2f} ({best['ours']} / {best['reference']})"
+        table.add_row(bch.case.scene, bch.case.integrator, shown, best_text,
+                      *[f"{c.fit('spp')[0]:.2f}" for c in bch.curves.values()])
+    return table
+
+
+def bench_lines(payload: dict) -> list[str]:
+    """The throughput, sampler-slope and seed-settings figures of a bench run, a line each."""
+    lines = []
+    for t in payload["throughput"] or []:
+        lines.append(f"throughput {t['scene']}:{t['integrator']} {t['resolution']}² {t['spp']} spp "
+                     f"({t['sampler']}): ours {t['median_seconds']['mcval']:.3f} s, Mitsuba "
+                     f"{t['median_seconds']['mitsuba']:.3f} s, Mitsuba/ours {t['mitsuba_over_ours']:.2f}")
+    for integrator, by_sampler in (payload["sampler_slopes"] or {}).get("slopes", {}).items():
+        lines.append(f"MSE slope on cornell {integrator}: " + ", ".join(f"{k} {v:.2f}" for k, v in by_sampler.items()))
+    for name, v in (payload["seed_comparison"] or {}).items():
+        mitsuba = f", Mitsuba {v['reference_seconds']:.2f} s" if "reference_seconds" in v else ""
+        lines.append(f"seed settings, {name}: ours {v['seconds']:.2f} s{mitsuba} (seed document "
+                     f"{v['seed_seconds']} s)")
+    return lines
