@@ -67,7 +67,7 @@ mutate: $(VENV)/.installed
 	@$(VENV)/bin/mutmut --version >/dev/null 2>&1 || $(PY) -m pip install --quiet "mutmut>=3.8,<4"
 	@mkdir -p results/mutation
 	-OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 $(VENV)/bin/mutmut run $(foreach m,$(MUTATE),'$(m)') > results/mutation/mutmut.log 2>&1
-	$(PY) tests/mutation_report.py --out results/mutation $(foreach m,$(MUTATE),'$(m)')
+	$(PY) tools/mutation_report.py --out results/mutation $(foreach m,$(MUTATE),'$(m)')
 
 ## build: Debian packages, the .venv, the C++ renderer (`render` in .venv/bin) and the scenes' meshes
 build: deps $(VENV)/.installed

@@ -1,6 +1,6 @@
 """How fast each of our samplers converges on a small case: the slope of log MSE against log spp, the MSE taken
 against our own high-sample image and averaged over seeds. Independent samples give -1 (MSE ~ 1/N); a stratified
-sampler gives a steeper slope. tests/test_sampler_convergence.py bounds these slopes; the bench reports them."""
+sampler gives a steeper slope. tests/bench/test_sampler_slopes.py bounds these slopes; the bench reports them."""
 from __future__ import annotations
 
 import numpy as np

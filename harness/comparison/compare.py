@@ -20,7 +20,7 @@ are moderated towards their 3x3 neighbourhood's (empirical Bayes,
 their own. At every scale, a variance far below what the better-sampled side
 predicts for its sample count (all K batches missed a rare contribution) takes
 that prediction (`harness.statistics.welch.sample_floor`). Each scale then rejects a correct
-renderer at its stated level (tests/test_calibration_images.py). `detectable_bias`
+renderer at its stated level (tests/images/test_calibration.py). `detectable_bias`
 and `detectable_tile_bias` are the relative biases found half of the time
 (noncentral t at the Welch dof).
 A render can be reduced to its `Summary` first (what references store).

@@ -2,7 +2,7 @@
 
 Reported beside our statistical verdict, never instead of it: idiff compares two single images with
 fixed thresholds and knows nothing of their noise, so it fails a noisy-but-correct pair and passes a
-small bias hidden under its threshold (tests/test_idiff_real.py shows both on real renders).
+small bias hidden under its threshold (tests/comparison/test_idiff_real.py shows both on real renders).
 """
 from __future__ import annotations
 

@@ -1,0 +1,126 @@
+"""The integrator entries (harness/integrators/) and their registry: found from the package and from
+$MCVAL_INTEGRATOR_PATH, matched with the renderer's integrators, and what the suite derives from them."""
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+
+import harness.integrators.registry as registry
+from harness.engines.mitsuba_scene import mitsuba_xml
+from harness.images.suite import (INTEGRATORS, OUR_SPP, REFERENCE_SPP, ImageCase, not_applicable_cases,
+                                  select_cases)
+from harness.integrators import entries, match
+from harness.report.integrator_table import integrators_table
+
+ROOT = Path(__file__).resolve().parents[2]
+CORNELL_BOX = ROOT / "scenes" / "real" / "cornell_box.xml"
+EXTRA = '''from harness.integrators.entry import IntegratorEntry, MitsubaMapping
+ENTRY = IntegratorEntry(name="{name}", our_spp=2, reference_spp=8, mitsuba=MitsubaMapping("aov"))
+'''
+
+
+@pytest.fixture
+def extra_folder(tmp_path, monkeypatch):
+    """A folder on $MCVAL_INTEGRATOR_PATH; write entries into it."""
+    monkeypatch.setenv(registry.PATH_ENV, str(tmp_path))
+    return tmp_path
+
+
+def test_the_product_has_exactly_normals_simple_and_ao():
+    assert set(entries()) == {"normals", "simple", "ao"}
+    assert set(registry.renderer_integrators()) == {"normals", "simple", "ao"}
+    m = match()
+    assert [e.name for e in m.entries] and m.without_entry == ()
+    assert {e.source for e in m.entries} == {f"harness/integrators/{n}.py" for n in ("normals", "simple", "ao")}
+
+
+def test_suite_views_are_the_entries_budgets():
+    assert INTEGRATORS[0] == "normals"  # first on every scene: its failure notes a camera or geometry mismatch
+    assert set(INTEGRATORS) == {"normals", "simple", "ao"} and len(INTEGRATORS) == 3
+    assert dict(OUR_SPP) == {"normals": 16, "simple": 32, "ao": 32}
+    assert dict(REFERENCE_SPP) == {"normals": 64, "simple": 256, "ao": 256}
+
+
+def test_an_entry_from_the_path_is_found_and_an_error_without_a_renderer_integrator(extra_folder):
+    (extra_folder / "sparkle.py").write_text(EXTRA.format(name="sparkle"))
+    assert entries()["sparkle"].source == str(extra_folder / "sparkle.py")
+    with pytest.raises(ValueError, match=r"sparkle\.py: entry for integrator 'sparkle', which the renderer"):
+        match()
+
+
+def test_a_renderer_integrator_without_entry_is_listed_not_dropped(monkeypatch):
+    monkeypatch.setattr(registry, "renderer_integrators", lambda: ("normals", "simple", "ao", "sparkle"))
+    m = match()
+    assert m.without_entry == ("sparkle",) and len(m.entries) == 3
+    from rich.console import Console
+    console = Console(width=200, record=True)
+    console.print(integrators_table(m))
+    assert "no harness entry" in [line for line in console.export_text().splitlines() if "sparkle" in line][0]
+
+
+def test_duplicate_and_missing_entries_name_their_files(extra_folder):
+    (extra_folder / "again.py").write_text(EXTRA.format(name="ao"))
+    with pytest.raises(ValueError, match=r"again\.py: integrator 'ao' already has an entry in harness/"):
+        entries()
+    (extra_folder / "again.py").write_text("X = 1\n")
+    with pytest.raises(ValueError, match=r"again\.py: no ENTRY"):
+        entries()
+
+
+def test_a_path_folder_that_does_not_exist_is_an_error(monkeypatch, tmp_path):
+    monkeypatch.setenv(registry.PATH_ENV, str(tmp_path / "nowhere"))
+    with pytest.raises(ValueError, match="nowhere is not a folder"):
+        entries()
+
+
+def _mapped(integrator: str) -> ET.Element:
+    return ET.fromstring(mitsuba_xml(CORNELL_BOX.read_text(), integrator))
+
+
+@pytest.mark.parametrize("integrator", ["normals", "ao"])
+def test_mitsuba_mapping_removes_the_area_emitter_but_keeps_its_shape(integrator):
+    root = _mapped(integrator)
+    assert not [e for s in root.iter("shape") for e in s.iter("emitter")]
+    assert "light" in {s.get("id") for s in root.iter("shape")}
+    assert [e.get("type") for e in root.findall("integrator")] == [entries()[integrator].mitsuba.plugin]
+    assert [e.get("type") for e in root.findall("emitter")] == (["constant"] if integrator == "ao" else [])
+
+
+def test_simple_on_the_cornell_box_is_not_applicable_not_run():
+    assert "cornell_box:simple" not in {c.key for c in select_cases(None)}
+    assert {c.key for c in select_cases(["cornell_box"])} == {"cornell_box:normals", "cornell_box:ao"}
+    assert [(c.key, why) for c, why in not_applicable_cases(None)] == [("cornell_box:simple", "no point light")]
+    with pytest.raises(ValueError, match="cornell_box:simple is not applicable: no point light"):
+        select_cases(["cornell_box:simple"])
+
+
+def test_real_cases_live_in_scenes_real():
+    case = ImageCase("cornell_box", "ao", "real")
+    assert case.path == CORNELL_BOX and case.mitsuba_path == CORNELL_BOX
+    assert next(c for c in select_cases(["cornell_box:ao"])) == case
+
+
+def test_the_integrators_command_lists_each_with_its_entry(capsys):
+    from harness.cli import main
+    assert main(["integrators"]) == 0
+    out = capsys.readouterr().out
+    for name, mitsuba in (("normals", "aov(aovs=nn:sh_normal)"), ("simple", "direct(emitter_samples=1,"),
+                          ("ao", "direct(hide_emitters=true)")):
+        row = next(line for line in out.splitlines() if line.strip().startswith(name + " "))
+        assert f"harness/integrators/{name}.py" in row and mitsuba in row, out
+    assert "no harness entry" not in out
+
+
+def test_an_orphan_entry_makes_the_integrators_command_fail_naming_it(extra_folder, capsys):
+    from harness.cli import main
+    (extra_folder / "sparkle.py").write_text(EXTRA.format(name="sparkle"))
+    assert main(["integrators"]) == 2
+    assert "sparkle.py: entry for integrator 'sparkle'" in capsys.readouterr().err.replace("\n", "")
+
+
+def test_a_scene_the_harness_cannot_parse_is_left_to_the_renderer_to_report(tmp_path):
+    broken = tmp_path / "broken.xml"
+    broken.write_text("<scene><shape type=")
+    assert entries()["simple"].not_applicable(broken) is None
+    broken.write_text('<scene><emitter type="constant"/></scene>')
+    assert entries()["simple"].not_applicable(broken) == "no point light"

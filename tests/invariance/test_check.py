@@ -1,0 +1,111 @@
+"""The invariance check catches a known-wrong twin and passes a correct engine over several seeds."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from harness.engines.base import Engine, RenderResult
+from harness.invariance.check import InvarianceCase, run_invariances
+from harness.invariance.findings import invariance_payload
+from harness.invariance.suite import select
+from harness.invariance.variants import invariance
+
+SCENES = Path(__file__).resolve().parents[2] / "scenes"
+RES = 32
+
+
+class LightTwin(Engine):
+    """Our renderer, but 2 % too bright whenever the scene's lights were doubled (variant files are named
+    <scene>.<invariance>.<n>.xml by the check)."""
+
+    name = "light-twin"
+
+    def __init__(self) -> None:
+        from harness.engines.ours import OurEngine
+        self._ours = OurEngine()
+
+    def version(self) -> str:
+        return "ours x1.02 under doubled lights"
+
+    def render(self, scene, integrator, spp, batches, seed, params=None) -> RenderResult:
+        out = self._ours.render(scene, integrator, spp, batches, seed, params)
+        if ".light." in Path(scene).name:
+            out.batches = out.batches * np.float32(1.02)
+        return out
+
+
+def _cases(*keys: str) -> list[InvarianceCase]:
+    return [InvarianceCase(SCENES / f"{k.split(':')[0]}.xml", k.split(":")[1], 16, RES) for k in keys]
+
+
+def test_a_two_percent_light_error_is_caught():
+    from harness.engines.ours import OurEngine
+
+    invariances = [invariance("light"), invariance("reflectance")]
+    cells, _ = run_invariances([OurEngine(), LightTwin()], _cases("plane_point:simple", "sphere_plane:ao"),
+                               invariances, seed=3)
+    twin = {(c.invariance, c.case.key): c for c in cells if c.engine == "light-twin"}
+    for key in ("plane_point:simple", "sphere_plane:ao"):
+        assert not twin["light", key].passed
+        assert twin["light", key].worst_ratio == pytest.approx(1.02, abs=0.005)
+        assert twin["reflectance", key].passed
+    # The twin as a reference: its breaks are findings, and the run passes on ours.
+    payload = invariance_payload(cells, 1e-3, "mcval", {})
+    assert payload["pass"] and len(payload["findings"]) == 2
+    assert payload["findings"][0].startswith("reference light-twin breaks light on plane_point:simple")
+    # The twin under test: the run fails.
+    assert not invariance_payload(cells, 1e-3, "light-twin", {})["pass"]
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_our_renderer_keeps_the_invariances(seed):
+    from harness.engines.ours import OurEngine
+
+    cases = _cases("plane_point:simple", "plane_point:ao", "sphere_plane:simple", "sphere_plane:normals")
+    names = ["rotate", "translate", "light", "reflectance"]
+    cells, _ = run_invariances([OurEngine()], cases, [invariance(n) for n in names], seed=seed)
+    assert cells and all(c.passed for c in cells), [(c.case.key, c.invariance, c.worst_ratio) for c in cells
+                                                    if not c.passed]
+
+
+def test_rotated_normals_are_rotated_back():
+    """Without the rotation back, a rotated scene's normals image differs: the check must know it."""
+    from harness.engines.ours import OurEngine
+
+    rotate = invariance("rotate")
+    cells, _ = run_invariances([OurEngine()], _cases("sphere_plane:normals"), [rotate], seed=5)
+    assert cells[0].passed
+    variant = rotate.variants[0]
+    n = np.array([[[[0.0, 1.0, 0.0]]]])
+    assert not np.allclose(variant.expected("normals", n), n)
+    assert np.allclose(variant.expected("simple", n), n)
+
+
+def test_select_narrows_and_refuses_unknown_names():
+    cases, invariances = select(["crevice", "ao", "scale"])
+    assert [c.key for c in cases] == ["crevice:ao"] and [i.name for i in invariances] == ["scale"]
+    cases, _ = select(["cornell:normals"])
+    assert [c.key for c in cases] == ["cornell:normals"]
+    with pytest.raises(ValueError, match="nonsense"):
+        select(["nonsense"])
+
+
+def test_by_default_every_scene_runs_with_every_integrator_that_applies():
+    from harness.images.suite import scene_names
+
+    keys = {c.key for c in select(None)[0]}
+    for scene in scene_names() + scene_names("real"):
+        assert f"{scene}:normals" in keys and f"{scene}:ao" in keys
+    assert "cornell_box:simple" not in keys  # no point light
+    with pytest.raises(ValueError, match="not applicable"):
+        select(["cornell_box:simple"])
+
+
+def test_ao_without_a_constant_emitter_keeps_its_fixed_ambient_under_doubled_lights():
+    light = invariance("light").variants[0]
+    image = np.full((1, 2, 2, 3), 0.4)
+    assert np.allclose(light.expected("ao", image, has_environment=True), 0.2)
+    assert np.allclose(light.expected("ao", image, has_environment=False), 0.4)
+    assert np.allclose(light.expected("simple", image, has_environment=False), 0.2)

@@ -1,0 +1,64 @@
+"""Breaks float32 explains: judged from the rewritten scene file, never from the engine's word."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from harness.engines.base import Engine, RenderFailed, RenderResult
+from harness.invariance.check import InvarianceCase, run_invariances
+from harness.invariance.findings import invariance_payload
+from harness.invariance.float32 import float32_limit
+from harness.invariance.rewrite import rewrite
+from harness.invariance.variants import TRANSLATION, invariance
+
+SCENES = Path(__file__).resolve().parents[2] / "scenes"
+
+
+def test_a_millimetre_sphere_moved_tens_of_units_is_beyond_float32(tmp_path):
+    moved = rewrite(SCENES / "sphere_floor_milli.xml", tmp_path / "m.xml", "translate", TRANSLATION)
+    why = float32_limit(moved)
+    assert why and "radius 0.001" in why and "largest coordinate 30" in why and "starts once the centre is 10" in why
+
+
+def test_representable_rewrites_have_no_float32_limit(tmp_path):
+    for scene, kind, value in (("sphere_floor_unit", "translate", TRANSLATION),
+                               ("sphere_floor_milli", "scale", 1e-3),  # radius 1e-6 at the origin: fine
+                               ("sphere_floor_kilo", "scale", 1e3),
+                               ("cornell", "translate", TRANSLATION)):
+        assert float32_limit(rewrite(SCENES / f"{scene}.xml", tmp_path / f"{scene}.xml", kind, value)) is None
+
+
+class RefusesTranslations(Engine):
+    """Our renderer, but it refuses every translated scene as if float32 could not hold it."""
+
+    name = "refuser"
+
+    def __init__(self) -> None:
+        from harness.engines.ours import OurEngine
+        self._ours = OurEngine()
+
+    def version(self) -> str:
+        return "ours, refusing translations"
+
+    def render(self, scene, integrator, spp, batches, seed, params=None) -> RenderResult:
+        if ".translate." in Path(scene).name:
+            raise RenderFailed("error: float32 could not place points on it")
+        return self._ours.render(scene, integrator, spp, batches, seed, params)
+
+
+def test_the_milli_sphere_translation_is_float32_but_a_refused_representable_scene_fails():
+    from harness.engines.ours import OurEngine
+
+    cases = [InvarianceCase(SCENES / "sphere_floor_milli.xml", "ao", 8, 24),
+             InvarianceCase(SCENES / "plane_point.xml", "simple", 8, 24)]
+    cells, _ = run_invariances([OurEngine(), RefusesTranslations()], cases, [invariance("translate")], seed=1)
+    found = {(c.engine, c.case.key): c for c in cells}
+    milli = found["mcval", "sphere_floor_milli:ao"]
+    assert milli.passed and milli.status == "float32" and milli.beyond_float32[0].error  # our loader refuses it
+    assert found["mcval", "plane_point:simple"].status == "pass"
+    assert found["refuser", "sphere_floor_milli:ao"].status == "float32"
+    assert found["refuser", "plane_point:simple"].status == "fail"  # its refusal is not float32's limit
+    payload = invariance_payload(cells, 1e-3, "mcval", {})
+    assert payload["pass"] and len(payload["float32_limits"]) == 2
+    assert payload["float32_limits"][0].startswith("mcval sphere_floor_milli:ao translate")
+    assert "stops being representable" in payload["translation_reach"]
+    assert not invariance_payload(cells, 1e-3, "refuser", {})["pass"]

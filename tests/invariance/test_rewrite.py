@@ -1,0 +1,119 @@
+"""The scene rewriter of the invariance suite: the values it writes, and that both engines load every variant."""
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from harness.invariance.rewrite import rewrite, rotation_matrix
+from harness.invariance.variants import INVARIANCES, ROTATION_AXIS, ROTATION_DEGREES
+
+SCENES = Path(__file__).resolve().parents[2] / "scenes"
+
+
+def _variant(tmp_path: Path, scene: str, kind: str, value) -> ET.Element:
+    return ET.parse(rewrite(SCENES / f"{scene}.xml", tmp_path / f"{scene}.{kind}.xml", kind, value)).getroot()
+
+
+def _floats(node: ET.Element) -> np.ndarray:
+    return np.array([float(v) for v in node.get("value").replace(",", " ").split()])
+
+
+def _prop(parent: ET.Element, name: str) -> ET.Element:
+    return next(e for e in parent if e.get("name") == name)
+
+
+def _steps(owner: ET.Element) -> list[ET.Element]:
+    return list(_prop(owner, "to_world"))
+
+
+def test_scale_appends_to_every_to_world_and_scales_lights_and_clips(tmp_path):
+    root = _variant(tmp_path, "crevice", "scale", 1e-3)
+    sensor = root.find("sensor")
+    steps = _steps(sensor)
+    # The camera conjugated, S C S^-1: rigid, as Mitsuba's cameras must be.
+    assert (steps[0].tag, float(steps[0].get("value"))) == ("scale", 1e3)
+    assert (steps[-1].tag, float(steps[-1].get("value"))) == ("scale", 1e-3)
+    assert float(_prop(sensor, "near_clip").get("value")) == pytest.approx(1e-5)
+    assert float(_prop(sensor, "far_clip").get("value")) == pytest.approx(10.0)
+    shapes = list(root.iter("shape"))
+    assert shapes and all(_steps(s)[-1].tag == "scale" and float(_steps(s)[-1].get("value")) == 1e-3 for s in shapes)
+    mesh = next(s for s in shapes if s.get("type") == "ply")  # had no to_world: given one
+    assert len(_steps(mesh)) == 1
+    assert Path(_prop(mesh, "filename").get("value")).is_absolute()
+    light = next(e for e in root.iter("emitter") if e.get("type") == "point")
+    np.testing.assert_allclose(_floats(_prop(light, "position")), np.array([0.5, 4, 1.6]) * 1e-3)
+    np.testing.assert_allclose(_floats(_prop(light, "intensity")), [40e-6] * 3)
+
+
+def test_rotation_is_unit_axis_and_maps_the_light(tmp_path):
+    root = _variant(tmp_path, "sphere_plane", "rotate", (ROTATION_AXIS, ROTATION_DEGREES))
+    step = _steps(root.find("sensor"))[-1]
+    axis = np.array([float(step.get(a)) for a in "xyz"])
+    assert step.tag == "rotate" and abs(np.linalg.norm(axis) - 1) < 1e-12 and float(step.get("angle")) == 37.0
+    light = next(e for e in root.iter("emitter") if e.get("type") == "point")
+    expected = rotation_matrix(ROTATION_AXIS, ROTATION_DEGREES)[:3, :3] @ np.array([3.0, 5.0, 2.0])
+    np.testing.assert_allclose(_floats(_prop(light, "position")), expected, rtol=1e-12)
+    np.testing.assert_allclose(_floats(_prop(light, "intensity")), [80] * 3)  # a rigid motion keeps it
+
+
+def test_rotation_matrix_is_mitsubas():
+    mi = pytest.importorskip("harness.engines.mitsuba").load_mitsuba("scalar_rgb")
+    ours = rotation_matrix(ROTATION_AXIS, ROTATION_DEGREES)
+    theirs = np.array(mi.ScalarTransform4f().rotate(list(ROTATION_AXIS), ROTATION_DEGREES).matrix)
+    np.testing.assert_allclose(ours, theirs, atol=1e-6)
+
+
+def test_translation_moves_light_and_appends_step(tmp_path):
+    root = _variant(tmp_path, "cornell", "translate", (10.0, -20.0, 30.0))
+    assert all(_steps(s)[-1].tag == "translate" for s in root.iter("shape"))
+    light = next(e for e in root.iter("emitter") if e.get("type") == "point")
+    np.testing.assert_allclose(_floats(_prop(light, "position")), [10, -19.3, 30.6])
+
+
+def test_light_and_reflectance_factors(tmp_path):
+    root = _variant(tmp_path, "cornell", "light", 2.0)
+    values = {e.get("type"): _floats(_prop(e, "intensity" if e.get("type") == "point" else "radiance"))
+              for e in root.iter("emitter")}
+    np.testing.assert_allclose(values["point"], [6, 6, 6])
+    np.testing.assert_allclose(values["constant"], [2, 2, 2])
+    root = _variant(tmp_path, "cornell", "reflectance", 0.5)
+    reds = [_floats(_prop(b, "reflectance")) for b in root.iter("bsdf") if b.get("id") == "red"]
+    np.testing.assert_allclose(reds[0], [0.315, 0.0325, 0.025])
+
+
+def test_defaults_are_written_before_scaling(tmp_path):
+    scene = tmp_path / "bare.xml"
+    scene.write_text('<scene version="3.0.0"><sensor type="perspective"/>'
+                     '<shape type="sphere"><point name="center" value="1, 2, 3"/><float name="radius" value="2"/></shape>'
+                     '<shape type="rectangle"/><emitter type="point"/><emitter type="constant"/></scene>')
+    root = ET.parse(rewrite(scene, tmp_path / "light.xml", "light", 2.0)).getroot()
+    assert [_floats(_prop(e, "intensity" if e.get("type") == "point" else "radiance"))[0]
+            for e in root.iter("emitter")] == [2.0, 2.0]
+    root = ET.parse(rewrite(scene, tmp_path / "refl.xml", "reflectance", 0.5)).getroot()
+    assert [_floats(_prop(b, "reflectance"))[0] for b in root.iter("bsdf")] == [0.25, 0.25]
+    root = ET.parse(rewrite(scene, tmp_path / "scale.xml", "scale", 10.0)).getroot()
+    sphere = root.find("shape")
+    np.testing.assert_allclose(_floats(_prop(sphere, "center")), [10, 20, 30])
+    assert float(_prop(sphere, "radius").get("value")) == 20.0
+    assert [float(_prop(root.find("sensor"), n).get("value")) for n in ("near_clip", "far_clip")] == [0.1, 1e5]
+
+
+def test_unknown_emitters_are_refused(tmp_path):
+    scene = tmp_path / "spot.xml"
+    scene.write_text('<scene version="3.0.0"><emitter type="spot"/></scene>')
+    with pytest.raises(ValueError, match="spot"):
+        rewrite(scene, tmp_path / "out.xml", "light", 2.0)
+
+
+@pytest.mark.parametrize("variant", [v for inv in INVARIANCES for v in inv.variants], ids=lambda v: v.label)
+def test_both_engines_load_every_variant(tmp_path, variant):
+    from harness.engines.ours import OurEngine
+    from harness.engines.mitsuba import MitsubaEngine
+
+    path = rewrite(SCENES / "crevice.xml", tmp_path / "crevice.variant.xml", variant.kind, variant.value)
+    for engine in (OurEngine(), MitsubaEngine()):
+        out = engine.render(str(path), "ao", 1, 2, 0, {"res": "8"})
+        assert out.batches.shape == (2, 8, 8, 3) and np.isfinite(out.batches).all()

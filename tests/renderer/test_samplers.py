@@ -1,0 +1,35 @@
+"""The sampler is what the scene says: ours reads independent and sobol, refuses others with the line, and
+Mitsuba is handed its closest sampler for ours."""
+from pathlib import Path
+
+import pytest
+
+from harness.engines.base import RenderFailed
+from harness.engines.mitsuba_scene import mitsuba_xml
+
+SCENES = Path(__file__).resolve().parents[2] / "scenes"
+
+
+def _with_sampler(tmp_path: Path, kind: str) -> Path:
+    text = (SCENES / "plane_point.xml").read_text().replace('<sampler type="independent">',
+                                                            f'<sampler type="{kind}">')
+    path = tmp_path / f"plane_{kind}.xml"
+    path.write_text(text)
+    return path
+
+
+def test_our_renderer_renders_with_the_declared_sampler(ours, tmp_path):
+    params = {"res": "16"}
+    assert ours.render(str(SCENES / "plane_point.xml"), "simple", 4, 2, 0, params).sampler == "independent"
+    assert ours.render(str(_with_sampler(tmp_path, "sobol")), "simple", 4, 2, 0, params).sampler == "sobol"
+
+
+def test_an_unknown_sampler_is_an_error_with_its_line(ours, tmp_path):
+    with pytest.raises(RenderFailed, match=r"plane_multijitter\.xml:\d+: .*expected \"independent\" or \"sobol\""):
+        ours.render(str(_with_sampler(tmp_path, "multijitter")), "simple", 4, 1, 0, {"res": "16"})
+
+
+def test_mitsuba_gets_ldsampler_for_sobol(tmp_path):
+    text = mitsuba_xml(_with_sampler(tmp_path, "sobol").read_text(), "simple")
+    assert '<sampler type="ldsampler">' in text and "sobol" not in text
+    assert '<sampler type="independent">' in mitsuba_xml((SCENES / "plane_point.xml").read_text(), "simple")

@@ -1,0 +1,121 @@
+"""The one-line mutations of the harness that once survived the whole suite, each applied to a copy of
+harness/ and run against the tests meant to kill it: every one must now make them fail.
+
+Deterministic and independent of the mutation tool (`make mutate` runs that). Each mutation is an exact
+source line replaced; if the harness is rewritten so that a line is no longer found, the test says so
+(update the line here rather than dropping the mutation).
+"""
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+REF = "tests/statistics/test_welch_reference.py"
+TWINS = "tests/statistics/test_twins.py"
+
+#: name -> (file, original line fragment, mutated fragment, test node ids that must fail).
+MUTATIONS = {
+    "welch one-sided p-value": (
+        "statistics/welch.py", "p = 2.0 * sps.t.sf(np.abs(t), welch_dof(a, b))", "p = sps.t.sf(np.abs(t), welch_dof(a, b))",
+        [f"{REF}::test_welch_p_values_match_scipy"]),
+    "welch normal instead of t": (
+        "statistics/welch.py", "p = 2.0 * sps.t.sf(np.abs(t), welch_dof(a, b))", "p = 2.0 * sps.norm.sf(np.abs(t))",
+        [f"{REF}::test_welch_p_values_match_scipy", f"{REF}::test_welch_uses_satterthwaite_dof_and_t_tails"]),
+    "welch pooled dof": (
+        "statistics/welch.py", "dof = np.where(dof_den > 0, (va + vb) ** 2 / dof_den, da + db)",
+        "dof = np.where(dof_den > 0, da + db, da + db)",
+        [f"{REF}::test_welch_p_values_match_scipy", f"{REF}::test_welch_uses_satterthwaite_dof_and_t_tails"]),
+    "no sidak split over the three scales": (
+        "images/compare.py", "per_scale = sidak_level(alpha, len(SCALES))", "per_scale = alpha",
+        [f"{REF}::test_compare_splits_alpha_over_scales_then_pixels_and_channels"]),
+    "sidak counts pixels, not channels": (
+        "statistics/family_level.py", "share = channel_union(level, channels, rho) / channels", "share = 1.0 / channels",
+        [f"{REF}::test_compare_splits_alpha_over_scales_then_pixels_and_channels",
+         "tests/statistics/test_family_level.py::test_independent_tests_get_sidaks_level"]),
+    "chi-square dof k instead of k - 1": (
+        "statistics/chi2.py", "dof = len(exp) - 1", "dof = len(exp)",
+        [f"{REF}::test_goodness_of_fit_matches_scipy", f"{REF}::test_goodness_of_fit_pools_small_cells_by_hand"]),
+    "pooling threshold 5 -> 1": (
+        "statistics/constants.py", "MIN_EXPECTED = 5.0", "MIN_EXPECTED = 1.0",
+        [f"{REF}::test_goodness_of_fit_pools_small_cells_by_hand",
+         f"{REF}::test_goodness_of_fit_folds_a_too_small_pool_into_the_smallest_bin"]),
+    "normalisation tolerance 1e-3 -> 2e-2": (
+        "statistics/constants.py", "NORMALISATION_TOLERANCE = 1e-3", "NORMALISATION_TOLERANCE = 2e-2",
+        [f"{TWINS}::test_normalisation_half_a_percent_off_fails_and_0_05_percent_passes"]),
+    "pdf-vs-Mitsuba tolerance 1e-3 -> 0.3": (
+        "statistics/constants.py", "PDF_RELATIVE_TOLERANCE = 1e-3", "PDF_RELATIVE_TOLERANCE = 0.3",
+        [f"{TWINS}::test_pdf_one_percent_off_the_reference_fails_and_0_05_percent_passes"]),
+    "regression never flags a moved mean": (
+        "images/regression.py", "if np.any(z > MEAN_SIGMAS) and np.any(m1 != m0):",
+        "if np.any(z > MEAN_SIGMAS) and np.any(m1 != m1):",
+        [f"{TWINS}::test_regression_flags_a_mean_moved_by_five_sigma_and_not_one"]),
+    "detectable_bias x2": (
+        "images/compare.py", "return np.where(live, 0.5 * (lo + hi)[..., 0], np.inf)",
+        "return np.where(live, (lo + hi)[..., 0], np.inf)",
+        [f"{TWINS}::test_detectable_bias_is_its_definition"]),
+    "PSNR with 20 log10": (
+        "images/metrics.py", "float(10 * np.log10(peak**2 / mse))", "float(20 * np.log10(peak**2 / mse))",
+        [f"{REF}::test_psnr_is_its_definition"]),
+    "efficiency ratio inverted": (
+        "bench/run.py", "ratio = self.curves[a].efficiency(common) / self.curves[b].efficiency(common)",
+        "ratio = self.curves[b].efficiency(common) / self.curves[a].efficiency(common)",
+        [f"{REF}::test_efficiency_ratio_has_its_known_answer", f"{TWINS}::test_efficiency_ratio_of_a_twice_slower_twin",
+         "tests/bench/test_run.py::test_same_sampler_and_best_against_best_pick_their_curves"]),
+}
+
+
+def _run(harness_parent: Path, nodes: list[str]) -> subprocess.CompletedProcess:
+    """pytest on `nodes` with `harness_parent`/harness imported instead of the project's harness."""
+    env = dict(os.environ, PYTHONPATH=str(harness_parent), PYTHONDONTWRITEBYTECODE="1")
+    check = ("import harness, sys; from pathlib import Path; "
+             f"sys.exit(0 if Path(harness.__file__).parent == Path({str(harness_parent / 'harness')!r}) else 3)")
+    assert subprocess.run([sys.executable, "-c", check], cwd=harness_parent, env=env).returncode == 0, \
+        "the copy of harness/ is not the one imported"
+    return subprocess.run([sys.executable, "-m", "pytest", "-q", "-x", "-p", "no:cacheprovider", "--runxfail",
+                           "--rootdir", str(ROOT), "-c", str(ROOT / "pyproject.toml"),
+                           *[str(ROOT / n) for n in nodes]],
+                          cwd=harness_parent, env=env, capture_output=True, text=True, timeout=300)
+
+
+def _copy(parent: Path) -> Path:
+    shutil.copytree(ROOT / "harness", parent / "harness", ignore=shutil.ignore_patterns("__pycache__"))
+    return parent
+
+
+def _mutant(name: str, parent: Path) -> tuple[str, subprocess.CompletedProcess | None]:
+    file, original, mutated, nodes = MUTATIONS[name]
+    path = _copy(parent) / "harness" / file
+    source = path.read_text()
+    if source.count(original) != 1:
+        return f"{file} no longer holds {original!r}: update the mutation", None
+    path.write_text(source.replace(original, mutated))
+    return "", _run(parent, nodes)
+
+
+@pytest.fixture(scope="module")
+def outcomes(tmp_path_factory):
+    """Every mutant's run, two at a time (each is a separate pytest process)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        futures = {name: pool.submit(_mutant, name, tmp_path_factory.mktemp("mutant")) for name in MUTATIONS}
+        return {name: f.result() for name, f in futures.items()}
+
+
+def test_the_targeted_tests_pass_on_the_unmutated_harness(tmp_path):
+    nodes = sorted({n for *_, targets in MUTATIONS.values() for n in targets})
+    res = _run(_copy(tmp_path), nodes)
+    assert res.returncode == 0, res.stdout[-3000:]
+
+
+@pytest.mark.parametrize("name", list(MUTATIONS))
+def test_listed_mutation_is_killed(name, outcomes):
+    problem, res = outcomes[name]
+    assert not problem, problem
+    assert res.returncode == 1, f"mutation survived (exit {res.returncode}):\n{res.stdout[-3000:]}"
