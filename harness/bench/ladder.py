@@ -12,6 +12,7 @@ from harness.engines.base import Engine
 from harness.images.suite import ImageCase
 from harness.comparison.metrics import RELMSE_EPSILON, flip_map
 from harness.images.references import RESOLUTION, Reference
+from harness.integrators import entry
 
 #: Samples per pixel of the ladder, and independent runs per step.
 LADDER = (1, 2, 4, 8, 16, 32, 64, 128, 256)
@@ -102,7 +103,7 @@ def run_ladder(engine: Engine, case: ImageCase, reference: Reference, seed: int,
     cache they sweep, between two renders, slowed ours by 20-40 % at 128^2 (32 spp: 5.8 ms back to
     back, 7-10 ms with FLIP between), which timed the harness rather than the engine."""
     params = {"res": str(RESOLUTION)}
-    signed = case.integrator == "normals"
+    signed = entry(case.integrator).signed
     steps, images, first = [], {}, None
     for spp in ladder:
         if not engine.renders_exactly(spp):

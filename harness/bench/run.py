@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import json
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
@@ -14,6 +14,8 @@ from harness.bench.throughput import QUIET_SECONDS
 from harness.distributed.bundle import Bundle
 from harness.distributed.executor import Executor, SerialExecutor, Status, Task
 from harness.engines.base import Engine
+from harness.engines.mitsuba import MitsubaEngine
+from harness.engines.ours import OurEngine
 from harness.images.case_task import on_files, share_scene_bundles
 from harness.images.suite import SCENES_DIR, ImageCase
 from harness.bench.truth import bench_truth
@@ -24,14 +26,13 @@ SEED_SETTINGS = {"simple": {"spp": 32, "seed_seconds": 14.5}, "ao": {"spp": 512,
 SEED_RESOLUTION = 768
 
 
-#: The sampler both engines run with for the engine comparison (like for like).
+#: The sampler both engines run with for the engine comparison (like for like). The samplers each engine is
+#: benchmarked with, and those its best is chosen from, are the engine's own (Engine.samplers, best_samplers).
 SAME_SAMPLER = "independent"
-#: The samplers each engine is benchmarked with: its independent one, and its stratified ones.
-SAMPLERS = {"mcval": ("independent", "sobol"), "mitsuba": ("independent", "ldsampler", "multijitter"),
-            "mitsuba-scalar": ("independent",)}
-#: The samplers each engine's best is chosen from (by measured efficiency on the case): its stratified ones.
-#: An engine with none of them run falls back on its best curve of any sampler.
-BEST_SAMPLERS = {"mcval": ("sobol",), "mitsuba": ("ldsampler", "multijitter")}
+
+
+def _default_best() -> dict[str, tuple[str, ...]]:
+    return {OurEngine.name: OurEngine.best_samplers, MitsubaEngine.name: MitsubaEngine.best_samplers}
 
 
 def _sampler_of(label: str | None) -> str | None:
@@ -48,22 +49,27 @@ class CaseBench:
     curves: dict[str, Curve]
     reference_mean: np.ndarray
     truth: str = ""  # what the errors are measured against (bench_truth)
+    tested: str = OurEngine.name        # the engine under test, and the one its efficiency is compared with
+    reference: str = MitsubaEngine.name
+    #: Per engine, the samplers its best curve is chosen from (by measured efficiency on the case). An engine
+    #: with none of them run falls back on its best curve of any sampler.
+    best: dict[str, tuple[str, ...]] = field(default_factory=_default_best)
 
     def _pick(self, engine: str, sampler: str | None) -> str | None:
-        """The label of `engine` with `sampler` (None: its most efficient of BEST_SAMPLERS), if it was run."""
+        """The label of `engine` with `sampler` (None: its most efficient best sampler), if it was run."""
         mine = [k for k in self.curves if k.split("/")[0] == engine]
         if sampler is not None:
             mine = [k for k in mine if k.split("/")[-1] == sampler or k == engine]
         else:
-            mine = [k for k in mine if k.split("/")[-1] in BEST_SAMPLERS.get(engine, ())] or mine
+            mine = [k for k in mine if k.split("/")[-1] in self.best.get(engine, ())] or mine
         finite = [k for k in mine if self.curves[k].efficiency() == self.curves[k].efficiency()]
         return max(finite, key=lambda k: self.curves[k].efficiency()) if finite else (mine[0] if mine else None)
 
-    def comparison(self, sampler: str | None, ours: str = "mcval", other: str = "mitsuba") -> dict:
+    def comparison(self, sampler: str | None, ours: str | None = None, other: str | None = None) -> dict:
         """Efficiency ours over `other`: both with `sampler` (the engine comparison), or each with its most
         efficient stratified sampler (sampler None: what a user gets), over the steps both rendered. Names the
         curves compared."""
-        a, b = self._pick(ours, sampler), self._pick(other, sampler)
+        a, b = self._pick(ours or self.tested, sampler), self._pick(other or self.reference, sampler)
         ratio = float("nan")
         if a and b:
             common = {s.spp for s in self.curves[a].steps} & {s.spp for s in self.curves[b].steps}
@@ -71,7 +77,7 @@ class CaseBench:
         return {"ratio": ratio, "ours": a, "reference": b,
                 "ours_sampler": _sampler_of(a), "reference_sampler": _sampler_of(b)}
 
-    def efficiency_ratio(self, ours: str = "mcval", other: str = "mitsuba") -> float:
+    def efficiency_ratio(self, ours: str | None = None, other: str | None = None) -> float:
         """The like-for-like ratio (both engines with SAME_SAMPLER)."""
         return self.comparison(SAME_SAMPLER, ours, other)["ratio"]
 
@@ -95,7 +101,7 @@ def run_bench(cases: list[ImageCase], engines: list[Engine], reference_engine: E
     one worker, so the engines it compares share a machine (`executor`: default here, one after another;
     `on_step` reports each step when the case runs in this process)."""
     executor = executor or SerialExecutor()
-    bundles = share_scene_bundles(executor, cases)
+    bundles = share_scene_bundles(executor, cases, (*engines, reference_engine))
     tasks = [Task(case.key, bench_case, (case, engines, reference_engine, seed, ladder, runs,
                                          None if executor.ships_files else on_step, bundles.get(case.scene)))
              for case in cases]
@@ -116,21 +122,17 @@ def bench_case(case: ImageCase, engines: list[Engine], reference_engine: Engine,
     for e in engines:
         time.sleep(QUIET_SECONDS)  # the previous engine's threads have stopped spinning
         curves[e.label or e.name] = run_ladder(e, local, reference, seed, ladder, runs, on_step)
-    return CaseBench(case, curves, reference.summary.pixel.mean, truth)
-
-
-#: Samples per pixel of one Mitsuba render at the seed settings: its wavefront holds every sample of a
-#: render at once, and 768^2 x 512 of them would not fit in memory, so ao's 512 are rendered in passes.
-MITSUBA_PASS_SPP = 64
+    return CaseBench(case, curves, reference.summary.pixel.mean, truth, engines[0].name, reference_engine.name,
+                     {e.name: e.best_samplers for e in engines})
 
 
 def _render_seconds(engine: Engine, scene: str, integrator: str, spp: int, seed: int) -> float:
-    """Render time of `spp` samples per pixel at the seed resolution, in passes of at most MITSUBA_PASS_SPP
-    for Mitsuba (ours renders them at once)."""
+    """Render time of `spp` samples per pixel at the seed resolution, in passes of at most the engine's
+    `pass_spp` (a wavefront engine: 768^2 x 512 samples at once would not fit in memory)."""
     params = {"res": str(SEED_RESOLUTION)}
-    if engine.name == "mcval":
+    if engine.pass_spp is None:
         return engine.render(scene, integrator, spp, 1, seed, params).seconds["render"]
-    passes = max(1, spp // MITSUBA_PASS_SPP)
+    passes = max(1, spp // engine.pass_spp)
     return sum(engine.render(scene, integrator, spp // passes, 1, seed * 1000 + k, params).seconds["render"]
                for k in range(passes))
 
@@ -145,7 +147,7 @@ def seed_comparison(ours: Engine, runs: int = 3, on_step: Callable[[str], None] 
         entry = {"spp": setting["spp"], "resolution": SEED_RESOLUTION, "seed_seconds": setting["seed_seconds"]}
         for engine in [ours] + ([reference] if reference else []):
             if engine is reference:
-                engine.render(scene, integrator, min(setting["spp"], MITSUBA_PASS_SPP), 1, 0,
+                engine.render(scene, integrator, min(setting["spp"], engine.pass_spp or setting["spp"]), 1, 0,
                               {"res": str(SEED_RESOLUTION)})  # warm-up
             times = []
             for run in range(runs):

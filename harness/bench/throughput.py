@@ -18,14 +18,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from harness.images.suite import SCENES_DIR
-from harness.engines.mitsuba import load_mitsuba
+from harness.engines.mitsuba import MitsubaEngine, load_mitsuba
 from harness.engines.mitsuba_scene import MITSUBA_SAMPLER, load_scene
+from harness.engines.ours import OurEngine
 from harness.native import renderer_module
+
+#: The two engines timed side by side, in process, by name (the keys of the figures).
+OURS, MITSUBA = OurEngine.name, MitsubaEngine.name
 
 #: Seconds to wait before an engine's renders, so that the other engine's threads have stopped spinning.
 QUIET_SECONDS = 0.25
 
-#: (scene, integrator, resolution, spp): the issue's four cases.
+#: (scene, integrator, resolution, spp): the four cases timed side by side.
 CASES = (("highpoly", "simple", 768, 32), ("highpoly", "ao", 768, 16),
          ("cornell", "simple", 128, 64), ("cornell", "ao", 128, 64))
 
@@ -43,7 +47,7 @@ class Throughput:
     mitsuba_spp: int = 0
 
     def rendered_spp(self, engine: str) -> int:
-        return self.mitsuba_spp or self.spp if engine == "mitsuba" else self.spp
+        return self.mitsuba_spp or self.spp if engine == MITSUBA else self.spp
 
     def median(self, engine: str) -> float:
         return float(np.median(self.seconds[engine]))
@@ -51,7 +55,7 @@ class Throughput:
     def ratio(self) -> float:
         """Mitsuba's median render time over ours, per sample (the same as per render unless Mitsuba's sampler
         rounded the count): above 1, ours is faster per sample."""
-        return (self.median("mitsuba") / self.rendered_spp("mitsuba")) / (self.median("mcval") / self.spp)
+        return (self.median(MITSUBA) / self.rendered_spp(MITSUBA)) / (self.median(OURS) / self.spp)
 
     def to_json(self) -> dict:
         samples = {e: self.resolution ** 2 * self.rendered_spp(e) for e in self.seconds}
@@ -89,7 +93,7 @@ def measure(scene_name: str, integrator: str, res: int, spp: int, runs: int = 3,
         dr.sync_thread()
         return time.perf_counter() - start
 
-    seconds: dict[str, list[float]] = {"mcval": [], "mitsuba": []}
+    seconds: dict[str, list[float]] = {OURS: [], MITSUBA: []}
     rays = 0
     for run in range(1, runs + 1):
         # Each engine's timed render follows a pause longer than either engine keeps its threads spinning
@@ -99,10 +103,10 @@ def measure(scene_name: str, integrator: str, res: int, spp: int, runs: int = 3,
         time.sleep(QUIET_SECONDS)
         _ours(scene, integrator, res, spp, sampler, 1000 + run)
         t, rays = _ours(scene, integrator, res, spp, sampler, run)
-        seconds["mcval"].append(t)
+        seconds[OURS].append(t)
         time.sleep(QUIET_SECONDS)
         mitsuba(1000 + run)
-        seconds["mitsuba"].append(mitsuba(run))
+        seconds[MITSUBA].append(mitsuba(run))
     mitsuba_spp = loaded.sensors()[0].sampler().sample_count()  # as the renders set it
     return Throughput(scene_name, integrator, res, spp, sampler, seconds, rays, mitsuba_spp)
 
@@ -113,11 +117,11 @@ def table(results: list[Throughput]) -> str:
              f"{'Mitsuba':>8} {'Mrays/s ours':>12} {'Mitsuba':>8}"]
     for r in results:
         j = r.to_json()
-        lines.append(f"{f'{r.scene}:{r.integrator} {r.resolution}² {r.spp} spp':<30} {r.median('mcval'):7.3f} "
-                     f"{r.median('mitsuba'):9.3f} {r.ratio():12.2f} "
+        lines.append(f"{f'{r.scene}:{r.integrator} {r.resolution}² {r.spp} spp':<30} {r.median(OURS):7.3f} "
+                     f"{r.median(MITSUBA):9.3f} {r.ratio():12.2f} "
                      + (f"(Mitsuba {r.mitsuba_spp} spp) " if r.mitsuba_spp != r.spp else "") +
-                     f"{j['samples_per_second']['mcval'] / 1e6:15.1f} {j['samples_per_second']['mitsuba'] / 1e6:8.1f} "
-                     f"{j['rays_per_second']['mcval'] / 1e6:12.1f} {j['rays_per_second']['mitsuba'] / 1e6:8.1f}")
+                     f"{j['samples_per_second'][OURS] / 1e6:15.1f} {j['samples_per_second'][MITSUBA] / 1e6:8.1f} "
+                     f"{j['rays_per_second'][OURS] / 1e6:12.1f} {j['rays_per_second'][MITSUBA] / 1e6:8.1f}")
     return "\n".join(lines)
 
 

@@ -5,7 +5,7 @@ import argparse
 import time
 from pathlib import Path
 
-from harness.commands.options import add_common
+from harness.commands.options import add_common, add_engines
 from harness.commands.output import console, progress_bar
 from harness.commands.run_folder import RunFolder
 from harness.distributed.cluster import add_executor_options
@@ -13,7 +13,7 @@ from harness.results import write_atomic
 
 NAME = "bench"
 HELP = "speed against error: convergence curves and efficiency ratios"
-ENGINES = ("mcval", "mitsuba", "mitsuba-scalar")
+ENGINES = ("mcval", "mitsuba", "mitsuba-scalar")  # registry names (harness/engines/registry.py)
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -22,8 +22,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_common(p)
     p.add_argument("--scenes", "--only", dest="scenes", nargs="+", metavar="CASE",
                    help="as for `images` (default: the simple and ao cases of every scene)")
-    p.add_argument("--engines", nargs="+", default=list(ENGINES), choices=list(ENGINES),
-                   help="engines to run (default: all three)")
+    p.add_argument("--engines", nargs="+", default=list(ENGINES), metavar="NAME",
+                   help="engines to run, the engine under test first (default: mcval mitsuba mitsuba-scalar)")
+    add_engines(p, test=False)
     p.add_argument("--max-spp", type=int, default=256, help="top of the ladder 1, 2, 4, ... (default 256)")
     p.add_argument("--same-sampler", action="store_true",
                    help="only the engine comparison: every engine with the independent sampler (by default each "
@@ -40,21 +41,20 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def _engines(args):
     """Each engine with the same sampler (the engine comparison) and, unless --same-sampler, its stratified
-    ones (each engine at its best)."""
-    from harness.bench.run import SAME_SAMPLER, SAMPLERS
-    from harness.engines.mitsuba import MitsubaEngine
-    from harness.engines.ours import OurEngine
+    ones (each engine at its best); renders in this process where the engine can, as the others do."""
+    from harness.bench.run import SAME_SAMPLER
+    from harness.engines.registry import make_engine
 
-    factories = {"mcval": lambda s: OurEngine(sampler=s, in_process=True), "mitsuba": lambda s: MitsubaEngine(sampler=s),
-                 "mitsuba-scalar": lambda s: MitsubaEngine("scalar_rgb", sampler=s)}
-    return [factories[name](s) for name in args.engines for s in SAMPLERS[name]
-            if s == SAME_SAMPLER or not args.same_sampler]
+    return [make_engine(name, sampler=s, in_process=True) for name in args.engines
+            for s in make_engine(name, in_process=True).samplers if s == SAME_SAMPLER or not args.same_sampler]
 
 
 def _measure(args, cases, engines, reference, ladder):
     """The ladders, the seed settings, the throughput and the sampler slopes, as asked."""
     from harness.bench.run import run_bench, seed_comparison
     from harness.distributed.cluster import open_executor
+    from harness.engines.mitsuba import MitsubaEngine
+    from harness.engines.ours import OurEngine
 
     with open_executor(args) as executor, progress_bar("bench") as progress:
         steps = sum(e.renders_exactly(spp) for e in engines for spp in ladder)
@@ -63,19 +63,22 @@ def _measure(args, cases, engines, reference, ladder):
                             on_step=lambda m: progress.update(task, advance=1, description=m), executor=executor,
                             on_status=lambda st: progress.update(task, completed=st.done, description=st.last)
                             if executor.ships_files else None)
-        ours = next((e for e in engines if e.name == "mcval"), None)
+        # Our renderer's own measurements (the seed document's settings, the side-by-side throughput, its
+        # samplers' slopes) run when it is among the engines.
+        ours = next((e for e in engines if isinstance(e, OurEngine)), None)
+        with_reference = any(isinstance(e, MitsubaEngine) and e.name == reference.name for e in engines)
         seed = seed_comparison(ours, args.seed_runs, lambda m: progress.console.print(m),
-                               reference if "mitsuba" in args.engines else None) \
+                               reference if with_reference else None) \
             if args.seed_runs > 0 and ours is not None else None
         throughput = None
-        if args.throughput_runs > 0 and {"mcval", "mitsuba"} <= set(args.engines):
+        if args.throughput_runs > 0 and ours is not None and with_reference:
             from harness.bench.throughput import CASES, measure
             throughput = []
             for case in CASES:
                 progress.console.print(f"throughput: {case[0]}:{case[1]} {case[2]}² {case[3]} spp")
                 throughput.append(measure(*case, runs=args.throughput_runs).to_json())
         slopes = None
-        if "mcval" in args.engines:
+        if ours is not None:
             from harness.bench.sampler_slopes import sampler_slopes
             progress.console.print("sampler slopes: cornell simple and ao, 32², our samplers")
             slopes = sampler_slopes()
@@ -84,16 +87,17 @@ def _measure(args, cases, engines, reference, ladder):
 
 def run(args: argparse.Namespace, run: RunFolder) -> int:
     from harness.bench.run import ray_rates
-    from harness.engines.mitsuba import MitsubaEngine
+    from harness.engines.registry import make_engine
     from harness.images.suite import select_cases
+    from harness.integrators import entry
     from harness.report.bench_html import bench_html
     from harness.report.bench_table import bench_lines, bench_table
 
     run_dir = run.start()
     # By default the simple and ao cases of our own scenes (the real scenes are validated, not benchmarked).
     cases = [c for c in select_cases(args.scenes)
-             if args.scenes or (c.integrator != "normals" and c.group == "synthetic")]
-    reference = MitsubaEngine()
+             if args.scenes or (entry(c.integrator).benchmarked and c.group == "synthetic")]
+    reference = make_engine(args.reference)
     engines = _engines(args)
     ladder = tuple(2**k for k in range(args.max_spp.bit_length()) if 2**k <= args.max_spp)
     start = time.perf_counter()

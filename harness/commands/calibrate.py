@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from harness.commands.options import add_common
+from harness.commands.options import add_common, add_engines
 from harness.commands.output import console, task_progress
 from harness.commands.run_folder import RunFolder
 from harness.distributed.cluster import add_executor_options
@@ -28,6 +28,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "raises more false alarms than it says) or a comparison failed; a rate below its interval "
         "(conservative: it costs power, not false FAILs) is shown in yellow.")
     add_common(p)
+    add_engines(p)
     p.add_argument("--warps", action="store_true", help="calibrate the warp checks (with --images: both; the default)")
     p.add_argument("--images", action="store_true", help="calibrate the image comparisons (default: both)")
     p.add_argument("--only", nargs="+", metavar="WARP", help="only these warps, e.g. tent beckmann:0.01")
@@ -55,14 +56,13 @@ def run(args: argparse.Namespace, run: RunFolder) -> int:
 
 
 def _calibrate(args, run_dir: Path, executor) -> tuple[bool, dict, str]:
-    from harness.engines.mitsuba import MitsubaEngine
-    from harness.engines.ours import OurEngine
+    from harness.engines.registry import make_engine
     from harness.report.calibration_html import calibration_page, warp_calibration_html
     from harness.report.image_calibration_html import image_calibration_sections
 
     warps, images = (args.warps or not args.images), (args.images or not args.warps)
-    ours = OurEngine()
-    reference = None if args.no_mitsuba else MitsubaEngine()
+    ours = make_engine(args.engine)
+    reference = None if args.no_mitsuba else make_engine(args.reference)
     payload: dict = {"run": run_dir.name}
     meta: dict = {"engine": ours.version(), "reference": reference.version() if reference else "none"}
     ok, sections = True, []

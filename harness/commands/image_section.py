@@ -36,8 +36,7 @@ def _print_regression(payload: dict) -> None:
 def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: Path | None,
                       not_applicable=(), invariance: dict | None = None, executor=None) -> tuple[bool, dict]:
     """Every case against its references; returns (all pass, the results.json fields)."""
-    from harness.engines.mitsuba import MitsubaEngine
-    from harness.engines.ours import OurEngine
+    from harness.engines.registry import make_engine
     from harness.images.real_scenes import real_scenes_json, split
     from harness.images.run import run_images
     from harness.integrators import match
@@ -45,10 +44,10 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     from harness.report.image_outputs import write_image_outputs
     from harness.report.image_table import image_table
 
-    ours, mitsuba = OurEngine(), MitsubaEngine(args.variant)
+    ours, reference = make_engine(args.engine), make_engine(args.reference, variant=args.variant)
     start = time.perf_counter()
     with task_progress("images", executor) as show:
-        results, alpha = run_images(cases, ours, mitsuba, args.seed, on_status=show,
+        results, alpha = run_images(cases, ours, reference, args.seed, on_status=show,
                                     on_message=lambda m: err.print(f"[yellow]{escape(m)}[/]", soft_wrap=True),
                                     executor=executor)
         where = executor.description
@@ -61,7 +60,7 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     for name in match().without_entry:
         console.print(f"[yellow]{escape(name)}[/]: no harness entry (not validated; see `python -m harness "
                       "integrators`)")
-    meta = {"engine": ours.version(), "reference": mitsuba.version(), "seed": args.seed,
+    meta = {"engine": ours.version(), "reference": reference.version(), "seed": args.seed,
             "image seconds": round(seconds, 1), "ran on": where}
     payload = write_image_outputs(run_dir, results, alpha, warps, meta, baseline, invariance)
     if real or not_applicable:

@@ -4,7 +4,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from harness.commands.options import add_common, add_variant
+from harness.commands.options import add_common, add_engines, add_variant
 from harness.commands.output import console
 from harness.commands.run_folder import RunFolder
 from harness.distributed.cluster import add_executor_options
@@ -35,11 +35,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.formatter_class = argparse.RawDescriptionHelpFormatter
     p.description = DESCRIPTION
     add_common(p)
+    add_engines(p)
     p.add_argument("--only", nargs="+", metavar="NAME",
                    help="scenes, integrators, scene:integrator cases or invariances, e.g. crevice ao scale "
                         "(a kind not named means all of it)")
     p.add_argument("--json", type=Path, metavar="PATH", help="also write the results as JSON to PATH")
-    p.add_argument("--no-mitsuba", action="store_true", help="check our renderer alone")
+    p.add_argument("--no-mitsuba", action="store_true", help="check the engine under test alone")
     add_variant(p)
     add_executor_options(p)
 

@@ -13,7 +13,7 @@ from harness.results import write_atomic
 
 def run_invariance_section(args, only, run_dir: Path, executor, engines=None) -> tuple[bool, dict]:
     """Returns (the tested engine breaks none, the results.json block); writes invariance.html."""
-    from harness.engines.ours import OurEngine
+    from harness.engines.registry import make_engine
     from harness.invariance.check import run_invariances
     from harness.invariance.findings import failure_lines, invariance_payload
     from harness.invariance.suite import select
@@ -22,10 +22,9 @@ def run_invariance_section(args, only, run_dir: Path, executor, engines=None) ->
 
     cases, invariances = select(only)
     if engines is None:
-        engines = [OurEngine()]
+        engines = [make_engine(args.engine)]
         if not getattr(args, "no_mitsuba", False):
-            from harness.engines.mitsuba import MitsubaEngine
-            engines.append(MitsubaEngine(args.variant))
+            engines.append(make_engine(args.reference, variant=args.variant))
     gating = engines[0].name
     start = time.perf_counter()
     with task_progress("invariances", executor) as show:

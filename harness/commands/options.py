@@ -27,7 +27,21 @@ def add_variant(q: argparse.ArgumentParser) -> None:
 def add_image_options(q: argparse.ArgumentParser) -> None:
     """What `images` and `validate` take: cases, the regression baseline, Mitsuba's variant, the executor."""
     add_case_choice(q, "all, scenes/ and scenes/real/")
+    add_engines(q)
     q.add_argument("--baseline", type=Path, metavar="RESULTS_JSON",
                    help="compare with this run's results.json (default: the previous run's)")
     add_variant(q)
     add_executor_options(q)
+
+
+def add_engines(q: argparse.ArgumentParser, test: bool = True, reference: bool = True) -> None:
+    """--engine (the engine under test) and --reference (the engine it is compared with), by registry name
+    (harness/engines/registry.py; more with $MCVAL_ENGINE_PATH)."""
+    from harness.engines.registry import DEFAULT_REFERENCE, DEFAULT_TEST
+
+    if test:
+        q.add_argument("--engine", default=DEFAULT_TEST, metavar="NAME",
+                       help=f"the engine under test (default: {DEFAULT_TEST}, this repository's renderer)")
+    if reference:
+        q.add_argument("--reference", default=DEFAULT_REFERENCE, metavar="NAME",
+                       help=f"the engine it is compared with (default: {DEFAULT_REFERENCE}, Mitsuba 3)")

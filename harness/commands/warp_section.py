@@ -12,14 +12,13 @@ from harness.statistics.constants import WARP_SAMPLES
 def run_warp_section(args, specs, run_dir: Path) -> tuple[bool, dict]:
     """Every warp of `specs` against its pdf and, unless --no-mitsuba, against Mitsuba's; returns (all pass,
     the results.json block)."""
-    from harness.engines.mitsuba import MitsubaEngine
-    from harness.engines.ours import OurEngine
+    from harness.engines.registry import make_engine
     from harness.report.warp_outputs import warp_payload, write_warp_outputs
     from harness.report.warp_table import warp_table
     from harness.warps.suite import run_matrix
 
-    ours = OurEngine()
-    reference = None if getattr(args, "no_mitsuba", False) else MitsubaEngine()
+    ours = make_engine(args.engine)
+    reference = None if getattr(args, "no_mitsuba", False) else make_engine(args.reference)
     samples = getattr(args, "samples", WARP_SAMPLES)
     start = time.perf_counter()
     with progress_bar("warps") as progress:

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field, replace
+from pathlib import Path
 from typing import Any, Callable
 
 import numpy as np
@@ -84,6 +85,18 @@ class Engine(ABC):
     name: str
     #: The name with the sampler it was told to use, if any ("mcval/sobol"): a benchmark's curve label.
     label: str = ""
+    #: The samplers `bench` runs it with: the independent one (the like-for-like comparison) first, then its
+    #: stratified ones; and those its best curve is chosen from (none: its best curve of any sampler).
+    samplers: tuple[str, ...] = ("independent",)
+    best_samplers: tuple[str, ...] = ()
+    #: Most samples per pixel one render call should take at high resolution (a wavefront engine holds every
+    #: sample of a call in memory); None: any number.
+    pass_spp: int | None = None
+
+    def scene_file(self, path: Path) -> Path:
+        """The scene file this engine renders for `path`: the same file, unless the engine needs another one
+        that gives the same image (see MitsubaEngine)."""
+        return path
 
     def renders_exactly(self, spp: int) -> bool:
         """Whether a render asked for `spp` samples per pixel takes exactly that many (a sampler may round)."""

@@ -4,6 +4,7 @@ from __future__ import annotations
 import glob
 import os
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -37,10 +38,20 @@ def load_mitsuba(variant: str = DEFAULT_VARIANT):
     return mi
 
 
+#: Scenes whose Mitsuba render is another scene file that must give the same image. far_from_origin is
+#: sphere_plane scaled by 1000 and moved 1e5 from the origin: the same image, rendered by Mitsuba where its ray
+#: offset ((1 + max|p|) * 9e-5) is not stretched by the distance.
+SCENE_SUBSTITUTES = {"far_from_origin": "sphere_plane"}
+
+
 class MitsubaEngine(Engine):
     """Mitsuba 3 from PyPI."""
 
     name = "mitsuba"
+    samplers = ("independent", "ldsampler", "multijitter")
+    best_samplers = ("ldsampler", "multijitter")
+    #: Its wavefront holds every sample of a render at once: 768^2 x 512 would not fit in memory.
+    pass_spp = 64
 
     render_timing = ("render only (scene load and BVH build are timed apart); with an llvm variant the first "
                      "render of each sample count also JIT-compiles, so medians of several runs are warm")
@@ -50,12 +61,17 @@ class MitsubaEngine(Engine):
             raise ValueError(f"unknown Mitsuba sampler {sampler!r}: one of {', '.join(SAMPLERS)}")
         self.variant = variant
         self.name = "mitsuba" if variant == DEFAULT_VARIANT else f"mitsuba-{variant.split('_')[0]}"
+        if variant != DEFAULT_VARIANT:
+            self.samplers, self.best_samplers = ("independent",), ()
         self.sampler = sampler  # None: the scene's (mapped); else a Mitsuba sampler plugin name
         self.label = self.name if sampler is None else f"{self.name}/{sampler}"
         self._exact: dict[tuple[str, int], bool] = {}
         self._mi = load_mitsuba(variant)
         import drjit
         self._dr = drjit
+
+    def scene_file(self, path: Path) -> Path:
+        return path.with_name(f"{SCENE_SUBSTITUTES.get(path.stem, path.stem)}.xml")
 
     def __reduce__(self):
         # To a worker as its arguments: each worker process loads Mitsuba, sets the variant and JIT-compiles

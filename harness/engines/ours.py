@@ -20,6 +20,8 @@ class OurEngine(Engine):
     """
 
     name = "mcval"
+    samplers = ("independent", "sobol")
+    best_samplers = ("sobol",)
     render_timing = "render only (scene load and BVH build are timed apart)"
 
     def __init__(self, binary: str | Path | None = None, timeout: float | None = None,

@@ -125,7 +125,7 @@ def calibrate_images(ours: Engine, mitsuba: Engine, per_kind: int, seed: int = 0
     jobs = [NullJob(kind, _case(CASES[kind][i % len(CASES[kind])]), 1_000_003 * seed + 2 * (i + per_kind * k),
                     resolution, alpha, ours, mitsuba)
             for k, kind in enumerate(KINDS) for i in range(per_kind)]
-    bundles = share_scene_bundles(executor, [j.case for j in jobs])
+    bundles = share_scene_bundles(executor, [j.case for j in jobs], (ours, mitsuba))
     start = time.perf_counter()
     outcomes = executor.run([Task(f"{j.kind} {j.case.key}", null_comparison, (j, bundles.get(j.case.scene)))
                              for j in jobs], on_status)

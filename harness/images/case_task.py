@@ -3,6 +3,7 @@ files sent by content. What comes back is the case's result without our batches 
 report needs only their means), and the messages the case printed."""
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 from harness.distributed.bundle import Bundle, bundle_files
@@ -19,18 +20,19 @@ class CaseJob:
     alpha: float             # per-comparison level of the whole run
     run_seed: int
     closed_form: bool        # whether the analytic engine renders this case too
-    ours: Engine
-    mitsuba: Engine
+    ours: Engine             # the tested engine
+    reference: Engine
 
 
-def share_scene_bundles(executor, cases) -> dict[str, object]:
+def share_scene_bundles(executor, cases, engines: Sequence[Engine]) -> dict[str, object]:
     """Per scene of `cases`, a handle to its bundle on the executor's cluster, each sent once; nothing
-    for an executor that runs here (its tasks read the files in place)."""
+    for an executor that runs here (its tasks read the files in place). `engines`: those that will render
+    the cases (each may read its own scene file, and its stored references)."""
     bundles: dict[str, object] = {}
     if executor.ships_files:
         for case in cases:
             if case.scene not in bundles:
-                bundles[case.scene] = executor.share(scene_bundle(case))
+                bundles[case.scene] = executor.share(scene_bundle(case, engines))
     return bundles
 
 
@@ -39,11 +41,16 @@ def on_files(case: ImageCase, bundle: Bundle | None) -> ImageCase:
     return case if bundle is None else replace(case, root=bundle.materialize())
 
 
-def scene_bundle(case: ImageCase) -> Bundle:
-    """The files every case of `case.scene` reads: its scene files, their meshes, its stored references."""
-    stored = reference_path(case).parent
-    extra = {f"references/{case.scene}/{p.name}": p for p in sorted(stored.glob("*"))} if stored.is_dir() else {}
-    return bundle_files(ROOT, [case.path, case.mitsuba_path], extra)
+def scene_bundle(case: ImageCase, engines: Sequence[Engine] = ()) -> Bundle:
+    """The files every case of `case.scene` reads: its scene file and each engine's (Engine.scene_file),
+    their meshes, and each engine's stored references of the scene."""
+    extra = {}
+    for engine in engines:
+        stored = reference_path(case, engine).parent
+        if stored.is_dir():
+            extra.update({str(p.relative_to(ROOT)): p for p in sorted(stored.glob("*"))})
+    files = list(dict.fromkeys([case.path, *(e.scene_file(case.path) for e in engines)]))
+    return bundle_files(ROOT, files, extra)
 
 
 def run_case_job(job: CaseJob, bundle: Bundle | None = None):
@@ -52,7 +59,7 @@ def run_case_job(job: CaseJob, bundle: Bundle | None = None):
 
     case = on_files(job.case, bundle)
     messages: list[str] = []
-    result = _run_case(case, job.ours, job.mitsuba, AnalyticEngine() if job.closed_form else None,
+    result = _run_case(case, job.ours, job.reference, AnalyticEngine() if job.closed_form else None,
                        {"res": str(RESOLUTION)}, job.seed, job.alpha, job.run_seed, messages.append)
     result.case = job.case
     if result.ours is not None and (result.passed or result.error is not None):

@@ -16,6 +16,7 @@ from harness.images.references import REFERENCE_BATCHES
 from harness.images.suite import OUR_SPP, ImageCase
 from harness.statistics.calibration_rates import CALIBRATION_LEVELS
 from harness.statistics.constants import IMAGE_BATCHES, TILE_SIZE
+from harness.integrators import entry
 
 #: The pairs of engines whose renders of one case must agree.
 KINDS = ("ours-ours", "mitsuba-mitsuba", "ours-analytic")
@@ -35,15 +36,14 @@ class NullJob:
 
 
 def _render(engine: Engine, case: ImageCase, spp: int, batches: int, seed: int, res: int) -> np.ndarray:
-    path = case.mitsuba_path if engine.name.startswith("mitsuba") else case.path
-    return engine.render(str(path), case.integrator, spp, batches, seed, {"res": str(res)}).batches
+    return engine.render(str(engine.scene_file(case.path)), case.integrator, spp, batches, seed, {"res": str(res)}).batches
 
 
 def null_comparison(job: NullJob, bundle: Bundle | None = None) -> dict:
     """The rejections of one null comparison by scale and level, its image-scale smallest p-value, and
     (ours twice) which planted biases the default level finds."""
     case = on_files(job.case, bundle)
-    spp, signed = OUR_SPP[case.integrator], case.integrator == "normals"
+    spp, signed = OUR_SPP[case.integrator], entry(case.integrator).signed
     # The test side as the validation renders ours; the reference side with more batches, as a reference has.
     test_engine, ref_engine = {"ours-ours": (job.ours, job.ours), "mitsuba-mitsuba": (job.mitsuba, job.mitsuba),
                                "ours-analytic": (job.ours, AnalyticEngine())}[job.kind]

@@ -18,7 +18,7 @@ from harness.comparison.compare import Comparison, Summary, compare_summaries
 class Finding:
     """A reference overruled by the closed form, and why."""
 
-    overruled: str                 # the reference whose failed comparison no longer decides ("mitsuba")
+    overruled: str                 # the reference engine whose failed comparison no longer decides
     text: str                      # one line for the terminal and results.json
     reference_vs_closed_form: dict  # the reference's own comparison with the closed form (Comparison.to_json)
     mean_ratio: dict[str, list[float]]  # image mean over the closed form's, per channel, by engine
@@ -47,22 +47,23 @@ def _fmt(ratio: list[float]) -> str:
 
 
 def decide(comparisons: dict[str, Comparison], ours: Summary, references: dict[str, Summary],
-           alpha: float, signed: bool, samples: dict[str, int]) -> Finding | None:
-    """A finding when ours agrees with the closed form ("analytic") and fails against Mitsuba; else None.
+           alpha: float, signed: bool, samples: dict[str, int], reference: str, closed_form: str) -> Finding | None:
+    """A finding when ours agrees with the closed form and fails against the reference engine; else None.
 
-    `references` holds each reference's summary by name, `samples` each side's samples per pixel (and
-    "ours")."""
-    exact, mitsuba = comparisons.get("analytic"), comparisons.get("mitsuba")
-    if exact is None or mitsuba is None or not exact.passed or mitsuba.passed:
+    `comparisons`, `references` (summaries) and `samples` (samples per pixel) are keyed by engine name, the
+    reference engine's `reference` and the closed form's `closed_form`."""
+    exact, other = comparisons.get(closed_form), comparisons.get(reference)
+    if exact is None or other is None or not exact.passed or other.passed:
         return None
-    evidence = compare_summaries(references["mitsuba"], references["analytic"], alpha, signed=signed,
-                                 samples=(samples["mitsuba"], samples["analytic"]))
-    ratios = {"mitsuba": _ratio(references["mitsuba"], references["analytic"]),
-              "ours": _ratio(ours, references["analytic"])}
+    evidence = compare_summaries(references[reference], references[closed_form], alpha, signed=signed,
+                                 samples=(samples[reference], samples[closed_form]))
+    ratios = {reference: _ratio(references[reference], references[closed_form]),
+              "ours": _ratio(ours, references[closed_form])}
+    shown = reference.capitalize()
     if evidence.passed:
         what = "disagrees with ours, though the closed form does not reject either"
     else:
-        what = f"breaks the closed form: Mitsuba against it {_where(evidence)}"
-    text = (f"reference {what}; image mean over the closed form: Mitsuba {_fmt(ratios['mitsuba'])}, ours "
-            f"{_fmt(ratios['ours'])} (ours agrees with the closed form; ours against Mitsuba {_where(mitsuba)})")
-    return Finding("mitsuba", text, evidence.to_json(), ratios)
+        what = f"breaks the closed form: {shown} against it {_where(evidence)}"
+    text = (f"reference {what}; image mean over the closed form: {shown} {_fmt(ratios[reference])}, ours "
+            f"{_fmt(ratios['ours'])} (ours agrees with the closed form; ours against {shown} {_where(other)})")
+    return Finding(reference, text, evidence.to_json(), ratios)

@@ -1,7 +1,7 @@
-"""Mitsuba reference renders under references/, each with its provenance.
+"""Reference renders under references/<engine>/, each with its provenance.
 
-A reference is stored as its summary (what the tests need of its K batches):
-`references/<scene>/<integrator>.exr` holds the mean image (R, G, B) and the
+A reference is stored as its summary (what the tests need of its K batches), under the name of the engine
+that rendered it: `references/<engine>/<scene>/<integrator>.exr` holds the mean image (R, G, B) and the
 variance of that mean (variance.R/G/B) in float32; the `.json` beside it holds
 the provenance and the tile and image batch statistics. A reference is reused
 only when its provenance (the hash of the scene file and every mesh it names,
@@ -42,6 +42,10 @@ REFERENCE_BATCHES = 16
 RESOLUTION = 128
 
 
+#: The source of a reference that is the integrator's closed form (harness/engines/analytic.py).
+CLOSED_FORM = "closed form"
+
+
 @dataclass
 class Reference:
     """A reference engine's summary of K batches, and what it cost."""
@@ -64,16 +68,18 @@ def scene_hash(path: Path) -> str:
 
 def expected_provenance(case: ImageCase, engine: Engine) -> dict:
     """What a reference for `case` must have been made from to be reused."""
-    return {"scene": case.mitsuba_path.name, "scene_sha256": scene_hash(case.mitsuba_path),
+    scene = engine.scene_file(case.path)
+    return {"scene": scene.name, "scene_sha256": scene_hash(scene),
             "integrator": case.integrator, "engine": engine.version(), "spp": REFERENCE_SPP[case.integrator],
             "batches": REFERENCE_BATCHES, "seed": REFERENCE_SEED, "resolution": RESOLUTION, "tile": TILE_SIZE,
             "summary_format": SUMMARY_FORMAT}
 
 
-def reference_path(case: ImageCase) -> Path:
-    """Where the case's stored reference is: under REFERENCES_DIR, or in a worker's copy of the files."""
+def reference_path(case: ImageCase, engine: Engine) -> Path:
+    """Where the case's stored reference by `engine` is: references/<engine>/<scene>/<integrator>.exr under
+    the project, or in a worker's copy of the files."""
     folder = REFERENCES_DIR if case.root == ROOT else case.root / "references"
-    return folder / case.scene / f"{case.integrator}.exr"
+    return folder / engine.name / case.scene / f"{case.integrator}.exr"
 
 
 def summary_sha256(summary: Summary) -> str:
@@ -188,7 +194,7 @@ def _read_summary(path: Path, meta_path: Path, meta: dict) -> tuple[Summary, dic
 def load_reference(case: ImageCase, engine: Engine) -> tuple[Reference | None, str]:
     """The stored reference if its provenance matches and its files are sound, else None; and why, in
     one line ("<path>: <what is wrong>" for a damaged file). Never raises for a bad file."""
-    path = reference_path(case)
+    path = reference_path(case, engine)
     meta_path = path.with_suffix(".json")
     if not path.exists() and not meta_path.exists():
         return None, "no stored reference"
@@ -211,13 +217,13 @@ def load_reference(case: ImageCase, engine: Engine) -> tuple[Reference | None, s
 
 def render_reference(case: ImageCase, engine: Engine) -> Reference:
     """The reference engine's K batches for `case` at the reference budget, summarised."""
-    result = engine.render(str(case.mitsuba_path), case.integrator, REFERENCE_SPP[case.integrator],
+    result = engine.render(str(engine.scene_file(case.path)), case.integrator, REFERENCE_SPP[case.integrator],
                            REFERENCE_BATCHES, REFERENCE_SEED, {"res": str(RESOLUTION)})
     return Reference(summarize(result.batches), result.spp, result.seconds, "rendered now")
 
 
 def write_reference(case: ImageCase, engine: Engine, reference: Reference) -> Path:
-    """Store a reference as references/<scene>/<integrator>.exr and .json, each written atomically."""
+    """Store a reference as references/<engine>/<scene>/<integrator>.exr and .json, each written atomically."""
     from harness.exr import write_layers
 
     s = reference.summary
@@ -225,7 +231,7 @@ def write_reference(case: ImageCase, engine: Engine, reference: Reference) -> Pa
     stored = Summary(BatchStats(s.pixel.mean.astype(np.float32), s.pixel.var_of_mean.astype(np.float32), s.pixel.k),
                      BatchStats(s.tile.mean.round(7), s.tile.var_of_mean, s.tile.k), s.image, s.tile_size)
     channels = {"RGB": stored.pixel.mean, "variance": stored.pixel.var_of_mean}
-    path = reference_path(case)
+    path = reference_path(case, engine)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.stem}.tmp.exr")
     write_layers(tmp, channels)

@@ -48,9 +48,11 @@ def compare_runs(current: list[dict], baseline: dict) -> list[dict]:
             if np.any(z > MEAN_SIGMAS) and np.any(m1 != m0):
                 flags.append(f"image mean moved {float(np.max(z)):.1f} standard errors "
                              f"({float(np.mean(m1) / max(np.mean(m0), 1e-12)) - 1:+.2%})")
-            t0, t1 = old["seconds"]["mcval"]["total"], e["seconds"]["mcval"]["total"]
-            if abs(t1 - t0) > TIME_FLOOR and not (1 / TIME_FACTOR < t1 / max(t0, 1e-9) < TIME_FACTOR):
-                flags.append(f"time {t0:.2f}s -> {t1:.2f}s")
+            tested = e.get("engine")  # the tested engine's time, where the earlier run timed the same engine
+            if tested in old["seconds"] and tested in e["seconds"]:
+                t0, t1 = old["seconds"][tested]["total"], e["seconds"][tested]["total"]
+                if abs(t1 - t0) > TIME_FLOOR and not (1 / TIME_FACTOR < t1 / max(t0, 1e-9) < TIME_FACTOR):
+                    flags.append(f"time {t0:.2f}s -> {t1:.2f}s")
         out.append(_entry(e, old, flags))
     return out
 

@@ -17,17 +17,10 @@ SCENES_DIR = ROOT / "scenes"
 REAL_SCENES_DIR = SCENES_DIR / "real"
 GROUP_DIRS = {"synthetic": SCENES_DIR, "real": REAL_SCENES_DIR}
 
-#: Scenes whose Mitsuba reference is another scene file that must give the same image.
-#: far_from_origin is sphere_plane scaled by 1000 and moved 1e5 from the origin: the same image,
-#: rendered by Mitsuba where its ray offset ((1 + max|p|) * 9e-5) is not stretched by the distance.
-MITSUBA_SCENE = {"far_from_origin": "sphere_plane"}
-
-
 def suite_integrators() -> tuple[str, ...]:
-    """The renderer's integrators that have an entry; normals first (a scene whose normals fail has a camera
-    or geometry mismatch, which the run notes on that scene's other cases)."""
-    names = [e.name for e in match().entries]
-    return tuple(sorted(names, key=lambda n: n != "normals"))
+    """The renderer's integrators that have an entry; those that check geometry first (a scene whose normals
+    fail has a camera or geometry mismatch, which the run notes on that scene's other cases)."""
+    return tuple(e.name for e in sorted(match().entries, key=lambda e: not e.checks_geometry))
 
 
 class _Integrators(Sequence):
@@ -93,10 +86,6 @@ class ImageCase:
     @property
     def path(self) -> Path:
         return self.folder / f"{self.scene}.xml"
-
-    @property
-    def mitsuba_path(self) -> Path:
-        return self.folder / f"{MITSUBA_SCENE.get(self.scene, self.scene)}.xml"
 
 
 def scene_names(group: str = "synthetic") -> list[str]:

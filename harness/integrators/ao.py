@@ -16,4 +16,6 @@ ENTRY = IntegratorEntry(
                           # One cosine-weighted occlusion ray per camera sample, as ours and Mitsuba's direct.
                           sample=lambda scene, p, normal, u: (scene.reflectance * scene.environment
                                                               * (u < ao_visible(scene, p, normal)))),
+    linear_in=("light", "reflectance"),
+    default_environment=True,
 )

@@ -59,6 +59,10 @@ class AnalyticForm:
     sample: Sample | None = None
 
 
+#: Rewrites that leave every integrator's image unchanged, or rotated (harness/invariance/variants.py).
+GEOMETRIC_INVARIANCES = ("scale", "rotate", "translate")
+
+
 @dataclass(frozen=True)
 class IntegratorEntry:
     """One integrator as the harness sees it."""
@@ -69,7 +73,25 @@ class IntegratorEntry:
     mitsuba: MitsubaMapping
     analytic: AnalyticForm | None = None
     requirements: tuple[tuple[str, Requirement], ...] = ()  # (summary, check)
+    #: Its image may be negative (a normal's components): comparisons test no sign, maps use a signed scale.
+    signed: bool = False
+    #: A noiseless image of the camera and geometry alone (normals): run first on each scene, and its failure
+    #: marks the scene's other cases as a camera or geometry mismatch.
+    checks_geometry: bool = False
+    #: The rewrites its image is linear in: "light" (every emitter scaled), "reflectance" (every diffuse
+    #: reflectance scaled). The invariance suite checks that the image scales by the same factor.
+    linear_in: tuple[str, ...] = ()
+    #: Its image is a direction in world space (normals): a rotated scene rotates every pixel's value.
+    rotates_with_scene: bool = False
+    #: Lit by a constant environment of radiance 1 where the scene has none (ao), which no rewrite scales.
+    default_environment: bool = False
+    #: Its speed against error is measured by `bench` (a noiseless image has no convergence to measure).
+    benchmarked: bool = True
     source: str = field(default="", compare=False)  # the file it was read from (set by the registry)
+
+    def invariances(self) -> tuple[str, ...]:
+        """The invariances that apply to it: the geometric ones always, plus the rewrites it is linear in."""
+        return GEOMETRIC_INVARIANCES + self.linear_in
 
     def not_applicable(self, scene: Path) -> str | None:
         """Why `scene` cannot be rendered with this integrator, or None if it can."""

@@ -12,4 +12,8 @@ ENTRY = IntegratorEntry(
     analytic=AnalyticForm("the surface's normal (the plane's; (p - c)/R on a sphere)",
                           lambda scene, p, normal: np.broadcast_to(normal, p.shape),
                           scenes=("plane", "sphere_floor")),
+    signed=True,
+    checks_geometry=True,
+    rotates_with_scene=True,
+    benchmarked=False,
 )

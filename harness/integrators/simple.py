@@ -26,4 +26,5 @@ ENTRY = IntegratorEntry(
     analytic=AnalyticForm("rho/pi * I * max(0, cos) / r^2 per point light, floor points behind a resting "
                           "sphere dark", _point_lights, scenes=("plane", "sphere_floor")),
     requirements=(("a point light", has_point_light),),
+    linear_in=("light", "reflectance"),
 )

@@ -19,6 +19,7 @@ import numpy as np
 from harness.distributed.bundle import Bundle
 from harness.distributed.executor import Executor, SerialExecutor, Status, Task
 from harness.engines.base import Engine, RenderFailed
+from harness.integrators import entry
 from harness.comparison.compare import Comparison, compare_summaries, summarize
 from harness.invariance.float32 import float32_limit
 from harness.invariance.rewrite import rewrite
@@ -125,7 +126,8 @@ def run_cell_group(engine: Engine, case: InvarianceCase, invariances: list[Invar
                    folder: Path, batches: int = IMAGE_BATCHES) -> list[Cell]:
     """One base render of `case` by `engine`, then every variant of every invariance against it."""
     params = {"res": str(case.res)}
-    signed = case.integrator == "normals"
+    the = entry(case.integrator)
+    signed = the.signed
     cells = [Cell(engine.name, inv.name, case) for inv in invariances]
     try:
         base = engine.render(str(case.scene), case.integrator, case.spp, batches,
@@ -151,7 +153,7 @@ def run_cell_group(engine: Engine, case: InvarianceCase, invariances: list[Invar
                 reason = reason.replace(f"{folder}/", "")  # the rewritten file's name, not its scratch folder
                 cell.variants.append(VariantResult(v, None, float("nan"), reason, limit))
                 continue
-            mapped = v.expected(case.integrator, out.astype(np.float64), has_environment)
+            mapped = v.expected(the, out.astype(np.float64), has_environment)
             comparison = compare_summaries(summarize(mapped), base_summary, alpha, signed=signed,
                                            samples=(case.spp, case.spp))
             cell.variants.append(VariantResult(v, comparison, image_ratio(mapped, base, signed), None, limit))
@@ -160,7 +162,7 @@ def run_cell_group(engine: Engine, case: InvarianceCase, invariances: list[Invar
 
 def comparisons_of(cases: list[InvarianceCase], invariances: list[Invariance]) -> int:
     """How many variant comparisons one engine makes (the family its level is split over)."""
-    return sum(len(inv.variants) for c in cases for inv in invariances if c.integrator in inv.integrators)
+    return sum(len(inv.variants) for c in cases for inv in invariances if inv.applies_to(entry(c.integrator)))
 
 
 def run_invariances(engines: list[Engine], cases: list[InvarianceCase], invariances: list[Invariance],
@@ -179,7 +181,7 @@ def run_invariances(engines: list[Engine], cases: list[InvarianceCase], invarian
             if case.scene not in bundles:
                 bundles[case.scene] = executor.share(bundle_files(case.scene.resolve().parent, [case.scene.resolve()]))
     tasks = [Task(f"{engine.name} {case.key}", cell_group_task,
-                  (engine, case, [inv for inv in invariances if case.integrator in inv.integrators], alpha, seed,
+                  (engine, case, [inv for inv in invariances if inv.applies_to(entry(case.integrator))], alpha, seed,
                    batches, bundles.get(case.scene)))
              for engine in engines for case in cases]
     cells: list[Cell] = []

@@ -3,6 +3,7 @@ float32 explains, and the `invariance` block of results.json."""
 from __future__ import annotations
 
 from harness.invariance.check import Cell
+from harness.invariance.suite import suite_entries
 from harness.invariance.variants import INVARIANCES, TRANSLATION_REACH
 
 REFERENCE_NOTE = "A reference engine's break is a finding about it (BREAKS), never a failure of ours."
@@ -39,7 +40,8 @@ def invariance_payload(cells: list[Cell], alpha: float, engine: str, meta: dict)
     ours = [c for c in cells if c.engine == engine]
     return {"pass": all(c.passed for c in ours), "gating_engine": engine, "alpha": alpha,
             "invariances": {i.name: {"summary": i.summary, "variants": [v.label for v in i.variants],
-                                     "integrators": list(i.integrators)} for i in INVARIANCES},
+                                     "integrators": [e.name for e in suite_entries() if i.applies_to(e)]}
+                            for i in INVARIANCES},
             "cells": [c.to_json() for c in cells], "failures": failure_lines(cells, engine),
             "findings": finding_lines(cells, engine), "float32_limits": float32_lines(cells),
             "translation_reach": TRANSLATION_REACH, "meta": meta}

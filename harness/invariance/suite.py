@@ -6,12 +6,17 @@ afford all of them.
 """
 from __future__ import annotations
 
-from harness.images.suite import GROUP_DIRS, scene_names
+from harness.images.suite import GROUP_DIRS, scene_names, suite_integrators
+from harness.integrators import IntegratorEntry, entry
 from harness.invariance.check import InvarianceCase
 from harness.invariance.variants import INVARIANCES, Invariance
 
-INTEGRATORS = ("simple", "ao", "normals")
 RESOLUTION = 64
+
+
+def suite_entries() -> list[IntegratorEntry]:
+    """The entries of the integrators the suite renders: the image suite's (the renderer's, with an entry)."""
+    return [entry(name) for name in suite_integrators()]
 
 
 def _scenes() -> dict[str, object]:
@@ -24,27 +29,25 @@ def select(only: list[str] | None, resolution: int = RESOLUTION) -> tuple[list[I
     invariance names (scale, rotate, translate, light, reflectance); a kind not named means all of it.
     A scene an integrator does not apply to (simple without a point light) is left out, unless named as
     scene:integrator, which is an error saying why."""
-    from harness.integrators import entries, entry
-
     only = list(only or [])
+    integrator_names = suite_integrators()
     scenes = _scenes()
     names = {i.name for i in INVARIANCES}
     pairs = [o.split(":", 1) for o in only if ":" in o]
-    unknown = [o for o in only if ":" not in o and o not in scenes and o not in INTEGRATORS and o not in names]
-    unknown += [":".join(p) for p in pairs if p[0] not in scenes or p[1] not in INTEGRATORS]
+    unknown = [o for o in only if ":" not in o and o not in scenes and o not in integrator_names and o not in names]
+    unknown += [":".join(p) for p in pairs if p[0] not in scenes or p[1] not in integrator_names]
     if unknown:
         raise ValueError(f"unknown scene, integrator or invariance {', '.join(unknown)}: scenes are "
-                         f"{', '.join(scenes)}; integrators {', '.join(INTEGRATORS)}; invariances "
+                         f"{', '.join(scenes)}; integrators {', '.join(integrator_names)}; invariances "
                          f"{', '.join(i.name for i in INVARIANCES)}")
     for s, i in pairs:
         reason = entry(i).not_applicable(scenes[s])
         if reason:
             raise ValueError(f"{s}:{i} is not applicable: {reason}")
     chosen = [o for o in only if o in scenes] or ([] if pairs else list(scenes))
-    integrators = [o for o in only if o in INTEGRATORS] or list(INTEGRATORS)
+    integrators = [o for o in only if o in integrator_names] or list(integrator_names)
     keys = [(s, i) for s in chosen for i in integrators if not entry(i).not_applicable(scenes[s])]
     keys += [(s, i) for s, i in pairs]
     invariances = [i for i in INVARIANCES if i.name in only] or list(INVARIANCES)
-    budget = entries()
-    cases = [InvarianceCase(scenes[s], i, budget[i].our_spp, resolution) for s, i in dict.fromkeys(keys)]
+    cases = [InvarianceCase(scenes[s], i, entry(i).our_spp, resolution) for s, i in dict.fromkeys(keys)]
     return cases, invariances

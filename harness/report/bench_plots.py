@@ -11,16 +11,20 @@ import numpy as np  # noqa: E402
 
 from harness.bench.run import CaseBench  # noqa: E402
 from harness.report.image_plots import display  # noqa: E402
+from harness.integrators import entry
 
-COLORS = {"mcval": "tab:blue", "mitsuba": "tab:orange", "mitsuba-scalar": "tab:green"}
+#: Colour per engine, in the order the engines first appear in a bench's curves.
+COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown")
 #: Line style per sampler: independent solid, stratified ones dashed or dotted.
 STYLES = {"independent": "o-", "sobol": "s--", "ldsampler": "s--", "multijitter": "^:"}
 
 
-def _look(label: str) -> tuple[str | None, str]:
-    """Colour by engine, line style by sampler, for a curve label "engine/sampler"."""
+def _look(label: str, labels) -> tuple[str | None, str]:
+    """Colour by engine (its place among the engines of `labels`), line style by sampler, for a curve label
+    "engine/sampler"."""
     engine, _, sampler = label.partition("/")
-    return COLORS.get(engine), STYLES.get(sampler, "o-")
+    engines = list(dict.fromkeys(k.partition("/")[0] for k in labels))
+    return COLORS[engines.index(engine) % len(COLORS)], STYLES.get(sampler, "o-")
 
 
 def _png(fig) -> bytes:
@@ -38,7 +42,7 @@ def convergence_png(bench: CaseBench) -> bytes:
         sec = np.array([np.median(s.seconds) for s in curve.steps])
         err = np.array([s.relmse for s in curve.steps])
         med = np.median(err, axis=1)
-        color, style = _look(name)
+        color, style = _look(name, bench.curves)
         slope = curve.fit("spp")[0]
         for ax, x in ((axes[0], spp), (axes[1], sec)):
             ax.fill_between(x, np.clip(err.min(axis=1), 1e-12, None), np.clip(err.max(axis=1), 1e-12, None),
@@ -58,14 +62,14 @@ def convergence_png(bench: CaseBench) -> bytes:
 
 def equal_time_png(bench: CaseBench) -> bytes:
     """Each engine's image at the ladder step closest to our renderer's time at 64 spp (or its nearest step)."""
-    ours = bench.curves.get("mcval/independent") or bench.curves.get("mcval")
+    ours = bench.curves.get(f"{bench.tested}/independent") or bench.curves.get(bench.tested)
     budget = None
     if ours:
         step = min(ours.steps, key=lambda s: abs(np.log2(s.spp / 64)))
         budget = float(np.median(step.seconds))
     names = list(bench.curves)
     fig, axes = plt.subplots(1, len(names) + 1, figsize=(3 * (len(names) + 1), 3.2), constrained_layout=True)
-    signed = bench.case.integrator == "normals"
+    signed = entry(bench.case.integrator).signed
     for ax, name in zip(axes, names):
         curve = bench.curves[name]
         times = np.array([np.median(s.seconds) for s in curve.steps])

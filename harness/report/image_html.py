@@ -8,12 +8,14 @@ import numpy as np
 
 from harness.comparison.compare import Comparison
 from harness.comparison.finite import SIDES
+from harness.images.references import CLOSED_FORM
 from harness.images.run import ImageResult
 from harness.images.suite import INTEGRATORS
 from harness.report.idiff_text import LEGEND, idiff_sentence
 from harness.report.image_plots import comparison_png
 from harness.report.invariance_html import invariance_section, invariance_summary
 from harness.report.style import CSS
+from harness.integrators import entry
 
 
 def _esc(x) -> str:
@@ -49,13 +51,14 @@ def _bad_pixels(comparison: Comparison) -> str:
 def _picture(r: ImageResult, name: str, comparison: Comparison) -> str:
     """The row of panels; NaN and Inf shown as 0 (the bad pixels are red on the p-value map, which
     counts them as certain rejections, and listed above it)."""
-    signed = r.case.integrator == "normals"
+    signed = entry(r.case.integrator).signed
     ours = np.nan_to_num(r.ours.mean, nan=0.0, posinf=0.0, neginf=0.0)
     ref = np.nan_to_num(r.references[name].summary.mean_image, nan=0.0, posinf=0.0, neginf=0.0)
     if not signed and not ref.max() > 0:
         # FLIP's HDR mode cannot place its exposures on an all-black reference and ends the process.
         return "<p class='meta'>No pictures: the reference holds no positive value.</p>"
-    png = comparison_png(ours, ref, comparison, signed, "Mitsuba" if name == "mitsuba" else "closed form")
+    shown = "closed form" if r.references[name].source == CLOSED_FORM else name.capitalize()
+    png = comparison_png(ours, ref, comparison, signed, shown)
     return (f'<img alt="{_esc(r.case.key)} against {_esc(name)}" src="data:image/png;base64,'
             f'{base64.b64encode(png).decode()}">')
 

@@ -6,16 +6,16 @@ from harness.images.references import reference_path
 from harness.images.suite import ImageCase
 
 
-def test_a_scene_bundle_holds_the_scene_its_meshes_and_its_references(tmp_path):
+def test_a_scene_bundle_holds_the_scene_its_meshes_and_its_references(tmp_path, mitsuba):
     case = ImageCase("highpoly", "ao")
-    bundle = scene_bundle(case)
+    bundle = scene_bundle(case, [mitsuba])
     names = {rel for rel, _ in bundle.files}
-    assert {"scenes/highpoly.xml", "scenes/meshes/highpoly.ply", "references/highpoly/ao.exr",
-            "references/highpoly/ao.json"} <= names
+    assert {"scenes/highpoly.xml", "scenes/meshes/highpoly.ply", "references/mitsuba/highpoly/ao.exr",
+            "references/mitsuba/highpoly/ao.json"} <= names
     root = bundle.materialize(tmp_path)
     copy = ImageCase("highpoly", "ao", root=root)
     assert copy == case and copy.path.read_bytes() == case.path.read_bytes()
-    assert reference_path(copy).read_bytes() == reference_path(case).read_bytes()
+    assert reference_path(copy, mitsuba).read_bytes() == reference_path(case, mitsuba).read_bytes()
     assert bundle.materialize(tmp_path) == root  # written once
 
 

@@ -11,19 +11,19 @@ import pytest
 import harness.images.references as refs
 from harness.images.suite import ImageCase
 
-REAL = Path(refs.__file__).resolve().parents[2] / "references"
+REAL = Path(refs.__file__).resolve().parents[2] / "references" / "mitsuba"
 CASE = ImageCase("plane_point", "normals")
 
 
 @pytest.fixture
-def stored(tmp_path, monkeypatch):
+def stored(tmp_path, monkeypatch, mitsuba):
     """(exr, json) of a sound copy of a stored reference, REFERENCES_DIR pointed at the copy."""
     folder = tmp_path / "references"
-    (folder / CASE.scene).mkdir(parents=True)
+    (folder / mitsuba.name / CASE.scene).mkdir(parents=True)
     for suffix in (".exr", ".json"):
-        shutil.copy(REAL / CASE.scene / f"{CASE.integrator}{suffix}", folder / CASE.scene)
+        shutil.copy(REAL / CASE.scene / f"{CASE.integrator}{suffix}", folder / mitsuba.name / CASE.scene)
     monkeypatch.setattr(refs, "REFERENCES_DIR", folder)
-    exr = refs.reference_path(CASE)
+    exr = refs.reference_path(CASE, mitsuba)
     return exr, exr.with_suffix(".json")
 
 

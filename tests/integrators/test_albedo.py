@@ -37,6 +37,8 @@ def test_integrators_lists_albedo_with_its_entry():
     assert "no harness entry" not in res.stdout
 
 
+@pytest.mark.slow
+@pytest.mark.mitsuba
 def test_albedo_passes_against_mitsuba(tmp_path):
     res = harness("images", "--only", "plane_point:albedo", "cornell_box:albedo", "--out", str(tmp_path))
     assert res.returncode == 0, res.stdout + res.stderr
@@ -45,3 +47,29 @@ def test_albedo_passes_against_mitsuba(tmp_path):
     assert verdicts == {("plane_point", "albedo"): True, ("cornell_box", "albedo"): True}
     # plane_point has a closed form: the albedo is compared with it too.
     assert set(next(e for e in data["images"] if e["scene"] == "plane_point")["tests"]) == {"mitsuba", "analytic"}
+
+
+@pytest.mark.slow
+def test_albedo_gets_the_invariances_its_entry_says_apply(tmp_path):
+    """Its entry says it is linear in reflectance only: the geometric invariances and reflectance run, light
+    does not (no emitter changes an albedo)."""
+    res = harness("invariance", "--only", "plane_point:albedo", "--no-mitsuba", "--out", str(tmp_path))
+    assert res.returncode == 0, res.stdout + res.stderr
+    data = json.loads(((tmp_path / "latest").resolve() / "results.json").read_text())["invariance"]
+    ran = {c["invariance"] for c in data["cells"] if c["integrator"] == "albedo"}
+    assert ran == {"scale", "rotate", "translate", "reflectance"}
+    assert all(c["pass"] for c in data["cells"])
+    assert "albedo" in data["invariances"]["reflectance"]["integrators"]
+    assert "albedo" not in data["invariances"]["light"]["integrators"]
+
+
+@pytest.mark.slow
+@pytest.mark.mitsuba
+def test_albedo_is_benchmarked_against_mitsuba(tmp_path):
+    res = harness("bench", "--only", "plane_point:albedo", "--engines", "mcval", "mitsuba", "--same-sampler",
+                  "--max-spp", "4", "--runs", "2", "--throughput-runs", "0", "--seed-runs", "0", "--out", str(tmp_path))
+    assert res.returncode == 0, res.stdout + res.stderr
+    data = json.loads(((tmp_path / "latest").resolve() / "results.json").read_text())
+    [case] = data["speed"]
+    assert (case["scene"], case["integrator"]) == ("plane_point", "albedo")
+    assert set(case["efficiency"]) == {"mcval/independent", "mitsuba/independent"}

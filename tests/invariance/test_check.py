@@ -6,6 +6,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from harness.integrators import entry
+
 from harness.engines.base import Engine, RenderResult
 from harness.invariance.check import InvarianceCase, run_invariances
 from harness.invariance.findings import invariance_payload
@@ -79,8 +81,8 @@ def test_rotated_normals_are_rotated_back():
     assert cells[0].passed
     variant = rotate.variants[0]
     n = np.array([[[[0.0, 1.0, 0.0]]]])
-    assert not np.allclose(variant.expected("normals", n), n)
-    assert np.allclose(variant.expected("simple", n), n)
+    assert not np.allclose(variant.expected(entry("normals"), n), n)
+    assert np.allclose(variant.expected(entry("simple"), n), n)
 
 
 def test_select_narrows_and_refuses_unknown_names():
@@ -106,6 +108,6 @@ def test_by_default_every_scene_runs_with_every_integrator_that_applies():
 def test_ao_without_a_constant_emitter_keeps_its_fixed_ambient_under_doubled_lights():
     light = invariance("light").variants[0]
     image = np.full((1, 2, 2, 3), 0.4)
-    assert np.allclose(light.expected("ao", image, has_environment=True), 0.2)
-    assert np.allclose(light.expected("ao", image, has_environment=False), 0.4)
-    assert np.allclose(light.expected("simple", image, has_environment=False), 0.2)
+    assert np.allclose(light.expected(entry("ao"), image, has_environment=True), 0.2)
+    assert np.allclose(light.expected(entry("ao"), image, has_environment=False), 0.4)
+    assert np.allclose(light.expected(entry("simple"), image, has_environment=False), 0.2)

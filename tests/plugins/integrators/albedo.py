@@ -14,4 +14,5 @@ ENTRY = IntegratorEntry(
     mitsuba=MitsubaMapping("aov", (("string", "aovs", "albedo:albedo"),), drop_area_emitters=True),
     analytic=AnalyticForm("the plane's reflectance",
                           lambda scene, p, normal: np.broadcast_to(scene.reflectance, p.shape)),
+    linear_in=("reflectance",),  # no emitter changes it
 )

@@ -1,0 +1,100 @@
+"""The only code that maps an engine's name to the engine: the engines of this package, plus every *.py file
+with an `ENGINE` (an EngineEntry) in the folders of $MCVAL_ENGINE_PATH (os.pathsep-separated), so an engine
+is one file and one registry line, and a test can add one without editing the harness.
+
+The suites never name an engine: the commands make a *test* engine and a *reference* engine from the names
+they are given (`--engine`, `--reference`) and hand both over.
+"""
+from __future__ import annotations
+
+import importlib.util
+import os
+from dataclasses import dataclass, field
+from functools import cache
+from pathlib import Path
+from typing import Any, Callable
+
+from harness.engines.base import Engine
+
+PATH_ENV = "MCVAL_ENGINE_PATH"
+#: The engines the commands use unless told otherwise.
+DEFAULT_TEST = "mcval"
+DEFAULT_REFERENCE = "mitsuba"
+
+
+@dataclass(frozen=True)
+class EngineEntry:
+    """One engine as the commands see it: its name and how to make it from the options a command has
+    (`variant`: a Mitsuba variant; `sampler`: a sampler to use instead of the scene's; `in_process`: render
+    in this process, for timing)."""
+
+    name: str
+    make: Callable[[dict[str, Any]], Engine]
+    summary: str
+    source: str = field(default="", compare=False)  # the file it was read from
+
+
+def _ours(options: dict[str, Any]) -> Engine:
+    from harness.engines.ours import OurEngine
+    return OurEngine(sampler=options.get("sampler"), in_process=options.get("in_process", False))
+
+
+def _mitsuba(variant: str | None) -> Callable[[dict[str, Any]], Engine]:
+    def make(options: dict[str, Any]) -> Engine:
+        from harness.engines.mitsuba import DEFAULT_VARIANT, MitsubaEngine
+        return MitsubaEngine(variant or options.get("variant") or DEFAULT_VARIANT, sampler=options.get("sampler"))
+    return make
+
+
+def _analytic(options: dict[str, Any]) -> Engine:
+    from harness.engines.analytic import AnalyticEngine
+    return AnalyticEngine()
+
+
+BUILT_IN = (
+    EngineEntry("mcval", _ours, "this repository's renderer (`render` as a child process, warps in process)"),
+    EngineEntry("mitsuba", _mitsuba(None), "Mitsuba 3 from PyPI (--variant, default llvm_ad_rgb)"),
+    EngineEntry("mitsuba-scalar", _mitsuba("scalar_rgb"), "Mitsuba 3, scalar_rgb"),
+    EngineEntry("analytic", _analytic, "the integrators' closed forms on the analytic scenes"),
+)
+
+
+def _path_entries() -> list[EngineEntry]:
+    found = []
+    for folder in filter(None, os.environ.get(PATH_ENV, "").split(os.pathsep)):
+        for path in sorted(Path(folder).glob("*.py")):
+            spec = importlib.util.spec_from_file_location(f"mcval_engine_{path.stem}", path)
+            module = importlib.util.module_from_spec(spec)
+            spec.loader.exec_module(module)
+            entry = getattr(module, "ENGINE", None)
+            if entry is None:
+                continue
+            if not isinstance(entry, EngineEntry):
+                raise ValueError(f"{path}: ENGINE is a {type(entry).__name__}, expected an EngineEntry "
+                                 "(harness.engines.registry)")
+            found.append(EngineEntry(entry.name, entry.make, entry.summary, str(path)))
+    return found
+
+
+@cache
+def _entries(path: str) -> dict[str, EngineEntry]:
+    out: dict[str, EngineEntry] = {}
+    for entry in (*BUILT_IN, *_path_entries()):
+        if entry.name in out:
+            raise ValueError(f"{entry.source or 'harness/engines/registry.py'}: engine {entry.name!r} is "
+                             f"already registered")
+        out[entry.name] = entry
+    return out
+
+
+def engine_entries() -> dict[str, EngineEntry]:
+    """Every engine, by name: the built-in ones, then those of $MCVAL_ENGINE_PATH."""
+    return _entries(os.environ.get(PATH_ENV, ""))
+
+
+def make_engine(name: str, **options: Any) -> Engine:
+    """The engine called `name`, made with `options`; ValueError naming the known engines if there is none."""
+    found = engine_entries()
+    if name not in found:
+        raise ValueError(f"unknown engine {name!r}: known are {', '.join(found)}")
+    return found[name].make(options)

@@ -1,0 +1,95 @@
+"""The engine registry: the only map from an engine's name to the engine. A test-only engine
+(tests/plugins/engines/ours_in_process.py, found through MCVAL_ENGINE_PATH) goes through every suite with no
+edit of the harness; an unknown name is one clear error."""
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from harness.engines.registry import engine_entries, make_engine
+
+ROOT = Path(__file__).resolve().parents[2]
+PLUGINS = ROOT / "tests" / "plugins" / "engines"
+
+
+def harness(*args: str) -> subprocess.CompletedProcess:
+    env = {**os.environ, "MCVAL_ENGINE_PATH": str(PLUGINS)}
+    return subprocess.run([sys.executable, "-m", "harness", *args], capture_output=True, text=True, env=env,
+                          cwd=ROOT, timeout=600)
+
+
+def results(out: Path) -> dict:
+    return json.loads(((out / "latest").resolve() / "results.json").read_text())
+
+
+def test_an_unknown_engine_is_refused_with_the_known_ones(tmp_path):
+    with pytest.raises(ValueError, match="unknown engine 'nope': known are mcval, mitsuba"):
+        make_engine("nope")
+    res = harness("images", "--engine", "nope", "--only", "plane_point", "--out", str(tmp_path))
+    assert res.returncode == 2 and "unknown engine 'nope'" in res.stderr
+
+
+def test_an_engine_file_is_found_on_the_engine_path(monkeypatch):
+    monkeypatch.setenv("MCVAL_ENGINE_PATH", str(PLUGINS))
+    found = engine_entries()
+    assert found["ours-in-process"].source.endswith("ours_in_process.py")
+    assert make_engine("ours-in-process").name == "ours-in-process"
+
+
+def test_an_engine_file_without_an_engine_entry_is_an_error(tmp_path, monkeypatch):
+    (tmp_path / "bad.py").write_text("ENGINE = 3\n")
+    monkeypatch.setenv("MCVAL_ENGINE_PATH", str(tmp_path))
+    with pytest.raises(ValueError, match="bad.py: ENGINE is a int, expected an EngineEntry"):
+        engine_entries()
+
+
+def test_the_reference_engine_maps_its_own_scene_files():
+    from harness.engines.mitsuba import MitsubaEngine
+    from harness.engines.ours import OurEngine
+
+    far = ROOT / "scenes" / "far_from_origin.xml"
+    assert MitsubaEngine.scene_file(MitsubaEngine.__new__(MitsubaEngine), far).name == "sphere_plane.xml"
+    assert OurEngine.scene_file(OurEngine.__new__(OurEngine), far) == far
+
+
+@pytest.mark.slow
+@pytest.mark.mitsuba
+def test_the_test_engine_goes_through_images_and_invariances(tmp_path):
+    res = harness("images", "--engine", "ours-in-process", "--only", "plane_point:simple", "--out", str(tmp_path))
+    assert res.returncode == 0, res.stdout + res.stderr
+    [case] = results(tmp_path)["images"]
+    assert case["engine"] == "ours-in-process" and case["pass"]
+    assert set(case["seconds"]) == {"ours-in-process", "mitsuba", "analytic"}
+    res = harness("invariance", "--engine", "ours-in-process", "--only", "plane_point:simple", "scale", "light",
+                  "--out", str(tmp_path))
+    assert res.returncode == 0, res.stdout + res.stderr
+    data = results(tmp_path)["invariance"]
+    assert data["gating_engine"] == "ours-in-process"
+    assert {c["engine"] for c in data["cells"]} == {"ours-in-process", "mitsuba"}
+
+
+@pytest.mark.slow
+def test_the_test_engine_goes_through_warps_and_calibrate(tmp_path):
+    res = harness("warps", "--engine", "ours-in-process", "--only", "tent", "--no-mitsuba", "--out", str(tmp_path))
+    assert res.returncode == 0, res.stdout + res.stderr
+    assert results(tmp_path)["warps"][0]["pass"]
+    res = harness("calibrate", "--engine", "ours-in-process", "--warps", "--only", "tent", "--seeds", "4",
+                  "--no-mitsuba", "--out", str(tmp_path))
+    assert res.returncode == 0, res.stdout + res.stderr
+    cal = json.loads(((tmp_path / "calibration-latest").resolve() / "calibration.json").read_text())
+    assert "in process" in cal["meta"]["engine"]
+
+
+@pytest.mark.slow
+@pytest.mark.mitsuba
+def test_the_test_engine_is_benchmarked_against_the_reference(tmp_path):
+    res = harness("bench", "--engines", "ours-in-process", "mitsuba", "--only", "plane_point:simple",
+                  "--same-sampler", "--max-spp", "4", "--runs", "2", "--throughput-runs", "0", "--seed-runs", "0",
+                  "--out", str(tmp_path))
+    assert res.returncode == 0, res.stdout + res.stderr
+    [case] = results(tmp_path)["speed"]
+    assert case["efficiency_ratio_same_sampler"]["ours"] == "ours-in-process/independent"
+    assert case["efficiency_ratio_same_sampler"]["reference"] == "mitsuba/independent"
