@@ -109,27 +109,3 @@ def measure(scene_name: str, integrator: str, res: int, spp: int, runs: int = 3,
         seconds[MITSUBA].append(mitsuba(run))
     mitsuba_spp = loaded.sensors()[0].sampler().sample_count()  # as the renders set it
     return Throughput(scene_name, integrator, res, spp, sampler, seconds, rays, mitsuba_spp)
-
-
-def table(results: list[Throughput]) -> str:
-    """The measurements as a plain-text table: seconds, Mitsuba over ours, Msamples/s and Mrays/s of each."""
-    lines = [f"{'case':<30} {'ours s':>7} {'Mitsuba s':>9} {'Mitsuba/ours':>12} {'Msamples/s ours':>15} "
-             f"{'Mitsuba':>8} {'Mrays/s ours':>12} {'Mitsuba':>8}"]
-    for r in results:
-        j = r.to_json()
-        lines.append(f"{f'{r.scene}:{r.integrator} {r.resolution}² {r.spp} spp':<30} {r.median(OURS):7.3f} "
-                     f"{r.median(MITSUBA):9.3f} {r.ratio():12.2f} "
-                     + (f"(Mitsuba {r.mitsuba_spp} spp) " if r.mitsuba_spp != r.spp else "") +
-                     f"{j['samples_per_second'][OURS] / 1e6:15.1f} {j['samples_per_second'][MITSUBA] / 1e6:8.1f} "
-                     f"{j['rays_per_second'][OURS] / 1e6:12.1f} {j['rays_per_second'][MITSUBA] / 1e6:8.1f}")
-    return "\n".join(lines)
-
-
-if __name__ == "__main__":
-    import sys
-    runs = int(sys.argv[1]) if len(sys.argv) > 1 else 3
-    sampler = sys.argv[2] if len(sys.argv) > 2 else "independent"
-    print(table([measure(*case, runs=runs, sampler=sampler) for case in CASES]))
-    print(f"Render time only, each timed render after a pause and an untimed one of the same engine; medians of {runs} runs; Mitsuba/ours per sample; "
-          f"sampler {sampler} "
-          f"(Mitsuba: {MITSUBA_SAMPLER.get(sampler, sampler)}); rays/s from our ray count for both.")

@@ -2,7 +2,8 @@
 
 
 def test_throughput_times_both_engines_on_one_case(ours):
-    from harness.bench.throughput import measure, table
+    from harness.bench.throughput import measure
+    from tools.throughput import table
     result = measure("cornell", "simple", 16, 4, runs=2)
     data = result.to_json()
     assert set(data["seconds"]) == {"mcval", "mitsuba"} and all(len(v) == 2 for v in data["seconds"].values())

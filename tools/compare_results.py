@@ -1,0 +1,98 @@
+"""Two results.json files compared field by field, except times and paths: every verdict, every string and
+every number to 6 significant digits. Lists of cases (images, warps, invariance cells) are matched by what
+they are (scene, integrator, engine, invariance, warp), not by position.
+
+    .venv/bin/python -m tools.compare_results OLD.json NEW.json
+
+A field that only NEW has (one it adds) is not a difference; one that only OLD has is. Prints each difference
+as a path and both values; exits 1 if there is any."""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from pathlib import Path
+
+#: Keys whose values are times or paths (or hold them): not compared.
+SKIPPED = {"seconds", "image seconds", "run", "baseline", "data", "date", "meta", "ran on", "first_seconds",
+           "median_seconds", "time_to_target", "regression", "throughput"}
+#: What tells the items of a list of cases apart (a list whose items all have some of these is matched by them).
+IDENTITY = ("engine", "invariance", "scene", "integrator", "warp", "params", "label", "name", "kind", "case")
+
+
+def _same_number(a: float, b: float) -> bool:
+    if math.isnan(a) or math.isnan(b):
+        return math.isnan(a) and math.isnan(b)
+    return f"{a:.6g}" == f"{b:.6g}" or abs(a - b) <= 5e-7 * max(abs(a), abs(b))
+
+
+def _key(item) -> tuple | None:
+    if isinstance(item, dict):
+        key = tuple((k, json.dumps(item[k], sort_keys=True)) for k in IDENTITY if k in item)
+        return key or None
+    return None
+
+
+def _number(v):
+    """A JSON number, or a NaN/Inf written as a string, as a float; anything else as it is."""
+    if isinstance(v, bool):
+        return v
+    if isinstance(v, (int, float)):
+        return float(v)
+    if v in ("nan", "inf", "-inf", "NaN", "Infinity", "-Infinity"):
+        return float(v.replace("Infinity", "inf"))
+    return v
+
+
+def compare(old, new, path: str = "") -> list[str]:
+    """Each difference between `old` and `new` as one line."""
+    if isinstance(old, dict) and isinstance(new, dict):
+        out = []
+        for k in sorted(set(old) | set(new)):
+            if k in SKIPPED:
+                continue
+            if k not in new:
+                out.append(f"{path}/{k}: only in the first")
+            elif k not in old:
+                continue  # a field the first did not have
+            else:
+                out += compare(old[k], new[k], f"{path}/{k}")
+        return out
+    if isinstance(old, list) and isinstance(new, list):
+        keys_old, keys_new = [_key(x) for x in old], [_key(x) for x in new]
+        if all(keys_old) and all(keys_new) and len(set(keys_old)) == len(old) and len(set(keys_new)) == len(new):
+            by_new = dict(zip(keys_new, new))
+            out = [f"{path}[{dict(k)}]: only in the first" for k in keys_old if k not in by_new]
+            out += [f"{path}[{dict(k)}]: only in the second" for k in keys_new if k not in dict(zip(keys_old, old))]
+            for k, item in zip(keys_old, old):
+                if k in by_new:
+                    out += compare(item, by_new[k], f"{path}[{'/'.join(json.loads(v) if isinstance(json.loads(v), str) else v for _, v in k)}]")
+            return out
+        if len(old) != len(new):
+            if all(isinstance(x, str) for x in old + new) and sorted(old) == sorted(new):
+                return []
+            return [f"{path}: {len(old)} items against {len(new)}"]
+        if all(isinstance(x, str) for x in old + new) and sorted(old) == sorted(new):
+            return []  # the same names, in another order
+        return [d for i, (a, b) in enumerate(zip(old, new)) for d in compare(a, b, f"{path}[{i}]")]
+    a, b = _number(old), _number(new)
+    if isinstance(a, float) and isinstance(b, float) and not isinstance(old, bool):
+        return [] if _same_number(a, b) else [f"{path}: {old!r} against {new!r}"]
+    return [] if old == new else [f"{path}: {old!r} against {new!r}"]
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("old", type=Path)
+    p.add_argument("new", type=Path)
+    args = p.parse_args(argv)
+    diffs = compare(json.loads(args.old.read_text()), json.loads(args.new.read_text()))
+    for line in diffs:
+        print(line)
+    print(f"{len(diffs)} difference(s) between {args.old} and {args.new}")
+    return 1 if diffs else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
