@@ -11,3 +11,11 @@ def ours():
 def mitsuba():
     from harness.engines.mitsuba import MitsubaEngine
     return MitsubaEngine()
+
+
+def pytest_collection_modifyitems(items):
+    """A test that takes the `mitsuba` fixture renders or samples with Mitsuba 3: it carries the mitsuba
+    marker without saying so again (tests that reach Mitsuba another way are marked where they are)."""
+    for item in items:
+        if "mitsuba" in getattr(item, "fixturenames", ()):
+            item.add_marker(pytest.mark.mitsuba)

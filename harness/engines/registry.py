@@ -7,14 +7,13 @@ they are given (`--engine`, `--reference`) and hand both over.
 """
 from __future__ import annotations
 
-import importlib.util
 import os
 from dataclasses import dataclass, field
 from functools import cache
-from pathlib import Path
 from typing import Any, Callable
 
 from harness.engines.base import Engine
+from harness.plugin_files import plugin_objects
 
 PATH_ENV = "MCVAL_ENGINE_PATH"
 #: The engines the commands use unless told otherwise.
@@ -59,27 +58,20 @@ BUILT_IN = (
 )
 
 
-def _path_entries() -> list[EngineEntry]:
+def _path_entries(folders: str) -> list[EngineEntry]:
     found = []
-    for folder in filter(None, os.environ.get(PATH_ENV, "").split(os.pathsep)):
-        for path in sorted(Path(folder).glob("*.py")):
-            spec = importlib.util.spec_from_file_location(f"mcval_engine_{path.stem}", path)
-            module = importlib.util.module_from_spec(spec)
-            spec.loader.exec_module(module)
-            entry = getattr(module, "ENGINE", None)
-            if entry is None:
-                continue
-            if not isinstance(entry, EngineEntry):
-                raise ValueError(f"{path}: ENGINE is a {type(entry).__name__}, expected an EngineEntry "
-                                 "(harness.engines.registry)")
-            found.append(EngineEntry(entry.name, entry.make, entry.summary, str(path)))
+    for path, entry in plugin_objects(folders, "ENGINE", PATH_ENV):
+        if not isinstance(entry, EngineEntry):
+            raise ValueError(f"{path}: ENGINE is a {type(entry).__name__}, expected an EngineEntry "
+                             "(harness.engines.registry)")
+        found.append(EngineEntry(entry.name, entry.make, entry.summary, str(path)))
     return found
 
 
 @cache
-def _entries(path: str) -> dict[str, EngineEntry]:
+def _entries(folders: str) -> dict[str, EngineEntry]:
     out: dict[str, EngineEntry] = {}
-    for entry in (*BUILT_IN, *_path_entries()):
+    for entry in (*BUILT_IN, *_path_entries(folders)):
         if entry.name in out:
             raise ValueError(f"{entry.source or 'harness/engines/registry.py'}: engine {entry.name!r} is "
                              f"already registered")

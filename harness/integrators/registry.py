@@ -6,7 +6,6 @@ folders of $MCVAL_INTEGRATOR_PATH (os.pathsep-separated), so a test can add one 
 from __future__ import annotations
 
 import importlib
-import importlib.util
 import os
 import pkgutil
 from dataclasses import dataclass, replace
@@ -14,6 +13,7 @@ from functools import cache
 from pathlib import Path
 
 from harness.integrators.entry import IntegratorEntry
+from harness.plugin_files import plugin_objects
 
 PATH_ENV = "MCVAL_INTEGRATOR_PATH"
 _PACKAGE = "harness.integrators"
@@ -50,27 +50,11 @@ def _shown(path: Path) -> str:
         return str(path)
 
 
-def _folder_entries(folder: Path) -> list[IntegratorEntry]:
-    if not folder.is_dir():
-        raise ValueError(f"{PATH_ENV}: {folder} is not a folder")
-    found = []
-    for path in sorted(folder.glob("*.py")):
-        if path.name.startswith("_"):
-            continue
-        spec = importlib.util.spec_from_file_location(f"mcval_integrator_entry_{path.stem}", path)
-        module = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(module)
-        if not hasattr(module, "ENTRY"):
-            raise ValueError(f"{path}: no ENTRY (every .py file in a {PATH_ENV} folder is an integrator entry)")
-        found.append(_checked(module.ENTRY, _shown(path)))
-    return found
-
-
 @cache
 def _discover(extra: str) -> dict[str, IntegratorEntry]:
     entries: dict[str, IntegratorEntry] = {}
-    folders = [Path(p) for p in extra.split(os.pathsep) if p]
-    for entry in _package_entries() + [e for f in folders for e in _folder_entries(f)]:
+    files = [_checked(entry, _shown(path)) for path, entry in plugin_objects(extra, "ENTRY", PATH_ENV)]
+    for entry in _package_entries() + files:
         if entry.name in entries:
             raise ValueError(f"{entry.source}: integrator {entry.name!r} already has an entry in "
                              f"{entries[entry.name].source}")

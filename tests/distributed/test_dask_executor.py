@@ -15,6 +15,8 @@ from harness.cli import main
 from harness.distributed.cluster import open_executor
 from harness.distributed.executor import SerialExecutor, Task
 
+pytestmark = [pytest.mark.dask, pytest.mark.slow]  # a loopback cluster per test
+
 
 def _stripped(value, rounded: bool = False):
     """results.json without what differs between any two runs: times and speeds, run names. Mitsuba's own
