@@ -7,6 +7,7 @@ import html
 from harness.bench.run import CaseBench
 from harness.report.bench_plots import convergence_png, equal_time_png
 from harness.report.style import CSS
+from harness.bench.throughput import MITSUBA, OURS
 
 
 def _img(png: bytes, alt: str) -> str:
@@ -28,12 +29,12 @@ def _throughput_html(throughput: list[dict] | None) -> str:
         return "<p>No side-by-side throughput (run <code>python -m harness bench</code> with both engines).</p>"
     rows = "".join(
         f"<tr><td>{t['scene']}:{t['integrator']}</td><td>{t['resolution']}², {t['spp']} spp, {t['sampler']}"
-        + (f" (Mitsuba's sampler: {t['spp_rendered']['mitsuba']} spp)"
-           if t.get("spp_rendered", {}).get("mitsuba", t["spp"]) != t["spp"] else "") + "</td>"
-        f"<td>{t['median_seconds']['mcval']:.3f}</td><td>{t['median_seconds']['mitsuba']:.3f}</td>"
+        + (f" (Mitsuba's sampler: {t['spp_rendered'][MITSUBA]} spp)"
+           if t.get("spp_rendered", {}).get(MITSUBA, t["spp"]) != t["spp"] else "") + "</td>"
+        f"<td>{t['median_seconds'][OURS]:.3f}</td><td>{t['median_seconds'][MITSUBA]:.3f}</td>"
         f"<td class='{'pass' if t['mitsuba_over_ours'] >= 1 else 'fail'}'>{t['mitsuba_over_ours']:.2f}</td>"
-        f"<td>{t['samples_per_second']['mcval'] / 1e6:.1f}</td><td>{t['samples_per_second']['mitsuba'] / 1e6:.1f}</td>"
-        f"<td>{t['rays_per_second']['mcval'] / 1e6:.1f}</td><td>{t['rays_per_second']['mitsuba'] / 1e6:.1f}</td></tr>"
+        f"<td>{t['samples_per_second'][OURS] / 1e6:.1f}</td><td>{t['samples_per_second'][MITSUBA] / 1e6:.1f}</td>"
+        f"<td>{t['rays_per_second'][OURS] / 1e6:.1f}</td><td>{t['rays_per_second'][MITSUBA] / 1e6:.1f}</td></tr>"
         for t in throughput)
     return ("<p>Both engines in one process, the same scene file and sampler, render time only, each timed "
             "render after a pause and an untimed one of the same engine (so neither meets the other's threads still "

@@ -3,6 +3,8 @@ from __future__ import annotations
 
 from rich.table import Table
 
+from harness.bench.throughput import MITSUBA, OURS
+
 
 def bench_table(benches, engines) -> Table:
     """One row per case: ours/Mitsuba efficiency with the same sampler, best against best, each engine's slope."""
@@ -26,8 +28,8 @@ def bench_lines(payload: dict) -> list[str]:
     lines = []
     for t in payload["throughput"] or []:
         lines.append(f"throughput {t['scene']}:{t['integrator']} {t['resolution']}² {t['spp']} spp "
-                     f"({t['sampler']}): ours {t['median_seconds']['mcval']:.3f} s, Mitsuba "
-                     f"{t['median_seconds']['mitsuba']:.3f} s, Mitsuba/ours {t['mitsuba_over_ours']:.2f}")
+                     f"({t['sampler']}): ours {t['median_seconds'][OURS]:.3f} s, Mitsuba "
+                     f"{t['median_seconds'][MITSUBA]:.3f} s, Mitsuba/ours {t['mitsuba_over_ours']:.2f}")
     for integrator, by_sampler in (payload["sampler_slopes"] or {}).get("slopes", {}).items():
         lines.append(f"MSE slope on cornell {integrator}: " + ", ".join(f"{k} {v:.2f}" for k, v in by_sampler.items()))
     for name, v in (payload["seed_comparison"] or {}).items():

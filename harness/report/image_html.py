@@ -84,7 +84,7 @@ def _entry(r: ImageResult) -> str:
         metrics = "".join(f"<tr><td>{_esc(k)}</td><td>{v:.4g}</td></tr>" for k, v in comparison.metrics.items())
         parts.append(
             f"<p class='meta'>against {_esc(name)} ({ref.spp} spp × {ref.summary.image.k} batches"
-            f"{', ' + _esc(r.reference_source) if name == 'mitsuba' else ''}); ours {r.ours.spp} spp × "
+            f"{', ' + _esc(r.reference_source) if ref.source != CLOSED_FORM else ''}); ours {r.ours.spp} spp × "
             f"{r.ours.count} batches, seed {r.seed}; smallest detectable bias of the image mean "
             f"{comparison.detectable_bias:.2%}</p>"
             + _bad_pixels(comparison) + _picture(r, name, comparison) +
