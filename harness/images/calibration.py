@@ -1,11 +1,11 @@
 """How often the image comparison rejects when nothing is wrong, measured, and the smallest biases it finds.
 
-Null comparisons of three kinds (KINDS: ours against ours at independent seeds, Mitsuba against Mitsuba,
-ours against the closed form), cycled over CASES, each compared at every calibration level: the observed
-false-alarm rate per kind, per scale (pixel, tile, image) and for the whole comparison, with exact
+Null comparisons of three kinds (KINDS: the tested engine against itself at independent seeds, the reference
+engine against itself, the tested engine against the closed form), cycled over CASES, each compared at every
+calibration level: the observed false-alarm rate per kind, per scale (pixel, tile, image) and for the whole comparison, with exact
 (Clopper-Pearson) intervals simultaneous over every interval of the calibration, beside the nominal level.
 Power: per integrator, the smallest relative bias of the whole image and of one 8x8 tile that the
-validation's per-comparison level finds in 90 % of ours-against-ours comparisons."""
+validation's per-comparison level finds in 90 % of test-test comparisons."""
 from __future__ import annotations
 
 import time
@@ -24,14 +24,14 @@ from harness.images.suite import ImageCase, select_cases
 from harness.statistics.calibration_rates import CALIBRATION_CONFIDENCE, CALIBRATION_LEVELS, Rate, clopper_pearson
 from harness.statistics.constants import sidak_level
 
-#: The cases each kind cycles over (ours-analytic: those with a closed form). None is noiseless on both
+#: The cases each kind cycles over (test-closed-form: those with a closed form). None is noiseless on both
 #: sides (normals, or ao, on a lone plane: both engines exact, nothing could reject, which would only
 #: dilute the rate); cornell:normals is noisy along its edges and gives the normals' power.
 CASES = {
-    "ours-ours": ("cornell:normals", "cornell:simple", "cornell:ao", "sphere_floor_unit:simple", "crevice:ao",
+    "test-test": ("cornell:normals", "cornell:simple", "cornell:ao", "sphere_floor_unit:simple", "crevice:ao",
                   "plane_point:simple"),
-    "mitsuba-mitsuba": ("plane_point:simple", "cornell:ao", "sphere_floor_unit:simple"),
-    "ours-analytic": ("plane_point:simple", "sphere_floor_unit:simple", "sphere_floor_unit:ao"),
+    "reference-reference": ("plane_point:simple", "cornell:ao", "sphere_floor_unit:simple"),
+    "test-closed-form": ("plane_point:simple", "sphere_floor_unit:simple", "sphere_floor_unit:ao"),
 }
 #: Detected in this fraction of comparisons: the power figures' bias.
 POWER = 0.9
@@ -76,8 +76,8 @@ class ImageCalibration:
     def power(self) -> dict:
         """Per integrator: the detection fraction at each planted bias, and the smallest found POWER of the time."""
         out = {}
-        for integrator in sorted({r["integrator"] for r in self.results if r["kind"] == "ours-ours"}):
-            rs = [r for r in self.results if r["kind"] == "ours-ours" and r["integrator"] == integrator]
+        for integrator in sorted({r["integrator"] for r in self.results if r["kind"] == "test-test"}):
+            rs = [r for r in self.results if r["kind"] == "test-test" and r["integrator"] == integrator]
             entry = {"comparisons": len(rs), "biases": list(BIASES)}
             for what in ("global", "tile"):
                 found = np.mean([r[what] for r in rs], axis=0)
@@ -114,7 +114,7 @@ class ImageCalibration:
                 "seconds": self.seconds}
 
 
-def calibrate_images(ours: Engine, mitsuba: Engine, per_kind: int, seed: int = 0,
+def calibrate_images(test: Engine, reference: Engine, per_kind: int, seed: int = 0,
                      executor: Executor | None = None, on_status: Callable[[Status], None] | None = None,
                      resolution: int = RESOLUTION) -> ImageCalibration:
     """`per_kind` null comparisons of each kind, each with its own seeds."""
@@ -123,9 +123,9 @@ def calibrate_images(ours: Engine, mitsuba: Engine, per_kind: int, seed: int = 0
     executor = executor or SerialExecutor()
     alpha = validation_alpha()
     jobs = [NullJob(kind, _case(CASES[kind][i % len(CASES[kind])]), 1_000_003 * seed + 2 * (i + per_kind * k),
-                    resolution, alpha, ours, mitsuba)
+                    resolution, alpha, test, reference)
             for k, kind in enumerate(KINDS) for i in range(per_kind)]
-    bundles = share_scene_bundles(executor, [j.case for j in jobs], (ours, mitsuba))
+    bundles = share_scene_bundles(executor, [j.case for j in jobs], (test, reference))
     start = time.perf_counter()
     outcomes = executor.run([Task(f"{j.kind} {j.case.key}", null_comparison, (j, bundles.get(j.case.scene)))
                              for j in jobs], on_status)

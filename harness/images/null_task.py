@@ -1,5 +1,6 @@
 """One null image comparison as a task: two independent renders of the same case by engines that agree
-(ours twice, Mitsuba twice, ours and the closed form), compared at every calibration level; for ours
+(the tested engine twice, the reference engine twice, the tested engine and the closed form), compared at every
+calibration level; for the tested engine
 twice, also whether a planted bias (the whole image, or one 8x8 tile) is found at the default level."""
 from __future__ import annotations
 
@@ -19,7 +20,7 @@ from harness.statistics.constants import IMAGE_BATCHES, TILE_SIZE
 from harness.integrators import entry
 
 #: The pairs of engines whose renders of one case must agree.
-KINDS = ("ours-ours", "mitsuba-mitsuba", "ours-analytic")
+KINDS = ("test-test", "reference-reference", "test-closed-form")
 #: Relative biases planted for the power curves.
 BIASES = tuple(float(b) for b in np.geomspace(1e-4, 1.0, 17))
 
@@ -31,8 +32,8 @@ class NullJob:
     seed: int
     resolution: int
     alpha: float            # the validation's per-comparison level, for the power figures
-    ours: Engine
-    mitsuba: Engine
+    test: Engine            # the engine under test
+    reference: Engine
 
 
 def _render(engine: Engine, case: ImageCase, spp: int, batches: int, seed: int, res: int) -> np.ndarray:
@@ -41,14 +42,15 @@ def _render(engine: Engine, case: ImageCase, spp: int, batches: int, seed: int, 
 
 def null_comparison(job: NullJob, bundle: Bundle | None = None) -> dict:
     """The rejections of one null comparison by scale and level, its image-scale smallest p-value, and
-    (ours twice) which planted biases the default level finds."""
+    (the tested engine twice) which planted biases the default level finds."""
     case = on_files(job.case, bundle)
     spp, signed = OUR_SPP[case.integrator], entry(case.integrator).signed
     # The test side as the validation renders ours; the reference side with more batches, as a reference has.
-    test_engine, ref_engine = {"ours-ours": (job.ours, job.ours), "mitsuba-mitsuba": (job.mitsuba, job.mitsuba),
-                               "ours-analytic": (job.ours, AnalyticEngine())}[job.kind]
+    test_engine, ref_engine = {"test-test": (job.test, job.test),
+                               "reference-reference": (job.reference, job.reference),
+                               "test-closed-form": (job.test, AnalyticEngine())}[job.kind]
     test = _render(test_engine, case, spp, IMAGE_BATCHES, job.seed, job.resolution)
-    if job.kind == "ours-analytic":
+    if job.kind == "test-closed-form":
         ref_spp, ref_batches = AnalyticEngine.samples_for(case.integrator, spp), IMAGE_BATCHES
     else:
         ref_spp, ref_batches = spp, REFERENCE_BATCHES
@@ -60,7 +62,7 @@ def null_comparison(job: NullJob, bundle: Bundle | None = None) -> dict:
         rejected[str(level)] = {**{s.scale: not s.passed for s in c.scales}, "whole": not c.passed}
     out = {"kind": job.kind, "case": case.key, "integrator": case.integrator, "rejected": rejected,
            "image_min_p": c.scales[SCALES.index("image")].min_p}
-    if job.kind == "ours-ours":
+    if job.kind == "test-test":
         out["global"], out["tile"] = _planted(test, reference, job, signed, samples)
     return out
 

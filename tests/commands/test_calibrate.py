@@ -43,10 +43,10 @@ def test_null_comparisons_are_within_their_intervals(mitsuba, seed):
 def test_a_biased_renderer_is_outside_the_interval(mitsuba):
     cal = calibrate_images(_Scaled(1.05), mitsuba, per_kind=3, seed=0, resolution=64)
     blocks = {(b["kind"], b["scale"], b["comparison_level"]): b for b in cal.blocks()}
-    assert blocks[("ours-analytic", "whole", 0.01)]["rejections"] == 3
-    assert not blocks[("ours-analytic", "whole", 0.01)]["within"]
-    assert blocks[("ours-analytic", "whole", 0.01)]["verdict"] == "liberal"
-    assert blocks[("ours-ours", "whole", 0.01)]["within"]  # scaled on both sides: still a null pair
+    assert blocks[("test-closed-form", "whole", 0.01)]["rejections"] == 3
+    assert not blocks[("test-closed-form", "whole", 0.01)]["within"]
+    assert blocks[("test-closed-form", "whole", 0.01)]["verdict"] == "liberal"
+    assert blocks[("test-test", "whole", 0.01)]["within"]  # scaled on both sides: still a null pair
     assert not cal.within and not cal.sound and not cal.to_json()["pass"]
 
 
@@ -61,7 +61,7 @@ def test_the_command_writes_its_figures_and_page(tmp_path):
     for block in images["blocks"]:
         assert isinstance(block["comparisons"], int) and isinstance(block["false_alarm_rate"], float)
     page = (run / "calibration.html").read_text()
-    assert "Power at the validation" in page and "ours-analytic" in page
+    assert "Power at the validation" in page and "test-closed-form" in page
     # The next report links it.
     assert main(["images", "--only", "plane_point:normals", "--out", str(out)]) == 0
     assert "../calibration-latest/calibration.html" in (out / "latest" / "report.html").read_text()

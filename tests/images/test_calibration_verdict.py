@@ -14,7 +14,7 @@ def _results(rejects) -> list[dict]:
             rejected = {str(level): {**dict.fromkeys(SCALES, False), "whole": rejects(level, i)}
                         for level in CALIBRATION_LEVELS}
             r = {"kind": kind, "case": "x:simple", "integrator": "simple", "rejected": rejected, "image_min_p": 0.5}
-            if kind == "ours-ours":
+            if kind == "test-test":
                 r["global"] = r["tile"] = [b > 0.01 for b in BIASES]
             out.append(r)
     return out
@@ -42,5 +42,5 @@ def test_a_check_that_rejects_too_often_fails():
 
 
 def test_a_failed_comparison_fails_the_calibration():
-    cal = ImageCalibration(_results(lambda level, i: i < round(80 * level)), 1e-4, 1.0, ["ours-ours x:simple: died"])
+    cal = ImageCalibration(_results(lambda level, i: i < round(80 * level)), 1e-4, 1.0, ["test-test x:simple: died"])
     assert not cal.sound and not cal.to_json()["pass"]
