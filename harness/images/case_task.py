@@ -20,7 +20,7 @@ class CaseJob:
     alpha: float             # per-comparison level of the whole run
     run_seed: int
     closed_form: bool        # whether the analytic engine renders this case too
-    ours: Engine             # the tested engine
+    test: Engine             # the engine under test
     reference: Engine
 
 
@@ -59,7 +59,7 @@ def run_case_job(job: CaseJob, bundle: Bundle | None = None):
 
     case = on_files(job.case, bundle)
     messages: list[str] = []
-    result = _run_case(case, job.ours, job.reference, AnalyticEngine() if job.closed_form else None,
+    result = _run_case(case, job.test, job.reference, AnalyticEngine() if job.closed_form else None,
                        {"res": str(RESOLUTION)}, job.seed, job.alpha, job.run_seed, messages.append)
     result.case = job.case
     if result.ours is not None and (result.passed or result.error is not None):
