@@ -27,10 +27,9 @@ def _same_number(a: float, b: float) -> bool:
     return f"{a:.6g}" == f"{b:.6g}" or abs(a - b) <= 5e-7 * max(abs(a), abs(b))
 
 
-def _key(item) -> tuple | None:
-    if isinstance(item, dict):
-        key = tuple((k, json.dumps(item[k], sort_keys=True)) for k in IDENTITY if k in item)
-        return key or None
+def _key(item, fields: list[str]) -> tuple | None:
+    if isinstance(item, dict) and fields:
+        return tuple((k, json.dumps(item[k], sort_keys=True)) for k in fields)
     return None
 
 
@@ -60,7 +59,9 @@ def compare(old, new, path: str = "") -> list[str]:
                 out += compare(old[k], new[k], f"{path}/{k}")
         return out
     if isinstance(old, list) and isinstance(new, list):
-        keys_old, keys_new = [_key(x) for x in old], [_key(x) for x in new]
+        # Identity fields that every item of both lists has (a field NEW adds does not tell items apart).
+        fields = [k for k in IDENTITY if all(isinstance(x, dict) and k in x for x in old + new)]
+        keys_old, keys_new = [_key(x, fields) for x in old], [_key(x, fields) for x in new]
         if all(keys_old) and all(keys_new) and len(set(keys_old)) == len(old) and len(set(keys_new)) == len(new):
             by_new = dict(zip(keys_new, new))
             out = [f"{path}[{dict(k)}]: only in the first" for k in keys_old if k not in by_new]

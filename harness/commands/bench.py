@@ -28,7 +28,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--max-spp", type=int, default=256, help="top of the ladder 1, 2, 4, ... (default 256)")
     p.add_argument("--same-sampler", action="store_true",
                    help="only the engine comparison: every engine with the independent sampler (by default each "
-                        "also runs its stratified samplers: ours sobol, Mitsuba ldsampler and multijitter)")
+                        "also runs its stratified samplers: ours sobol, Mitsuba ldsampler and multijitter, and our "
+                        "samplers' convergence slopes are measured)")
     p.add_argument("--runs", type=int, default=3, help="independent runs per step (default 3)")
     p.add_argument("--rays-json", type=Path, help="figures written by build/bench_rays --json, to include")
     p.add_argument("--throughput-runs", type=int, default=3,
@@ -78,7 +79,7 @@ def _measure(args, cases, engines, reference, ladder):
                 progress.console.print(f"throughput: {case[0]}:{case[1]} {case[2]}² {case[3]} spp")
                 throughput.append(measure(*case, runs=args.throughput_runs).to_json())
         slopes = None
-        if ours is not None:
+        if ours is not None and not args.same_sampler:  # the slopes compare our samplers with each other
             from harness.bench.sampler_slopes import sampler_slopes
             progress.console.print("sampler slopes: cornell simple and ao, 32², our samplers")
             slopes = sampler_slopes()

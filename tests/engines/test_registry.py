@@ -2,34 +2,33 @@
 (tests/plugins/engines/ours_in_process.py, found through MCVAL_ENGINE_PATH) goes through every suite with no
 edit of the harness; an unknown name is one clear error."""
 import json
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
+from harness.cli import main
 from harness.engines.registry import engine_entries, make_engine
 
 ROOT = Path(__file__).resolve().parents[2]
 PLUGINS = ROOT / "tests" / "plugins" / "engines"
 
 
-def harness(*args: str) -> subprocess.CompletedProcess:
-    env = {**os.environ, "MCVAL_ENGINE_PATH": str(PLUGINS)}
-    return subprocess.run([sys.executable, "-m", "harness", *args], capture_output=True, text=True, env=env,
-                          cwd=ROOT, timeout=600)
+@pytest.fixture
+def harness(monkeypatch):
+    """`python -m harness ARGS` in this process, with the test-only engine on the engine path: its exit status."""
+    monkeypatch.setenv("MCVAL_ENGINE_PATH", str(PLUGINS))
+    return lambda *args: main(list(args))
 
 
 def results(out: Path) -> dict:
     return json.loads(((out / "latest").resolve() / "results.json").read_text())
 
 
-def test_an_unknown_engine_is_refused_with_the_known_ones(tmp_path):
+def test_an_unknown_engine_is_refused_with_the_known_ones(tmp_path, harness, capsys):
     with pytest.raises(ValueError, match="unknown engine 'nope': known are mcval, mitsuba"):
         make_engine("nope")
-    res = harness("images", "--engine", "nope", "--only", "plane_point", "--out", str(tmp_path))
-    assert res.returncode == 2 and "unknown engine 'nope'" in res.stderr
+    assert harness("images", "--engine", "nope", "--only", "plane_point", "--out", str(tmp_path)) == 2
+    assert "unknown engine 'nope'" in capsys.readouterr().err
 
 
 def test_an_engine_file_is_found_on_the_engine_path(monkeypatch):
@@ -57,39 +56,34 @@ def test_the_reference_engine_maps_its_own_scene_files():
 
 @pytest.mark.slow
 @pytest.mark.mitsuba
-def test_the_test_engine_goes_through_images_and_invariances(tmp_path):
-    res = harness("images", "--engine", "ours-in-process", "--only", "plane_point:simple", "--out", str(tmp_path))
-    assert res.returncode == 0, res.stdout + res.stderr
+def test_the_test_engine_goes_through_images_and_invariances(tmp_path, harness):
+    assert harness("images", "--engine", "ours-in-process", "--only", "plane_point:simple", "--out", str(tmp_path)) == 0
     [case] = results(tmp_path)["images"]
     assert case["engine"] == "ours-in-process" and case["pass"]
     assert set(case["seconds"]) == {"ours-in-process", "mitsuba", "analytic"}
-    res = harness("invariance", "--engine", "ours-in-process", "--only", "plane_point:simple", "scale", "light",
-                  "--out", str(tmp_path))
-    assert res.returncode == 0, res.stdout + res.stderr
+    assert harness("invariance", "--engine", "ours-in-process", "--only", "plane_point:simple", "scale", "light",
+                   "--out", str(tmp_path)) == 0
     data = results(tmp_path)["invariance"]
     assert data["gating_engine"] == "ours-in-process"
     assert {c["engine"] for c in data["cells"]} == {"ours-in-process", "mitsuba"}
 
 
 @pytest.mark.slow
-def test_the_test_engine_goes_through_warps_and_calibrate(tmp_path):
-    res = harness("warps", "--engine", "ours-in-process", "--only", "tent", "--no-mitsuba", "--out", str(tmp_path))
-    assert res.returncode == 0, res.stdout + res.stderr
+def test_the_test_engine_goes_through_warps_and_calibrate(tmp_path, harness):
+    assert harness("warps", "--engine", "ours-in-process", "--only", "tent", "--no-mitsuba", "--out", str(tmp_path)) == 0
     assert results(tmp_path)["warps"][0]["pass"]
-    res = harness("calibrate", "--engine", "ours-in-process", "--warps", "--only", "tent", "--seeds", "4",
-                  "--no-mitsuba", "--out", str(tmp_path))
-    assert res.returncode == 0, res.stdout + res.stderr
+    assert harness("calibrate", "--engine", "ours-in-process", "--warps", "--only", "tent", "--seeds", "4",
+                   "--no-mitsuba", "--out", str(tmp_path)) == 0
     cal = json.loads(((tmp_path / "calibration-latest").resolve() / "calibration.json").read_text())
     assert "in process" in cal["meta"]["engine"]
 
 
 @pytest.mark.slow
 @pytest.mark.mitsuba
-def test_the_test_engine_is_benchmarked_against_the_reference(tmp_path):
-    res = harness("bench", "--engines", "ours-in-process", "mitsuba", "--only", "plane_point:simple",
-                  "--same-sampler", "--max-spp", "4", "--runs", "2", "--throughput-runs", "0", "--seed-runs", "0",
-                  "--out", str(tmp_path))
-    assert res.returncode == 0, res.stdout + res.stderr
+def test_the_test_engine_is_benchmarked_against_the_reference(tmp_path, harness):
+    assert harness("bench", "--engines", "ours-in-process", "mitsuba", "--only", "plane_point:simple",
+                   "--same-sampler", "--max-spp", "4", "--runs", "2", "--throughput-runs", "0", "--seed-runs", "0",
+                   "--out", str(tmp_path)) == 0
     [case] = results(tmp_path)["speed"]
     assert case["efficiency_ratio_same_sampler"]["ours"] == "ours-in-process/independent"
     assert case["efficiency_ratio_same_sampler"]["reference"] == "mitsuba/independent"
