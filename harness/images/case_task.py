@@ -5,12 +5,19 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from typing import Callable
 
+from harness.comparison.compare import compare_summaries, summarize
 from harness.distributed.bundle import Bundle, bundle_files
 from harness.engines.analytic import AnalyticEngine
-from harness.engines.base import Engine
-from harness.images.references import RESOLUTION, reference_path
-from harness.images.suite import ROOT, ImageCase
+from harness.engines.base import Engine, RenderFailed, RenderResult
+from harness.images.oracle import decide
+from harness.images.references import (CLOSED_FORM, RESOLUTION, Reference, load_reference, reference_path,
+                                       render_reference)
+from harness.images.result import ImageResult
+from harness.images.suite import OUR_SPP, ROOT, ImageCase
+from harness.integrators import entry
+from harness.statistics.constants import IMAGE_BATCHES
 
 
 @dataclass
@@ -55,11 +62,9 @@ def scene_bundle(case: ImageCase, engines: Sequence[Engine] = ()) -> Bundle:
 
 def run_case_job(job: CaseJob, bundle: Bundle | None = None):
     """(ImageResult, messages). With a bundle, the case reads the bundle's copy of its files."""
-    from harness.images.run import _run_case
-
     case = on_files(job.case, bundle)
     messages: list[str] = []
-    result = _run_case(case, job.test, job.reference, AnalyticEngine() if job.closed_form else None,
+    result = run_case(case, job.test, job.reference, AnalyticEngine() if job.closed_form else None,
                        {"res": str(RESOLUTION)}, job.seed, job.alpha, job.run_seed, messages.append)
     result.case = job.case
     if result.ours is not None and (result.passed or result.error is not None):
@@ -72,3 +77,55 @@ def reference_task(case: ImageCase, engine: Engine, bundle: Bundle | None = None
     from harness.images.references import render_reference
 
     return render_reference(on_files(case, bundle), engine)
+
+
+def _reason(e: Exception) -> str:
+    """One line saying why a render failed."""
+    if isinstance(e, RenderFailed):
+        return e.reason
+    text = str(e).strip().splitlines()
+    return f"{type(e).__name__}: {text[0]}" if text else type(e).__name__
+
+
+def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: AnalyticEngine | None,
+              params: dict[str, str], s: int, alpha: float, run_seed: int,
+              on_message: Callable[[str], None] | None) -> ImageResult:
+    """One case: the reference engine's reference, the tested engine's batches, the closed form if there is
+    one (`analytic`), and the comparisons; a failed render gives a failed result carrying the reason."""
+    source = "none"
+    references: dict[str, Reference] = {}
+
+    def failed(reason: str, mine: RenderResult | None = None) -> ImageResult:
+        return ImageResult(case, mine, references, {}, source, s, None, alpha, run_seed, reason, tested=ours.name)
+
+    try:
+        reference, source = load_reference(case, reference_engine)
+        if reference is None:
+            if on_message:
+                on_message(f"{case.key}: {source}; rendering it now (`make references` stores it)")
+            reference = render_reference(case, reference_engine)
+            source = f"rendered now ({source})"
+    except Exception as e:
+        return failed(f"{reference_engine.name.capitalize()} reference: {_reason(e)}")
+    references[reference_engine.name] = reference
+    try:
+        mine = ours.render(str(case.path), case.integrator, OUR_SPP[case.integrator], IMAGE_BATCHES, s, params)
+    except RenderFailed as e:
+        return failed(f"our render: {e.reason}")
+    if analytic is not None:
+        try:
+            exact = analytic.render(str(case.path), case.integrator,
+                                    analytic.samples_for(case.integrator, OUR_SPP[case.integrator]), IMAGE_BATCHES,
+                                    s + 1, params)
+        except Exception as e:
+            return failed(f"closed form: {_reason(e)}", mine)
+        references[analytic.name] = Reference(summarize(exact.batches), exact.spp, exact.seconds, CLOSED_FORM)
+    summary = summarize(mine.batches)
+    signed = entry(case.integrator).signed
+    comparisons = {name: compare_summaries(summary, ref.summary, alpha, signed=signed, samples=(mine.spp, ref.spp))
+                   for name, ref in references.items()}
+    finding = decide(comparisons, summary, {name: ref.summary for name, ref in references.items()}, alpha, signed,
+                     {name: ref.spp for name, ref in references.items()}, reference_engine.name,
+                     analytic.name if analytic is not None else "")
+    return ImageResult(case, mine, references, comparisons, source, s, None, alpha, run_seed, finding=finding,
+                       tested=ours.name)

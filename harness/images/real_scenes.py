@@ -2,7 +2,7 @@
 and the cases their integrators' entries declare not applicable (listed with why, never run, not failures)."""
 from __future__ import annotations
 
-from harness.images.run import ImageResult
+from harness.images.result import ImageResult
 from harness.images.suite import ImageCase
 
 

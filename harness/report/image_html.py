@@ -9,7 +9,7 @@ import numpy as np
 from harness.comparison.compare import Comparison
 from harness.comparison.finite import SIDES
 from harness.images.references import CLOSED_FORM
-from harness.images.run import ImageResult
+from harness.images.result import ImageResult
 from harness.images.suite import INTEGRATORS
 from harness.report.idiff_text import LEGEND, idiff_sentence
 from harness.report.image_plots import comparison_png

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 
-from harness.images.run import ImageResult
+from harness.images.result import ImageResult
 from harness.images.regression import compare_runs, load_baseline
 from harness.report.image_html import report_html
 from harness.report.junit import junit_xml

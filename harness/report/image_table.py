@@ -6,7 +6,7 @@ from rich.markup import escape
 from rich.table import Table
 
 from harness.comparison.finite import SIDES
-from harness.images.run import ImageResult
+from harness.images.result import ImageResult
 from harness.report.idiff_text import LEGEND, idiff_short
 
 

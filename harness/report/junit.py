@@ -4,7 +4,7 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 
 from harness.comparison.compare import Comparison
-from harness.images.run import ImageResult
+from harness.images.result import ImageResult
 
 
 def _failure(c: Comparison) -> str:

@@ -58,7 +58,7 @@ def test_a_hung_renderer_is_ended_by_the_timeout(tmp_path, monkeypatch, capsys):
 
 @pytest.mark.parametrize("failing", ["mitsuba", "analytic"])
 def test_a_reference_engine_that_raises_fails_its_case(tmp_path, monkeypatch, failing):
-    import harness.images.run as image_run
+    import harness.images.case_task as image_run
 
     def boom(*args, **kwargs):
         raise RuntimeError("the reference engine broke\nsecond line")

@@ -78,6 +78,9 @@ class _Scaled:
     def __init__(self, engine, factor: float) -> None:
         self.engine, self.factor, self.name = engine, factor, engine.name
 
+    def __getattr__(self, name):  # the rest of the Engine interface is the wrapped engine's
+        return getattr(self.engine, name)
+
     def version(self) -> str:
         return f"{self.engine.version()} times {self.factor}"
 

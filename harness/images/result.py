@@ -1,0 +1,89 @@
+"""One image case's outcome: the tested engine's render against each reference, the comparisons and the
+verdict, and its results.json entry."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from harness.comparison.compare import Comparison
+from harness.engines.base import RenderResult
+from harness.images.oracle import Finding
+from harness.images.references import Reference
+from harness.images.suite import ImageCase
+from harness.statistics.constants import SIGNIFICANCE
+
+GEOMETRY_NOTE = "camera or geometry mismatch (normals failed on this scene)"
+
+
+@dataclass
+class ImageResult:
+    """One (scene, integrator): our batches against each reference, and the verdicts.
+
+    `error` (one line) says why a render failed (crashed, killed, timed out, reported an error); the case
+    then fails without comparisons, and `ours` is None if our render was the one that failed. `finding` is
+    set when the closed form overrules a reference (harness/images/oracle.py): that reference's failed
+    comparison then does not fail the case.
+    """
+
+    case: ImageCase
+    ours: RenderResult | None
+    references: dict[str, Reference]
+    comparisons: dict[str, Comparison]
+    reference_source: str
+    seed: int
+    note: str | None = None
+    alpha: float = SIGNIFICANCE
+    run_seed: int = 0
+    error: str | None = None
+    finding: Finding | None = None
+    tested: str = ""  # the tested engine's name, for a result without our render
+
+    @property
+    def passed(self) -> bool:
+        overruled = self.finding.overruled if self.finding else None
+        return self.error is None and all(c.passed for name, c in self.comparisons.items() if name != overruled)
+
+    def to_json(self) -> dict:
+        if self.error is not None or self.ours is None:
+            seconds = {k: r.seconds for k, r in self.references.items()}
+            return {"integrator": self.case.integrator, "scene": self.case.scene, "engine": self.engine,
+                    "pass": False, "error": self.error, "tests": {}, "metrics": {},
+                    "seconds": {**({self.engine: self.ours.seconds} if self.ours else {}), **seconds},
+                    "reference": self.reference_source, "note": self.note, "seed": self.seed, "alpha": self.alpha,
+                    "idiff": self.idiff}
+        first = self.comparisons[next(iter(self.comparisons))]  # the reference engine's (the closed form's after it)
+        batch_means = self.ours.batch_means
+        tested = self.engine
+        return {
+            "integrator": self.case.integrator, "scene": self.case.scene, "engine": tested, "pass": self.passed,
+            "tests": {name: c.to_json() for name, c in self.comparisons.items()},
+            "metrics": first.metrics,
+            "seconds": {tested: self.ours.seconds, **{k: r.seconds for k, r in self.references.items()}},
+            "reference": self.reference_source, "note": self.note, "error": None, "seed": self.seed,
+            "alpha": self.alpha, "spp": {tested: self.ours.spp, **{k: r.spp for k, r in self.references.items()}},
+            "batches": {tested: self.ours.count, **{k: r.summary.image.k for k, r in self.references.items()}},
+            "image_mean": batch_means.mean(axis=0).tolist(),
+            "image_mean_se": (batch_means.std(axis=0, ddof=1) / np.sqrt(len(batch_means))).tolist(),
+            "idiff": self.idiff, "finding": self.finding.to_json() if self.finding else None,
+        }
+
+    @property
+    def engine(self) -> str:
+        """The tested engine's name (the key of its figures in results.json)."""
+        return self.ours.engine if self.ours is not None else self.tested
+
+    @cached_property
+    def idiff(self) -> dict:
+        """What idiff, at OpenImageIO's test-suite thresholds, says of our mean image against the
+        reference's mean (the reference engine's, else the closed form's); verdict "n/a" with a reason when
+        there is no pair of images to compare."""
+        ref = next(iter(self.references.values()), None)
+        if self.error is not None or self.ours is None or ref is None:
+            return {"verdict": "n/a", "reason": self.error or "no reference image"}
+        from harness.comparison.idiff import idiff
+        try:
+            return idiff(self.ours.mean, ref.summary.mean_image)
+        except Exception as e:  # a side report never breaks the run
+            return {"verdict": "n/a", "reason": f"idiff failed: {e}"}
