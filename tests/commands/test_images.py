@@ -24,7 +24,7 @@ def test_references_are_reused_only_while_their_provenance_matches(mitsuba, tmp_
     assert why == "stored reference"
     assert np.allclose(stored.summary.pixel.mean, fresh.summary.pixel.mean)
     assert np.allclose(stored.summary.tile.var_of_mean, fresh.summary.tile.var_of_mean)
-    provenance = json.loads((tmp_path / "plane_point" / "normals.json").read_text())["provenance"]
+    provenance = json.loads((tmp_path / mitsuba.name / "plane_point" / "normals.json").read_text())["provenance"]
     assert {"scene_sha256", "engine", "spp", "batches", "seed"} <= set(provenance)
     monkeypatch.setattr(refs, "scene_hash", lambda path: "edited")
     stale, why = refs.load_reference(case, mitsuba)

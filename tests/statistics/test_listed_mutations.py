@@ -32,7 +32,7 @@ MUTATIONS = {
         "dof = np.where(dof_den > 0, da + db, da + db)",
         [f"{REF}::test_welch_p_values_match_scipy", f"{REF}::test_welch_uses_satterthwaite_dof_and_t_tails"]),
     "no sidak split over the three scales": (
-        "images/compare.py", "per_scale = sidak_level(alpha, len(SCALES))", "per_scale = alpha",
+        "comparison/compare.py", "per_scale = sidak_level(alpha, len(SCALES))", "per_scale = alpha",
         [f"{REF}::test_compare_splits_alpha_over_scales_then_pixels_and_channels"]),
     "sidak counts pixels, not channels": (
         "statistics/family_level.py", "share = channel_union(level, channels, rho) / channels", "share = 1.0 / channels",
@@ -56,11 +56,11 @@ MUTATIONS = {
         "if np.any(z > MEAN_SIGMAS) and np.any(m1 != m1):",
         [f"{TWINS}::test_regression_flags_a_mean_moved_by_five_sigma_and_not_one"]),
     "detectable_bias x2": (
-        "images/compare.py", "return np.where(live, 0.5 * (lo + hi)[..., 0], np.inf)",
+        "comparison/compare.py", "return np.where(live, 0.5 * (lo + hi)[..., 0], np.inf)",
         "return np.where(live, (lo + hi)[..., 0], np.inf)",
         [f"{TWINS}::test_detectable_bias_is_its_definition"]),
     "PSNR with 20 log10": (
-        "images/metrics.py", "float(10 * np.log10(peak**2 / mse))", "float(20 * np.log10(peak**2 / mse))",
+        "comparison/metrics.py", "float(10 * np.log10(peak**2 / mse))", "float(20 * np.log10(peak**2 / mse))",
         [f"{REF}::test_psnr_is_its_definition"]),
     "efficiency ratio inverted": (
         "bench/run.py", "ratio = self.curves[a].efficiency(common) / self.curves[b].efficiency(common)",

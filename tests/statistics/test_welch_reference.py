@@ -405,7 +405,7 @@ def test_efficiency_ratio_has_its_known_answer():
 
 def _entry(scene="cornell", passed=True, mean=(0.5, 0.5, 0.5), se=(1e-3, 1e-3, 1e-3), seconds=1.0, relmse=1e-3,
            error=None):
-    e = {"integrator": "simple", "scene": scene, "pass": passed, "seconds": {"mcval": {"total": seconds}},
+    e = {"integrator": "simple", "scene": scene, "engine": "mcval", "pass": passed, "seconds": {"mcval": {"total": seconds}},
          "metrics": {"relmse": relmse}}
     if mean is not None:
         e.update(image_mean=list(mean), image_mean_se=list(se))
