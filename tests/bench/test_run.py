@@ -31,6 +31,7 @@ def test_fits_efficiency_and_time_to_target():
     assert curve.time_to(1e-3) == pytest.approx(0.5 / 1e-3 * 0.01, rel=1e-6)
 
 
+@pytest.mark.slow
 def test_bench_command_writes_speed_entries(tmp_path):
     from harness.cli import main
     assert main(["bench", "--only", "cornell:simple", "--engines", "mcval", "mitsuba", "--max-spp", "8",

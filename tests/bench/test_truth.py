@@ -26,6 +26,7 @@ def _errors(case: ImageCase, mitsuba) -> tuple[float, float]:
     return relmse(image, truth), relmse(image, stored)
 
 
+@pytest.mark.slow
 def test_a_closed_form_case_is_measured_against_the_closed_form(mitsuba):
     # Against Mitsuba's biased reference at 1e-3 our error is mostly that bias (measured: 40 times the
     # noise of 64 samples); against the closed form it is that noise.

@@ -70,6 +70,7 @@ def test_sphere_occlusion_is_half_of_one_plus_n_z(polar):
     assert abs(seen - exact) < 4 * np.sqrt(exact * (1 - exact) / n) + 1.3e-4
 
 
+@pytest.mark.slow
 def test_shadow_test_against_marching_along_the_segment():
     rng = np.random.default_rng(3)
     s = _scene()
@@ -164,6 +165,7 @@ def _brute_force_pixel(s, integrator: str, row: int, col: int, n: int, rng) -> t
     return float(value.mean()), float(value.std() / np.sqrt(n))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("integrator", ["ao", "simple"])
 @pytest.mark.parametrize("scale", ["unit", "kilo"])
 def test_engine_against_brute_force_monte_carlo(integrator, scale):

@@ -29,6 +29,7 @@ def mitsuba():
     return MitsubaEngine()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1])
 def test_null_comparisons_are_within_their_intervals(mitsuba, seed):
     cal = calibrate_images(OurEngine(), mitsuba, per_kind=3, seed=seed, resolution=64)
@@ -40,6 +41,7 @@ def test_null_comparisons_are_within_their_intervals(mitsuba, seed):
     assert all(0 < v["global_bias_90"] < 0.3 for v in power.values())
 
 
+@pytest.mark.slow
 def test_a_biased_renderer_is_outside_the_interval(mitsuba):
     cal = calibrate_images(_Scaled(1.05), mitsuba, per_kind=3, seed=0, resolution=64)
     blocks = {(b["kind"], b["scale"], b["comparison_level"]): b for b in cal.blocks()}
@@ -50,6 +52,7 @@ def test_a_biased_renderer_is_outside_the_interval(mitsuba):
     assert not cal.within and not cal.sound and not cal.to_json()["pass"]
 
 
+@pytest.mark.slow
 def test_the_command_writes_its_figures_and_page(tmp_path):
     out = tmp_path / "results"
     assert main(["calibrate", "--images", "--comparisons", "2", "--out", str(out)]) == 0

@@ -45,6 +45,7 @@ def image_run(tmp_path_factory):
     return code, (out / "latest").resolve()
 
 
+@pytest.mark.slow
 def test_images_command_writes_results_and_junit(image_run):
     code, run = image_run
     assert code == 0
@@ -63,6 +64,7 @@ def test_images_command_writes_results_and_junit(image_run):
     assert not any(s.get("failures") != "0" for s in suites)
 
 
+@pytest.mark.slow
 def test_a_second_run_compares_itself_with_the_first(image_run, tmp_path):
     code, run = image_run
     out = run.parent
@@ -74,6 +76,7 @@ def test_a_second_run_compares_itself_with_the_first(image_run, tmp_path):
     assert all([f for f in e["flags"] if not f.startswith("time ")] == [] for e in data["regression"])
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(CHROMIUM is None, reason="needs Debian's chromium (make test installs it)")
 def test_report_renders_in_headless_chromium(image_run, tmp_path):
     _, run = image_run

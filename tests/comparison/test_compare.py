@@ -113,6 +113,7 @@ def test_ao_with_an_extra_bounce_fails(mitsuba, baseline, tmp_path):
     assert result.metrics["mean_ratio"] > 1.0
 
 
+@pytest.mark.slow
 def test_independent_runs_of_one_engine_pass(ours):
     """20 seed pairs: false alarms must be consistent with alpha = 0.01 (at most 2 of 20: P < 0.001)."""
     failures = 0

@@ -81,8 +81,8 @@ def test_the_test_engine_goes_through_warps_and_calibrate(tmp_path, harness):
 @pytest.mark.slow
 @pytest.mark.mitsuba
 def test_the_test_engine_is_benchmarked_against_the_reference(tmp_path, harness):
-    assert harness("bench", "--engines", "ours-in-process", "mitsuba", "--only", "plane_point:simple",
-                   "--same-sampler", "--max-spp", "4", "--runs", "2", "--throughput-runs", "0", "--seed-runs", "0",
+    assert harness("bench", "--engines", "ours-in-process", "mitsuba", "--only", "cornell:simple",
+                   "--same-sampler", "--max-spp", "2", "--runs", "2", "--throughput-runs", "0", "--seed-runs", "0",
                    "--out", str(tmp_path)) == 0
     [case] = results(tmp_path)["speed"]
     assert case["efficiency_ratio_same_sampler"]["ours"] == "ours-in-process/independent"

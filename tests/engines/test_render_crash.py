@@ -39,11 +39,13 @@ def _check(code: int, results: dict, failed: str, reason: str, run, printed: str
     assert f"plane_point:{failed}" in printed and reason in printed.replace("\n", " ")
 
 
+@pytest.mark.slow
 def test_a_renderer_killed_mid_run_fails_its_case_and_the_run_goes_on(tmp_path, monkeypatch, capsys):
     code, results, printed = _run(tmp_path, monkeypatch, capsys, "kill", "simple")
     _check(code, results, "simple", "killed by signal SIGKILL (9)", tmp_path / "results" / "latest", printed)
 
 
+@pytest.mark.slow
 def test_a_scene_error_fails_its_case_with_the_message(tmp_path, monkeypatch, capsys):
     code, results, printed = _run(tmp_path, monkeypatch, capsys, "scene_error", "ao")
     _check(code, results, "ao", "exited with status 1: error: ", tmp_path / "results" / "latest", printed)
@@ -51,6 +53,7 @@ def test_a_scene_error_fails_its_case_with_the_message(tmp_path, monkeypatch, ca
     assert 'expected an integer, got "twelve"' in ao["error"]
 
 
+@pytest.mark.slow
 def test_a_hung_renderer_is_ended_by_the_timeout(tmp_path, monkeypatch, capsys):
     code, results, printed = _run(tmp_path, monkeypatch, capsys, "hang", "normals", timeout="5")
     _check(code, results, "normals", "timed out after 5 s", tmp_path / "results" / "latest", printed)

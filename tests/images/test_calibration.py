@@ -23,6 +23,7 @@ def acceptance(rate: float, runs: int, tail: float = 5e-4) -> tuple[float, float
     return sps.binom.ppf(tail, runs, rate) / runs, sps.binom.isf(tail, runs, rate) / runs
 
 
+@pytest.mark.slow
 def test_whole_comparison_rejects_at_its_level(pairs):
     rates = null_rates(pairs, 0.3)
     assert 0.2 <= rates.rate() <= 0.4, rates
@@ -32,11 +33,13 @@ def test_whole_comparison_rejects_at_its_level(pairs):
         assert lo <= rates.rate(scale) <= hi, (scale, rates)
 
 
+@pytest.mark.slow
 def test_few_false_alarms_at_the_validation_level(pairs):
     rates = null_rates(pairs, 0.01)
     assert rates.rate() <= 0.025 + 1e-12, rates
 
 
+@pytest.mark.slow
 def test_detectable_bias_is_found_half_of_the_time():
     draw = synthetic_pairs(2, size=24)
     rate, runs, bias = detection_rate((draw() for _ in range(80)), draw)
@@ -56,6 +59,7 @@ def crevice_nulls():
 RENDER_RUNS = 60
 
 
+@pytest.mark.slow
 def test_real_null_renders_reject_at_about_the_stated_level(crevice_nulls):
     from harness.images.suite import OUR_SPP
 
@@ -67,6 +71,7 @@ def test_real_null_renders_reject_at_about_the_stated_level(crevice_nulls):
                       samples).rate() <= acceptance(0.01, RENDER_RUNS)[1], rates
 
 
+@pytest.mark.slow
 def test_detectable_biases_are_found_about_half_of_the_time_on_real_renders(crevice_nulls):
     """Planted (the image, then one random tile, scaled by 1 + b) into the next pair; 60 runs, so the
     bounds are 0.5 widened by its binomial spread."""
@@ -82,6 +87,7 @@ def test_detectable_biases_are_found_about_half_of_the_time_on_real_renders(crev
     assert lo <= image_rate <= hi and lo <= tile_rate <= hi, (image_rate, tile_rate, lo, hi)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [3, 4])
 def test_the_pixel_scale_rejects_gaussian_nulls_at_its_level(seed):
     """Heteroscedastic Gaussian pixels are the moderation's own model: there the pixel scale is exact, not

@@ -61,11 +61,13 @@ def _radius_twin(monkeypatch):
     monkeypatch.setattr(analytic_module, "load", larger)
 
 
+@pytest.mark.slow
 def test_the_closed_forms_pass_against_our_render_at_several_seeds(our_renders):
     for integrator in ("ao", "simple"):
         assert all(_verdict(our_renders[integrator, seed], integrator, seed) for seed in SEEDS), integrator
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("twin, integrator", [(_squared_twin, "ao"), (_radius_twin, "simple"), (_radius_twin, "ao")])
 def test_known_wrong_closed_forms_are_rejected(our_renders, monkeypatch, twin, integrator):
     twin(monkeypatch)
@@ -98,6 +100,7 @@ class _Correct(AnalyticEngine):
     name = "mcval"
 
 
+@pytest.mark.slow
 def test_a_biased_reference_is_overruled_by_the_closed_form(mitsuba):
     case = ImageCase("sphere_floor_unit", "ao")
     (result,), _ = run_images([case], _Correct(), _Scaled(mitsuba, 1.02))
@@ -108,6 +111,7 @@ def test_a_biased_reference_is_overruled_by_the_closed_form(mitsuba):
     assert result.to_json()["finding"]["overruled"] == "mitsuba" and result.to_json()["pass"] is True
 
 
+@pytest.mark.slow
 def test_a_biased_renderer_still_fails(mitsuba):
     case = ImageCase("sphere_floor_unit", "ao")
     (result,), _ = run_images([case], _Scaled(_Correct(), 1.02), mitsuba)

@@ -61,6 +61,7 @@ def test_a_two_percent_light_error_is_caught():
     assert not invariance_payload(cells, 1e-3, "light-twin", {})["pass"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_our_renderer_keeps_the_invariances(seed):
     from harness.engines.ours import OurEngine

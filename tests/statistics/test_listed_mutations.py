@@ -108,12 +108,14 @@ def outcomes(tmp_path_factory):
         return {name: f.result() for name, f in futures.items()}
 
 
+@pytest.mark.slow
 def test_the_targeted_tests_pass_on_the_unmutated_harness(tmp_path):
     nodes = sorted({n for *_, targets in MUTATIONS.values() for n in targets})
     res = _run(_copy(tmp_path), nodes)
     assert res.returncode == 0, res.stdout[-3000:]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", list(MUTATIONS))
 def test_listed_mutation_is_killed(name, outcomes):
     problem, res = outcomes[name]

@@ -47,6 +47,7 @@ def test_a_wrong_pdf_rejects_at_every_seed(ours):
     assert np.all(p["chi2"] < 1e-6)
 
 
+@pytest.mark.slow
 def test_correct_warps_are_calibrated(ours, mitsuba):
     """A short calibration (40 seeds, 100k samples) of three warps, with Mitsuba: every rate within."""
     specs = [WarpSpec("square_to_tent", "tent"), WarpSpec("square_to_cosine_hemisphere", "hemisphere"),

@@ -8,6 +8,7 @@ from tests.helpers.wrong_warps import (WRONG, beckmann_pdf, beckmann_sample, cos
                          tent_pdf)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_every_correct_warp_passes_every_check(ours, mitsuba, seed):
     results, level = run_matrix(ours, mitsuba, list(SUITE), seed=seed)
@@ -17,6 +18,7 @@ def test_every_correct_warp_passes_every_check(ours, mitsuba, seed):
     assert 0 < level < 0.01
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(WRONG))
 def test_known_wrong_warp_fails(name):
     sample, pdf, domain, caught_by = WRONG[name]
@@ -25,6 +27,7 @@ def test_known_wrong_warp_fails(name):
     assert result.checks[caught_by].passed is False, {k: c.summary for k, c in result.checks.items()}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1, 2, 3])
 @pytest.mark.parametrize("sample, pdf, domain", [
     (disk_sample, disk_pdf, "disk"),

@@ -43,6 +43,7 @@ def _failures(result) -> dict:
     return {k: c.summary for k, c in result.checks.items() if c.passed is False}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", SEEDS)
 @pytest.mark.parametrize("name, domain, args", CORRECT, ids=[f"{n.removeprefix('square_to_')}-{d}"
                                                              for n, d, _ in CORRECT])
@@ -66,6 +67,7 @@ def test_mitsuba_boundary_samples_are_warnings(mi, name, domain):
     assert "0/0: guard it" in hard.findings[0].text()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", SEEDS)
 @pytest.mark.parametrize("alpha", BECKMANN_ALPHAS)
 def test_mitsuba_beckmann_nan_at_the_centre_is_found_first(mi, alpha, seed):

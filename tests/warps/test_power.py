@@ -71,6 +71,7 @@ def test_pdf_zero_over_a_range_and_pdf_without_mass():
         assert _bins("square", bad).kind == "uniform"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1, 2])
 @pytest.mark.parametrize("alpha", [0.01, 0.001])
 def test_correct_beckmann_passes_with_equal_probability_cells(alpha, seed):
@@ -79,6 +80,7 @@ def test_correct_beckmann_passes_with_equal_probability_cells(alpha, seed):
     assert r.checks["chi2"].details["cells"] == [R, R]
 
 
+@pytest.mark.slow
 def test_float32_samples_get_cells_their_rounding_cannot_bias():
     assert _bins("hemisphere", beckmann_pdf(0.3), FLOAT32_QUANTUM).shape == (R, R)
     assert _bins("hemisphere", beckmann_pdf(0.01), FLOAT32_QUANTUM).shape == (2, R)
@@ -95,6 +97,7 @@ def test_directions_at_the_pole_are_spread_over_the_azimuths():
     assert np.allclose(h[-1], 1.0) and h[0, 0] == 1 and h.sum() == 52
 
 
+@pytest.mark.slow
 def test_beckmann_twins_are_caught_at_alpha_001():
     # alpha where alpha^2 belongs: a lobe ten times too wide.
     assert check_warp(beckmann_sample(0.01, False), beckmann_pdf(0.01), "hemisphere").checks["chi2"].passed is False
