@@ -37,11 +37,16 @@ def add_image_options(q: argparse.ArgumentParser) -> None:
 def add_engines(q: argparse.ArgumentParser, test: bool = True, reference: bool = True) -> None:
     """--engine (the engine under test) and --reference (the engine it is compared with), by registry name
     (harness/engines/registry.py; more with $MCVAL_ENGINE_PATH)."""
-    from harness.engines.registry import DEFAULT_REFERENCE, DEFAULT_TEST
+    from harness.engines.registry import DEFAULT_REFERENCE, DEFAULT_TEST, PATH_ENV, engine_entries
 
+    try:
+        known = f"; known: {', '.join(engine_entries())}"
+    except Exception as e:  # a broken engine file is reported when an engine is made, not by --help
+        known = f"; ${PATH_ENV} has an error: {e}"
+    known = known.replace("%", "%%")  # argparse formats help with %
     if test:
         q.add_argument("--engine", default=DEFAULT_TEST, metavar="NAME",
-                       help=f"the engine under test (default: {DEFAULT_TEST}, this repository's renderer)")
+                       help=f"the engine under test (default: {DEFAULT_TEST}, this repository's renderer{known})")
     if reference:
         q.add_argument("--reference", default=DEFAULT_REFERENCE, metavar="NAME",
                        help=f"the engine it is compared with (default: {DEFAULT_REFERENCE}, Mitsuba 3)")
