@@ -72,12 +72,14 @@ MUTATIONS = {
 
 def _run(harness_parent: Path, nodes: list[str]) -> subprocess.CompletedProcess:
     """pytest on `nodes` with `harness_parent`/harness imported instead of the project's harness."""
-    env = dict(os.environ, PYTHONPATH=str(harness_parent), PYTHONDONTWRITEBYTECODE="1")
+    # The copy first, then the project's root (for tests.helpers); pytest's own `pythonpath` setting, which
+    # would put the root first, is emptied.
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(harness_parent), str(ROOT)]), PYTHONDONTWRITEBYTECODE="1")
     check = ("import harness, sys; from pathlib import Path; "
              f"sys.exit(0 if Path(harness.__file__).parent == Path({str(harness_parent / 'harness')!r}) else 3)")
     assert subprocess.run([sys.executable, "-c", check], cwd=harness_parent, env=env).returncode == 0, \
         "the copy of harness/ is not the one imported"
-    return subprocess.run([sys.executable, "-m", "pytest", "-q", "-x", "-p", "no:cacheprovider", "--runxfail",
+    return subprocess.run([sys.executable, "-m", "pytest", "-q", "-x", "-p", "no:cacheprovider", "--runxfail", "-o", "pythonpath=",
                            "--rootdir", str(ROOT), "-c", str(ROOT / "pyproject.toml"),
                            *[str(ROOT / n) for n in nodes]],
                           cwd=harness_parent, env=env, capture_output=True, text=True, timeout=300)
