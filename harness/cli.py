@@ -47,19 +47,30 @@ def main(argv: list[str] | None = None) -> int:
     old_term = signal.signal(signal.SIGTERM, _raise_interrupt) if in_main_thread else None
     try:
         return args.run(args, run)
-    except KeyboardInterrupt:
-        err.print(escape(run.unfinished("interrupted")), soft_wrap=True)
-        return 130
-    except (RuntimeError, ValueError) as e:
-        err.print(f"[bold red]error:[/] {escape(str(e))}", soft_wrap=True)
-    except Exception:
-        err.print_exception()
+    except (KeyboardInterrupt, Exception) as e:
+        if _interrupted(e):
+            err.print(escape(run.unfinished("interrupted")), soft_wrap=True)
+            return 130
+        if isinstance(e, (RuntimeError, ValueError)):
+            err.print(f"[bold red]error:[/] {escape(str(e))}", soft_wrap=True)
+        else:
+            err.print_exception()
     finally:
         if in_main_thread:
             signal.signal(signal.SIGTERM, old_term)
     if run.path is not None:
         err.print(escape(run.unfinished("stopped")), soft_wrap=True)
     return 2
+
+
+def _interrupted(e: BaseException | None) -> bool:
+    """Whether `e` was raised because of a Ctrl-C or SIGTERM: a library may wrap the KeyboardInterrupt
+    (Dr.Jit's import, interrupted, raises an ImportError from it)."""
+    while e is not None:
+        if isinstance(e, KeyboardInterrupt):
+            return True
+        e = e.__cause__ or e.__context__
+    return False
 
 
 def _raise_interrupt(signum: int, frame) -> None:

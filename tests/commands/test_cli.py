@@ -42,3 +42,23 @@ def test_bad_arguments_exit_with_usage():
     with pytest.raises(SystemExit) as e:
         main(["warps", "--samples", "many"])
     assert e.value.code == 2
+
+
+@pytest.mark.parametrize("wrapped", [False, True])
+def test_an_interrupt_is_130_even_when_a_library_wraps_it(tmp_path, monkeypatch, capsys, wrapped):
+    """A Ctrl-C or SIGTERM that lands inside an import (Dr.Jit's raises ImportError from the
+    KeyboardInterrupt) is still an interruption: exit 130 and the partial output named, not an error."""
+    import harness.commands.warps as warps_command
+
+    def interrupted(args, run):
+        run.start()
+        try:
+            raise KeyboardInterrupt("SIGTERM")
+        except KeyboardInterrupt as e:
+            if wrapped:
+                raise ImportError("Encountered an error while initializing the extension.") from e
+            raise
+
+    monkeypatch.setattr(warps_command, "run", interrupted)
+    assert main(["warps", "--only", "tent", "--out", str(tmp_path)]) == 130
+    assert "interrupted: partial output in" in capsys.readouterr().err
