@@ -206,6 +206,17 @@ MCVAL_HOT void EmbreeScene::intersect(RayHitPacket &packet, int count, HitPacket
 
 void EmbreeScene::occluded(OcclusionPacket &packet, bool coherent) const {
     if (packet.active == 0) return;
+    // An inactive lane gets a finite ray: Embree's AVX2 kernels (16 rays as two packets of 8) assert on a
+    // NaN in an inactive lane too, and a caller's unused lane may hold one (simple's unlit lane where the
+    // light sits on its point: fuzz corpus light_on_floor).
+    RTCRay16 &r = packet.rays;
+    for (int i = 0; i < kPacketSize; ++i) {
+        if (packet.valid[i]) continue;
+        r.org_x[i] = r.org_y[i] = r.org_z[i] = 0.f;
+        r.dir_x[i] = r.dir_y[i] = 0.f;
+        r.dir_z[i] = 1.f;
+        r.tnear[i] = r.tfar[i] = 0.f;
+    }
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     if (coherent) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;

@@ -35,14 +35,11 @@ MCVAL_HOT void simplePacket(const std::vector<PointLight> &lights, const EmbreeS
             const float cosTheta = h.nx[i] * wx + h.ny[i] * wy + h.nz[i] * wz;
             const bool on = (front[i] != 0) & (dist2 > 0.f) & (cosTheta > 0.f);
             const Vec3f o = h.spawnOrigin(i, {wx, wy, wz});
-            // A lane that traces nothing still holds a finite ray: Embree's AVX2 kernels (16 rays as two
-            // packets of 8) assert on a NaN in an inactive lane too, and an unlit lane's direction is NaN
-            // where the light sits on its point (fuzz corpus: light_on_floor).
-            r.org_x[i] = on ? o.x : 0.f; r.org_y[i] = on ? o.y : 0.f; r.org_z[i] = on ? o.z : 0.f;
-            r.dir_x[i] = on ? wx : 0.f; r.dir_y[i] = on ? wy : 0.f; r.dir_z[i] = on ? wz : 1.f;
+            r.org_x[i] = o.x; r.org_y[i] = o.y; r.org_z[i] = o.z;
+            r.dir_x[i] = wx; r.dir_y[i] = wy; r.dir_z[i] = wz;
             r.tnear[i] = 0.f;
             // Stop just short of the light: nothing behind it may shadow.
-            r.tfar[i] = on ? dist * (1.f - 1e-4f) : 0.f;
+            r.tfar[i] = dist * (1.f - 1e-4f);
             shadow.valid[i] = on ? -1 : 0;
             weight[i] = on ? cosTheta / dist2 : 0.f;
             traced += on;
