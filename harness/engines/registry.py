@@ -8,7 +8,7 @@ they are given (`--engine`, `--reference`) and hand both over.
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cache
 from typing import Any, Callable
 
@@ -64,7 +64,7 @@ def _path_entries(folders: str) -> list[EngineEntry]:
         if not isinstance(entry, EngineEntry):
             raise ValueError(f"{path}: ENGINE is a {type(entry).__name__}, expected an EngineEntry "
                              "(harness.engines.registry)")
-        found.append(EngineEntry(entry.name, entry.make, entry.summary, str(path)))
+        found.append(replace(entry, source=str(path)))
     return found
 
 
