@@ -3,14 +3,12 @@ from __future__ import annotations
 
 import io
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from harness.comparison.compare import Comparison  # noqa: E402
-from harness.comparison.metrics import flip_map  # noqa: E402
+from harness.comparison.compare import Comparison
+from harness.comparison.metrics import flip_map
+from harness.report.panel_row import panel_row
 
 
 def display(img: np.ndarray, signed: bool) -> np.ndarray:
@@ -33,23 +31,27 @@ def comparison_png(ours: np.ndarray, reference: np.ndarray, comparison: Comparis
     diff = (ours - reference).mean(axis=-1)
     limit = float(np.percentile(np.abs(diff), 99.5)) or 1e-6
     flip, _ = flip_map(ours, reference, signed)
-    fig, axes = plt.subplots(1, 5, figsize=(13, 2.9), constrained_layout=True)
+    h, w = ours.shape[:2]
+    fig, axes, bars = panel_row([False, False, True, True, True], panel=2.3 * min(w / h, 1.6), height=2.9,
+                                left=0.1, gap=0.15, bottom=0.1, top=0.35, bar_room=0.55)
     axes[0].imshow(display(ours, signed), interpolation="nearest")
     axes[0].set_title("ours", fontsize=9)
     axes[1].imshow(display(reference, signed), interpolation="nearest")
     axes[1].set_title(reference_name, fontsize=9)
     im = axes[2].imshow(diff, cmap="RdBu_r", vmin=-limit, vmax=limit, interpolation="nearest")
     axes[2].set_title("ours − reference (mean of RGB)", fontsize=9)
-    fig.colorbar(im, ax=axes[2], shrink=0.8)
+    fig.colorbar(im, cax=bars[0])
     im = axes[3].imshow(rejection_map(comparison), cmap="RdYlGn", vmin=-3, vmax=3, interpolation="nearest")
     axes[3].set_title("log10(p / level): red rejects", fontsize=9)
-    fig.colorbar(im, ax=axes[3], shrink=0.8)
+    fig.colorbar(im, cax=bars[1])
     im = axes[4].imshow(flip, cmap="magma", vmin=0, vmax=1, interpolation="nearest")
     axes[4].set_title("FLIP", fontsize=9)
-    fig.colorbar(im, ax=axes[4], shrink=0.8)
+    fig.colorbar(im, cax=bars[2])
     for ax in axes:
         ax.set_xticks([])
         ax.set_yticks([])
+    for bar in bars:
+        bar.tick_params(labelsize=7)
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=72)
     plt.close(fig)
