@@ -61,7 +61,8 @@ def null_rates(pairs: Iterable[Pair], alpha: float, samples: Samples = SYNTHETIC
     batches hold `samples` samples per pixel."""
     per_scale, whole, runs = dict.fromkeys(SCALES, 0), 0, 0
     for test, reference in pairs:
-        result = compare_summaries(summarize(test), summarize(reference), alpha, samples=samples)
+        result = compare_summaries(summarize(test), summarize(reference), alpha, samples=samples, metrics=False,
+                                   power=False)
         for s in result.scales:
             per_scale[s.scale] += not s.passed
         whole += not result.passed
@@ -75,9 +76,10 @@ def detection_rate(pairs: Iterable[Pair], fresh: Callable[[], Pair],
     (the test scaled by 1 + b) into a fresh independent pair from `fresh`."""
     found, runs, biases = 0, 0, []
     for test, reference in pairs:
-        bias = compare_summaries(summarize(test), summarize(reference), samples=samples).detectable_bias
+        bias = compare_summaries(summarize(test), summarize(reference), samples=samples, metrics=False).detectable_bias
         other_test, other_reference = fresh()
-        result = compare_summaries(summarize(other_test * (1 + bias)), summarize(other_reference), samples=samples)
+        result = compare_summaries(summarize(other_test * (1 + bias)), summarize(other_reference), samples=samples,
+                                   metrics=False, power=False)
         found += not result.scales[2].passed
         runs += 1
         biases.append(bias)
@@ -91,13 +93,15 @@ def tile_detection_rate(pairs: Iterable[Pair], fresh: Callable[[], Pair], seed: 
     rng = np.random.default_rng(seed)
     found, runs, biases = 0, 0, []
     for test, reference in pairs:
-        bias = compare_summaries(summarize(test), summarize(reference), samples=samples).detectable_tile_bias
+        bias = compare_summaries(summarize(test), summarize(reference), samples=samples,
+                                 metrics=False).detectable_tile_bias
         other_test, other_reference = fresh()
         h, w = other_test.shape[1:3]
         y, x = TILE_SIZE * rng.integers(h // TILE_SIZE), TILE_SIZE * rng.integers(w // TILE_SIZE)
         planted = other_test.copy()
         planted[:, y:y + TILE_SIZE, x:x + TILE_SIZE] *= 1 + bias
-        result = compare_summaries(summarize(planted), summarize(other_reference), samples=samples)
+        result = compare_summaries(summarize(planted), summarize(other_reference), samples=samples, metrics=False,
+                                   power=False)
         found += not result.scales[1].passed
         runs += 1
         biases.append(bias)

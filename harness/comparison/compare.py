@@ -120,6 +120,7 @@ class Comparison:
     """The verdict of one test-vs-reference comparison."""
 
     scales: list[ScaleTest]
+    #: The error metrics (relMSE, FLIP, ...); empty where the comparison was made without them.
     metrics: dict[str, float]
     #: Relative bias b of the image mean (the test image scaled by 1 + b) that the image scale detects half
     #: of the time (in at least one channel), at this comparison's noise and level.
@@ -238,10 +239,15 @@ def _metrics(test: np.ndarray, reference: np.ndarray, signed: bool) -> dict[str,
 
 def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFICANCE, signed: bool = False,
                       rounding: float = ROUNDING_TOLERANCE,
-                      samples: tuple[int | None, int | None] = (None, None)) -> Comparison:
+                      samples: tuple[int | None, int | None] = (None, None), metrics: bool = True,
+                      power: bool = True) -> Comparison:
     """compare_batches on summaries (see there). The finite check looks at the summaries: a non-finite
     mean or variance, a negative variance, and unless `signed` a negative value in any batch (the
-    summary's minimum; the mean for a stored summary, which keeps no minimum)."""
+    summary's minimum; the mean for a stored summary, which keeps no minimum).
+
+    The verdict needs neither the error metrics nor the detectable biases, which cost most of a comparison
+    (FLIP; a noncentral t per tile): with `metrics` False the metrics are left empty, with `power` False
+    both detectable biases are NaN. Null and planted comparisons, which count rejections, skip them."""
     if test.pixel.mean.shape != reference.pixel.mean.shape or test.tile_size != reference.tile_size:
         raise ValueError(f"images differ in size: {test.pixel.mean.shape} and {reference.pixel.mean.shape}")
     finite = FiniteCheck(damage_of_summary(test, signed), damage_of_summary(reference, signed), signed)
@@ -265,6 +271,9 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     image, _ = _scale_test("image", test_image, ref_image, _noiseless(test.image, reference.image), per_scale,
                            (h, w), max(h, w), magnitude, rounding, rho)
     scales = [pixel, tile, image]
+    figures = _metrics(test.mean_image, reference.mean_image, signed) if metrics else {}
+    if not power:
+        return Comparison(scales, figures, float("nan"), (test.image.k, reference.image.k), finite, float("nan"))
     # The image-mean bias found half of the time, and the same for one tile (median over tiles).
     _, _, se = welch_p_values(test_image, ref_image, magnitude, rounding)
     detectable = float(_half_power_bias(ref_image, se, welch_dof(test_image, ref_image),
@@ -273,8 +282,7 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     per_tile = _half_power_bias(ref_tile, tile_se, welch_dof(test_tile, ref_tile), scales[1].level, rho)
     per_tile = per_tile[np.isfinite(per_tile)]
     detectable_tile = float(np.median(per_tile)) if per_tile.size else float("inf")
-    metrics = _metrics(test.mean_image, reference.mean_image, signed)
-    return Comparison(scales, metrics, detectable, (test.image.k, reference.image.k), finite, detectable_tile)
+    return Comparison(scales, figures, detectable, (test.image.k, reference.image.k), finite, detectable_tile)
 
 
 def compare_batches(test: np.ndarray, reference: np.ndarray, alpha: float = SIGNIFICANCE,

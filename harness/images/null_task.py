@@ -58,7 +58,7 @@ def null_comparison(job: NullJob, bundle: Bundle | None = None) -> dict:
     samples = (spp, ref_spp)
     rejected = {}
     for level in CALIBRATION_LEVELS:
-        c = compare_summaries(summarize(test), reference, level, signed, samples=samples)
+        c = compare_summaries(summarize(test), reference, level, signed, samples=samples, metrics=False, power=False)
         rejected[str(level)] = {**{s.scale: not s.passed for s in c.scales}, "whole": not c.passed}
     out = {"kind": job.kind, "case": case.key, "integrator": case.integrator, "rejected": rejected,
            "image_min_p": c.scales[SCALES.index("image")].min_p}
@@ -76,10 +76,12 @@ def _planted(test: np.ndarray, reference, job: NullJob, signed: bool, samples) -
     y, x = tiles[np.random.default_rng(job.seed).integers(len(tiles))] if tiles else (0, 0)
     found_global, found_tile = [], []
     for b in BIASES:
-        c = compare_summaries(summarize(test * (1 + b)), reference, job.alpha, signed, samples=samples)
+        c = compare_summaries(summarize(test * (1 + b)), reference, job.alpha, signed, samples=samples, metrics=False,
+                              power=False)
         found_global.append(not c.scales[SCALES.index("image")].passed)
         planted = test.copy()
         planted[:, y:y + TILE_SIZE, x:x + TILE_SIZE] *= 1 + b
-        c = compare_summaries(summarize(planted), reference, job.alpha, signed, samples=samples)
+        c = compare_summaries(summarize(planted), reference, job.alpha, signed, samples=samples, metrics=False,
+                              power=False)
         found_tile.append(not c.scales[SCALES.index("tile")].passed)
     return found_global, found_tile

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from scipy import stats as sps
 
-from harness.comparison.compare import compare_batches
+from harness.comparison.compare import compare_batches, compare_summaries, summarize
 from harness.engines.mitsuba_scene import mitsuba_xml
 
 SCENES = Path(__file__).resolve().parents[2] / "scenes"
@@ -156,3 +156,16 @@ def test_an_edge_pixel_whose_batches_all_caught_its_sliver_passes_at_every_scale
     wrong = test.copy()
     wrong[:, 7, 0, :] = 3 * 0.45 / 32
     assert not compare_batches(wrong, reference, samples=(32, 256)).passed
+
+
+@pytest.mark.parametrize("bias", [0.0, 0.05])
+def test_the_verdict_is_the_same_without_metrics_and_power(bias):
+    """Null and planted comparisons skip the metrics and the detectable biases: the tests must not change."""
+    rng = np.random.default_rng(11)
+    test, reference = rng.random((8, 24, 32, 3)) * (1 + bias), rng.random((16, 24, 32, 3))
+    full = compare_batches(test, reference)
+    bare = compare_summaries(summarize(test), summarize(reference), metrics=False, power=False)
+    assert [s.to_json() for s in bare.scales] == [s.to_json() for s in full.scales]
+    assert bare.passed == full.passed == (bias == 0.0)
+    assert full.metrics and not bare.metrics
+    assert np.isfinite(full.detectable_bias) and np.isnan(bare.detectable_bias) and np.isnan(bare.detectable_tile_bias)
