@@ -117,7 +117,7 @@ def bench_case(case: ImageCase, engines: list[Engine], reference_engine: Engine,
                on_step: Callable[[str], None] | None = None, bundle: Bundle | None = None) -> CaseBench:
     """One case's ladders, every engine in turn (with a bundle: on the bundle's copy of the files)."""
     local = on_files(case, bundle)
-    reference, truth = bench_truth(local, reference_engine)
+    reference, truth = bench_truth(local, reference_engine, max(ladder))
     curves = {}
     for e in engines:
         time.sleep(QUIET_SECONDS)  # the previous engine's threads have stopped spinning

@@ -12,14 +12,10 @@ from harness.images.references import (REFERENCE_BATCHES, REFERENCE_SEED, RESOLU
 from harness.comparison.compare import summarize
 from harness.images.suite import ImageCase
 
-#: Samples per pixel of each of the analytic engine's batches: 16 batches of 256 are 16 times the ladder's
-#: last step, and the relMSE subtracts the rest of the truth's own variance.
-TRUTH_SPP = 256
-
-
-def bench_truth(case: ImageCase, reference_engine: Engine, spp: int = TRUTH_SPP) -> tuple[Reference, str]:
+def bench_truth(case: ImageCase, reference_engine: Engine, spp: int) -> tuple[Reference, str]:
     """The image `case`'s errors are measured against, and one line saying what it is; `spp`: the analytic
-    engine's per batch."""
+    engine's per batch, the ladder's last step (its 16 batches are then 16 times that step, and the relMSE
+    subtracts the rest of the truth's own variance)."""
     params = {"res": str(RESOLUTION)}
     if AnalyticEngine.supports(str(case.path), params, case.integrator):
         result = AnalyticEngine().render(str(case.path), case.integrator, spp, REFERENCE_BATCHES, REFERENCE_SEED,

@@ -38,6 +38,6 @@ def test_a_closed_form_case_is_measured_against_the_closed_form(mitsuba):
 
 
 def test_a_case_without_a_closed_form_is_measured_against_the_stored_reference(mitsuba):
-    truth, label = bench_truth(ImageCase("cornell", "simple"), mitsuba)
+    truth, label = bench_truth(ImageCase("cornell", "simple"), mitsuba, spp=16)
     assert "stored reference" in label and "mitsuba" in label.lower()
     assert truth.spp > 16
