@@ -16,6 +16,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                      "results/<run>/report.html.")
     add_common(p)
     add_image_options(p)
+    p.add_argument("--warps-only", nargs="+", metavar="WARP",
+                   help="narrow the Warps section as `warps --only` does, e.g. tent beckmann:0.01 (default: all)")
     p.add_argument("--invariance-only", nargs="+", metavar="NAME",
                    help="narrow the Invariances section as `invariance --only` does (default: its default cases)")
     p.add_argument("--no-invariance", action="store_true", help="skip the Invariances section")
@@ -29,6 +31,7 @@ def run(args: argparse.Namespace, run: RunFolder) -> int:
     from harness.warps.suite import select
 
     with open_executor(args) as executor:
-        select_invariance(args.invariance_only)  # bad names: no run
-        return run_sections(args, run, executor, select(None), select_cases(args.scenes),
+        specs = select(args.warps_only)  # bad names: no run
+        select_invariance(args.invariance_only)
+        return run_sections(args, run, executor, specs, select_cases(args.scenes),
                             invariance_only=args.invariance_only, invariances=not args.no_invariance)

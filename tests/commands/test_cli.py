@@ -33,9 +33,11 @@ def test_warps_writes_json_and_html(tmp_path):
     assert page.count("data:image/png;base64,") == 2
 
 
-def test_unknown_warp_is_a_clear_error(tmp_path, capsys):
-    assert main(["warps", "--only", "tentacle", "--out", str(tmp_path)]) == 2
+@pytest.mark.parametrize("verb, option", [("warps", "--only"), ("validate", "--warps-only")])
+def test_unknown_warp_is_a_clear_error(tmp_path, capsys, verb, option):
+    assert main([verb, option, "tentacle", "--out", str(tmp_path)]) == 2
     assert "unknown warp tentacle" in capsys.readouterr().err
+    assert not any(tmp_path.iterdir())  # refused before a run folder
 
 
 def test_bad_arguments_exit_with_usage():
