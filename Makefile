@@ -14,6 +14,10 @@ APT_PACKAGES := build-essential cmake ninja-build python3 python3-venv python3-d
 # Mitsuba's llvm variants need LLVM 19 (Debian's libllvm19; 15 and 16 crash).
 export DRJIT_LIBLLVM_PATH ?= $(firstword $(wildcard /usr/lib/*/libLLVM.so.19* /usr/lib/*/libLLVM-19.so))
 
+# pytest's processes (pytest-xdist), each given whole files so that a file's fixtures (a loopback Dask
+# cluster, Mitsuba's engine, a set of null renders) are made once.
+TEST_JOBS ?= 2
+
 SANITIZE_BUILD := build-sanitize
 FUZZ_RUNS ?= 2000
 FUZZ_SEED ?= 1
@@ -29,7 +33,7 @@ validate: build
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure
 	$(VENV)/bin/lint-imports
-	$(PY) -m pytest
+	$(PY) -m pytest -n $(TEST_JOBS) --dist loadfile
 	$(MAKE) --no-print-directory sanitize
 	$(MAKE) --no-print-directory fuzz FUZZ_RUNS=300
 
