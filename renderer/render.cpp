@@ -130,7 +130,7 @@ struct Progress {
     const std::function<void(double)> &report;
     size_t total;
     std::atomic<size_t> done{0};
-    std::mutex mutex;
+    std::mutex mutex{};
 
     void tileDone() {
         const size_t finished = ++done;
