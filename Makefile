@@ -91,11 +91,12 @@ deps:
 		$(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $$missing; \
 	fi
 
-# The .venv with the pinned Python packages; the C++ module is found through a .pth file.
+# The .venv with the pinned Python packages; the C++ module is found through a .pth file. --no-compile:
+# Python compiles what it imports when it first imports it, not the whole of every package up front.
 $(VENV)/.installed: pyproject.toml | deps
 	[ -x $(PY) ] || python3 -m venv $(VENV)
-	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e .
+	$(PY) -m pip install --quiet --no-compile --upgrade pip
+	$(PY) -m pip install --quiet --no-compile -e .
 	echo "$(abspath $(BUILD))/python" > "$$($(PY) -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/mcval_renderer-build.pth"
 	touch $@
 
