@@ -60,6 +60,7 @@ references: build
 ## bench: speed against error for every case and engine, and ray rates beside a raw Embree loop
 bench: build
 	@mkdir -p results
+	cmake --build $(BUILD) --target bench_rays
 	$(BUILD)/bench_rays scenes/highpoly.xml --json results/bench_rays.json
 	$(PY) -m harness bench --rays-json results/bench_rays.json
 
@@ -80,6 +81,9 @@ build: deps $(VENV)/.installed
 	cmake --build $(BUILD)
 	ln -sf $(abspath $(BUILD))/render $(VENV)/bin/render
 	$(PY) scenes/generate_meshes.py -q
+	@# The project's bytecode, which every Python process (test workers, Dask workers) would otherwise
+	@# compile again where PYTHONDONTWRITEBYTECODE is set.
+	$(PY) -m compileall -q harness tests tools
 
 ## deps: install the Debian packages that are missing (apt-get, with sudo unless root)
 deps:
@@ -91,12 +95,12 @@ deps:
 		$(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $$missing; \
 	fi
 
-# The .venv with the pinned Python packages; the C++ module is found through a .pth file. --no-compile:
-# Python compiles what it imports when it first imports it, not the whole of every package up front.
+# The .venv with the pinned Python packages; the C++ module is found through a .pth file. pip compiles the
+# packages' bytecode as it installs them (with PYTHONDONTWRITEBYTECODE set, nothing else would).
 $(VENV)/.installed: pyproject.toml | deps
 	[ -x $(PY) ] || python3 -m venv $(VENV)
-	$(PY) -m pip install --quiet --no-compile --upgrade pip
-	$(PY) -m pip install --quiet --no-compile -e .
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e .
 	echo "$(abspath $(BUILD))/python" > "$$($(PY) -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/mcval_renderer-build.pth"
 	touch $@
 
