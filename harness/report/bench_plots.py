@@ -1,8 +1,6 @@
 """Plots of speed against error: relMSE against samples and against seconds, and equal-time images."""
 from __future__ import annotations
 
-import io
-
 import matplotlib
 
 matplotlib.use("Agg")
@@ -10,6 +8,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from harness.bench.run import CaseBench  # noqa: E402
+from harness.report.figures import figure_png  # noqa: E402
 from harness.report.image_plots import display  # noqa: E402
 from harness.integrators import entry
 
@@ -25,13 +24,6 @@ def _look(label: str, labels) -> tuple[str | None, str]:
     engine, _, sampler = label.partition("/")
     engines = list(dict.fromkeys(k.partition("/")[0] for k in labels))
     return COLORS[engines.index(engine) % len(COLORS)], STYLES.get(sampler, "o-")
-
-
-def _png(fig) -> bytes:
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=72)
-    plt.close(fig)
-    return buf.getvalue()
 
 
 def convergence_png(bench: CaseBench) -> bytes:
@@ -57,7 +49,7 @@ def convergence_png(bench: CaseBench) -> bytes:
         ax.grid(True, which="both", alpha=0.3)
     axes[0].legend(fontsize=8)
     fig.suptitle(f"{bench.case.scene} — {bench.case.integrator}", fontsize=10)
-    return _png(fig)
+    return figure_png(fig, dpi=72)
 
 
 def equal_time_png(bench: CaseBench) -> bytes:
@@ -82,4 +74,4 @@ def equal_time_png(bench: CaseBench) -> bytes:
     for ax in axes:
         ax.set_xticks([])
         ax.set_yticks([])
-    return _png(fig)
+    return figure_png(fig, dpi=72)

@@ -1,12 +1,9 @@
 """Histogram heat maps of a warp: observed, expected, the reference's samples and the residuals."""
 from __future__ import annotations
 
-import io
-
-import matplotlib.pyplot as plt
 import numpy as np
 
-from harness.report.panel_row import panel_row
+from harness.report.figures import figure_png, panel_row
 from harness.warps.domains import get_domain
 
 #: Axis labels of each domain's parameter square.
@@ -49,7 +46,4 @@ def warp_heatmaps_png(observed: np.ndarray, expected: np.ndarray, reference: np.
     for bar in (count_bar, resid_bar):
         bar.tick_params(labelsize=7)
     fig.suptitle(title, fontsize=10)
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=80)
-    plt.close(fig)
-    return buf.getvalue()
+    return figure_png(fig, dpi=80)

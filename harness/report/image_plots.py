@@ -1,14 +1,11 @@
 """The row of pictures for one comparison: ours, Mitsuba, signed difference, p-value map, FLIP map."""
 from __future__ import annotations
 
-import io
-
-import matplotlib.pyplot as plt
 import numpy as np
 
 from harness.comparison.compare import Comparison
 from harness.comparison.metrics import flip_map
-from harness.report.panel_row import panel_row
+from harness.report.figures import figure_png, panel_row
 
 
 def display(img: np.ndarray, signed: bool) -> np.ndarray:
@@ -52,7 +49,4 @@ def comparison_png(ours: np.ndarray, reference: np.ndarray, comparison: Comparis
         ax.set_yticks([])
     for bar in bars:
         bar.tick_params(labelsize=7)
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=72)
-    plt.close(fig)
-    return buf.getvalue()
+    return figure_png(fig, dpi=72)

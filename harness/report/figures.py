@@ -1,9 +1,12 @@
-"""A row of picture panels placed by hand, each followed by a thin colour bar where asked.
+"""The reports' figures: a row of picture panels placed by hand, and a figure as PNG bytes.
 
 Matplotlib's layout engines measure every tick label to place the axes; for a fixed row of panels the
-arithmetic below gives the same picture in a fraction of the time (the layout was most of a report's cost).
+arithmetic of `panel_row` gives the same picture in a fraction of the time (the layout was most of a
+report's cost).
 """
 from __future__ import annotations
+
+import io
 
 import matplotlib
 
@@ -30,3 +33,11 @@ def panel_row(bars: list[bool], *, panel: float, height: float, left: float = 0.
             x += bar_room
         x += gap
     return fig, axes, caxes
+
+
+def figure_png(fig: Figure, dpi: int) -> bytes:
+    """`fig` as PNG, then closed (pyplot keeps every open figure)."""
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=dpi)
+    plt.close(fig)
+    return buf.getvalue()
