@@ -56,9 +56,9 @@ def null_comparison(job: NullJob, bundle: Bundle | None = None) -> dict:
         ref_spp, ref_batches = spp, REFERENCE_BATCHES
     reference = summarize(_render(ref_engine, case, ref_spp, ref_batches, job.seed + 1, job.resolution))
     samples = (spp, ref_spp)
-    rejected = {}
+    rejected, summary = {}, summarize(test)
     for level in CALIBRATION_LEVELS:
-        c = compare_summaries(summarize(test), reference, level, signed, samples=samples, metrics=False, power=False)
+        c = compare_summaries(summary, reference, level, signed, samples=samples, metrics=False, power=False)
         rejected[str(level)] = {**{s.scale: not s.passed for s in c.scales}, "whole": not c.passed}
     out = {"kind": job.kind, "case": case.key, "integrator": case.integrator, "rejected": rejected,
            "image_min_p": c.scales[SCALES.index("image")].min_p}
