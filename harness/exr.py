@@ -65,3 +65,45 @@ def write_layers(path: Path, layers: dict[str, np.ndarray]) -> None:
             raise ExrError(out.geterror())
     finally:
         out.close()
+
+
+def _rgb_channels(names: list[str]) -> list[int] | None:
+    """Indices of the channels that make one RGB image: R, G, B; else one layer's *.R, *.G, *.B; else Y (three
+    times); None if there are none of these."""
+    index = {name: i for i, name in enumerate(names)}
+    if all(c in index for c in "RGB"):
+        return [index[c] for c in "RGB"]
+    layers = sorted({n.rsplit(".", 1)[0] for n in names if "." in n})
+    for layer in layers:
+        if all(f"{layer}.{c}" in index for c in "RGB"):
+            return [index[f"{layer}.{c}"] for c in "RGB"]
+    for luminance in ("Y", *(f"{layer}.Y" for layer in layers)):
+        if luminance in index:
+            return [index[luminance]] * 3
+    return None
+
+
+def read_image(path: Path) -> tuple[np.ndarray, dict[str, object]]:
+    """One RGB image of any EXR a renderer may write: R, G, B (or one layer's), or Y, half or float; as an
+    (H, W, 3) float32 array, with the file's attributes. ExrError saying what the file holds otherwise."""
+    import OpenImageIO as oiio
+
+    inp = oiio.ImageInput.open(str(path))
+    if inp is None:
+        raise ExrError(oiio.geterror().strip() or f"cannot open {path}")
+    try:
+        spec = inp.spec()
+        if inp.format_name() != "openexr":
+            raise ExrError(f"is a {inp.format_name()} file, not an EXR")
+        names = list(spec.channelnames)
+        channels = _rgb_channels(names)
+        if channels is None:
+            raise ExrError(f"has no R, G, B or Y channels (it has {', '.join(names[:8]) or 'none'})")
+        pixels = inp.read_image(0, 0, 0, spec.nchannels, "float")
+        if pixels is None:
+            raise ExrError(inp.geterror() or "cannot read its pixels")
+        attributes = {a.name: a.value for a in spec.extra_attribs}
+    finally:
+        inp.close()
+    pixels = np.asarray(pixels, np.float32).reshape(spec.height, spec.width, spec.nchannels)
+    return np.ascontiguousarray(pixels[..., channels]), attributes

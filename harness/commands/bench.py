@@ -96,7 +96,9 @@ def run(args: argparse.Namespace, run: RunFolder) -> int:
 
     run_dir = run.start()
     # By default the simple and ao cases of our own scenes (the real scenes are validated, not benchmarked).
-    cases = [c for c in select_cases(args.scenes)
+    from harness.commands.options import tested_integrators
+
+    cases = [c for c in select_cases(args.scenes, tested_integrators(args))
              if args.scenes or (entry(c.integrator).benchmarked and c.group == "synthetic")]
     reference = make_engine(args.reference)
     engines = _engines(args)

@@ -48,10 +48,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace, run: RunFolder) -> int:
     from harness.commands.invariance_section import run_invariance_section
     from harness.distributed.cluster import open_executor
+    from harness.commands.options import tested_integrators
     from harness.invariance.suite import select
 
     with open_executor(args) as executor:
-        select(args.only)  # bad names: no run
+        select(args.only, integrators=tested_integrators(args))  # bad names: no run
         run_dir = run.start()
         ok, invariance = run_invariance_section(args, args.only, run_dir, executor)
         run.finish({"run": run_dir.name, "pass": ok, "invariance": invariance}, index=("invariance.html", "Invariances"),

@@ -34,6 +34,13 @@ def add_image_options(q: argparse.ArgumentParser) -> None:
     add_executor_options(q)
 
 
+def tested_integrators(args: argparse.Namespace) -> tuple[str, ...] | None:
+    """The integrators the engine under test renders (an engine file's table), None for every one."""
+    from harness.engines.registry import DEFAULT_TEST, engine_integrators
+    tested = getattr(args, "engine", None) or (getattr(args, "engines", None) or [DEFAULT_TEST])[0]
+    return engine_integrators(tested)
+
+
 def add_engines(q: argparse.ArgumentParser, test: bool = True, reference: bool = True) -> None:
     """--engine (the engine under test) and --reference (the engine it is compared with), by registry name
     (harness/engines/registry.py; more with $MCVAL_ENGINE_PATH)."""

@@ -70,12 +70,17 @@ class RenderFailed(RuntimeError):
     """A render that gave no usable image: the engine crashed, was killed, hung or reported an error.
 
     `reason` is one line for reports, e.g. "killed by signal SIGSEGV (11)", "timed out after 600 s",
-    "exited with status 1: <last line of its error output>", "wrote no image".
+    "exited with status 1: <last line of its error output>", "wrote no image". `output` holds the last
+    lines (up to 50) of what it printed, where there is any.
     """
 
-    def __init__(self, reason: str) -> None:
+    def __init__(self, reason: str, output: str = "") -> None:
         super().__init__(reason)
         self.reason = reason
+        self.output = output
+
+    def __reduce__(self):
+        return RenderFailed, (self.reason, self.output)
 
 
 class Engine(ABC):
@@ -92,6 +97,8 @@ class Engine(ABC):
     #: Most samples per pixel one render call should take at high resolution (a wavefront engine holds every
     #: sample of a call in memory); None: any number.
     pass_spp: int | None = None
+    #: The integrators (mcval's names) it renders; None: every integrator the harness has an entry for.
+    integrators: tuple[str, ...] | None = None
 
     def scene_file(self, path: Path) -> Path:
         """The scene file this engine renders for `path`: the same file, unless the engine needs another one
@@ -117,3 +124,8 @@ class Engine(ABC):
     @abstractmethod
     def version(self) -> str:
         """What exactly is running (library version, variant), for provenance."""
+
+    def describe(self) -> dict[str, str]:
+        """Provenance for reports, JSON and JUnit: its name and version (and, for an engine file, its file and
+        command)."""
+        return {"name": self.name, "version": self.version()}

@@ -3,14 +3,14 @@ says (harness/integrators/<name>.py, `mitsuba`): the <integrator> replaced, and 
 for that integrator (emitter types, area emitters inside shapes), a constant emitter added where ours assumes one.
 A sampler Mitsuba does not have (ours: `sobol`) becomes its closest one (MITSUBA_SAMPLER).
 
-The film stores float32 (Mitsuba's hdrfilm default is float16).
+The film stores float32 (Mitsuba's hdrfilm default is float16). Nothing is written into the scene's folder.
 """
 from __future__ import annotations
 
-import os
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+from harness.engines.written_scene import absolute_paths
 from harness.integrators import entry
 
 
@@ -51,17 +51,12 @@ def mitsuba_xml(text: str, integrator: str, sampler: str | None = None) -> str:
 
 
 def load_scene(path: str | Path, integrator: str, sampler: str | None = None, **params):
-    """Load our scene file in Mitsuba (variant already set) with `integrator` mapped.
-
-    The translated file is written beside the original, so relative mesh paths
-    resolve, and removed again.
-    """
+    """Load our scene file in Mitsuba (variant already set) with `integrator` mapped. The translated text is
+    loaded from memory with its file names made absolute: nothing is written beside the scene."""
     import mitsuba as mi
 
     path = Path(path)
-    tmp = path.with_name(f".tmp_{path.stem}_{integrator}_{os.getpid()}.xml")
-    tmp.write_text(mitsuba_xml(path.read_text(), integrator, sampler))
-    try:
-        return mi.load_file(str(tmp), optimize=False, **{k: str(v) for k, v in params.items()})
-    finally:
-        tmp.unlink(missing_ok=True)
+    root = ET.fromstring(mitsuba_xml(path.read_text(), integrator, sampler))
+    absolute_paths(root, path.resolve().parent)
+    return mi.load_string(ET.tostring(root, encoding="unicode"), optimize=False,
+                          **{k: str(v) for k, v in params.items()})

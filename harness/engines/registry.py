@@ -13,6 +13,7 @@ from functools import cache
 from typing import Any, Callable
 
 from harness.engines.base import Engine
+from harness.engines.engine_file import looks_like_engine_file, read_engine_file
 from harness.plugin_files import plugin_objects
 
 PATH_ENV = "MCVAL_ENGINE_PATH"
@@ -85,8 +86,18 @@ def engine_entries() -> dict[str, EngineEntry]:
 
 
 def make_engine(name: str, **options: Any) -> Engine:
-    """The engine called `name`, made with `options`; ValueError naming the known engines if there is none."""
+    """The engine called `name`, made with `options`, or the engine an engine file describes (a path ending in
+    .toml, docs/engines.md); ValueError naming the known engines if there is none."""
+    if looks_like_engine_file(name):
+        from harness.engines.command import CommandEngine
+        return CommandEngine.from_path(name)
     found = engine_entries()
     if name not in found:
         raise ValueError(f"unknown engine {name!r}: known are {', '.join(found)}")
     return found[name].make(options)
+
+
+def engine_integrators(name: str) -> tuple[str, ...] | None:
+    """The integrators the engine `name` renders, read without making it (an engine file's table); None: every
+    integrator with an entry."""
+    return tuple(read_engine_file(name).integrators) if looks_like_engine_file(name) else None

@@ -11,8 +11,6 @@ Environment:
 from __future__ import annotations
 
 import os
-import signal
-import subprocess
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
@@ -20,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from harness.engines.base import RenderFailed
+from harness.engines.child_process import run_child
 
 ROOT = Path(__file__).resolve().parents[2]
 RENDER_ENV = "MCVAL_RENDER"
@@ -64,27 +63,6 @@ def default_timeout(spp: int, batches: int, params: dict[str, str] | None = None
     except (KeyError, ValueError):
         pixels = DEFAULT_PIXELS
     return BASE_TIMEOUT + SECONDS_PER_SAMPLE * spp * max(batches, 1) * pixels
-
-
-def _kill_group(proc: subprocess.Popen) -> None:
-    """SIGKILL the child and everything it started (its own session), then reap it."""
-    try:
-        os.killpg(proc.pid, signal.SIGKILL)
-    except ProcessLookupError:
-        pass
-    proc.wait()
-
-
-def _signal_name(number: int) -> str:
-    try:
-        return signal.Signals(number).name
-    except ValueError:
-        return "an unknown signal"
-
-
-def _last_line(path: Path) -> str:
-    lines = [line.strip() for line in path.read_text(errors="replace").splitlines() if line.strip()]
-    return lines[-1] if lines else "(no error message)"
 
 
 def read_render_exr(path: Path, batches: int) -> ChildRender:
@@ -132,22 +110,7 @@ def run_render(scene: str, integrator: str, spp: int, batches: int, seed: int,
         if os.environ.get(THREADS_ENV):
             command += ["--threads", os.environ[THREADS_ENV]]
         command += ["-q", "-o", str(out)]
-        with open(log, "wb") as log_file:
-            # Its own session: a timeout or Ctrl-C ends the renderer and anything it started.
-            proc = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log_file,
-                                    stderr=subprocess.STDOUT, cwd=tmp, start_new_session=True)
-            try:
-                code = proc.wait(timeout=timeout)
-            except subprocess.TimeoutExpired:
-                _kill_group(proc)
-                raise RenderFailed(f"timed out after {timeout:g} s") from None
-            except BaseException:
-                _kill_group(proc)
-                raise
-        if code < 0:
-            raise RenderFailed(f"killed by signal {_signal_name(-code)} ({-code})")
-        if code > 0:
-            raise RenderFailed(f"exited with status {code}: {_last_line(log)}")
+        run_child(command, Path(tmp), log, timeout)
         if not out.exists():
             raise RenderFailed("wrote no image")
         return read_render_exr(out, batches)

@@ -17,10 +17,16 @@ SCENES_DIR = ROOT / "scenes"
 REAL_SCENES_DIR = SCENES_DIR / "real"
 GROUP_DIRS = {"synthetic": SCENES_DIR, "real": REAL_SCENES_DIR}
 
-def suite_integrators() -> tuple[str, ...]:
-    """The renderer's integrators that have an entry; those that check geometry first (a scene whose normals
-    fail has a camera or geometry mismatch, which the run notes on that scene's other cases)."""
-    return tuple(e.name for e in sorted(match().entries, key=lambda e: not e.checks_geometry))
+def suite_integrators(available: Sequence[str] | None = None) -> tuple[str, ...]:
+    """The integrators with an entry that the engine under test renders (`available`, e.g. an engine file's
+    table; None: our renderer's); those that check geometry first (a scene whose normals fail has a camera
+    or geometry mismatch, which the run notes on that scene's other cases)."""
+    if available is None:
+        found = match().entries
+    else:
+        from harness.integrators import entries
+        found = [e for name, e in entries().items() if name in available]
+    return tuple(e.name for e in sorted(found, key=lambda e: not e.checks_geometry))
 
 
 class _Integrators(Sequence):
@@ -92,14 +98,14 @@ def scene_names(group: str = "synthetic") -> list[str]:
     return sorted(p.stem for p in GROUP_DIRS[group].glob("*.xml") if not p.name.startswith("."))
 
 
-def _all_cases() -> tuple[list[ImageCase], list[tuple[ImageCase, str]]]:
+def _all_cases(integrators: Sequence[str] | None = None) -> tuple[list[ImageCase], list[tuple[ImageCase, str]]]:
     """Every case that can run, and every one that cannot with why (the entry's scene requirement)."""
     from harness.integrators import entry
 
     runnable, not_applicable = [], []
     for group in GROUP_DIRS:
         for scene in scene_names(group):
-            for name in suite_integrators():
+            for name in suite_integrators(integrators):
                 case = ImageCase(scene, name, group)
                 reason = entry(name).not_applicable(case.path)
                 (not_applicable.append((case, reason)) if reason else runnable.append(case))
@@ -110,24 +116,27 @@ def _chosen(cases, only: list[str] | None, key=lambda c: c):
     return [x for x in cases if not only or key(x).key in only or key(x).scene in only or key(x).integrator in only]
 
 
-def select_cases(only: list[str] | None) -> list[ImageCase]:
+def select_cases(only: list[str] | None, integrators: Sequence[str] | None = None) -> list[ImageCase]:
     """All runnable cases, normals first per scene; `only` takes scene names, integrator names or
-    scene:integrator. A case named in `only` that is not applicable is an error saying why."""
-    runnable, not_applicable = _all_cases()
+    scene:integrator; `integrators`: those the engine under test renders (None: our renderer's).
+    A case named in `only` that is not applicable is an error saying why."""
+    runnable, not_applicable = _all_cases(integrators)
     if not only:
         return runnable
     cases = [*runnable, *(c for c, _ in not_applicable)]
-    known = {c.key for c in cases} | {c.scene for c in cases} | set(suite_integrators())
+    known = {c.key for c in cases} | {c.scene for c in cases} | set(suite_integrators(integrators))
     unknown = sorted(set(only) - known)
     if unknown:
         raise ValueError(f"unknown scene or case {', '.join(unknown)}: scenes are "
-                         f"{', '.join(scene_names() + scene_names('real'))}; integrators {', '.join(INTEGRATORS)}")
+                         f"{', '.join(scene_names() + scene_names('real'))}; integrators "
+                         f"{', '.join(suite_integrators(integrators))}")
     for case, reason in not_applicable:
         if case.key in only:
             raise ValueError(f"{case.key} is not applicable: {reason} ({case.path.relative_to(ROOT)})")
     return _chosen(runnable, only)
 
 
-def not_applicable_cases(only: list[str] | None) -> list[tuple[ImageCase, str]]:
+def not_applicable_cases(only: list[str] | None,
+                         integrators: Sequence[str] | None = None) -> list[tuple[ImageCase, str]]:
     """The cases `only` would name that cannot run, each with the entry's reason."""
-    return _chosen(_all_cases()[1], only, key=lambda pair: pair[0])
+    return _chosen(_all_cases(integrators)[1], only, key=lambda pair: pair[0])

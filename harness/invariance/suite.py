@@ -14,9 +14,10 @@ from harness.invariance.variants import INVARIANCES, Invariance
 RESOLUTION = 64
 
 
-def suite_entries() -> list[IntegratorEntry]:
-    """The entries of the integrators the suite renders: the image suite's (the renderer's, with an entry)."""
-    return [entry(name) for name in suite_integrators()]
+def suite_entries(integrators=None) -> list[IntegratorEntry]:
+    """The entries of the integrators the suite renders: the image suite's (the tested engine's, with an
+    entry; `integrators` as suite_integrators takes them)."""
+    return [entry(name) for name in suite_integrators(integrators)]
 
 
 def _scenes() -> dict[str, object]:
@@ -24,13 +25,15 @@ def _scenes() -> dict[str, object]:
     return {name: GROUP_DIRS[group] / f"{name}.xml" for group in GROUP_DIRS for name in scene_names(group)}
 
 
-def select(only: list[str] | None, resolution: int = RESOLUTION) -> tuple[list[InvarianceCase], list[Invariance]]:
+def select(only: list[str] | None, resolution: int = RESOLUTION,
+           integrators=None) -> tuple[list[InvarianceCase], list[Invariance]]:
     """The cases and invariances `only` names: scene names, integrator names, scene:integrator, or
     invariance names (scale, rotate, translate, light, reflectance); a kind not named means all of it.
     A scene an integrator does not apply to (simple without a point light) is left out, unless named as
-    scene:integrator, which is an error saying why."""
+    scene:integrator, which is an error saying why. `integrators`: those the tested engine renders (None:
+    our renderer's)."""
     only = list(only or [])
-    integrator_names = suite_integrators()
+    integrator_names = suite_integrators(integrators)
     scenes = _scenes()
     names = {i.name for i in INVARIANCES}
     pairs = [o.split(":", 1) for o in only if ":" in o]

@@ -1,0 +1,76 @@
+"""A renderer as a child process: its own session (a timeout or Ctrl-C ends it and everything it started),
+its output captured to a file and capped, and every way it can go wrong turned into one RenderFailed line with
+the last lines of what it printed."""
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+from pathlib import Path
+
+from harness.engines.base import RenderFailed
+
+#: Output a call may print before it is ended: a renderer printing without end must not fill the disk.
+OUTPUT_LIMIT = 64 << 20
+#: Lines of a failed call's output kept for the report.
+TAIL_LINES = 50
+_POLL_SECONDS = 0.2
+
+
+def kill_group(proc: subprocess.Popen) -> None:
+    """SIGKILL the child and everything it started (its own session), then reap it."""
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+    proc.wait()
+
+
+def signal_name(number: int) -> str:
+    try:
+        return signal.Signals(number).name
+    except ValueError:
+        return "an unknown signal"
+
+
+def output_tail(log: Path, lines: int = TAIL_LINES) -> str:
+    """The last `lines` non-empty lines of a log (read from its end only)."""
+    with open(log, "rb") as f:
+        f.seek(max(0, f.seek(0, os.SEEK_END) - 256 * lines))
+        text = f.read().decode(errors="replace")
+    kept = [line.rstrip() for line in text.splitlines() if line.strip()]
+    return "\n".join(kept[-lines:])
+
+
+def run_child(command: list[str], cwd: Path, log: Path, timeout: float) -> None:
+    """Run `command` in `cwd`, its stdout and stderr into `log`. Returns when it exits with status 0; raises
+    RenderFailed when it exits otherwise, is killed, outlives `timeout` seconds or prints more than
+    OUTPUT_LIMIT bytes (`output` holding its last lines); OSError if it cannot be started."""
+    with open(log, "wb") as log_file:
+        proc = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log_file, stderr=subprocess.STDOUT,
+                                cwd=cwd, start_new_session=True)
+        waited = 0.0
+        try:
+            while True:
+                try:
+                    code = proc.wait(timeout=min(_POLL_SECONDS, max(timeout - waited, 0.001)))
+                    break
+                except subprocess.TimeoutExpired:
+                    waited += _POLL_SECONDS
+                    if waited >= timeout:
+                        kill_group(proc)
+                        raise RenderFailed(f"timed out after {timeout:g} s", output_tail(log)) from None
+                    if log.stat().st_size > OUTPUT_LIMIT:
+                        kill_group(proc)
+                        raise RenderFailed(f"printed more than {OUTPUT_LIMIT >> 20} MB and was ended",
+                                           output_tail(log)) from None
+        except BaseException:
+            if proc.poll() is None:
+                kill_group(proc)
+            raise
+    if code < 0:
+        raise RenderFailed(f"killed by signal {signal_name(-code)} ({-code})", output_tail(log))
+    if code > 0:
+        tail = output_tail(log)
+        last = tail.splitlines()[-1].strip() if tail else "(no error message)"
+        raise RenderFailed(f"exited with status {code}: {last}", tail)

@@ -1,0 +1,141 @@
+"""A renderer described by an engine file (docs/engines.md): one call of its command per image, each in a
+temporary folder of its own, with the scene file the harness writes for it (written_scene)."""
+from __future__ import annotations
+
+import os
+import subprocess
+import tempfile
+import time
+from concurrent.futures import ThreadPoolExecutor
+from functools import cached_property
+from pathlib import Path
+
+import numpy as np
+
+from harness.engines.base import Engine, RenderFailed, RenderResult
+from harness.engines.child_process import run_child
+from harness.engines.engine_file import EngineFile, read_engine_file
+from harness.engines.render_process import THREADS_ENV, default_timeout
+from harness.engines.written_scene import written_scene
+from harness.exr import ExrError, read_image
+
+#: Seconds the version command may take.
+VERSION_TIMEOUT = 30.0
+
+
+def call_seed(seed: int, k: int) -> int:
+    """The seed of a case's k-th call: distinct per (seed, k), in [0, 2^31)."""
+    return (seed * 1_000_003 + k * 7919 + 1) % 2**31
+
+
+def render_seconds(attributes: dict[str, object]) -> float | None:
+    """The render time an EXR carries: a float attribute whose name ends in renderSeconds."""
+    for name, value in attributes.items():
+        if name.endswith("renderSeconds"):
+            try:
+                return float(np.ravel(value)[0])
+            except (TypeError, ValueError, IndexError):
+                return None
+    return None
+
+
+class CommandEngine(Engine):
+    """The renderer of an engine file. Seconds: "render" (the calls' render times, summed: the EXR's
+    renderSeconds where it carries one, else the call's wall time) and "total" (wall clock)."""
+
+    render_timing = "each call's renderSeconds attribute if its EXR has one, else the call's wall time"
+
+    def __init__(self, file: EngineFile) -> None:
+        self.file = file
+        self.name = self.label = file.name
+
+    @classmethod
+    def from_path(cls, path: str | Path) -> "CommandEngine":
+        return cls(read_engine_file(path))
+
+    @property
+    def integrators(self) -> tuple[str, ...]:
+        return tuple(self.file.integrators)
+
+    @cached_property
+    def _version_line(self) -> str:
+        if not self.file.version:
+            return "no version command"
+        words = [w.replace("{here}", str(self.file.here)) for w in self.file.version]
+        try:
+            done = subprocess.run(words, capture_output=True, text=True, timeout=VERSION_TIMEOUT,
+                                  stdin=subprocess.DEVNULL)
+        except (OSError, subprocess.TimeoutExpired) as e:
+            return f"version command failed: {e}"
+        lines = [line.strip() for line in (done.stdout + done.stderr).splitlines() if line.strip()]
+        if done.returncode != 0:
+            return f"version command exited with status {done.returncode}"
+        return lines[0] if lines else "(version command printed nothing)"
+
+    def version(self) -> str:
+        return f"{self.name} {self._version_line} ({self.file.path}: {' '.join(self.file.command)})"
+
+    def describe(self) -> dict[str, str]:
+        """Provenance for reports: the engine file, its command and the version it printed."""
+        return {"name": self.name, "file": str(self.file.path), "command": " ".join(self.file.command),
+                "version": self._version_line}
+
+    def _threads(self) -> int:
+        if os.environ.get(THREADS_ENV):
+            return int(os.environ[THREADS_ENV])
+        return max(1, (os.cpu_count() or 1) // self.file.jobs)
+
+    def _call(self, folder: Path, scene: Path, values: dict[str, str], width: int, height: int,
+              timeout: float) -> tuple[np.ndarray, float]:
+        """One call: its image and render seconds. RenderFailed on every way it can fail."""
+        folder.mkdir()
+        output = folder / "image.exr"
+        fields = {**values, "scene": str(scene), "output": str(output), "here": str(self.file.here)}
+        command = [w.format(**fields) for w in self.file.command]
+        start = time.perf_counter()
+        try:
+            run_child(command, folder, folder.parent / f"{folder.name}.log", timeout)
+        except OSError as e:
+            raise RenderFailed(f"cannot run {command[0]}: {e.strerror or e}") from None
+        wall = time.perf_counter() - start
+        if not output.exists():
+            raise RenderFailed(f"wrote no image at {{output}} (seed {values['seed']})")
+        try:
+            image, attributes = read_image(output)
+        except ExrError as e:
+            raise RenderFailed(f"wrote a file that is not a readable EXR image: {e}") from None
+        if image.shape[:2] != (height, width):
+            raise RenderFailed(f"wrote a {image.shape[1]}x{image.shape[0]} image, expected {width}x{height}")
+        seconds = render_seconds(attributes)
+        return image, wall if seconds is None else seconds
+
+    def render(self, scene: str, integrator: str, spp: int, batches: int, seed: int,
+               params: dict[str, str] | None = None) -> RenderResult:
+        """K calls of the command with seeds call_seed(seed, k); RenderFailed naming the first that fails."""
+        start = time.perf_counter()
+        theirs = self.file.integrators.get(integrator)
+        if theirs is None:
+            raise RenderFailed(f"{self.name} has no integrator for {integrator} (its engine file's [integrators])")
+        timeout = self.file.timeout or default_timeout(spp, 1, params)
+        with tempfile.TemporaryDirectory(prefix=f"mcval-{self.name}-") as tmp:
+            try:
+                text, width, height = written_scene(Path(scene), dict(params or {}), theirs, spp)
+            except (OSError, ValueError) as e:
+                raise RenderFailed(f"the harness could not write the scene for it: {e}") from None
+            scene_file = Path(tmp) / "scene.xml"
+            scene_file.write_text(text)
+            values = {"spp": str(spp), "integrator": theirs, "width": str(width), "height": str(height),
+                      "threads": str(self._threads())}
+
+            def call(k: int) -> tuple[np.ndarray, float]:
+                return self._call(Path(tmp) / f"call{k}", scene_file, {**values, "seed": str(call_seed(seed, k))},
+                                  width, height, timeout)
+
+            if self.file.jobs == 1:
+                outcomes = [call(k) for k in range(batches)]  # the first failure ends the case at once
+            else:
+                with ThreadPoolExecutor(self.file.jobs) as pool:
+                    outcomes = list(pool.map(call, range(batches)))
+        images = np.stack([image for image, _ in outcomes])
+        seconds = {"render": float(sum(s for _, s in outcomes)), "total": time.perf_counter() - start}
+        return RenderResult(self.name, str(scene), integrator, spp, seed, images, seconds, "independent")

@@ -1,0 +1,142 @@
+"""Engine files: a TOML description of how to call a renderer that reads a scene file and writes an EXR
+(docs/engines.md). Reading one checks everything that can be checked before a call, so a mistake in the file
+is one line naming the file, the line where it can be found, and what was expected."""
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import string
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+#: The placeholders a command may hold, and the two it must.
+PLACEHOLDERS = ("scene", "output", "spp", "seed", "integrator", "width", "height", "threads", "here")
+REQUIRED_PLACEHOLDERS = ("scene", "output")
+KEYS = ("name", "command", "version", "scene_format", "jobs", "timeout", "integrators")
+SCENE_FORMATS = ("mitsuba",)
+
+
+class EngineFileError(ValueError):
+    """A mistake in an engine file, as one line: "FILE:LINE: what is wrong"."""
+
+
+@dataclass(frozen=True)
+class EngineFile:
+    """One engine file, checked. `command` and `version` still hold their placeholders; `here` is the file's
+    folder, which `{here}` stands for."""
+
+    path: Path
+    name: str
+    command: tuple[str, ...]
+    integrators: dict[str, str]
+    version: tuple[str, ...] = ()
+    scene_format: str = "mitsuba"
+    jobs: int = 1
+    timeout: float | None = None
+
+    @property
+    def here(self) -> Path:
+        return self.path.parent
+
+
+def looks_like_engine_file(name: str) -> bool:
+    """Whether an --engine value names a file rather than a registered engine."""
+    return name.endswith(".toml") or os.sep in name
+
+
+def _line_of(text: str, key: str) -> int:
+    """The line where `key` is first set (1 if it cannot be found): for messages only."""
+    match = re.search(rf"^\s*\[?\s*{re.escape(key)}\s*[=\]]", text, re.MULTILINE)
+    return text.count("\n", 0, match.start()) + 1 if match else 1
+
+
+def _words(value: object) -> bool:
+    return isinstance(value, list) and bool(value) and all(isinstance(w, str) for w in value)
+
+
+def _placeholders(words: tuple[str, ...]) -> set[str]:
+    return {field for w in words for _, field, _, _ in string.Formatter().parse(w) if field is not None}
+
+
+def _program(first: str, here: Path) -> str | None:
+    """Why the command's first word cannot be run, or None if it can."""
+    path = first.replace("{here}", str(here))
+    if os.sep not in path:
+        return None if shutil.which(path) else f"{path!r} is not a program on PATH"
+    if not Path(path).is_file():
+        return f"{path} does not exist"
+    if not os.access(path, os.X_OK):
+        return f"{path} is not executable (chmod +x)"
+    return None
+
+
+def read_engine_file(path: str | Path) -> EngineFile:
+    """The engine file at `path`, checked; EngineFileError saying where and what otherwise."""
+    path = Path(path).resolve()
+    try:
+        text = path.read_text()
+    except OSError as e:
+        raise EngineFileError(f"{path}: cannot read the engine file ({e.strerror or e})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        # tomllib says where in its message: "... (at line 2, column 11)" or "(at end of document)".
+        where = re.search(r"\(at line (\d+), column \d+\)", str(e))
+        line = where.group(1) if where else text.count("\n") + (not text.endswith("\n"))
+        reason = re.sub(r" \(at (line \d+, column \d+|end of document)\)", "", str(e))
+        raise EngineFileError(f"{path}:{line}: not valid TOML: {reason}") from None
+
+    def error(key: str, message: str) -> EngineFileError:
+        return EngineFileError(f"{path}:{_line_of(text, key)}: {message}")
+
+    for key in data:
+        if key not in KEYS:
+            raise error(key, f"unknown key {key!r} (an engine file has {', '.join(KEYS)})")
+    for key in ("name", "command", "integrators"):
+        if key not in data:
+            raise EngineFileError(f"{path}:1: missing {key!r} (see docs/engines.md)")
+    name = data["name"]
+    if not isinstance(name, str) or not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9._+-]*", name):
+        raise error("name", f"name must be a word of letters, digits and . _ + - (got {name!r})")
+    command = data["command"]
+    if not _words(command):
+        raise error("command", "command must be a list of strings, the program first")
+    command = tuple(command)
+    found = _placeholders(command)
+    unknown = sorted(found - set(PLACEHOLDERS))
+    if unknown:
+        raise error("command", f"unknown placeholder {{{unknown[0]}}} in command (placeholders: "
+                               f"{', '.join('{' + p + '}' for p in PLACEHOLDERS)})")
+    for needed in REQUIRED_PLACEHOLDERS:
+        if needed not in found:
+            raise error("command", f"command has no {{{needed}}}: the harness could not tell the renderer "
+                                   f"{'which scene to render' if needed == 'scene' else 'where to write the EXR'}")
+    problem = _program(command[0], path.parent)
+    if problem:
+        raise error("command", f"cannot run the command: {problem}")
+    version = data.get("version", [])
+    if version and not _words(version):
+        raise error("version", "version must be a list of strings (a command printing the version)")
+    scene_format = data.get("scene_format", "mitsuba")
+    if scene_format not in SCENE_FORMATS:
+        raise error("scene_format", f"scene_format {scene_format!r} is not one of {', '.join(SCENE_FORMATS)}")
+    jobs = data.get("jobs", 1)
+    if not isinstance(jobs, int) or isinstance(jobs, bool) or jobs < 1:
+        raise error("jobs", f"jobs must be a whole number of at least 1 (got {jobs!r})")
+    timeout = data.get("timeout")
+    if timeout is not None and (isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or timeout <= 0):
+        raise error("timeout", f"timeout must be a positive number of seconds (got {timeout!r})")
+    integrators = data["integrators"]
+    if not isinstance(integrators, dict) or not integrators:
+        raise error("integrators", "[integrators] must map mcval's integrators to this renderer's names")
+    from harness.integrators import entries
+    known = entries()
+    for ours, theirs in integrators.items():
+        if ours not in known:
+            raise error(ours, f"integrators: {ours!r} is not an integrator of mcval (it has {', '.join(known)})")
+        if not isinstance(theirs, str) or not theirs:
+            raise error(ours, f"integrators.{ours} must be the renderer's name for it, a string")
+    return EngineFile(path, name, command, dict(integrators), tuple(version), scene_format, jobs,
+                      None if timeout is None else float(timeout))

@@ -1,0 +1,81 @@
+"""The scene file an engine file's renderer is given (docs/engines.md): the suite's scene with its <default>s
+resolved, film size and sampler set, the integrator mapped, and file names made absolute so that the file can
+be written anywhere (never into the scene's own folder)."""
+from __future__ import annotations
+
+import re
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+_PARAMETER = re.compile(r"\$([A-Za-z_][A-Za-z0-9_]*)")
+#: Properties holding a file name, resolved against the scene's folder as Mitsuba resolves them.
+_FILE_PROPERTIES = ("filename",)
+
+
+def absolute_paths(root: ET.Element, folder: Path) -> None:
+    """Every relative file name under `root` made absolute against `folder` (in place)."""
+    for e in root.iter():
+        if e.tag == "string" and e.get("name") in _FILE_PROPERTIES and e.get("value"):
+            value = e.get("value")
+            if "$" not in value and not Path(value).is_absolute():
+                e.set("value", str((folder / value).resolve()))
+
+
+def resolve_defaults(root: ET.Element, params: dict[str, str], source: str) -> None:
+    """Every <default> of the scene removed and every $name filled in, `params` first (in place).
+    ValueError naming `source` for a $name that neither gives."""
+    values = {e.get("name"): e.get("value", "") for e in root if e.tag == "default"}
+    values.update({k: str(v) for k, v in params.items()})
+    for e in [e for e in root if e.tag == "default"]:
+        root.remove(e)
+
+    def fill(match: re.Match) -> str:
+        if match.group(1) not in values:
+            raise ValueError(f"{source}: ${match.group(1)} has no <default> and no value was given")
+        return values[match.group(1)]
+
+    for e in root.iter():
+        for key, value in e.attrib.items():
+            if "$" in value:
+                e.set(key, _PARAMETER.sub(fill, value))
+
+
+def _set_property(parent: ET.Element, tag: str, name: str, value: str) -> None:
+    for e in [e for e in parent if e.get("name") == name]:
+        parent.remove(e)
+    ET.SubElement(parent, tag, name=name, value=value)
+
+
+def film_size(root: ET.Element) -> tuple[int, int]:
+    """(width, height) of the first film, Mitsuba's defaults (768 x 576) where it says nothing."""
+    film = next(root.iter("film"), None)
+    size = {"width": 768, "height": 576}
+    for e in (film if film is not None else ()):
+        if e.get("name") in size:
+            size[e.get("name")] = int(e.get("value"))
+    return size["width"], size["height"]
+
+
+def written_scene(path: Path, params: dict[str, str], integrator: str, spp: int) -> tuple[str, int, int]:
+    """(the XML text, width, height) of `path` as an engine file's renderer gets it: `integrator` is the
+    renderer's own name for it; `params` override the scene's <default>s (res sets width and height)."""
+    root = ET.parse(path).getroot()
+    resolve_defaults(root, params, str(path))
+    absolute_paths(root, path.parent)
+    for e in [e for e in root if e.tag == "integrator"]:
+        root.remove(e)
+    root.insert(0, ET.Element("integrator", type=integrator))
+    for sensor in root.iter("sensor"):
+        for e in [e for e in sensor if e.tag == "sampler"]:
+            sensor.remove(e)
+        sampler = ET.SubElement(sensor, "sampler", type="independent")
+        ET.SubElement(sampler, "integer", name="sample_count", value=str(spp))
+        film = next((e for e in sensor if e.tag == "film"), None)
+        if film is None:
+            film = ET.SubElement(sensor, "film", type="hdrfilm")
+        if "res" in params:
+            _set_property(film, "integer", "width", str(params["res"]))
+            _set_property(film, "integer", "height", str(params["res"]))
+    width, height = film_size(root)
+    ET.indent(root)
+    return ET.tostring(root, encoding="unicode") + "\n", width, height

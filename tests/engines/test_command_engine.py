@@ -1,0 +1,88 @@
+"""An engine file's renderer, call by call: a good one renders K independent batches; every way a call can go
+wrong is a RenderFailed of one line (with the last lines of its output), never an exception of the harness."""
+import numpy as np
+import pytest
+
+from harness.comparison.compare import compare_summaries, summarize
+from harness.engines import child_process
+from harness.engines.base import RenderFailed
+from harness.engines.command import CommandEngine, call_seed
+from harness.images.suite import SCENES_DIR
+from tests.helpers.foreign_renderers import write_engine
+
+SCENE = str(SCENES_DIR / "plane_point.xml")
+PARAMS = {"res": "8"}
+
+
+def _render(tmp_path, behaviour: str, integrator: str = "simple", extra: str = "", batches: int = 2):
+    engine = CommandEngine.from_path(write_engine(tmp_path, behaviour, extra=extra))
+    return engine.render(SCENE, integrator, 4, batches, 7, PARAMS)
+
+
+def _failure(tmp_path, behaviour: str, **kwargs) -> RenderFailed:
+    with pytest.raises(RenderFailed) as e:
+        _render(tmp_path, behaviour, **kwargs)
+    return e.value
+
+
+def test_a_good_renderer_gives_independent_batches_of_the_asked_size(tmp_path):
+    result = _render(tmp_path, "ours", batches=3)
+    assert result.batches.shape == (3, 8, 8, 3) and result.engine == "ours"
+    assert not np.array_equal(result.batches[0], result.batches[1])  # distinct seeds per call
+    assert result.seconds["render"] > 0 and result.seconds["total"] >= result.seconds["render"] * 0.5
+    assert len({call_seed(7, k) for k in range(64)}) == 64 and all(0 <= call_seed(s, 3) < 2**31 for s in (0, 2**40))
+
+
+def test_jobs_run_calls_at_once_with_the_same_images(tmp_path):
+    one = _render(tmp_path, "ours", batches=4)
+    (tmp_path / "two").mkdir()
+    both = _render(tmp_path / "two", "ours", batches=4, extra="jobs = 2\n")
+    assert np.array_equal(one.batches, both.batches)
+
+
+@pytest.mark.parametrize("behaviour", ["y_half", "layer"])
+def test_y_and_layered_images_are_read_as_rgb(tmp_path, behaviour):
+    result = _render(tmp_path, behaviour)
+    assert result.batches.shape == (2, 8, 8, 3) and np.allclose(result.batches, 0.25)
+
+
+@pytest.mark.parametrize("behaviour, reason", [
+    ("no_image", "wrote no image"),
+    ("not_exr", "wrote a file that is not a readable EXR image"),
+    ("wrong_size", "wrote a 4x4 image, expected 8x8"),
+    ("no_rgb", "has no R, G, B or Y channels (it has U, V)"),
+])
+def test_a_bad_image_is_one_line(tmp_path, behaviour, reason):
+    assert reason in _failure(tmp_path, behaviour).reason
+
+
+def test_a_failed_call_keeps_its_last_50_lines(tmp_path):
+    failure = _failure(tmp_path, "exit")
+    assert failure.reason == "exited with status 3: error: cannot parse"
+    lines = failure.output.splitlines()
+    assert len(lines) == 50 and lines[-1] == "error: cannot parse" and lines[0] == "progress 31"
+
+
+def test_a_hung_renderer_is_ended_by_the_timeout(tmp_path):
+    assert _failure(tmp_path, "hang", extra="timeout = 1\n").reason == "timed out after 1 s"
+
+
+def test_a_renderer_printing_without_end_is_ended(tmp_path, monkeypatch):
+    monkeypatch.setattr(child_process, "OUTPUT_LIMIT", 1 << 20)
+    assert _failure(tmp_path, "spam").reason == "printed more than 1 MB and was ended"
+
+
+def test_an_integrator_not_in_the_table_fails_the_render(tmp_path):
+    path = write_engine(tmp_path, "ours")
+    path.write_text(path.read_text().replace('ao = "ao"\n', ""))
+    with pytest.raises(RenderFailed, match="has no integrator for ao"):
+        CommandEngine.from_path(path).render(SCENE, "ao", 4, 1, 0, PARAMS)
+
+
+@pytest.mark.parametrize("behaviour, kind", [("nan", "nonfinite"), ("negative", "negative")])
+def test_nan_and_negative_pixels_fail_the_comparison(tmp_path, behaviour, kind):
+    result = _render(tmp_path, behaviour, batches=4)
+    clean = np.full((4, 8, 8, 3), 0.25, np.float32) + np.random.default_rng(0).normal(0, 0.01, (4, 8, 8, 3))
+    comparison = compare_summaries(summarize(result.batches), summarize(clean.astype(np.float32)), 0.01)
+    assert not comparison.passed
+    assert getattr(comparison.finite.test, kind) >= 1 and comparison.finite.side == "test"

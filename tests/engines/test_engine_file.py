@@ -1,0 +1,72 @@
+"""Engine files (docs/engines.md): every mistake in one is a line naming the file, the line and what was
+expected, before any render."""
+import pytest
+
+from harness.engines.engine_file import EngineFileError, read_engine_file
+from harness.engines.registry import make_engine
+
+GOOD = '''name = "toy"
+command = ["{here}/toy", "{scene}", "-o", "{output}"]
+version = ["{here}/toy", "--version"]
+[integrators]
+ao = "occlusion"
+'''
+
+
+def _file(tmp_path, text: str, executable: bool = True):
+    program = tmp_path / "toy"
+    program.write_text("#!/bin/sh\necho toy 1.2\n")
+    program.chmod(0o755 if executable else 0o644)
+    path = tmp_path / "toy.toml"
+    path.write_text(text)
+    return path
+
+
+def _error(tmp_path, text: str, executable: bool = True) -> str:
+    with pytest.raises(EngineFileError) as e:
+        read_engine_file(_file(tmp_path, text, executable))
+    return str(e.value)
+
+
+def test_a_good_file_reads_with_its_integrator_table_and_version(tmp_path):
+    engine = make_engine(str(_file(tmp_path, GOOD)))
+    assert engine.name == "toy" and engine.integrators == ("ao",)
+    assert engine.describe()["version"] == "toy 1.2"
+    assert engine.file.integrators == {"ao": "occlusion"} and engine.file.jobs == 1
+
+
+def test_an_unknown_key_names_its_line(tmp_path):
+    message = _error(tmp_path, GOOD.replace('version =', 'verison ='))
+    assert message.endswith(":3: unknown key 'verison' (an engine file has name, command, version, scene_format, "
+                            "jobs, timeout, integrators)")
+
+
+@pytest.mark.parametrize("placeholder", ["scene", "output"])
+def test_a_command_without_scene_or_output_is_refused(tmp_path, placeholder):
+    message = _error(tmp_path, GOOD.replace("{" + placeholder + "}", "x"))
+    assert f":2: command has no {{{placeholder}}}" in message
+
+
+def test_an_unknown_placeholder_is_refused(tmp_path):
+    assert ":2: unknown placeholder {samples}" in _error(tmp_path, GOOD.replace('"-o"', '"{samples}"'))
+
+
+def test_a_missing_program_is_refused(tmp_path):
+    assert "does not exist" in _error(tmp_path, GOOD.replace("{here}/toy\", \"{scene}", "{here}/nope\", \"{scene}"))
+    assert "is not a program on PATH" in _error(tmp_path, GOOD.replace('"{here}/toy", "{scene}"',
+                                                                          '"no-such-renderer", "{scene}"'))
+
+
+def test_a_program_that_is_not_executable_is_refused(tmp_path):
+    assert "is not executable (chmod +x)" in _error(tmp_path, GOOD, executable=False)
+
+
+def test_an_integrator_mcval_does_not_have_is_refused(tmp_path):
+    message = _error(tmp_path, GOOD + 'path = "path"\n')
+    assert ":6: integrators: 'path' is not an integrator of mcval" in message
+
+
+def test_bad_toml_and_missing_keys_are_refused(tmp_path):
+    assert ":2: not valid TOML" in _error(tmp_path, 'name = "toy"\ncommand = [\n')
+    assert ":1: missing 'integrators'" in _error(tmp_path, GOOD.split("[integrators]")[0])
+    assert "jobs must be a whole number" in _error(tmp_path, "jobs = 0\n" + GOOD)

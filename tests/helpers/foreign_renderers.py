@@ -1,0 +1,62 @@
+"""Engine files for renderers that are not ours, written into a test's folder: each calls a small Python
+script that renders through our `render` binary (one batch, as an engine file's renderer renders), or
+misbehaves in one named way instead."""
+from __future__ import annotations
+
+import stat
+import sys
+from pathlib import Path
+
+REAL_RENDER = Path(__file__).resolve().parents[2] / "build" / "render"
+
+_HEADER = f"""#!{sys.executable}
+import sys, time
+scene, output, spp, seed, integrator, width, height = sys.argv[1:8]
+def write(pixels, names=("R", "G", "B"), fmt="float"):
+    import numpy as np, OpenImageIO as oiio
+    spec = oiio.ImageSpec(pixels.shape[1], pixels.shape[0], len(names), fmt)
+    spec.channelnames = tuple(names)
+    out = oiio.ImageOutput.create(output)
+    out.open(output, spec)
+    out.write_image(np.ascontiguousarray(pixels, dtype=np.float32))
+    out.close()
+def render():
+    import subprocess
+    subprocess.run([{str(REAL_RENDER)!r}, scene, "--integrator", integrator, "--spp", spp, "--seed", seed,
+                    "-q", "-o", output], check=True)
+def shape(channels=3):
+    import numpy as np
+    return np.full((int(height), int(width), channels), 0.25, np.float32)
+"""
+
+#: What each renderer does.
+BEHAVIOURS = {
+    "ours": "render()",
+    "y_half": "write(shape(1), ('Y',), 'half')",
+    "layer": "write(shape(), ('beauty.R', 'beauty.G', 'beauty.B'))",
+    "exit": "print('\\n'.join(f'progress {i}' for i in range(80))); print('error: cannot parse', file=sys.stderr); "
+            "sys.exit(3)",
+    "no_image": "pass",
+    "not_exr": "open(output, 'w').write('P3 1 1 255 0 0 0')",
+    "wrong_size": "import numpy as np; write(np.zeros((4, 4, 3), np.float32))",
+    "no_rgb": "write(shape(2), ('U', 'V'))",
+    "nan": "render(); import numpy as np; im = shape(); im[2, 3] = np.nan; write(im)",
+    "negative": "im = shape(); im[1, 1] = -0.5; write(im)",
+    "hang": "time.sleep(600)",
+    "spam": "while True: print('x' * 4096, flush=True)",
+}
+
+ARGUMENTS = ["{scene}", "{output}", "{spp}", "{seed}", "{integrator}", "{width}", "{height}"]
+INTEGRATORS = '[integrators]\nnormals = "normals"\nsimple = "simple"\nao = "ao"\n'
+
+
+def write_engine(folder: Path, behaviour: str, name: str | None = None, extra: str = "") -> Path:
+    """An engine file in `folder` whose renderer does `behaviour` (a key of BEHAVIOURS); `extra`: more TOML
+    lines before its [integrators]."""
+    script = folder / f"{behaviour}.py"
+    script.write_text(_HEADER + BEHAVIOURS[behaviour] + "\n")
+    script.chmod(script.stat().st_mode | stat.S_IXUSR)
+    command = ", ".join(f'"{w}"' for w in ["{here}/" + script.name, *ARGUMENTS])
+    path = folder / f"{behaviour}.toml"
+    path.write_text(f'name = "{name or behaviour.replace("_", "-")}"\ncommand = [{command}]\n{extra}{INTEGRATORS}')
+    return path
