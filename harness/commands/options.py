@@ -34,6 +34,12 @@ def add_image_options(q: argparse.ArgumentParser) -> None:
     add_executor_options(q)
 
 
+def add_warp_library(q: argparse.ArgumentParser) -> None:
+    q.add_argument("--warp-library", type=Path, metavar="LIB.so",
+                   help="check the warps this shared library exports (the C ABI of include/mcval_warps.h, see "
+                        "docs/engines.md) instead of the engine's")
+
+
 def tested_integrators(args: argparse.Namespace) -> tuple[str, ...] | None:
     """The integrators the engine under test renders (an engine file's table), None for every one."""
     from harness.engines.registry import DEFAULT_TEST, engine_integrators

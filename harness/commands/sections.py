@@ -28,6 +28,8 @@ def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=N
         warps_ok, warps = run_warp_section(args, specs, run_dir)
         ok &= warps_ok
         payload.update(warps=warps["warps"], warp_level=warps["level"])
+        if warps["problems"]:
+            payload["warp_problems"] = warps["problems"]
     if invariances:
         # Before the images, so report.html (written with them) carries the matrix.
         console.rule("[bold]Invariances[/] (each engine against itself)")

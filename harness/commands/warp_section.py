@@ -5,8 +5,39 @@ import platform
 import time
 from pathlib import Path
 
+from rich.markup import escape
+
 from harness.commands.output import console, progress_bar
 from harness.statistics.constants import WARP_SAMPLES
+
+
+def warp_engine(args):
+    """The engine whose warps are checked: the --warp-library, else the engine under test."""
+    from harness.engines.registry import make_engine
+
+    library = getattr(args, "warp_library", None)
+    if library is not None:
+        from harness.engines.warp_library import WarpLibraryEngine
+        return WarpLibraryEngine(library)
+    return make_engine(args.engine)
+
+
+def available_specs(engine, specs) -> tuple[list, list[str]]:
+    """The specs `engine` can be checked on, and one line for each it cannot (a sampler without its pdf).
+    A warp an optional engine (a user's library) lacks is left out; one ours lacks stays, and fails."""
+    from harness.engines.warp_library import WarpUnavailable
+
+    kept, problems = [], []
+    for spec in specs:
+        try:
+            functions = engine.warp(spec.name, spec.alpha)
+        except WarpUnavailable as e:
+            if str(e) not in problems:
+                problems.append(str(e))
+            continue
+        if functions is not None or not engine.warps_optional:
+            kept.append(spec)
+    return kept, problems
 
 
 def run_warp_section(args, specs, run_dir: Path) -> tuple[bool, dict]:
@@ -17,7 +48,10 @@ def run_warp_section(args, specs, run_dir: Path) -> tuple[bool, dict]:
     from harness.report.warp_table import warp_table
     from harness.warps.suite import run_matrix
 
-    ours = make_engine(args.engine)
+    ours = warp_engine(args)
+    specs, problems = available_specs(ours, specs)
+    for line in problems:
+        console.print(f"[red]FAIL[/] {escape(line)}", soft_wrap=True)
     reference = None if getattr(args, "no_mitsuba", False) else make_engine(args.reference)
     samples = getattr(args, "samples", WARP_SAMPLES)
     start = time.perf_counter()
@@ -29,11 +63,17 @@ def run_warp_section(args, specs, run_dir: Path) -> tuple[bool, dict]:
     meta = {"engine": ours.version(), "reference": reference.version() if reference else "none",
             "samples per warp": samples, "seed": args.seed, "seconds": round(seconds, 2),
             "machine": f"{platform.machine()}, {platform.system()} {platform.release()}"}
-    console.print(warp_table(results, level))
+    if results:
+        console.print(warp_table(results, level))
+    else:
+        console.print(f"{escape(ours.name)} has none of the warps asked for")
     paths = write_warp_outputs(run_dir, specs, results, level, meta, args.seed)
     failed = [r.label for r in results if not r.passed]
     console.print(f"{len(results) - len(failed)} of {len(results)} warps pass, in {seconds:.1f} s. "
                   f"Page: {paths['html']}")
     for label in failed:
         console.print(f"[red]FAIL[/] {label}: data in {run_dir / 'warps'}")
-    return not failed, warp_payload(results, level, meta)
+    payload = warp_payload(results, level, meta)
+    payload["problems"] = problems
+    payload["pass"] = ok = payload["pass"] and not problems and bool(results)
+    return ok, payload

@@ -4,7 +4,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from harness.commands.options import add_common, add_engines
+from harness.commands.options import add_common, add_engines, add_warp_library
 from harness.commands.run_folder import RunFolder
 from harness.statistics.constants import WARP_SAMPLES
 
@@ -23,6 +23,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--samples", type=int, default=WARP_SAMPLES,
                    help=f"samples per warp for the statistical tests (default: {WARP_SAMPLES})")
     p.add_argument("--no-mitsuba", action="store_true", help="skip the checks against the reference engine")
+    add_warp_library(p)
 
 
 def run(args: argparse.Namespace, run: RunFolder) -> int:

@@ -51,15 +51,19 @@ def _mitsuba(fn: Any):
 class _Call:
     """fn called on a numpy array (then on Dr.Jit arrays, once it is known to need them), plus extra args."""
 
-    def __init__(self, fn: Callable, args: tuple = ()) -> None:
+    def __init__(self, fn: Callable, args: tuple = (), input_dtype: Any = None) -> None:
         if not callable(fn):
             raise TypeError(f"expected a function, got {type(fn).__name__}")
         self.fn, self.args = fn, tuple(args)
         self.drjit = is_drjit_function(fn)
+        self._input_dtype = None if input_dtype is None else np.dtype(input_dtype).type
 
     @property
     def input_dtype(self) -> type:
-        """The precision the function receives its input in (hard_inputs judges u = 1 in it)."""
+        """The precision the function receives its input in (hard_inputs judges u = 1 in it): as given, else
+        float32 for a Dr.Jit function and float64 for numpy."""
+        if self._input_dtype is not None:
+            return self._input_dtype
         return np.float32 if self.drjit else np.float64
 
     def _drjit_call(self, x: np.ndarray, extra: tuple) -> np.ndarray:
@@ -70,6 +74,8 @@ class _Call:
         return out.T if out.ndim == 2 else out
 
     def raw(self, x: np.ndarray, extra: tuple = ()) -> Any:
+        if self._input_dtype is not None and not self.drjit:
+            x = np.asarray(x, dtype=self._input_dtype)
         if self.drjit:
             return self._drjit_call(x, extra)
         try:

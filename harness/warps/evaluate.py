@@ -89,12 +89,18 @@ def format_params(params: Any) -> str:
 def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "user warp",
                   params: Any = None, seed: int = 0, samples: int = WARP_SAMPLES,
                   reference: WarpFunctions | None = None, native_run=None,
-                  hard_variants: dict[str, tuple[wc.Sampler, wc.Pdf]] | None = None) -> WarpResult:
-    """Run every check; statistical ones are left undecided (see `decide`)."""
+                  hard_variants: dict[str, tuple[wc.Sampler, wc.Pdf]] | None = None,
+                  judge_throughput: bool = True) -> WarpResult:
+    """Run every check; statistical ones are left undecided (see `decide`). A sampler taking float32 (its
+    `input_dtype`) gets float32 uniforms, all in [0, 1); `judge_throughput` False reports the throughput
+    without a floor (a user's code)."""
     start = time.perf_counter()
     dom = get_domain(domain)
     rng = np.random.default_rng(seed)
-    u = rng.random((samples, 2))
+    if getattr(sample, "input_dtype", np.float64) == np.float32:
+        u = rng.random((samples, 2), dtype=np.float32).astype(np.float64)
+    else:
+        u = rng.random((samples, 2))
     points = wc.as_points(sample(u), samples, "sample")
     if points.shape[1] != dom.dim:
         raise ValueError(f"sample returned {points.shape[1]}D points; the {domain} domain is {dom.dim}D")
@@ -122,7 +128,7 @@ def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "
         reference_observed = wc.histogram(dom, ref_points[dom.contains(ref_points)], bins)
         checks["samples_vs_mitsuba"] = wc.homogeneity_check(observed, reference_observed)
     checks["hard_inputs"] = wc.hard_inputs_check(dom, hard_variants or {"": (sample, pdf)})
-    checks["throughput"] = throughput_check(sample, native_run, reference)
+    checks["throughput"] = throughput_check(sample, native_run, reference, judged=judge_throughput)
     return WarpResult(name, params, domain, checks, observed, cells.values * samples,
                       reference_observed, time.perf_counter() - start, seed, bins)
 
@@ -136,11 +142,11 @@ def equal_probability_cells(dom: Domain, pdf: wc.Pdf, samples: int,
 
 
 def throughput_check(sample: wc.Sampler, native_run, reference: WarpFunctions | None,
-                     n: int = 1 << 20) -> wc.CheckResult:
+                     n: int = 1 << 20, judged: bool = True) -> wc.CheckResult:
     """Samples per second of our warp, beside the reference's (each in its own containers).
 
-    Passes above THROUGHPUT_FLOOR; the comparison with the reference is reported, not judged
-    (speed goals live in bench/).
+    Passes above THROUGHPUT_FLOOR if `judged` (else it always passes: a user's code is timed, not judged);
+    the comparison with the reference is reported, not judged (speed goals live in bench/).
     """
     if native_run is None:
         u = np.random.default_rng(1).random((n, 2))
@@ -153,8 +159,10 @@ def throughput_check(sample: wc.Sampler, native_run, reference: WarpFunctions | 
         ref_rate = wc.measure_rate(reference.native_run(n), n)
         details.update(reference_samples_per_second=ref_rate, ratio=rate / ref_rate)
         summary += f" ({rate / ref_rate:.2f}x Mitsuba)"
-    details["floor"] = THROUGHPUT_FLOOR
-    return wc.CheckResult(bool(rate >= THROUGHPUT_FLOOR), rate, summary, details=details)
+    details["floor"] = THROUGHPUT_FLOOR if judged else None
+    if not judged:
+        summary += " (reported, not judged)"
+    return wc.CheckResult(bool(rate >= THROUGHPUT_FLOOR or not judged), rate, summary, details=details)
 
 
 def decide(results: list[WarpResult], alpha: float = SIGNIFICANCE) -> float:
@@ -168,7 +176,7 @@ def decide(results: list[WarpResult], alpha: float = SIGNIFICANCE) -> float:
 
 def check_warp(sample: Callable, pdf: Callable, domain: str, params: Any = None, seed: int = 0,
                *, args: tuple = (), samples: int = WARP_SAMPLES, reference: WarpFunctions | None = None,
-               name: str = "user warp") -> WarpResult:
+               name: str = "user warp", input_dtype: Any = None) -> WarpResult:
     """Check a warp given as Python functions; see the module docstring.
 
     sample: (N, 2) uniforms in [0,1)^2 -> (N, 2) or (N, 3) points; pdf: points -> (N,) densities, or
@@ -180,11 +188,15 @@ def check_warp(sample: Callable, pdf: Callable, domain: str, params: Any = None,
     `args`: extra positional arguments passed on to both functions after the array (default none),
     e.g. args=(0.3,) for Beckmann's alpha. `params` is only a label recorded in the result (default:
     `args`, if any). `samples`: samples for the statistical checks (default WARP_SAMPLES).
+    `input_dtype`: the precision `sample` receives its uniforms in (np.float32 for a float32 warp: it gets
+    float32 uniforms in [0, 1), and the hard inputs judge u as it sees them; default float64, or float32 for
+    a Dr.Jit function).
     Raises ValueError when a function returns the wrong shape.
     """
     if params is None and args:
         params = list(args)
-    result = evaluate_warp(NumpySampler(sample, args), NumpyPdf(pdf, args), domain, name=name, params=params,
+    result = evaluate_warp(NumpySampler(sample, args, input_dtype), NumpyPdf(pdf, args), domain, name=name,
+                           params=params,
                            seed=seed, samples=samples, reference=reference)
     decide([result])
     return result

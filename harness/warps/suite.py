@@ -81,7 +81,7 @@ def check_spec(spec: WarpSpec, ours: Engine, reference: Engine | None, seed: int
             variants[f"alpha={a:.3g}"] = (f.sample, f.pdf)
     return evaluate_warp(functions.sample, functions.pdf, spec.domain, name=spec.name, params=spec.params,
                          seed=spec_seed(spec, seed), samples=samples, reference=ref, native_run=functions.native_run,
-                         hard_variants=variants)
+                         hard_variants=variants, judge_throughput=ours.throughput_judged)
 
 
 def run_matrix(ours: Engine, reference: Engine | None, specs: list[WarpSpec], seed: int = 0,
