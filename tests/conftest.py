@@ -1,4 +1,10 @@
+import os
+
 import pytest
+
+# pytest-xdist tells its workers COLUMNS=80, which the harness honours (tables as wide as the terminal says);
+# the tests read its output as a log would, at its own width.
+os.environ.pop("COLUMNS", None)
 
 
 @pytest.fixture(scope="session")

@@ -5,7 +5,7 @@ import argparse
 import time
 from pathlib import Path
 
-from harness.commands.options import add_common, add_engines
+from harness.commands.options import add_common, add_engines, add_scene_files
 from harness.commands.output import console, progress_bar
 from harness.commands.run_folder import RunFolder
 from harness.distributed.cluster import add_executor_options
@@ -22,6 +22,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_common(p)
     p.add_argument("--scenes", "--only", dest="scenes", nargs="+", metavar="CASE",
                    help="as for `images` (default: the simple and ao cases of every scene)")
+    add_scene_files(p)
     p.add_argument("--engines", nargs="+", default=list(ENGINES), metavar="NAME",
                    help="engines to run, the engine under test first (default: mcval mitsuba mitsuba-scalar)")
     add_engines(p, test=False)
@@ -96,10 +97,10 @@ def run(args: argparse.Namespace, run: RunFolder) -> int:
 
     run_dir = run.start()
     # By default the simple and ao cases of our own scenes (the real scenes are validated, not benchmarked).
-    from harness.commands.options import tested_integrators
+    from harness.commands.options import case_selection
 
-    cases = [c for c in select_cases(args.scenes, tested_integrators(args))
-             if args.scenes or (entry(c.integrator).benchmarked and c.group == "synthetic")]
+    cases = [c for c in select_cases(args.scenes, **case_selection(args))
+             if args.scenes or (entry(c.integrator).benchmarked and c.group != "real")]
     reference = make_engine(args.reference)
     engines = _engines(args)
     ladder = tuple(2**k for k in range(args.max_spp.bit_length()) if 2**k <= args.max_spp)

@@ -17,7 +17,7 @@ def _print_real_scenes(real, not_applicable, alpha: float) -> None:
     console.rule("[bold]Real scenes[/] (scenes/real/)")
     if real:
         table = image_table(real, alpha)
-        table.title = f"Real scenes against Mitsuba 3 (per-comparison α {alpha:.2g}, family-wise 0.01)"
+        table.title = f"Real scenes: {table.title}"
         console.print(table)
     for case, reason in not_applicable:
         console.print(f"{escape(case.key)}: not applicable: {escape(reason)} (not run)")
@@ -33,6 +33,17 @@ def _print_regression(payload: dict) -> None:
             console.print(f"[yellow]changed[/] {entry['scene']}:{entry['integrator']}: {'; '.join(entry['flags'])}")
 
 
+def engine_meta(role: str, engine) -> dict[str, str]:
+    """An engine's provenance for a report's header and results.json: "engine" (its version line) and, for an
+    engine file, "engine file" and "engine command"."""
+    described = engine.describe()
+    meta = {role: f"{described['name']}: {described['version']}"}
+    for key in ("file", "command"):
+        if key in described:
+            meta[f"{role} {key}"] = described[key]
+    return meta
+
+
 def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: Path | None,
                       not_applicable=(), invariance: dict | None = None, executor=None) -> tuple[bool, dict]:
     """Every case against its references; returns (all pass, the results.json fields)."""
@@ -41,6 +52,7 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     from harness.images.run import run_images
     from harness.integrators import match
     from harness.report.image_html import reproduce_command
+    from harness.report.reproduce import invocation
     from harness.report.image_outputs import write_image_outputs
     from harness.report.image_table import image_table
 
@@ -60,9 +72,10 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     for name in match().without_entry:
         console.print(f"[yellow]{escape(name)}[/]: no harness entry (not validated; see `python -m harness "
                       "integrators`)")
-    meta = {"engine": ours.version(), "reference": reference.version(), "seed": args.seed,
+    run = invocation(args)
+    meta = {**engine_meta("engine", ours), **engine_meta("reference", reference), "seed": args.seed,
             "image seconds": round(seconds, 1), "ran on": where}
-    payload = write_image_outputs(run_dir, results, alpha, warps, meta, baseline, invariance)
+    payload = write_image_outputs(run_dir, results, alpha, warps, meta, baseline, invariance, run)
     if real or not_applicable:
         payload["real_scenes"] = real_scenes_json(results, not_applicable)
     _print_regression(payload)
@@ -71,5 +84,6 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
                   f"Report: {run_dir / 'report.html'}")
     for r in failed:
         why = "; ".join(x for x in (r.error, r.note) if x)
-        console.print(f"[red]FAIL[/] {r.case.key}{' — ' + escape(why) if why else ''}: {reproduce_command(r)}")
+        console.print(f"[red]FAIL[/] {r.case.key}{' — ' + escape(why) if why else ''}: "
+                      f"{escape(reproduce_command(r, run))}", soft_wrap=True)
     return not failed, payload

@@ -18,10 +18,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace, run: RunFolder) -> int:
-    from harness.commands.options import tested_integrators
+    from harness.commands.options import case_selection
     from harness.commands.sections import run_sections
     from harness.distributed.cluster import open_executor
     from harness.images.suite import select_cases
 
     with open_executor(args) as executor:
-        return run_sections(args, run, executor, [], select_cases(args.scenes, tested_integrators(args)))
+        return run_sections(args, run, executor, [], select_cases(args.scenes, **case_selection(args)))

@@ -4,7 +4,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from harness.commands.options import add_common, add_engines, add_variant
+from harness.commands.options import add_common, add_engines, add_scene_files, add_variant
 from harness.commands.output import console
 from harness.commands.run_folder import RunFolder
 from harness.distributed.cluster import add_executor_options
@@ -41,6 +41,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                         "(a kind not named means all of it)")
     p.add_argument("--json", type=Path, metavar="PATH", help="also write the results as JSON to PATH")
     p.add_argument("--no-mitsuba", action="store_true", help="check the engine under test alone")
+    add_scene_files(p)
     add_variant(p)
     add_executor_options(p)
 
@@ -48,11 +49,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace, run: RunFolder) -> int:
     from harness.commands.invariance_section import run_invariance_section
     from harness.distributed.cluster import open_executor
-    from harness.commands.options import tested_integrators
+    from harness.commands.options import case_selection
     from harness.invariance.suite import select
 
     with open_executor(args) as executor:
-        select(args.only, integrators=tested_integrators(args))  # bad names: no run
+        select(args.only, **case_selection(args))  # bad names: no run
         run_dir = run.start()
         ok, invariance = run_invariance_section(args, args.only, run_dir, executor)
         run.finish({"run": run_dir.name, "pass": ok, "invariance": invariance}, index=("invariance.html", "Invariances"),

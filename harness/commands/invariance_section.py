@@ -20,9 +20,9 @@ def run_invariance_section(args, only, run_dir: Path, executor, engines=None) ->
     from harness.report.invariance_html import invariance_html
     from harness.report.invariance_table import invariance_tables
 
-    from harness.commands.options import tested_integrators
+    from harness.commands.options import case_selection
 
-    cases, invariances = select(only, integrators=tested_integrators(args))
+    cases, invariances = select(only, **case_selection(args))
     if engines is None:
         engines = [make_engine(args.engine)]
         if not getattr(args, "no_mitsuba", False):

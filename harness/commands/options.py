@@ -14,10 +14,30 @@ def add_common(q: argparse.ArgumentParser) -> None:
 
 
 def add_case_choice(q: argparse.ArgumentParser, default: str) -> None:
-    """--scenes/--only: the image cases to run."""
+    """--scenes/--only: the image cases to run; --scene: scene files of one's own."""
     q.add_argument("--scenes", "--only", dest="scenes", nargs="+", metavar="CASE",
                    help=f"scenes, integrators or scene:integrator cases, e.g. cornell ao plane_point:simple "
                         f"cornell_box (default: {default})")
+    add_scene_files(q)
+
+
+def add_scene_files(q: argparse.ArgumentParser) -> None:
+    q.add_argument("--scene", action="append", type=Path, metavar="PATH",
+                   help="a scene file of your own, or a folder of them (repeatable); rendered instead of the "
+                        "built-in scenes, from a prepared copy under --out: nothing is written beside it")
+    q.add_argument("--with-suite", action="store_true", help="with --scene: the built-in scenes too")
+
+
+def case_selection(args: argparse.Namespace) -> dict:
+    """What selects the cases, as keyword arguments of select_cases: the tested engine's integrators and the
+    scenes of --scene (prepared under --out/.scenes)."""
+    user = None
+    if getattr(args, "scene", None):
+        from harness.images.references import RESOLUTION
+        from harness.images.user_scenes import prepare_scenes
+        user = prepare_scenes(args.scene, args.out / ".scenes", RESOLUTION)
+    return {"integrators": tested_integrators(args), "user": user,
+            "with_suite": getattr(args, "with_suite", False)}
 
 
 def add_variant(q: argparse.ArgumentParser) -> None:

@@ -1,18 +1,34 @@
 """Where the commands write: the console for tables, stderr for progress bars."""
 from __future__ import annotations
 
+import os
 import sys
 from contextlib import contextmanager
 
 from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
-# Logs (CI, pipes) get a wide table rather than a truncated one.
-console = Console(width=None if sys.stdout.isatty() else 120)
+from harness.commands.plain_progress import PlainProgress
+
+#: Width of tables in a log (CI, a pipe) when $COLUMNS does not say: wide enough that none is cut.
+LOG_WIDTH = 200
+
+
+def _width() -> int | None:
+    """$COLUMNS if set, else the terminal's, else LOG_WIDTH."""
+    if os.environ.get("COLUMNS", "").isdigit():
+        return int(os.environ["COLUMNS"])
+    return None if sys.stdout.isatty() else LOG_WIDTH
+
+
+console = Console(width=_width())
 err = Console(stderr=True)
 
 
-def progress_bar(label: str) -> Progress:
+def progress_bar(label: str):
+    """A bar on a terminal; plain lines in a log."""
+    if not err.is_terminal:
+        return PlainProgress(label, err)
     return Progress(TextColumn(label), BarColumn(), MofNCompleteColumn(), TextColumn("{task.description}"),
                     TimeElapsedColumn(), console=err, transient=True)
 
@@ -23,7 +39,9 @@ def task_progress(label: str, executor):
     callback that executors call with their Status."""
     columns = (TextColumn(f"{label} ({executor.description})"), BarColumn(), MofNCompleteColumn(),
                TextColumn("{task.fields[state]}"), TimeElapsedColumn())
-    with Progress(*columns, console=err, transient=True) as progress:
+    shown = Progress(*columns, console=err, transient=True) if err.is_terminal else \
+        PlainProgress(f"{label} ({executor.description})", err)
+    with shown as progress:
         task = None
 
         def show(status) -> None:

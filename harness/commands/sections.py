@@ -15,9 +15,9 @@ def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=N
     from harness.commands.warp_section import run_warp_section
     from harness.images.suite import not_applicable_cases
 
-    from harness.commands.options import tested_integrators
+    from harness.commands.options import case_selection
 
-    not_applicable = not_applicable_cases(args.scenes, tested_integrators(args)) if cases else []
+    not_applicable = not_applicable_cases(args.scenes, **case_selection(args)) if cases else []
     # The regression baseline is the newest complete run with images (a warps-only run has none).
     baseline = getattr(args, "baseline", None) or ((run.out / "images-latest").resolve() / "results.json")
     run_dir = run.start()

@@ -24,7 +24,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace, run: RunFolder) -> int:
-    from harness.commands.options import tested_integrators
+    from harness.commands.options import case_selection
     from harness.commands.sections import run_sections
     from harness.distributed.cluster import open_executor
     from harness.images.suite import select_cases
@@ -33,7 +33,7 @@ def run(args: argparse.Namespace, run: RunFolder) -> int:
 
     with open_executor(args) as executor:
         specs = select(args.warps_only)  # bad names: no run
-        integrators = tested_integrators(args)
-        select_invariance(args.invariance_only, integrators=integrators)
-        return run_sections(args, run, executor, specs, select_cases(args.scenes, integrators),
+        selection = case_selection(args)
+        select_invariance(args.invariance_only, **selection)
+        return run_sections(args, run, executor, specs, select_cases(args.scenes, **selection),
                             invariance_only=args.invariance_only, invariances=not args.no_invariance)

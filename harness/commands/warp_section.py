@@ -44,6 +44,7 @@ def run_warp_section(args, specs, run_dir: Path) -> tuple[bool, dict]:
     """Every warp of `specs` against its pdf and, unless --no-mitsuba, against Mitsuba's; returns (all pass,
     the results.json block)."""
     from harness.engines.registry import make_engine
+    from harness.report.reproduce import invocation
     from harness.report.warp_outputs import warp_payload, write_warp_outputs
     from harness.report.warp_table import warp_table
     from harness.warps.suite import run_matrix
@@ -67,7 +68,7 @@ def run_warp_section(args, specs, run_dir: Path) -> tuple[bool, dict]:
         console.print(warp_table(results, level))
     else:
         console.print(f"{escape(ours.name)} has none of the warps asked for")
-    paths = write_warp_outputs(run_dir, specs, results, level, meta, args.seed)
+    paths = write_warp_outputs(run_dir, specs, results, level, meta, args.seed, invocation(args))
     failed = [r.label for r in results if not r.passed]
     console.print(f"{len(results) - len(failed)} of {len(results)} warps pass, in {seconds:.1f} s. "
                   f"Page: {paths['html']}")

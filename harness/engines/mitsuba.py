@@ -71,7 +71,9 @@ class MitsubaEngine(Engine):
         self._dr = drjit
 
     def scene_file(self, path: Path) -> Path:
-        return path.with_name(f"{SCENE_SUBSTITUTES.get(path.stem, path.stem)}.xml")
+        substitute = path.with_name(f"{SCENE_SUBSTITUTES.get(path.stem, path.stem)}.xml")
+        # Only for the suite's own scenes (in its scenes/ folder, or a worker's copy of it), never a user's.
+        return substitute if path.parent.name == "scenes" and substitute.exists() else path
 
     def __reduce__(self):
         # To a worker as its arguments: each worker process loads Mitsuba, sets the variant and JIT-compiles

@@ -15,7 +15,7 @@ from harness.images.oracle import decide
 from harness.images.references import (CLOSED_FORM, RESOLUTION, Reference, load_reference, reference_path,
                                        render_reference)
 from harness.images.result import ImageResult
-from harness.images.suite import OUR_SPP, ROOT, ImageCase
+from harness.images.suite import OUR_SPP, ROOT, USER, ImageCase
 from harness.integrators import entry
 from harness.statistics.constants import IMAGE_BATCHES
 
@@ -57,7 +57,8 @@ def scene_bundle(case: ImageCase, engines: Sequence[Engine] = ()) -> Bundle:
         if stored.is_dir():
             extra.update({str(p.relative_to(ROOT)): p for p in sorted(stored.glob("*"))})
     files = list(dict.fromkeys([case.path, *(e.scene_file(case.path) for e in engines)]))
-    return bundle_files(ROOT, files, extra)
+    # A user's scene travels from its prepared copy's folder; its meshes are named by absolute paths.
+    return bundle_files(case.root if case.group == USER else ROOT, files, extra)
 
 
 def run_case_job(job: CaseJob, bundle: Bundle | None = None):
@@ -87,6 +88,10 @@ def _reason(e: Exception) -> str:
     return f"{type(e).__name__}: {text[0]}" if text else type(e).__name__
 
 
+def _output(e: Exception) -> str:
+    return e.output if isinstance(e, RenderFailed) else ""
+
+
 def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: AnalyticEngine | None,
               params: dict[str, str], s: int, alpha: float, run_seed: int,
               on_message: Callable[[str], None] | None) -> ImageResult:
@@ -95,23 +100,25 @@ def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: 
     source = "none"
     references: dict[str, Reference] = {}
 
-    def failed(reason: str, mine: RenderResult | None = None) -> ImageResult:
-        return ImageResult(case, mine, references, {}, source, s, None, alpha, run_seed, reason, tested=ours.name)
+    def failed(reason: str, mine: RenderResult | None = None, output: str = "") -> ImageResult:
+        return ImageResult(case, mine, references, {}, source, s, None, alpha, run_seed, reason, tested=ours.name,
+                           error_output=output)
 
     try:
         reference, source = load_reference(case, reference_engine)
         if reference is None:
             if on_message:
-                on_message(f"{case.key}: {source}; rendering it now (`make references` stores it)")
+                on_message(f"{case.key}: {source}; rendering it now" +
+                           ("" if case.group == USER else " (`make references` stores it)"))
             reference = render_reference(case, reference_engine)
             source = f"rendered now ({source})"
     except Exception as e:
-        return failed(f"{reference_engine.name.capitalize()} reference: {_reason(e)}")
+        return failed(f"{reference_engine.name.capitalize()} reference: {_reason(e)}", output=_output(e))
     references[reference_engine.name] = reference
     try:
         mine = ours.render(str(case.path), case.integrator, OUR_SPP[case.integrator], IMAGE_BATCHES, s, params)
     except RenderFailed as e:
-        return failed(f"our render: {e.reason}")
+        return failed(f"{ours.name} render: {e.reason}", output=e.output)
     if analytic is not None:
         try:
             exact = analytic.render(str(case.path), case.integrator,

@@ -29,7 +29,7 @@ import numpy as np
 
 from harness.comparison.compare import SUMMARY_FORMAT, Summary, summarize
 from harness.engines.base import Engine
-from harness.images.suite import REFERENCE_SPP, ROOT, ImageCase
+from harness.images.suite import REFERENCE_SPP, ROOT, USER, ImageCase
 from harness.results import write_atomic
 from harness.statistics.constants import TILE_SIZE
 from harness.statistics.welch import BatchStats
@@ -78,7 +78,8 @@ def expected_provenance(case: ImageCase, engine: Engine) -> dict:
 def reference_path(case: ImageCase, engine: Engine) -> Path:
     """Where the case's stored reference by `engine` is: references/<engine>/<scene>/<integrator>.exr under
     the project, or in a worker's copy of the files."""
-    folder = REFERENCES_DIR if case.root == ROOT else case.root / "references"
+    # A user's scene (--scene) has none stored: its prepared copy's folder holds no references/.
+    folder = REFERENCES_DIR if case.root == ROOT and case.group != USER else case.root / "references"
     return folder / engine.name / case.scene / f"{case.integrator}.exr"
 
 

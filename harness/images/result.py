@@ -39,6 +39,8 @@ class ImageResult:
     error: str | None = None
     finding: Finding | None = None
     tested: str = ""  # the tested engine's name, for a result without our render
+    #: The last lines (up to 50) a failed render printed, where it printed any.
+    error_output: str = ""
 
     @property
     def passed(self) -> bool:
@@ -52,7 +54,7 @@ class ImageResult:
                     "pass": False, "error": self.error, "tests": {}, "metrics": {},
                     "seconds": {**({self.engine: self.ours.seconds} if self.ours else {}), **seconds},
                     "reference": self.reference_source, "note": self.note, "seed": self.seed, "alpha": self.alpha,
-                    "idiff": self.idiff}
+                    "idiff": self.idiff, "error_output": self.error_output, **self._source()}
         first = self.comparisons[next(iter(self.comparisons))]  # the reference engine's (the closed form's after it)
         batch_means = self.ours.batch_means
         tested = self.engine
@@ -66,8 +68,12 @@ class ImageResult:
             "batches": {tested: self.ours.count, **{k: r.summary.image.k for k, r in self.references.items()}},
             "image_mean": batch_means.mean(axis=0).tolist(),
             "image_mean_se": (batch_means.std(axis=0, ddof=1) / np.sqrt(len(batch_means))).tolist(),
-            "idiff": self.idiff, "finding": self.finding.to_json() if self.finding else None,
+            "idiff": self.idiff, "finding": self.finding.to_json() if self.finding else None, **self._source(),
         }
+
+    def _source(self) -> dict:
+        """A user's scene file (--scene) as given."""
+        return {"scene_file": self.case.source} if self.case.source else {}
 
     @property
     def engine(self) -> str:

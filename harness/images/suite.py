@@ -7,15 +7,18 @@ entry's reason, never run. Budgets and Mitsuba mappings live in each integrator'
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
+from harness.images.user_scenes import UserScene
 from harness.integrators import match
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENES_DIR = ROOT / "scenes"
 REAL_SCENES_DIR = SCENES_DIR / "real"
 GROUP_DIRS = {"synthetic": SCENES_DIR, "real": REAL_SCENES_DIR}
+#: The group of the scenes given with --scene.
+USER = "user"
 
 def suite_integrators(available: Sequence[str] | None = None) -> tuple[str, ...]:
     """The integrators with an entry that the engine under test renders (`available`, e.g. an engine file's
@@ -77,9 +80,12 @@ class ImageCase:
 
     scene: str        # file stem in the group's folder
     integrator: str
-    group: str = "synthetic"  # "synthetic" (scenes/) or "real" (scenes/real/)
-    #: Where the project's files are: ROOT, or a worker's copy of them (harness/distributed/bundle.py).
+    group: str = "synthetic"  # "synthetic" (scenes/), "real" (scenes/real/) or "user" (--scene)
+    #: Where the project's files are: ROOT, or a worker's copy of them (harness/distributed/bundle.py); for a
+    #: user's scene, the folder of its prepared copy (harness/images/user_scenes.py).
     root: Path = field(default=ROOT, compare=False, repr=False)
+    #: A user's scene file as given (--scene), for reports and the command that reproduces the case.
+    source: str = field(default="", compare=False)
 
     @property
     def key(self) -> str:
@@ -87,7 +93,7 @@ class ImageCase:
 
     @property
     def folder(self) -> Path:
-        return self.root / GROUP_DIRS[self.group].relative_to(ROOT)
+        return self.root if self.group == USER else self.root / GROUP_DIRS[self.group].relative_to(ROOT)
 
     @property
     def path(self) -> Path:
@@ -98,17 +104,30 @@ def scene_names(group: str = "synthetic") -> list[str]:
     return sorted(p.stem for p in GROUP_DIRS[group].glob("*.xml") if not p.name.startswith("."))
 
 
-def _all_cases(integrators: Sequence[str] | None = None) -> tuple[list[ImageCase], list[tuple[ImageCase, str]]]:
+def _scenes(user: Sequence[UserScene] | None, with_suite: bool) -> list[ImageCase]:
+    """One case per scene (its integrator left empty): the suite's, unless user scenes replace it, then the
+    user's. ValueError for a user scene named as one of the suite's it runs beside."""
+    suite = [ImageCase(s, "", group) for group in GROUP_DIRS for s in scene_names(group)] \
+        if not user or with_suite else []
+    taken = {c.scene for c in suite}
+    for u in user or ():
+        if u.name in taken:
+            raise ValueError(f"--scene {u.source}: the suite has a scene called {u.name} too; rename the file "
+                             "or run it without --with-suite")
+    return suite + [ImageCase(u.name, "", USER, u.prepared.parent, str(u.source)) for u in user or ()]
+
+
+def _all_cases(integrators: Sequence[str] | None = None, user: Sequence[UserScene] | None = None,
+               with_suite: bool = False) -> tuple[list[ImageCase], list[tuple[ImageCase, str]]]:
     """Every case that can run, and every one that cannot with why (the entry's scene requirement)."""
     from harness.integrators import entry
 
     runnable, not_applicable = [], []
-    for group in GROUP_DIRS:
-        for scene in scene_names(group):
-            for name in suite_integrators(integrators):
-                case = ImageCase(scene, name, group)
-                reason = entry(name).not_applicable(case.path)
-                (not_applicable.append((case, reason)) if reason else runnable.append(case))
+    for scene in _scenes(user, with_suite):
+        for name in suite_integrators(integrators):
+            case = replace(scene, integrator=name)
+            reason = entry(name).not_applicable(case.path)
+            (not_applicable.append((case, reason)) if reason else runnable.append(case))
     return runnable, not_applicable
 
 
@@ -116,11 +135,13 @@ def _chosen(cases, only: list[str] | None, key=lambda c: c):
     return [x for x in cases if not only or key(x).key in only or key(x).scene in only or key(x).integrator in only]
 
 
-def select_cases(only: list[str] | None, integrators: Sequence[str] | None = None) -> list[ImageCase]:
+def select_cases(only: list[str] | None, integrators: Sequence[str] | None = None,
+                 user: Sequence[UserScene] | None = None, with_suite: bool = False) -> list[ImageCase]:
     """All runnable cases, normals first per scene; `only` takes scene names, integrator names or
-    scene:integrator; `integrators`: those the engine under test renders (None: our renderer's).
+    scene:integrator; `integrators`: those the engine under test renders (None: our renderer's); `user`: the
+    scenes of --scene, instead of the suite's or (`with_suite`) after them.
     A case named in `only` that is not applicable is an error saying why."""
-    runnable, not_applicable = _all_cases(integrators)
+    runnable, not_applicable = _all_cases(integrators, user, with_suite)
     if not only:
         return runnable
     cases = [*runnable, *(c for c, _ in not_applicable)]
@@ -128,15 +149,16 @@ def select_cases(only: list[str] | None, integrators: Sequence[str] | None = Non
     unknown = sorted(set(only) - known)
     if unknown:
         raise ValueError(f"unknown scene or case {', '.join(unknown)}: scenes are "
-                         f"{', '.join(scene_names() + scene_names('real'))}; integrators "
+                         f"{', '.join(dict.fromkeys(c.scene for c in cases))}; integrators "
                          f"{', '.join(suite_integrators(integrators))}")
     for case, reason in not_applicable:
         if case.key in only:
-            raise ValueError(f"{case.key} is not applicable: {reason} ({case.path.relative_to(ROOT)})")
+            raise ValueError(f"{case.key} is not applicable: {reason} ({case.source or case.path.relative_to(ROOT)})")
     return _chosen(runnable, only)
 
 
-def not_applicable_cases(only: list[str] | None,
-                         integrators: Sequence[str] | None = None) -> list[tuple[ImageCase, str]]:
+def not_applicable_cases(only: list[str] | None, integrators: Sequence[str] | None = None,
+                         user: Sequence[UserScene] | None = None,
+                         with_suite: bool = False) -> list[tuple[ImageCase, str]]:
     """The cases `only` would name that cannot run, each with the entry's reason."""
-    return _chosen(_all_cases(integrators)[1], only, key=lambda pair: pair[0])
+    return _chosen(_all_cases(integrators, user, with_suite)[1], only, key=lambda pair: pair[0])

@@ -20,21 +20,24 @@ def suite_entries(integrators=None) -> list[IntegratorEntry]:
     return [entry(name) for name in suite_integrators(integrators)]
 
 
-def _scenes() -> dict[str, object]:
-    """Scene name -> file, over every group."""
-    return {name: GROUP_DIRS[group] / f"{name}.xml" for group in GROUP_DIRS for name in scene_names(group)}
+def _scenes(user=None, with_suite: bool = False) -> dict[str, object]:
+    """Scene name -> file, over every group, or the user's scenes of --scene (their prepared copies) instead
+    of (or, `with_suite`, after) the suite's."""
+    suite = {} if user and not with_suite else \
+        {name: GROUP_DIRS[group] / f"{name}.xml" for group in GROUP_DIRS for name in scene_names(group)}
+    return {**suite, **{u.name: u.prepared for u in user or ()}}
 
 
-def select(only: list[str] | None, resolution: int = RESOLUTION,
-           integrators=None) -> tuple[list[InvarianceCase], list[Invariance]]:
+def select(only: list[str] | None, resolution: int = RESOLUTION, integrators=None, user=None,
+           with_suite: bool = False) -> tuple[list[InvarianceCase], list[Invariance]]:
     """The cases and invariances `only` names: scene names, integrator names, scene:integrator, or
     invariance names (scale, rotate, translate, light, reflectance); a kind not named means all of it.
     A scene an integrator does not apply to (simple without a point light) is left out, unless named as
     scene:integrator, which is an error saying why. `integrators`: those the tested engine renders (None:
-    our renderer's)."""
+    our renderer's); `user`, `with_suite`: the scenes of --scene (see select_cases)."""
     only = list(only or [])
     integrator_names = suite_integrators(integrators)
-    scenes = _scenes()
+    scenes = _scenes(user, with_suite)
     names = {i.name for i in INVARIANCES}
     pairs = [o.split(":", 1) for o in only if ":" in o]
     unknown = [o for o in only if ":" not in o and o not in scenes and o not in integrator_names and o not in names]

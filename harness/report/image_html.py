@@ -10,10 +10,10 @@ from harness.comparison.compare import Comparison
 from harness.comparison.finite import SIDES
 from harness.images.references import CLOSED_FORM
 from harness.images.result import ImageResult
-from harness.images.suite import INTEGRATORS
 from harness.report.idiff_text import LEGEND, idiff_sentence
 from harness.report.image_plots import comparison_png
 from harness.report.invariance_html import invariance_section, invariance_summary
+from harness.report.reproduce import reproduce_line
 from harness.report.style import CSS
 from harness.integrators import entry
 
@@ -31,8 +31,9 @@ def _seconds(timings: dict, key: str) -> str:
     return f"{timings[key]:.3f}" if key in timings else "—"
 
 
-def reproduce_command(result: ImageResult) -> str:
-    return f"python -m harness images --only {result.case.key} --seed {result.run_seed}"
+def reproduce_command(result: ImageResult, run: dict | None = None) -> str:
+    """The command that renders and judges this case again (`run`: the run's invocation, see reproduce)."""
+    return reproduce_line("images", ["--only", result.case.key], result.run_seed, run, result.case.source)
 
 
 def _bad_pixels(comparison: Comparison) -> str:
@@ -58,21 +59,26 @@ def _picture(r: ImageResult, name: str, comparison: Comparison) -> str:
         # FLIP's HDR mode cannot place its exposures on an all-black reference and ends the process.
         return "<p class='meta'>No pictures: the reference holds no positive value.</p>"
     shown = "closed form" if r.references[name].source == CLOSED_FORM else name.capitalize()
-    png = comparison_png(ours, ref, comparison, signed, shown)
+    png = comparison_png(ours, ref, comparison, signed, shown, r.engine)
     return (f'<img alt="{_esc(r.case.key)} against {_esc(name)}" src="data:image/png;base64,'
             f'{base64.b64encode(png).decode()}">')
 
 
-def _entry(r: ImageResult) -> str:
+def _entry(r: ImageResult, run: dict | None = None) -> str:
     parts = [f'<h3 id="{_esc(r.case.key)}">{_esc(r.case.scene)} — {_esc(r.case.integrator)}: {_verdict(r.passed)}</h3>']
     if r.note:
         parts.append(f'<p class="fail">{_esc(r.note)}</p>')
     if not r.passed:
-        parts.append(f"<p>Reproduce: <code>{_esc(reproduce_command(r))}</code></p>")
+        parts.append(f"<p>Reproduce: <code>{_esc(reproduce_command(r, run))}</code></p>")
+    if r.case.source:
+        parts.append(f"<p class='meta'>scene file: {_esc(r.case.source)}</p>")
     parts.append(f"<p>{_esc(idiff_sentence(r.idiff))}</p>")
     if r.error is not None or r.ours is None:
         parts.append(f'<p class="fail">Render failed: {_esc(r.error)}; nothing to compare.</p>')
+        if r.error_output:
+            parts.append(f"<p>What it printed last:</p><pre>{_esc(r.error_output)}</pre>")
         return "".join(parts)
+    tested = r.engine
     for name, comparison in r.comparisons.items():
         ref = r.references[name]
         finite = comparison.finite
@@ -84,14 +90,14 @@ def _entry(r: ImageResult) -> str:
         metrics = "".join(f"<tr><td>{_esc(k)}</td><td>{v:.4g}</td></tr>" for k, v in comparison.metrics.items())
         parts.append(
             f"<p class='meta'>against {_esc(name)} ({ref.spp} spp × {ref.summary.image.k} batches"
-            f"{', ' + _esc(r.reference_source) if ref.source != CLOSED_FORM else ''}); ours {r.ours.spp} spp × "
+            f"{', ' + _esc(r.reference_source) if ref.source != CLOSED_FORM else ''}); {_esc(tested)} {r.ours.spp} spp × "
             f"{r.ours.count} batches, seed {r.seed}; smallest detectable bias of the image mean "
             f"{comparison.detectable_bias:.2%}</p>"
             + _bad_pixels(comparison) + _picture(r, name, comparison) +
             f"<div style='display:flex;gap:2em;align-items:flex-start'><table><tr><th>scale</th><th>tests</th><th>level</th><th>min p</th>"
             f"<th>fails</th><th>worst (row, col)</th><th></th></tr>{rows}</table>"
             f"<table><tr><th>metric</th><th>value</th></tr>{metrics}</table>"
-            f"<table><tr><th>seconds</th><th>ours</th><th>{_esc(name)}</th></tr>"
+            f"<table><tr><th>seconds</th><th>{_esc(tested)}</th><th>{_esc(name)}</th></tr>"
             + "".join(f"<tr><td>{_esc(k)}</td><td>{_seconds(r.ours.seconds, k)}</td>"
                       f"<td>{_seconds(ref.seconds, k)}</td></tr>"
                       for k in ("load", "build", "first", "render", "total"))
@@ -113,11 +119,11 @@ def _regression_html(regression: list[dict] | None, baseline: str | None) -> str
 
 def report_html(results: list[ImageResult], alpha: float, warps: dict | None, meta: dict,
                 regression: list[dict] | None, baseline: str | None, bench_href: str | None = None,
-                invariance: dict | None = None, calibration_href: str | None = None) -> str:
+                invariance: dict | None = None, calibration_href: str | None = None, run: dict | None = None) -> str:
     """The whole page. Within each integrator's section, failures come first. `bench_href` links the
     latest speed-against-error page, if there is one; `invariance` is the run's invariance block, whose
     matrix ends the page (its own page, invariance.html, is linked); `calibration_href` links the latest
-    `calibrate` page, if there is one."""
+    `calibrate` page, if there is one; `run`: the run's invocation, repeated by each reproduce line."""
     failed = sum(not r.passed for r in results)
     summary = [f"<li>Images: {len(results) - failed} of {len(results)} comparisons pass "
                f"(per-comparison α {alpha:.2g}, family-wise 0.01 over the run)</li>"]
@@ -135,14 +141,14 @@ def report_html(results: list[ImageResult], alpha: float, warps: dict | None, me
                        'and power of these tests (the latest `python -m harness calibrate`)</li>')
     summary += [f"<li>{_esc(k)}: {_esc(v)}</li>" for k, v in meta.items()]
     sections = []
-    for integrator in INTEGRATORS:
+    for integrator in dict.fromkeys(r.case.integrator for r in results):
         mine = sorted((r for r in results if r.case.integrator == integrator), key=lambda r: r.passed)
         if not mine:
             continue
         n_ok = sum(r.passed for r in mine)
         links = " ".join(f'<a href="#{_esc(r.case.key)}">{_esc(r.case.scene)}</a> {_verdict(r.passed)}' for r in mine)
         sections.append(f"<h2>{_esc(integrator)}: {n_ok} of {len(mine)} scenes pass</h2><p>{links}</p>"
-                        + "".join(_entry(r) for r in mine))
+                        + "".join(_entry(r, run) for r in mine))
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>mcval report</title><style>{CSS}</style></head>
 <body><h1>mcval validation report: {_verdict(failed == 0 and (warps is None or warps["pass"])

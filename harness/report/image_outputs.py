@@ -7,15 +7,17 @@ import numpy as np
 
 from harness.images.result import ImageResult
 from harness.images.regression import compare_runs, load_baseline
-from harness.report.image_html import report_html
+from harness.report.image_html import report_html, reproduce_command
 from harness.report.junit import junit_xml
 from harness.results import write_atomic, write_json, write_npz
 
 
 def write_image_outputs(run_dir: Path, results: list[ImageResult], alpha: float, warps: dict | None,
-                        meta: dict, baseline_path: Path | None, invariance: dict | None = None) -> dict:
+                        meta: dict, baseline_path: Path | None, invariance: dict | None = None,
+                        run: dict | None = None) -> dict:
     """Writes report.html and junit.xml; returns the results.json fields (images, regression).
-    `invariance`: the same run's invariance block (results.json's), shown in the report and linked."""
+    `invariance`: the same run's invariance block (results.json's), shown in the report and linked; `run`: the
+    run's invocation (report/reproduce.py), repeated by every reproduce line."""
     images = [r.to_json() for r in results]
     for r, entry in zip(results, images):
         if not r.passed and r.error is None:  # (a failed render has no arrays; its entry says why)
@@ -31,7 +33,7 @@ def write_image_outputs(run_dir: Path, results: list[ImageResult], alpha: float,
                 if not finite.passed:  # 1: NaN, Inf or negative in ours, 2: in the reference, 3: both
                     arrays[f"{name}_bad_pixels"] = (finite.test.mask + 2 * finite.reference.mask).astype(np.uint8)
             write_npz(stem.with_suffix(".npz"), **arrays)
-            write_json(stem.with_suffix(".json"), entry)
+            write_json(stem.with_suffix(".json"), {**entry, "reproduce": reproduce_command(r, run)})
             entry["data"] = str(stem.relative_to(run_dir)) + ".npz"
     baseline = load_baseline(baseline_path) if baseline_path else None
     regression = compare_runs(images, baseline) if baseline else None
@@ -42,6 +44,7 @@ def write_image_outputs(run_dir: Path, results: list[ImageResult], alpha: float,
     calibration_href = "../calibration-latest/calibration.html" if calibration.exists() else None
     write_atomic(run_dir / "report.html",
                  report_html(results, alpha, warps, meta, regression, baseline_name, bench_href, invariance,
-                             calibration_href))
-    write_atomic(run_dir / "junit.xml", junit_xml(results, warps["warps"] if warps else None))
-    return {"images": images, "image_alpha": alpha, "regression": regression, "baseline": baseline_name}
+                             calibration_href, run))
+    write_atomic(run_dir / "junit.xml", junit_xml(results, warps["warps"] if warps else None, meta))
+    return {"images": images, "image_alpha": alpha, "regression": regression, "baseline": baseline_name,
+            "image_meta": meta, "invocation": run}

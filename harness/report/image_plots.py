@@ -23,8 +23,9 @@ def rejection_map(comparison: Comparison) -> np.ndarray:
 
 
 def comparison_png(ours: np.ndarray, reference: np.ndarray, comparison: Comparison, signed: bool,
-                   reference_name: str = "Mitsuba") -> bytes:
-    """PNG of five panels, each with its own scale bar where it has one."""
+                   reference_name: str = "Mitsuba", tested_name: str = "ours") -> bytes:
+    """PNG of five panels, each with its own scale bar where it has one; the tested image is titled
+    `tested_name`."""
     diff = (ours - reference).mean(axis=-1)
     limit = float(np.percentile(np.abs(diff), 99.5)) or 1e-6
     flip, _ = flip_map(ours, reference, signed)
@@ -32,11 +33,11 @@ def comparison_png(ours: np.ndarray, reference: np.ndarray, comparison: Comparis
     fig, axes, bars = panel_row([False, False, True, True, True], panel=2.3 * min(w / h, 1.6), height=2.9,
                                 left=0.1, gap=0.15, bottom=0.1, top=0.35, bar_room=0.55)
     axes[0].imshow(display(ours, signed), interpolation="nearest")
-    axes[0].set_title("ours", fontsize=9)
+    axes[0].set_title(tested_name, fontsize=9)
     axes[1].imshow(display(reference, signed), interpolation="nearest")
     axes[1].set_title(reference_name, fontsize=9)
     im = axes[2].imshow(diff, cmap="RdBu_r", vmin=-limit, vmax=limit, interpolation="nearest")
-    axes[2].set_title("ours − reference (mean of RGB)", fontsize=9)
+    axes[2].set_title(f"{tested_name} − reference (mean of RGB)", fontsize=9)
     fig.colorbar(im, cax=bars[0])
     im = axes[3].imshow(rejection_map(comparison), cmap="RdYlGn", vmin=-3, vmax=3, interpolation="nearest")
     axes[3].set_title("log10(p / level): red rejects", fontsize=9)

@@ -36,9 +36,12 @@ def _cell(result: ImageResult) -> str:
 
 def image_table(results: list[ImageResult], alpha: float) -> Table:
     """One row per (scene, integrator): verdict, failing scales, mean ratio, relMSE, FLIP, seconds."""
-    table = Table(title=f"Images against Mitsuba 3 (per-comparison α {alpha:.2g}, family-wise 0.01)",
+    tested = results[0].engine if results else "ours"
+    reference = next((name for r in results for name in r.references), "reference")
+    table = Table(title=f"{tested} against {reference} (per-comparison α {alpha:.2g}, family-wise 0.01)",
                   box=box.SIMPLE_HEAD, padding=(0, 1), header_style="bold")
-    for name in ("scene", "integrator", "verdict", "mean ratio", "relMSE", "FLIP", "min bias", "idiff", "s ours", "s mi"):
+    for name in ("scene", "integrator", "verdict", "mean ratio", "relMSE", "FLIP", "min bias", "idiff",
+                 f"s {tested}", f"s {reference}"):
         table.add_column(name, no_wrap=True)
     for r in results:
         # The first comparison is with the reference engine; a closed form's, if any, follows it.
@@ -51,7 +54,7 @@ def image_table(results: list[ImageResult], alpha: float) -> Table:
         table.add_row(r.case.scene, r.case.integrator, verdicts, f"{m.metrics['mean_ratio']:.4f}",
                       f"{m.metrics['relmse']:.1e}", f"{m.metrics['flip_mean']:.3f}", f"{m.detectable_bias:.1e}", idiff_short(r.idiff),
                       f"{r.ours.seconds['total']:.2f}", f"{next(iter(r.references.values())).seconds.get('total', 0):.2f}")
-    table.caption = ("mean ratio: ours / Mitsuba image mean; min bias: smallest relative bias of the image mean "
+    table.caption = (f"mean ratio: {tested} / {reference} image mean; min bias: smallest relative bias of the image mean "
                      "detected half of the time; +exact: also compared with the closed form\n" + LEGEND)
     for r in results:  # where the bad pixels are: one line per case and distinct finding
         found: dict[str, list[str]] = {}

@@ -25,18 +25,24 @@ def _warnings(w: dict) -> str:
                      for f in c.get("findings", []) if f["severity"] == "WARN")
 
 
-def junit_xml(images: list[ImageResult], warps: list[dict] | None) -> str:
-    """A <testsuites> document: suite "warps" (if given) and one suite per integrator."""
+def junit_xml(images: list[ImageResult], warps: list[dict] | None, meta: dict | None = None) -> str:
+    """A <testsuites> document: suite "warps" (if given) and one suite per integrator, each with the run's
+    `meta` (the engines' names, versions, files and commands) as its <properties>."""
     root = ET.Element("testsuites", name="mcval")
 
     def suite(name: str, cases: list[tuple[str, bool, str, float]], notes: dict[str, str] | None = None) -> None:
         """One <testsuite>; `notes` (by case name) become a passing case's <system-out>, e.g. its warnings."""
         el = ET.SubElement(root, "testsuite", name=name, tests=str(len(cases)),
                            failures=str(sum(not ok for _, ok, _, _ in cases)))
+        if meta:
+            properties = ET.SubElement(el, "properties")
+            for key, value in meta.items():
+                ET.SubElement(properties, "property", name=key, value=str(value))
         for case_name, ok, message, seconds in cases:
             tc = ET.SubElement(el, "testcase", classname=f"mcval.{name}", name=case_name, time=f"{seconds:.3f}")
             if not ok:
-                ET.SubElement(tc, "failure", message=message).text = message
+                # The attribute holds the first line (a failed render's reason); the text all of it.
+                ET.SubElement(tc, "failure", message=message.split("\n", 1)[0]).text = message
             elif (notes or {}).get(case_name):
                 ET.SubElement(tc, "system-out").text = notes[case_name]
 
@@ -50,7 +56,7 @@ def junit_xml(images: list[ImageResult], warps: list[dict] | None) -> str:
         for r in (r for r in images if r.case.integrator == integrator):
             message = "; ".join(f"against {n}: {_failure(c)}" for n, c in r.comparisons.items() if not c.passed)
             if r.error is not None:
-                message = r.error
+                message = r.error + (f"\n{r.error_output}" if r.error_output else "")
             cases.append((r.case.scene, r.passed, (r.note + "; " if r.note else "") + message,
                           r.ours.seconds.get("total", 0.0) if r.ours else 0.0))
         suite(integrator, cases)

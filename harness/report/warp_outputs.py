@@ -5,7 +5,8 @@ from pathlib import Path
 
 from harness.report.warp_html import warp_report_html
 from harness.results import write_atomic, write_json, write_npz
-from harness.warps.suite import WarpSpec, reproduce_command
+from harness.report.reproduce import reproduce_line
+from harness.warps.suite import WarpSpec
 from harness.warps.evaluate import WarpResult
 
 
@@ -19,11 +20,12 @@ def warp_payload(results: list[WarpResult], level: float, meta: dict) -> dict:
 
 
 def write_warp_outputs(run_dir: Path, specs: list[WarpSpec], results: list[WarpResult], level: float,
-                       meta: dict, seed: int) -> dict[str, Path]:
-    """Write warps.html and, for each failing warp, warps/<key>.npz with its histograms and checks."""
+                       meta: dict, seed: int, run: dict | None = None) -> dict[str, Path]:
+    """Write warps.html and, for each failing warp, warps/<key>.npz with its histograms and checks; `run`: the
+    run's invocation (report/reproduce.py), repeated by each reproduce line."""
     reproduce, data_files = {}, {}
     for spec, r in zip(specs, results):
-        reproduce[r.label] = reproduce_command(spec.key, seed)
+        reproduce[r.label] = reproduce_line("warps", ["--only", spec.key], seed, run)
         if not r.passed:
             path = run_dir / "warps" / f"{spec.key.replace(':', '_')}.npz"
             write_npz(path, observed=r.observed, expected=r.expected, reference_observed=r.reference_observed)

@@ -102,7 +102,3 @@ def run_matrix(ours: Engine, reference: Engine | None, specs: list[WarpSpec], se
     attach_power(results, [s.key for s in specs], samples, level, power_cache)
     return results, level
 
-
-def reproduce_command(spec_key: str, seed: int) -> str:
-    """The command that re-runs one row of the matrix."""
-    return f"python -m harness warps --only {spec_key} --seed {seed}"

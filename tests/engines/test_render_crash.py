@@ -27,7 +27,7 @@ def _check(code: int, results: dict, failed: str, reason: str, run, printed: str
     assert set(entries) == {"normals", "simple", "ao"}  # the other cases still ran
     bad = entries.pop(failed)
     assert bad["pass"] is False and bad["tests"] == {}
-    assert bad["error"].startswith("our render: ") and reason in bad["error"]
+    assert bad["error"].startswith("mcval render: ") and reason in bad["error"]
     for other in entries.values():
         assert other["pass"] is True and other["error"] is None and other["tests"]
     suites = ET.parse(run / "junit.xml").getroot()

@@ -1,0 +1,89 @@
+"""Scene files given with --scene (a file or a folder of them, anywhere, read-only is fine): each is copied,
+prepared, into the run's output folder and rendered from there, so nothing is ever written beside it.
+
+The copy differs from the file only in what every case of the suite sets: file names made absolute (its meshes
+are read where they are), and the film's size as the `res` parameter the suite renders at (its aspect kept),
+declared as a <default> if the file has none.
+"""
+from __future__ import annotations
+
+import hashlib
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from pathlib import Path
+
+from harness.engines.written_scene import absolute_paths, film_size
+
+
+@dataclass(frozen=True)
+class UserScene:
+    name: str        # the file's stem: the scene's name in reports and in --only
+    source: Path     # the file as given
+    prepared: Path   # the copy that is rendered
+
+
+def scene_files(paths: list[Path]) -> list[Path]:
+    """Every scene file `paths` name: files as they are, folders as their *.xml files. ValueError naming a path
+    that is neither, a folder without scene files, or two scenes of one name."""
+    found: list[Path] = []
+    for path in paths:
+        if path.is_dir():
+            files = sorted(p for p in path.glob("*.xml") if not p.name.startswith("."))
+            if not files:
+                raise ValueError(f"--scene {path}: a folder without .xml scene files")
+            found += files
+        elif path.is_file():
+            found.append(path)
+        else:
+            raise ValueError(f"--scene {path}: no such file or folder")
+    names: dict[str, Path] = {}
+    for path in found:
+        if path.stem in names and names[path.stem].resolve() != path.resolve():
+            raise ValueError(f"--scene: two scenes are called {path.stem} ({names[path.stem]} and {path}): "
+                             "give one of them")
+        names[path.stem] = path
+    return list(names.values())
+
+
+def _prepared_text(path: Path, resolution: int) -> str:
+    """The file's text as the suite renders it (see the module docstring); unchanged if it is not XML, so
+    that each engine reports the error as it would on the file itself."""
+    text = path.read_text(errors="replace")
+    try:
+        root = ET.fromstring(text)
+    except ET.ParseError:
+        return text
+    absolute_paths(root, path.resolve().parent)
+    film = next(root.iter("film"), None)
+    if film is not None:
+        try:
+            width, height = film_size(root)
+        except ValueError:  # a size given as a $parameter: left as the file has it
+            return ET.tostring(root, encoding="unicode")
+        for e in [e for e in film if e.get("name") in ("width", "height")]:
+            film.remove(e)
+        ET.SubElement(film, "integer", name="width", value="$res")
+        ET.SubElement(film, "integer", name="height",
+                      value="$res" if width == height else str(max(1, round(resolution * height / width))))
+        if not any(e.tag == "default" and e.get("name") == "res" for e in root):
+            root.insert(0, ET.Element("default", name="res", value=str(resolution)))
+    return ET.tostring(root, encoding="unicode")
+
+
+def prepare_scenes(paths: list[Path], cache: Path, resolution: int) -> list[UserScene]:
+    """The scenes `paths` name, each prepared into cache/<digest>/<name>.xml (written once per content)."""
+    scenes = []
+    for path in scene_files(paths):
+        try:
+            text = _prepared_text(path, resolution)
+        except OSError as e:
+            raise ValueError(f"--scene {path}: cannot read it ({e.strerror or e})") from None
+        digest = hashlib.sha256(f"{path.resolve()}\0{text}".encode()).hexdigest()[:16]
+        prepared = cache / digest / f"{path.stem}.xml"
+        if not prepared.exists():
+            prepared.parent.mkdir(parents=True, exist_ok=True)
+            tmp = prepared.with_suffix(".tmp")
+            tmp.write_text(text)
+            tmp.replace(prepared)
+        scenes.append(UserScene(path.stem, path, prepared))
+    return scenes

@@ -1,0 +1,82 @@
+"""A run with an engine file and a scene of one's own, end to end: the reports name the engine (its file,
+command and version), a failed call's output is kept, every reproduce line repeats the engine, the scene
+file and --out, progress reaches a log, and the scene's folder is left as it was."""
+import json
+import os
+import shutil
+import stat
+import xml.etree.ElementTree as ET
+
+from harness.cli import main
+from harness.commands import output
+from harness.images.suite import SCENES_DIR
+from tests.helpers.foreign_renderers import write_engine
+
+
+def _results(out):
+    return json.loads((out / "latest" / "results.json").read_text())
+
+
+def test_an_engine_file_is_named_in_every_output(tmp_path, capsys):
+    engine = write_engine(tmp_path, "ours", name="wrapped")
+    out = tmp_path / "results"
+    assert main(["images", "--engine", str(engine), "--only", "plane_point:simple", "--out", str(out)]) == 0
+    results = _results(out)
+    meta = results["image_meta"]
+    assert meta["engine file"] == str(engine) and "{scene}" in meta["engine command"]
+    assert meta["engine"].startswith("wrapped: ") and results["images"][0]["engine"] == "wrapped"
+    assert results["invocation"]["options"] == ["--engine", str(engine), "--out", str(out)]
+    page = (out / "latest" / "report.html").read_text()
+    assert str(engine) in page and "wrapped against mitsuba" not in page  # the table is the terminal's
+    properties = {p.get("name"): p.get("value") for p in ET.parse(out / "latest" / "junit.xml").iter("property")}
+    assert properties["engine file"] == str(engine)
+    printed = capsys.readouterr()
+    assert "wrapped against mitsuba" in printed.out
+    assert "images (serial): 1/1 done" in printed.err  # plain progress lines in a log
+
+
+def test_a_failed_call_keeps_its_output_and_the_reproduce_line_repeats_the_run(tmp_path, capsys):
+    engine = write_engine(tmp_path, "exit")
+    out = tmp_path / "results"
+    assert main(["images", "--engine", str(engine), "--only", "plane_point:normals", "--out", str(out)]) == 1
+    (case,) = _results(out)["images"]
+    assert case["error"] == "exit render: exited with status 3: error: cannot parse"
+    assert case["error_output"].splitlines()[-1] == "error: cannot parse"
+    assert len(case["error_output"].splitlines()) == 50
+    page = (out / "latest" / "report.html").read_text()
+    assert "<pre>" in page and "progress 79" in page
+    failure = next(ET.parse(out / "latest" / "junit.xml").iter("failure"))
+    assert failure.get("message") == case["error"] and "progress 79" in failure.text
+    printed = " ".join(capsys.readouterr().out.split())
+    assert (f"python -m harness images --only plane_point:normals --seed 0 --engine {engine} --out {out}"
+            in printed)
+
+
+def test_a_scene_of_ones_own_is_validated_and_its_folder_left_alone(tmp_path, capsys):
+    folder = tmp_path / "their scenes"
+    (folder / "meshes").mkdir(parents=True)
+    shutil.copy(SCENES_DIR / "sphere_plane.xml", folder / "sphere_plane.xml")
+    shutil.copy(SCENES_DIR / "meshes" / "sphere.ply", folder / "meshes" / "sphere.ply")
+    for path in (folder / "meshes", folder):
+        for p in path.iterdir():
+            p.chmod(stat.S_IRUSR | stat.S_IRGRP)
+        path.chmod(stat.S_IRUSR | stat.S_IXUSR)
+    before = sorted((str(p), p.stat().st_mtime_ns) for p in folder.rglob("*"))
+    out = tmp_path / "results"
+    try:
+        code = main(["images", "--scene", str(folder), "--only", "normals", "--out", str(out)])
+    finally:
+        folder.chmod(stat.S_IRWXU)
+    assert sorted((str(p), p.stat().st_mtime_ns) for p in folder.rglob("*")) == before
+    assert code == 0
+    (case,) = _results(out)["images"]
+    assert case["scene"] == "sphere_plane" and case["scene_file"] == str(folder / "sphere_plane.xml")
+    assert case["pass"] and case["reference"].startswith("rendered now")  # never a stored reference of ours
+    assert (out / ".scenes").is_dir()
+
+
+def test_tables_take_their_width_from_columns(monkeypatch):
+    monkeypatch.setenv("COLUMNS", "97")
+    assert output._width() == 97
+    monkeypatch.delenv("COLUMNS")
+    assert output._width() == (None if os.isatty(1) else output.LOG_WIDTH)

@@ -1,0 +1,64 @@
+"""Scenes of one's own (--scene): found in files and folders, prepared into the output folder (absolute mesh
+paths, the suite's resolution), and bad paths refused in one line."""
+import shutil
+import xml.etree.ElementTree as ET
+
+import pytest
+
+from harness.images.suite import SCENES_DIR, USER, select_cases
+from harness.images.user_scenes import prepare_scenes, scene_files
+from harness.invariance.suite import select
+
+
+def _scene(folder, name="ball", source="sphere_plane.xml"):
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / f"{name}.xml"
+    shutil.copy(SCENES_DIR / source, path)
+    return path
+
+
+def test_a_prepared_copy_names_its_meshes_absolutely_and_takes_the_suites_size(tmp_path):
+    path = _scene(tmp_path / "in")
+    text = path.read_text()
+    (scene,) = prepare_scenes([tmp_path / "in"], tmp_path / "cache", 96)
+    assert path.read_text() == text and scene.source == path and scene.prepared.is_relative_to(tmp_path / "cache")
+    root = ET.parse(scene.prepared).getroot()
+    (mesh,) = [e.get("value") for e in root.iter("string") if e.get("name") == "filename"]
+    assert mesh == str(tmp_path / "in" / "meshes" / "sphere.ply")
+    film = next(root.iter("film"))
+    assert {e.get("name"): e.get("value") for e in film if e.get("name") in ("width", "height")} == \
+        {"width": "$res", "height": "$res"}
+
+
+def test_a_wide_film_keeps_its_aspect(tmp_path):
+    path = _scene(tmp_path / "in")
+    path.write_text(path.read_text().replace('name="height" value="$res"', 'name="height" value="64"')
+                    .replace('name="width" value="$res"', 'name="width" value="128"'))
+    (scene,) = prepare_scenes([path], tmp_path / "cache", 96)
+    root = ET.parse(scene.prepared).getroot()
+    sizes = {e.get("name"): e.get("value") for e in next(root.iter("film")) if e.get("name") in ("width", "height")}
+    assert sizes == {"width": "$res", "height": "48"}
+
+
+def test_bad_paths_are_one_line(tmp_path):
+    with pytest.raises(ValueError, match="no such file or folder"):
+        scene_files([tmp_path / "nope.xml"])
+    (tmp_path / "empty").mkdir()
+    with pytest.raises(ValueError, match="a folder without .xml scene files"):
+        scene_files([tmp_path / "empty"])
+    with pytest.raises(ValueError, match="two scenes are called ball"):
+        scene_files([_scene(tmp_path / "a"), _scene(tmp_path / "b")])
+
+
+def test_user_scenes_replace_the_suite_or_join_it(tmp_path):
+    user = prepare_scenes([_scene(tmp_path / "in", "ball")], tmp_path / "cache", 128)
+    cases = select_cases(None, user=user)
+    assert {c.scene for c in cases} == {"ball"} and all(c.group == USER for c in cases)
+    assert {c.integrator for c in cases} == {"normals", "simple", "ao"}
+    both = select_cases(None, user=user, with_suite=True)
+    assert {"ball", "cornell"} <= {c.scene for c in both}
+    clash = prepare_scenes([_scene(tmp_path / "in2", "cornell")], tmp_path / "cache", 128)
+    with pytest.raises(ValueError, match="the suite has a scene called cornell too"):
+        select_cases(None, user=clash, with_suite=True)
+    invariance_cases, _ = select(["ball:ao", "scale"], user=user)
+    assert [c.key for c in invariance_cases] == ["ball:ao"] and invariance_cases[0].scene == user[0].prepared
