@@ -10,8 +10,9 @@ from pathlib import Path
 import numpy as np
 
 
-#: Channels a render's file may hold: 3 x (4096 batches + mean + variance).
-MAX_CHANNELS = 3 * (4096 + 2)
+#: Channels a render's file may hold: 3 x (1363 batches + mean + variance), below the 4096 that
+#: OpenImageIO's EXR reader takes at most (renderer/scene_limits.h).
+MAX_CHANNELS = 3 * (1363 + 2)
 
 
 class ExrError(ValueError):
@@ -22,7 +23,7 @@ def read_layers(path: Path) -> tuple[dict[str, np.ndarray], dict[str, object]]:
     """The file's RGB layers as (H, W, 3) float32 arrays (half files converted), and its attributes."""
     import OpenImageIO as oiio
 
-    # The renderer writes 3 channels per batch plus mean and variance (up to 4096 batches): above OIIO's
+    # The renderer writes 3 channels per batch plus mean and variance (up to 1363 batches): above OIIO's
     # default guard of 1024 channels, which is there against corrupt headers.
     oiio.attribute("limits:channels", MAX_CHANNELS)
     inp = oiio.ImageInput.open(str(path))

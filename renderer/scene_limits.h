@@ -19,8 +19,9 @@ constexpr int kMaxFilmSide = 16384;
 constexpr double kMaxImageBytes = 8.0 * (1ll << 30);
 /// Largest samples per pixel (per batch), from the scene or the command line.
 constexpr int kMaxSampleCount = 1 << 20;
-/// Largest number of independent batches of one render.
-constexpr int kMaxBatches = 4096;
+/// Largest number of independent batches of one render: its EXR holds 3 channels per batch plus the mean
+/// and the variance, and OpenImageIO's EXR reader (the harness's) takes at most 4096 channels.
+constexpr int kMaxBatches = 1363;
 /// Largest number of occlusion rays per `ao` camera sample.
 constexpr int kMaxAoSamples = 1024;
 /// Range of a gaussian filter's standard deviation, in pixels: narrower underflows its weights,

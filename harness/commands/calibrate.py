@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from harness.commands.options import add_common, add_engines
+from harness.commands.options import add_common, add_engines, add_warp_library
 from harness.commands.output import console, task_progress
 from harness.commands.run_folder import RunFolder
 from harness.distributed.cluster import add_executor_options
@@ -39,6 +39,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="null image comparisons of each of the three kinds (default 80: 240 in all)")
     p.add_argument("--json", type=Path, metavar="PATH", help="also write the figures as JSON to PATH")
     p.add_argument("--no-mitsuba", action="store_true", help="skip the checks against Mitsuba (warps only)")
+    add_warp_library(p)
     add_executor_options(p)
 
 
@@ -60,8 +61,16 @@ def _calibrate(args, run_dir: Path, executor) -> tuple[bool, dict, str]:
     from harness.report.calibration_html import calibration_page, warp_calibration_html
     from harness.report.image_calibration_html import image_calibration_sections
 
+    from harness.commands.warp_section import warp_engine
+
     warps, images = (args.warps or not args.images), (args.images or not args.warps)
     ours = make_engine(args.engine)
+    warp_source = warp_engine(args) if warps else None
+    if warps and not warp_source.has_warps:
+        if args.warps:
+            raise ValueError(f"--warps: {warp_source.name} has no warps; give them with --warp-library LIB.so")
+        console.print(f"Warps: {warp_source.name} has none (give --warp-library LIB.so): not calibrated")
+        warps = False
     reference = None if args.no_mitsuba else make_engine(args.reference)
     payload: dict = {"run": run_dir.name}
     meta: dict = {"engine": ours.version(), "reference": reference.version() if reference else "none"}
@@ -77,7 +86,7 @@ def _calibrate(args, run_dir: Path, executor) -> tuple[bool, dict, str]:
                      "image comparisons ran on": cal_images["ran_on"]})
         ok &= cal_images["pass"]
     if warps:
-        cal = _calibrate_warps(args, ours, reference, executor)
+        cal = _calibrate_warps(args, warp_source, reference, executor)
         payload["warps"] = cal.to_json()
         meta.update({"seeds per warp": args.seeds, "samples": args.samples, "warp seconds": round(cal.seconds, 1),
                      "warps ran on": executor.description})

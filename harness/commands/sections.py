@@ -12,10 +12,9 @@ def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=N
                  json_copy=None) -> int:
     """Run the warps of `specs`, the invariances (if `invariances`, narrowed by `invariance_only`) and the
     image `cases`; `latest` moves to the run once it is whole, `images-latest` too if it has images."""
-    from harness.commands.warp_section import run_warp_section
-    from harness.images.suite import not_applicable_cases
-
     from harness.commands.options import case_selection
+    from harness.commands.warp_section import run_warp_section, warp_engine
+    from harness.images.suite import not_applicable_cases
 
     not_applicable = not_applicable_cases(args.scenes, **case_selection(args)) if cases else []
     # The regression baseline is the newest complete run with images (a warps-only run has none).
@@ -24,6 +23,10 @@ def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=N
     payload: dict = {"run": run_dir.name}
     ok = True
     warps = None
+    if specs and not warp_engine(args).has_warps:
+        payload["warps_not_checked"] = f"{warp_engine(args).name} has no warps (give --warp-library LIB.so)"
+        console.print(f"[yellow]Warps[/]: {payload['warps_not_checked']}: not checked")
+        specs = []
     if specs:
         warps_ok, warps = run_warp_section(args, specs, run_dir)
         ok &= warps_ok

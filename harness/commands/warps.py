@@ -28,6 +28,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace, run: RunFolder) -> int:
     from harness.commands.sections import run_sections
+    from harness.commands.warp_section import warp_engine
     from harness.warps.suite import select
 
+    if not warp_engine(args).has_warps:
+        raise ValueError(f"{warp_engine(args).name} has no warps: give them with --warp-library LIB.so "
+                         "(docs/engines.md)")
     return run_sections(args, run, None, select(args.only), [], json_copy=args.json)

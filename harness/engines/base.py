@@ -97,6 +97,8 @@ class Engine(ABC):
     #: Most samples per pixel one render call should take at high resolution (a wavefront engine holds every
     #: sample of a call in memory); None: any number.
     pass_spp: int | None = None
+    #: Whether it has warps at all (an engine file's renderer has none: give --warp-library for its warps).
+    has_warps: bool = True
     #: Whether its warps' throughput must clear the floor (ours), or is only reported (a user's code).
     throughput_judged: bool = True
     #: Whether a warp it lacks is left out of the matrix (a user's library) rather than failed (ours).

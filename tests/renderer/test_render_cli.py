@@ -104,3 +104,13 @@ def test_a_scene_file_that_is_a_fifo_is_refused_without_blocking(tmp_path):
     res = subprocess.run([RENDER, str(fifo), "-o", str(tmp_path / "o.exr"), "-q"], capture_output=True, text=True,
                          timeout=30)
     assert res.returncode != 0 and "not a regular file" in res.stderr, res.stderr
+
+
+def test_the_most_batches_a_render_takes_are_still_readable(tmp_path):
+    from harness.engines.render_process import read_render_exr
+
+    out = tmp_path / "many.exr"
+    assert run(SCENES[0], "--spp", 1, "--batches", 1363, "-D", "res=2", "-o", out, "-q").returncode == 0
+    assert read_render_exr(out, 1363).batches.shape == (1363, 2, 2, 3)
+    refused = run(SCENES[0], "--spp", 1, "--batches", 1364, "-D", "res=2", "-o", tmp_path / "more.exr", "-q")
+    assert refused.returncode != 0 and "1363" in refused.stderr
