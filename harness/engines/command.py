@@ -46,13 +46,20 @@ class CommandEngine(Engine):
     render_timing = "each call's renderSeconds attribute if its EXR has one, else the call's wall time"
     has_warps = False
 
-    def __init__(self, file: EngineFile) -> None:
+    def __init__(self, file: EngineFile, sampler: str | None = None) -> None:
+        if sampler not in (None, "independent"):
+            raise ValueError(f"{file.name}: an engine file's renderer samples as its scene says, and the harness "
+                             f"gives it the independent sampler, not {sampler}")
         self.file = file
-        self.name = self.label = file.name
+        self.name = file.name
+        self.label = self.name if sampler is None else f"{self.name}/{sampler}"
+
+    def __reduce__(self):
+        return CommandEngine, (self.file, None if self.label == self.name else "independent")
 
     @classmethod
-    def from_path(cls, path: str | Path) -> "CommandEngine":
-        return cls(read_engine_file(path))
+    def from_path(cls, path: str | Path, sampler: str | None = None) -> "CommandEngine":
+        return cls(read_engine_file(path), sampler)
 
     @property
     def integrators(self) -> tuple[str, ...]:

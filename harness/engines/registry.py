@@ -90,7 +90,7 @@ def make_engine(name: str, **options: Any) -> Engine:
     .toml, docs/engines.md); ValueError naming the known engines if there is none."""
     if looks_like_engine_file(name):
         from harness.engines.command import CommandEngine
-        return CommandEngine.from_path(name)
+        return CommandEngine.from_path(name, options.get("sampler"))
     found = engine_entries()
     if name not in found:
         raise ValueError(f"unknown engine {name!r}: known are {', '.join(found)}")

@@ -7,9 +7,11 @@ from harness.bench.throughput import MITSUBA, OURS
 
 
 def bench_table(benches, engines) -> Table:
-    """One row per case: ours/Mitsuba efficiency with the same sampler, best against best, each engine's slope."""
+    """One row per case: the tested engine's efficiency over the reference's with the same sampler, best against
+    best, each engine's slope."""
     table = Table(title="Speed against error", header_style="bold")
-    for col in ("scene", "integrator", "efficiency ours/mitsuba, same sampler", "best against best",
+    tested = engines[0].name if engines else "tested"
+    for col in ("scene", "integrator", f"efficiency {tested}/reference, same sampler", "best against best",
                 *[f"slope {e.label}" for e in engines]):
         table.add_column(col)
     for bch in benches:

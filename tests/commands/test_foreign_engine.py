@@ -80,3 +80,14 @@ def test_tables_take_their_width_from_columns(monkeypatch):
     assert output._width() == 97
     monkeypatch.delenv("COLUMNS")
     assert output._width() == (None if os.isatty(1) else output.LOG_WIDTH)
+
+
+def test_an_engine_file_is_benchmarked_against_the_reference(tmp_path):
+    engine = write_engine(tmp_path, "ours", name="wrapped")
+    out = tmp_path / "results"
+    assert main(["bench", "--engines", str(engine), "mitsuba", "--only", "plane_point:simple", "--same-sampler",
+                 "--max-spp", "2", "--runs", "1", "--throughput-runs", "0", "--seed-runs", "0",
+                 "--out", str(out)]) == 0
+    (case,) = _results(out)["speed"]
+    assert case["efficiency_ratio_same_sampler"]["ours"] == "wrapped/independent"
+    assert case["efficiency_ratio_same_sampler"]["reference"] == "mitsuba/independent"
