@@ -21,8 +21,11 @@ def run_invariance_section(args, only, run_dir: Path, executor, engines=None) ->
     from harness.report.invariance_table import invariance_tables
 
     from harness.commands.options import case_selection
+    from harness.report.reproduce import invocation, reproduce_line
 
-    cases, invariances = select(only, **case_selection(args))
+    selection = case_selection(args)
+    cases, invariances = select(only, **selection)
+    sources = {u.prepared: str(u.source) for u in selection["user"] or ()}
     if engines is None:
         engines = [make_engine(args.engine)]
         if not getattr(args, "no_mitsuba", False):
@@ -49,5 +52,10 @@ def run_invariance_section(args, only, run_dir: Path, executor, engines=None) ->
                   + f", in {seconds:.1f} s.")
     for line in failed:
         console.print(f"[red]FAIL[/] invariance {escape(line)}", soft_wrap=True)
+    run = invocation(args)
+    for c in (c for c in ours if not c.passed):
+        console.print("  reproduce: " + escape(reproduce_line("invariance", ["--only", c.case.key, c.invariance],
+                                                              args.seed, run, sources.get(c.case.scene, ""))),
+                      soft_wrap=True)
     console.print(f"Page: {run_dir / 'invariance.html'}")
     return payload["pass"], payload

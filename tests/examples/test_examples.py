@@ -48,7 +48,10 @@ def test_each_planted_bug_fails_the_image_suite(tmp_path, bug, case):
 
 
 @pytest.mark.slow
-def test_an_absolute_ray_offset_fails_the_scale_invariance(tmp_path):
-    code, results = _run(tmp_path, "invariance", _engine(tmp_path, "offset"), ["sphere_plane:ao", "scale"])
+def test_an_absolute_ray_offset_fails_the_scale_invariance(tmp_path, capsys):
+    engine = _engine(tmp_path, "offset")
+    code, results = _run(tmp_path, "invariance", engine, ["sphere_plane:ao", "scale"])
     cells = results["invariance"]["cells"]
     assert code == 1 and any(c["invariance"] == "scale" and not c["pass"] for c in cells)
+    printed = " ".join(capsys.readouterr().out.split())
+    assert f"reproduce: python -m harness invariance --only sphere_plane:ao scale --seed 0 --engine {engine}" in printed
