@@ -19,8 +19,9 @@ class ExrError(ValueError):
     """A file OpenImageIO cannot read as an EXR, or one that lacks what was asked of it."""
 
 
-def read_layers(path: Path) -> tuple[dict[str, np.ndarray], dict[str, object]]:
-    """The file's RGB layers as (H, W, 3) float32 arrays (half files converted), and its attributes."""
+def _read(path: Path, check=None) -> tuple[np.ndarray, list[str], dict[str, object]]:
+    """(H, W, C) float32 pixels, channel names and attributes of the image at `path`; `check(input, spec)`
+    may refuse the file (ExrError) before its pixels are read."""
     import OpenImageIO as oiio
 
     # The renderer writes 3 channels per batch plus mean and variance (up to 1363 batches): above OIIO's
@@ -28,9 +29,11 @@ def read_layers(path: Path) -> tuple[dict[str, np.ndarray], dict[str, object]]:
     oiio.attribute("limits:channels", MAX_CHANNELS)
     inp = oiio.ImageInput.open(str(path))
     if inp is None:
-        raise ExrError(oiio.geterror() or f"cannot open {path}")
+        raise ExrError(oiio.geterror().strip() or f"cannot open {path}")
     try:
         spec = inp.spec()
+        if check is not None:
+            check(inp, spec)
         pixels = inp.read_image(0, 0, 0, spec.nchannels, "float")
         if pixels is None:
             raise ExrError(inp.geterror() or "cannot read its pixels")
@@ -38,9 +41,15 @@ def read_layers(path: Path) -> tuple[dict[str, np.ndarray], dict[str, object]]:
     finally:
         inp.close()
     pixels = np.asarray(pixels, np.float32).reshape(spec.height, spec.width, spec.nchannels)
-    index = {name: i for i, name in enumerate(spec.channelnames)}
+    return pixels, list(spec.channelnames), attributes
+
+
+def read_layers(path: Path) -> tuple[dict[str, np.ndarray], dict[str, object]]:
+    """The file's RGB layers as (H, W, 3) float32 arrays (half files converted), and its attributes."""
+    pixels, names, attributes = _read(path)
+    index = {name: i for i, name in enumerate(names)}
     layers = {}
-    for name in {n.rsplit(".", 1)[0] if "." in n else "RGB" for n in spec.channelnames}:
+    for name in {n.rsplit(".", 1)[0] if "." in n else "RGB" for n in names}:
         prefix = "" if name == "RGB" else name + "."
         channels = [index.get(prefix + c) for c in "RGB"]
         if None not in channels:
@@ -87,24 +96,12 @@ def _rgb_channels(names: list[str]) -> list[int] | None:
 def read_image(path: Path) -> tuple[np.ndarray, dict[str, object]]:
     """One RGB image of any EXR a renderer may write: R, G, B (or one layer's), or Y, half or float; as an
     (H, W, 3) float32 array, with the file's attributes. ExrError saying what the file holds otherwise."""
-    import OpenImageIO as oiio
 
-    inp = oiio.ImageInput.open(str(path))
-    if inp is None:
-        raise ExrError(oiio.geterror().strip() or f"cannot open {path}")
-    try:
-        spec = inp.spec()
+    def check(inp, spec) -> None:
         if inp.format_name() != "openexr":
             raise ExrError(f"is a {inp.format_name()} file, not an EXR")
-        names = list(spec.channelnames)
-        channels = _rgb_channels(names)
-        if channels is None:
-            raise ExrError(f"has no R, G, B or Y channels (it has {', '.join(names[:8]) or 'none'})")
-        pixels = inp.read_image(0, 0, 0, spec.nchannels, "float")
-        if pixels is None:
-            raise ExrError(inp.geterror() or "cannot read its pixels")
-        attributes = {a.name: a.value for a in spec.extra_attribs}
-    finally:
-        inp.close()
-    pixels = np.asarray(pixels, np.float32).reshape(spec.height, spec.width, spec.nchannels)
-    return np.ascontiguousarray(pixels[..., channels]), attributes
+        if _rgb_channels(list(spec.channelnames)) is None:
+            raise ExrError(f"has no R, G, B or Y channels (it has {', '.join(spec.channelnames[:8]) or 'none'})")
+
+    pixels, names, attributes = _read(path, check)
+    return np.ascontiguousarray(pixels[..., _rgb_channels(names)]), attributes

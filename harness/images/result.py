@@ -14,7 +14,10 @@ from harness.images.references import Reference
 from harness.images.suite import ImageCase
 from harness.statistics.constants import SIGNIFICANCE
 
-GEOMETRY_NOTE = "camera or geometry mismatch (normals failed on this scene)"
+#: On the other cases of a scene whose normals failed: normals see only the camera and the geometry, unless
+#: the fault is one that every image shares (a scale applied to every output).
+GEOMETRY_NOTE = ("normals failed on this scene: a camera or geometry mismatch, or a fault every image shares "
+                 "(its other failures may have that cause)")
 
 
 @dataclass

@@ -19,12 +19,13 @@ pytestmark = [pytest.mark.dask, pytest.mark.slow]  # a loopback cluster per test
 
 
 def _stripped(value, rounded: bool = False):
-    """results.json without what differs between any two runs: times and speeds, run names. Mitsuba's own
+    """results.json without what differs between any two runs: times and speeds, run names, where it ran and
+    the options it was run with (--out, --scheduler). Mitsuba's own
     renders (its invariance cells) are rounded to 6 digits: its llvm variant's sums change in the last bits
     from one run to the next (two serial runs: ratios by 1e-9), wherever it runs."""
     if isinstance(value, dict):
         rounded = rounded or value.get("engine", "").startswith("mitsuba")
-        return {k: _stripped(v, rounded) for k, v in value.items() if k not in ("seconds", "run", "throughput")}
+        return {k: _stripped(v, rounded) for k, v in value.items() if k not in ("seconds", "run", "throughput", "image seconds", "ran on", "invocation")}
     if isinstance(value, list):
         return [_stripped(v, rounded) for v in value]
     if rounded and isinstance(value, float):
