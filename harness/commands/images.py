@@ -11,7 +11,8 @@ HELP = "every scene with every integrator against Mitsuba 3"
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.description = ("Render the scene suite with our renderer and compare with Mitsuba 3 (stored references when "
+    p.description = ("Render the scene suite (or your scenes, --scene) with the engine under test (our renderer, "
+                     "or yours through an engine file, --engine) and compare with Mitsuba 3 (stored references when "
                      "their provenance matches) and closed forms.")
     add_common(p)
     add_image_options(p)

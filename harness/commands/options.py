@@ -78,8 +78,10 @@ def add_engines(q: argparse.ArgumentParser, test: bool = True, reference: bool =
         known = f"; ${PATH_ENV} has an error: {e}"
     known = known.replace("%", "%%")  # argparse formats help with %
     if test:
-        q.add_argument("--engine", default=DEFAULT_TEST, metavar="NAME",
-                       help=f"the engine under test (default: {DEFAULT_TEST}, this repository's renderer{known})")
+        q.add_argument("--engine", default=DEFAULT_TEST, metavar="NAME|FILE.toml",
+                       help=f"the engine under test: a registered name or an engine file describing any renderer "
+                            f"(docs/engines.md) (default: {DEFAULT_TEST}, this repository's renderer{known})")
     if reference:
-        q.add_argument("--reference", default=DEFAULT_REFERENCE, metavar="NAME",
-                       help=f"the engine it is compared with (default: {DEFAULT_REFERENCE}, Mitsuba 3)")
+        q.add_argument("--reference", default=DEFAULT_REFERENCE, metavar="NAME|FILE.toml",
+                       help=f"the engine it is compared with, a name or an engine file (default: "
+                            f"{DEFAULT_REFERENCE}, Mitsuba 3)")
