@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 import signal
 import subprocess
+import threading
 from pathlib import Path
 
 from harness.engines.base import RenderFailed
@@ -42,10 +43,11 @@ def output_tail(log: Path, lines: int = TAIL_LINES) -> str:
     return "\n".join(kept[-lines:])
 
 
-def run_child(command: list[str], cwd: Path, log: Path, timeout: float) -> None:
+def run_child(command: list[str], cwd: Path, log: Path, timeout: float, cancel: threading.Event | None = None) -> None:
     """Run `command` in `cwd`, its stdout and stderr into `log`. Returns when it exits with status 0; raises
-    RenderFailed when it exits otherwise, is killed, outlives `timeout` seconds or prints more than
-    OUTPUT_LIMIT bytes (`output` holding its last lines); OSError if it cannot be started."""
+    RenderFailed when it exits otherwise, is killed, outlives `timeout` seconds, prints more than
+    OUTPUT_LIMIT bytes (`output` holding its last lines) or `cancel` is set (another thread was interrupted:
+    the child, in its own session, would not see the Ctrl-C); OSError if it cannot be started."""
     with open(log, "wb") as log_file:
         proc = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log_file, stderr=subprocess.STDOUT,
                                 cwd=cwd, start_new_session=True)
@@ -57,6 +59,9 @@ def run_child(command: list[str], cwd: Path, log: Path, timeout: float) -> None:
                     break
                 except subprocess.TimeoutExpired:
                     waited += _POLL_SECONDS
+                    if cancel is not None and cancel.is_set():
+                        kill_group(proc)
+                        raise RenderFailed("cancelled", output_tail(log)) from None
                     if waited >= timeout:
                         kill_group(proc)
                         raise RenderFailed(f"timed out after {timeout:g} s", output_tail(log)) from None

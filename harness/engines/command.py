@@ -5,8 +5,9 @@ from __future__ import annotations
 import os
 import subprocess
 import tempfile
+import threading
 import time
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
 from functools import cached_property
 from pathlib import Path
 
@@ -94,7 +95,7 @@ class CommandEngine(Engine):
         return max(1, (os.cpu_count() or 1) // self.file.jobs)
 
     def _call(self, folder: Path, scene: Path, values: dict[str, str], width: int, height: int,
-              timeout: float) -> tuple[np.ndarray, float]:
+              timeout: float, cancel: threading.Event | None = None) -> tuple[np.ndarray, float]:
         """One call: its image and render seconds. RenderFailed on every way it can fail."""
         folder.mkdir()
         output = folder / "image.exr"
@@ -102,7 +103,7 @@ class CommandEngine(Engine):
         command = [w.format(**fields) for w in self.file.command]
         start = time.perf_counter()
         try:
-            run_child(command, folder, folder.parent / f"{folder.name}.log", timeout)
+            run_child(command, folder, folder.parent / f"{folder.name}.log", timeout, cancel)
         except OSError as e:
             raise RenderFailed(f"cannot run {command[0]}: {e.strerror or e}") from None
         wall = time.perf_counter() - start
@@ -135,15 +136,26 @@ class CommandEngine(Engine):
             values = {"spp": str(spp), "integrator": theirs, "width": str(width), "height": str(height),
                       "threads": str(self._threads())}
 
+            cancel = threading.Event()
+
             def call(k: int) -> tuple[np.ndarray, float]:
                 return self._call(Path(tmp) / f"call{k}", scene_file, {**values, "seed": str(call_seed(seed, k))},
-                                  width, height, timeout)
+                                  width, height, timeout, cancel)
 
             if self.file.jobs == 1:
                 outcomes = [call(k) for k in range(batches)]  # the first failure ends the case at once
             else:
                 with ThreadPoolExecutor(self.file.jobs) as pool:
-                    outcomes = list(pool.map(call, range(batches)))
+                    futures = [pool.submit(call, k) for k in range(batches)]
+                    try:
+                        done, _ = wait(futures, return_when=FIRST_EXCEPTION)
+                        failed = next((f for f in futures if f in done and f.exception() is not None), None)
+                        if failed is not None:
+                            raise failed.exception()
+                        outcomes = [f.result() for f in futures]
+                    except BaseException:
+                        cancel.set()  # a failure or a Ctrl-C here ends the calls still running, at once
+                        raise
         images = np.stack([image for image, _ in outcomes])
         seconds = {"render": float(sum(s for _, s in outcomes)), "total": time.perf_counter() - start}
         return RenderResult(self.name, str(scene), integrator, spp, seed, images, seconds, "independent")

@@ -1,5 +1,8 @@
 """An engine file's renderer, call by call: a good one renders K independent batches; every way a call can go
 wrong is a RenderFailed of one line (with the last lines of its output), never an exception of the harness."""
+import sys
+import time
+
 import numpy as np
 import pytest
 
@@ -86,3 +89,18 @@ def test_nan_and_negative_pixels_fail_the_comparison(tmp_path, behaviour, kind):
     comparison = compare_summaries(summarize(result.batches), summarize(clean.astype(np.float32)), 0.01)
     assert not comparison.passed
     assert getattr(comparison.finite.test, kind) >= 1 and comparison.finite.side == "test"
+
+
+def test_a_failed_call_ends_the_calls_running_beside_it(tmp_path):
+    """With jobs = 2, the first call's failure ends the hanging second one instead of waiting for it."""
+    script = tmp_path / "half.py"
+    script.write_text(f"#!{sys.executable}\nimport sys, time\nif int(sys.argv[4]) % 2: time.sleep(600)\n"
+                      "sys.exit(5)\n")
+    script.chmod(0o755)
+    engine = tmp_path / "half.toml"
+    engine.write_text('name = "half"\njobs = 2\ncommand = ["{here}/half.py", "{scene}", "{output}", "{spp}", '
+                      '"{seed}"]\n[integrators]\nsimple = "simple"\n')
+    start = time.monotonic()
+    with pytest.raises(RenderFailed, match="exited with status 5"):
+        CommandEngine.from_path(engine).render(SCENE, "simple", 4, 2, 0, PARAMS)
+    assert time.monotonic() - start < 30
