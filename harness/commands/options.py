@@ -30,7 +30,14 @@ def add_scene_files(q: argparse.ArgumentParser) -> None:
 
 def case_selection(args: argparse.Namespace) -> dict:
     """What selects the cases, as keyword arguments of select_cases: the tested engine's integrators and the
-    scenes of --scene (prepared under --out/.scenes)."""
+    scenes of --scene (prepared under --out/.scenes). Worked out once per run and kept on `args`: the
+    sections of one run each ask for it."""
+    if "_case_selection" not in vars(args):
+        args._case_selection = _case_selection(args)
+    return args._case_selection
+
+
+def _case_selection(args: argparse.Namespace) -> dict:
     user = None
     if getattr(args, "scene", None):
         from harness.images.references import RESOLUTION

@@ -12,14 +12,17 @@ from harness.statistics.constants import WARP_SAMPLES
 
 
 def warp_engine(args):
-    """The engine whose warps are checked: the --warp-library, else the engine under test."""
-    from harness.engines.registry import make_engine
-
-    library = getattr(args, "warp_library", None)
-    if library is not None:
-        from harness.engines.warp_library import WarpLibraryEngine
-        return WarpLibraryEngine(library)
-    return make_engine(args.engine)
+    """The engine whose warps are checked: the --warp-library, else the engine under test. Made once per run
+    and kept on `args` (loading a library, reading an engine file)."""
+    if "_warp_engine" not in vars(args):
+        library = getattr(args, "warp_library", None)
+        if library is not None:
+            from harness.engines.warp_library import WarpLibraryEngine
+            args._warp_engine = WarpLibraryEngine(library)
+        else:
+            from harness.engines.registry import make_engine
+            args._warp_engine = make_engine(args.engine)
+    return args._warp_engine
 
 
 def available_specs(engine, specs) -> tuple[list, list[str]]:

@@ -104,7 +104,7 @@ def scene_names(group: str = "synthetic") -> list[str]:
     return sorted(p.stem for p in GROUP_DIRS[group].glob("*.xml") if not p.name.startswith("."))
 
 
-def _scenes(user: Sequence[UserScene] | None, with_suite: bool) -> list[ImageCase]:
+def scene_cases(user: Sequence[UserScene] | None = None, with_suite: bool = False) -> list[ImageCase]:
     """One case per scene (its integrator left empty): the suite's, unless user scenes replace it, then the
     user's. ValueError for a user scene named as one of the suite's it runs beside."""
     suite = [ImageCase(s, "", group) for group in GROUP_DIRS for s in scene_names(group)] \
@@ -123,7 +123,7 @@ def _all_cases(integrators: Sequence[str] | None = None, user: Sequence[UserScen
     from harness.integrators import entry
 
     runnable, not_applicable = [], []
-    for scene in _scenes(user, with_suite):
+    for scene in scene_cases(user, with_suite):
         for name in suite_integrators(integrators):
             case = replace(scene, integrator=name)
             reason = entry(name).not_applicable(case.path)

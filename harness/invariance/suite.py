@@ -6,7 +6,7 @@ afford all of them.
 """
 from __future__ import annotations
 
-from harness.images.suite import GROUP_DIRS, scene_names, suite_integrators
+from harness.images.suite import scene_cases, suite_integrators
 from harness.integrators import IntegratorEntry, entry
 from harness.invariance.check import InvarianceCase
 from harness.invariance.variants import INVARIANCES, Invariance
@@ -21,11 +21,9 @@ def suite_entries(integrators=None) -> list[IntegratorEntry]:
 
 
 def _scenes(user=None, with_suite: bool = False) -> dict[str, object]:
-    """Scene name -> file, over every group, or the user's scenes of --scene (their prepared copies) instead
-    of (or, `with_suite`, after) the suite's."""
-    suite = {} if user and not with_suite else \
-        {name: GROUP_DIRS[group] / f"{name}.xml" for group in GROUP_DIRS for name in scene_names(group)}
-    return {**suite, **{u.name: u.prepared for u in user or ()}}
+    """Scene name -> file: the image suite's scenes (images.suite.scene_cases: every group, or the user's of
+    --scene instead of, or with `with_suite` after, the suite's)."""
+    return {c.scene: c.path for c in scene_cases(user, with_suite)}
 
 
 def select(only: list[str] | None, resolution: int = RESOLUTION, integrators=None, user=None,
