@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+from harness.engines import mitsuba_direct
 from harness.engines.base import Engine, RenderResult, WarpFunctions
 from harness.engines.mitsuba_scene import load_scene
 
@@ -45,7 +46,10 @@ SCENE_SUBSTITUTES = {"far_from_origin": "sphere_plane"}
 
 
 class MitsubaEngine(Engine):
-    """Mitsuba 3 from PyPI."""
+    """Mitsuba 3 from PyPI. Unless `native`, its `direct` integrator becomes `mcval_direct`, the same with the
+    ray offset at its limit (harness/engines/mitsuba_direct.py): Mitsuba's own offset decides pixels where a
+    shadow ray grazes a fine mesh, and the reference must not. `native` keeps Mitsuba's integrators, for
+    testing Mitsuba itself (its invariances)."""
 
     name = "mitsuba"
     samplers = ("independent", "ldsampler", "multijitter")
@@ -56,11 +60,13 @@ class MitsubaEngine(Engine):
     render_timing = ("render only (scene load and BVH build are timed apart); with an llvm variant the first "
                      "render of each sample count also JIT-compiles, so medians of several runs are warm")
 
-    def __init__(self, variant: str = DEFAULT_VARIANT, sampler: str | None = None) -> None:
+    def __init__(self, variant: str = DEFAULT_VARIANT, sampler: str | None = None, native: bool = False) -> None:
         if sampler is not None and sampler not in SAMPLERS:
             raise ValueError(f"unknown Mitsuba sampler {sampler!r}: one of {', '.join(SAMPLERS)}")
         self.variant = variant
-        self.name = "mitsuba" if variant == DEFAULT_VARIANT else f"mitsuba-{variant.split('_')[0]}"
+        self.native = native
+        self.name = f"mitsuba-{variant.split('_')[0]}" if variant != DEFAULT_VARIANT else (
+            "mitsuba-native" if native else "mitsuba")
         if variant != DEFAULT_VARIANT:
             self.samplers, self.best_samplers = ("independent",), ()
         self.sampler = sampler  # None: the scene's (mapped); else a Mitsuba sampler plugin name
@@ -78,7 +84,7 @@ class MitsubaEngine(Engine):
     def __reduce__(self):
         # To a worker as its arguments: each worker process loads Mitsuba, sets the variant and JIT-compiles
         # its own kernels (both are per process), and finds LLVM itself (load_mitsuba).
-        return MitsubaEngine, (self.variant, self.sampler)
+        return MitsubaEngine, (self.variant, self.sampler, self.native)
 
     def renders_exactly(self, spp: int) -> bool:
         """Whether the sampler keeps `spp` as asked. Several round it: ldsampler up to a power of 4,
@@ -100,7 +106,8 @@ class MitsubaEngine(Engine):
         return self._exact[(self.sampler, spp)]
 
     def version(self) -> str:
-        return f"mitsuba {self._mi.__version__} ({self.variant}), drjit {self._dr.__version__}"
+        tight = "" if self.native else f", {mitsuba_direct.PLUGIN} for direct"
+        return f"mitsuba {self._mi.__version__} ({self.variant}), drjit {self._dr.__version__}{tight}"
 
     def _activate(self):
         """Mitsuba's variant is process-wide: make sure ours is the one in force."""
@@ -149,7 +156,7 @@ class MitsubaEngine(Engine):
         JIT compilation of an llvm variant), "render" (all batches), "total"."""
         mi = self._activate()
         start = time.perf_counter()
-        loaded = load_scene(scene, integrator, sampler=self.sampler, **(params or {}))
+        loaded = load_scene(scene, integrator, sampler=self.sampler, tight=not self.native, **(params or {}))
         seconds = {"load": time.perf_counter() - start}
         sampler = loaded.sensors()[0].sampler().class_name()  # e.g. IndependentSampler
         if self.sampler is not None and sampler != mi.load_dict({"type": self.sampler}).class_name():

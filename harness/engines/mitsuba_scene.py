@@ -10,6 +10,7 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+from harness.engines import mitsuba_direct
 from harness.engines.written_scene import absolute_paths
 from harness.integrators import entry
 
@@ -17,18 +18,22 @@ from harness.integrators import entry
 #: Our samplers Mitsuba has no plugin of the same name for, and the Mitsuba sampler closest to each:
 #: Owen-scrambled Sobol points and Mitsuba's ldsampler are both scrambled (0,2)-sequences per dimension pair.
 MITSUBA_SAMPLER = {"sobol": "ldsampler"}
+#: Mitsuba's integrators and their versions with the ray offset at its limit.
+TIGHT_PLUGINS = {"direct": mitsuba_direct.PLUGIN}
 
 
-def mitsuba_xml(text: str, integrator: str, sampler: str | None = None) -> str:
+def mitsuba_xml(text: str, integrator: str, sampler: str | None = None, tight: bool = False) -> str:
     """The scene text with our `integrator` mapped onto Mitsuba's plugins; `sampler`, if given, is the
-    Mitsuba sampler plugin to use instead of the scene's."""
+    Mitsuba sampler plugin to use instead of the scene's; `tight`: `direct` becomes `mcval_direct`, the same
+    integrator with its ray offset taken to the limit (harness/engines/mitsuba_direct.py)."""
     mapping = entry(integrator).mitsuba
     root = ET.fromstring(text)
     old = [e for e in root if e.tag == "integrator"]
     index = list(root).index(old[0]) if old else len(root)
     for e in old:
         root.remove(e)
-    new = ET.Element("integrator", type=mapping.plugin)
+    plugin = TIGHT_PLUGINS.get(mapping.plugin, mapping.plugin) if tight else mapping.plugin
+    new = ET.Element("integrator", type=plugin)
     for tag, name, value in mapping.properties:
         ET.SubElement(new, tag, name=name, value=value)
     if mapping.add_environment and not any(e.tag == "emitter" and e.get("type") == "constant" for e in root):
@@ -50,13 +55,16 @@ def mitsuba_xml(text: str, integrator: str, sampler: str | None = None) -> str:
     return ET.tostring(root, encoding="unicode")
 
 
-def load_scene(path: str | Path, integrator: str, sampler: str | None = None, **params):
-    """Load our scene file in Mitsuba (variant already set) with `integrator` mapped. The translated text is
-    loaded from memory with its file names made absolute: nothing is written beside the scene."""
+def load_scene(path: str | Path, integrator: str, sampler: str | None = None, tight: bool = False, **params):
+    """Load our scene file in Mitsuba (variant already set) with `integrator` mapped (`tight`: see
+    mitsuba_xml). The translated text is loaded from memory with its file names made absolute: nothing is
+    written beside the scene."""
     import mitsuba as mi
 
+    if tight:
+        mitsuba_direct.register(mi)
     path = Path(path)
-    root = ET.fromstring(mitsuba_xml(path.read_text(), integrator, sampler))
+    root = ET.fromstring(mitsuba_xml(path.read_text(), integrator, sampler, tight))
     absolute_paths(root, path.resolve().parent)
     return mi.load_string(ET.tostring(root, encoding="unicode"), optimize=False,
                           **{k: str(v) for k, v in params.items()})

@@ -39,10 +39,11 @@ def _ours(options: dict[str, Any]) -> Engine:
     return OurEngine(sampler=options.get("sampler"), in_process=options.get("in_process", False))
 
 
-def _mitsuba(variant: str | None) -> Callable[[dict[str, Any]], Engine]:
+def _mitsuba(variant: str | None, native: bool = False) -> Callable[[dict[str, Any]], Engine]:
     def make(options: dict[str, Any]) -> Engine:
         from harness.engines.mitsuba import DEFAULT_VARIANT, MitsubaEngine
-        return MitsubaEngine(variant or options.get("variant") or DEFAULT_VARIANT, sampler=options.get("sampler"))
+        return MitsubaEngine(variant or options.get("variant") or DEFAULT_VARIANT, sampler=options.get("sampler"),
+                             native=native)
     return make
 
 
@@ -53,8 +54,11 @@ def _analytic(options: dict[str, Any]) -> Engine:
 
 BUILT_IN = (
     EngineEntry("mcval", _ours, "this repository's renderer (`render` as a child process, warps in process)"),
-    EngineEntry("mitsuba", _mitsuba(None), "Mitsuba 3 from PyPI (--variant, default llvm_ad_rgb)"),
-    EngineEntry("mitsuba-scalar", _mitsuba("scalar_rgb"), "Mitsuba 3, scalar_rgb"),
+    EngineEntry("mitsuba", _mitsuba(None), "Mitsuba 3 from PyPI (--variant, default llvm_ad_rgb); its direct "
+                "integrator with the ray offset at its limit (mcval_direct)"),
+    EngineEntry("mitsuba-native", _mitsuba(None, native=True), "Mitsuba 3 with its own integrators and ray "
+                "offset, as shipped (--variant)"),
+    EngineEntry("mitsuba-scalar", _mitsuba("scalar_rgb", native=True), "Mitsuba 3, scalar_rgb, as shipped"),
     EngineEntry("analytic", _analytic, "the integrators' closed forms on the analytic scenes"),
 )
 
