@@ -74,7 +74,9 @@ class CaseBench:
         if a and b:
             common = {s.spp for s in self.curves[a].steps} & {s.spp for s in self.curves[b].steps}
             ratio = self.curves[a].efficiency(common) / self.curves[b].efficiency(common)
-        return {"ratio": ratio, "ours": a, "reference": b,
+        # An engine not run with that sampler has no curve: its NaN is not a lack of signal.
+        missing = [name for name, label in ((ours or self.tested, a), (other or self.reference, b)) if not label]
+        return {"ratio": ratio, "ours": a, "reference": b, "missing": missing,
                 "ours_sampler": _sampler_of(a), "reference_sampler": _sampler_of(b)}
 
     def efficiency_ratio(self, ours: str | None = None, other: str | None = None) -> float:
@@ -122,7 +124,9 @@ def bench_case(case: ImageCase, engines: list[Engine], reference_engine: Engine,
     for e in engines:
         time.sleep(QUIET_SECONDS)  # the previous engine's threads have stopped spinning
         curves[e.label or e.name] = run_ladder(e, local, reference, seed, ladder, runs, on_step)
-    return CaseBench(case, curves, reference.summary.pixel.mean, truth, engines[0].name, reference_engine.name,
+    # The tested engine's efficiency is compared with the next engine run (Mitsuba as shipped, by default).
+    compared = next((e.name for e in engines[1:] if e.name != engines[0].name), reference_engine.name)
+    return CaseBench(case, curves, reference.summary.pixel.mean, truth, engines[0].name, compared,
                      {e.name: e.best_samplers for e in engines})
 
 

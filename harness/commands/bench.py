@@ -56,7 +56,7 @@ def _measure(args, cases, engines, reference, ladder):
     """The ladders, the seed settings, the throughput and the sampler slopes, as asked."""
     from harness.bench.run import run_bench, seed_comparison
     from harness.distributed.cluster import open_executor
-    from harness.engines.mitsuba import MitsubaEngine
+    from harness.engines.mitsuba import DEFAULT_VARIANT, MitsubaEngine
     from harness.engines.ours import OurEngine
 
     with open_executor(args) as executor, progress_bar("bench") as progress:

@@ -4,7 +4,7 @@ from __future__ import annotations
 import base64
 import html
 
-from harness.bench.run import CaseBench
+from harness.bench.run import SAME_SAMPLER, CaseBench
 from harness.report.bench_plots import convergence_png, equal_time_png
 from harness.report.style import CSS
 from harness.bench.throughput import MITSUBA, OURS
@@ -21,7 +21,14 @@ def _f(x: float, fmt: str = ".3g") -> str:
 
 def _best(b: CaseBench) -> str:
     best = b.comparison(None)
+    if best["missing"]:
+        return f"no {html.escape(' or '.join(best['missing']))} curve"
     return f"{_f(best['ratio'])} ({html.escape(str(best['ours']))} / {html.escape(str(best['reference']))})"
+
+
+def _same(b: CaseBench) -> str:
+    same = b.comparison(SAME_SAMPLER)
+    return f"no {html.escape(' or '.join(same['missing']))} curve" if same["missing"] else _f(same["ratio"])
 
 
 def _throughput_html(throughput: list[dict] | None) -> str:
@@ -61,7 +68,7 @@ def bench_html(benches: list[CaseBench], rays: dict | None, seed: dict | None, m
                throughput: list[dict] | None = None, slopes: dict | None = None) -> str:
     rows = "".join(
         f"<tr><td><a href='#{b.case.key}'>{b.case.scene}</a></td><td>{b.case.integrator}</td>"
-        f"<td class='{'fail' if b.efficiency_ratio() < 1 else 'pass'}'>{_f(b.efficiency_ratio())}</td>"
+        f"<td class='{'fail' if b.efficiency_ratio() < 1 else 'pass'}'>{_same(b)}</td>"
         f"<td>{_best(b)}</td>"
         + "".join(f"<td>{_f(c.fit('spp')[0], '.2f')}</td><td>{_f(c.efficiency())}</td><td>{_f(c.time_to())}</td>"
                   for c in b.curves.values()) + "</tr>" for b in benches)
@@ -71,7 +78,7 @@ def bench_html(benches: list[CaseBench], rays: dict | None, seed: dict | None, m
     for b in benches:
         timing = "; ".join(f"{name}: {c.timing}; first render {c.first_seconds:.2f} s" for name, c in b.curves.items())
         sections.append(f"<h3 id='{b.case.key}'>{b.case.scene} — {b.case.integrator}: efficiency ratio "
-                        f"{_f(b.efficiency_ratio())} with the same sampler, {_best(b)} best against best</h3>"
+                        f"{_same(b)} with the same sampler, {_best(b)} best against best</h3>"
                         f"<p class='meta'>Errors against: {html.escape(b.truth)}. {html.escape(timing)}</p>"
                         + _img(convergence_png(b), f"convergence of {b.case.key}")
                         + "<p>Equal time (the step of each engine closest to ours at 64 spp):</p>"
@@ -99,8 +106,8 @@ def bench_html(benches: list[CaseBench], rays: dict | None, seed: dict | None, m
 <p>relMSE is measured against the stored Mitsuba reference with the reference's own variance subtracted.
 Efficiency is 1 / (relMSE × seconds), the median over steps of 16 spp and more; a ratio takes it over the steps
 both of its curves rendered (a sampler that rounds a sample count skips that step). Each engine runs with each of its
-samplers (curves labelled engine/sampler). "Same sampler" is ours over Mitsuba llvm_ad_rgb, both with independent
-samples: the engine comparison. "Best against best" pairs each engine's most efficient stratified sampler on the
+samplers (curves labelled engine/sampler). "Same sampler" is the tested engine (the first) over the next one run
+(by default Mitsuba llvm_ad_rgb as shipped), both with independent samples: the engine comparison. "Best against best" pairs each engine's most efficient stratified sampler on the
 case (ours: Owen-scrambled Sobol; Mitsuba: ldsampler or multijitter): what a user gets, named in the cell.
 Slopes near −1 mean an unbiased estimator converging at the usual rate; steeper ones come from stratified
 sampling; flatter ones are a finding (a bias against the reference). "Below ref. noise": the error fell below

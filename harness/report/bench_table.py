@@ -3,7 +3,15 @@ from __future__ import annotations
 
 from rich.table import Table
 
+from harness.bench.run import SAME_SAMPLER
 from harness.bench.throughput import MITSUBA, OURS
+
+
+def _unmeasured(comparison: dict) -> str | None:
+    """Why a comparison has no ratio (an engine without that curve, or errors below the reference's noise)."""
+    if comparison["missing"]:
+        return f"no {' or '.join(comparison['missing'])} curve"
+    return "below ref. noise" if comparison["ratio"] != comparison["ratio"] else None
 
 
 def bench_table(benches, engines) -> Table:
@@ -11,15 +19,15 @@ def bench_table(benches, engines) -> Table:
     best, each engine's slope."""
     table = Table(title="Speed against error", header_style="bold")
     tested = engines[0].name if engines else "tested"
-    for col in ("scene", "integrator", f"efficiency {tested}/reference, same sampler", "best against best",
+    compared = benches[0].reference if benches else "reference"
+    for col in ("scene", "integrator", f"efficiency {tested}/{compared}, same sampler", "best against best",
                 *[f"slope {e.label}" for e in engines]):
         table.add_column(col)
     for bch in benches:
-        ratio = bch.efficiency_ratio()
-        shown = "below ref. noise" if ratio != ratio else f"[{'green' if ratio >= 1 else 'red'}]{ratio:.2f}[/]"
-        best = bch.comparison(None)
-        best_text = "below ref. noise" if best["ratio"] != best["ratio"] else \
-            f"{best['ratio']:.2f} ({best['ours']} / {best['reference']})"
+        same, best = bch.comparison(SAME_SAMPLER), bch.comparison(None)
+        ratio = same["ratio"]
+        shown = _unmeasured(same) or f"[{'green' if ratio >= 1 else 'red'}]{ratio:.2f}[/]"
+        best_text = _unmeasured(best) or f"{best['ratio']:.2f} ({best['ours']} / {best['reference']})"
         table.add_row(bch.case.scene, bch.case.integrator, shown, best_text,
                       *[f"{c.fit('spp')[0]:.2f}" for c in bch.curves.values()])
     return table

@@ -62,15 +62,31 @@ def test_same_sampler_and_best_against_best_pick_their_curves():
                              "mitsuba/independent": curve("c", 1.0, 0.02),  # 50
                              "mitsuba/ldsampler": curve("d", 0.5, 0.01),    # 200
                              "mitsuba/multijitter": curve("e", 1.0, 0.01)}, np.zeros(3))  # 100
-    assert bench.comparison("independent") == pytest.approx(
-        {"ratio": 2.0, "ours": "mcval/independent", "reference": "mitsuba/independent",
-         "ours_sampler": "independent", "reference_sampler": "independent"})
-    assert bench.comparison(None) == pytest.approx({"ratio": 2.0, "ours": "mcval/sobol", "reference": "mitsuba/ldsampler",
-                                                    "ours_sampler": "sobol", "reference_sampler": "ldsampler"})
+    same, best = bench.comparison("independent"), bench.comparison(None)
+    assert same.pop("missing") == [] and best.pop("missing") == []
+    assert same == pytest.approx({"ratio": 2.0, "ours": "mcval/independent", "reference": "mitsuba/independent",
+                                  "ours_sampler": "independent", "reference_sampler": "independent"})
+    assert best == pytest.approx({"ratio": 2.0, "ours": "mcval/sobol", "reference": "mitsuba/ldsampler",
+                                  "ours_sampler": "sobol", "reference_sampler": "ldsampler"})
     assert bench.efficiency_ratio() == pytest.approx(2.0)
     # Best against best picks among the stratified samplers, even where independent did better.
     bench.curves["mitsuba/independent"] = curve("c", 0.1, 0.01)  # 1000
     assert bench.comparison(None)["reference"] == "mitsuba/ldsampler"
+
+
+def test_an_engine_without_curves_is_named_not_taken_for_noise():
+    from harness.bench.run import CaseBench
+    from harness.report.bench_table import bench_table
+    from rich.console import Console
+    curve = Curve("a", "render only", [Step(k, [0.01 * k] * 3, [1 / k] * 3, [0.1] * 3) for k in (16, 32)], 0.1)
+    bench = CaseBench(None, {"mcval/independent": curve}, np.zeros(3), tested="mcval", reference="mitsuba-native")
+    assert bench.comparison("independent")["missing"] == ["mitsuba-native"]
+    bench.case = type("Case", (), {"scene": "cornell", "integrator": "ao"})()
+    console = Console(record=True, width=200)
+    console.print(bench_table([bench], []))
+    text = console.export_text()
+    assert "no mitsuba-native curve" in text and "below ref. noise" not in text
+    assert "efficiency tested/mitsuba-native" in text
 
 
 def test_ratios_compare_the_steps_both_curves_rendered():
