@@ -1,6 +1,7 @@
 // The Mitsuba 3 XML subset the renderer reads (see docs/ARCHITECTURE.md): what the chosen integrator
 // needs is read and checked, what it does not use is skipped with a note, anything else is an error.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -23,6 +24,19 @@ namespace fs = std::filesystem;
 
 std::string typeOf(const XmlContext &ctx, const pugi::xml_node &node) { return ctx.attr(node, "type"); }
 
+/// Mitsuba refuses a camera whose to_world scales or shears (Transform::has_scale: its columns are
+/// orthonormal within 1e-3), and a scaled camera's rays would not be unit length (at 1e-30 they are 0).
+void requireRigid(const XmlContext &ctx, const pugi::xml_node &node, const Transform &t) {
+    for (int i = 0; i < 3; ++i)
+        for (int j = i; j < 3; ++j) {
+            const double dot = double(t.m[0][i]) * t.m[0][j] + double(t.m[1][i]) * t.m[1][j] +
+                               double(t.m[2][i]) * t.m[2][j];
+            if (!(std::abs(dot - (i == j ? 1.0 : 0.0)) <= 1e-3))
+                ctx.fail(node, "the camera's to_world scales or shears (its axes must be orthonormal, as Mitsuba "
+                               "requires): move the scale to the shapes");
+        }
+}
+
 void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene) {
     if (typeOf(ctx, node) != "perspective") ctx.fail(node, "unsupported sensor type: expected \"perspective\"");
     XmlProps props(ctx, node);
@@ -38,6 +52,7 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
     if (!(cam.nearClip > 0.f && cam.farClip > cam.nearClip)) ctx.fail(node, "need 0 < near_clip < far_clip");
     cam.toWorld = props.getTransform("to_world");
     requirePosition(ctx, node, "the camera (its to_world)", cam.toWorld.point({0.f, 0.f, 0.f}));
+    requireRigid(ctx, node, cam.toWorld);
     props.ignore("focus_distance");  // a pinhole has no focus: accepted and ignored
     props.finish("fov, fov_axis, near_clip, far_clip, focus_distance, to_world");
     for (const auto &child : props.objects()) {

@@ -170,8 +170,18 @@ def _tiled_plane(planes: list[ET.Element], bsdfs: dict[str, ET.Element]) -> tupl
 
 def load_plane_scene(path: str | Path, params: dict[str, str] | None = None) -> PlaneScene:
     """Reads a one-plane scene (the plane possibly tiled), or one plane and one sphere; raises NotAnalytic
-    for anything else (that the
-    sphere rests on the plane is checked where its closed forms are, analytic_sphere)."""
+    for anything else, a file that is no scene file included (its case then fails where it renders, with
+    the renderer's own message). That the sphere rests on the plane is checked where its closed forms are,
+    analytic_sphere."""
+    try:
+        return _read_plane_scene(path, params)
+    except NotAnalytic:
+        raise
+    except (ET.ParseError, AttributeError, KeyError, TypeError, ValueError, IndexError) as e:
+        raise NotAnalytic(f"not a scene file the closed forms read ({type(e).__name__}: {e})") from e
+
+
+def _read_plane_scene(path: str | Path, params: dict[str, str] | None) -> PlaneScene:
     root = ET.fromstring(Path(path).read_text())
     values = {d.get("name"): d.get("value") for d in root.iter("default")}
     values.update({k: str(v) for k, v in (params or {}).items()})
@@ -179,7 +189,9 @@ def load_plane_scene(path: str | Path, params: dict[str, str] | None = None) -> 
         for key, value in el.attrib.items():
             el.set(key, re.sub(r"\$(\w+)", lambda m: values[m.group(1)], value))
     sensor = root.find("sensor")
-    film = sensor.find("film")
+    film = sensor.find("film") if sensor is not None else None
+    if film is None:
+        raise NotAnalytic("no <sensor> with a <film>")
     rfilter = film.find("rfilter")
     if rfilter is None or rfilter.get("type") != "box":
         raise NotAnalytic("closed forms are integrated over pixels with a box filter")
