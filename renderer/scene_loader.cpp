@@ -74,16 +74,32 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
     }
 }
 
-void loadEmitter(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene) {
+/// Mitsuba 3's emitter types that none of our integrators uses; each is skipped with a note (and the
+/// harness removes them from Mitsuba's scene as well).
+bool isOtherEmitter(const std::string &type) {
+    return type == "directional" || type == "spot" || type == "projector" || type == "envmap";
+}
+
+void loadEmitter(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene, Deferred &deferred) {
     const std::string type = typeOf(ctx, node);
+    if (isOtherEmitter(type)) {
+        deferred.otherEmitters.emplace_back(node, "<emitter type=\"" + type + "\"> at line " +
+                                                      std::to_string(ctx.line(node)));
+        return;
+    }
     XmlProps props(ctx, node);
     if (type == "point") {
         PointLight light;
-        light.position = props.getPoint("position", {0.f, 0.f, 0.f});
-        props.requireRange("position", light.position, -kMaxCoordinate, kMaxCoordinate);
+        // Mitsuba places a point light by `position` or by `to_world` (its origin), not both.
+        if (props.has("position") && props.has("to_world"))
+            ctx.fail(node, "a point light takes position or to_world, not both");
+        light.position = props.has("to_world") ? props.getTransform("to_world").point({0.f, 0.f, 0.f})
+                                               : props.getPoint("position", {0.f, 0.f, 0.f});
+        props.requireRange(props.has("to_world") ? "to_world" : "position", light.position, -kMaxCoordinate,
+                           kMaxCoordinate);
         light.intensity = props.getColor("intensity", {1.f, 1.f, 1.f});
         props.requireRange("intensity", light.intensity, 0.f, kMaxEmission);
-        props.finish("position, intensity");
+        props.finish("position or to_world, intensity");
         scene.pointLights.push_back(light);
     } else if (type == "constant") {
         if (scene.environment) ctx.fail(node, "only one constant emitter is supported");
@@ -91,7 +107,8 @@ void loadEmitter(const XmlContext &ctx, const pugi::xml_node &node, SceneDescrip
         props.requireRange("radiance", *scene.environment, 0.f, kMaxEmission);
         props.finish("radiance");
     } else {
-        ctx.fail(node, "unsupported emitter type \"" + type + "\": expected point or constant");
+        ctx.fail(node, "unsupported emitter type \"" + type +
+                           "\": expected point or constant (directional, spot, projector and envmap are skipped)");
     }
     if (!props.objects().empty()) ctx.fail(props.objects()[0], "unexpected element inside <emitter>");
 }
@@ -169,7 +186,7 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
             if (id.empty()) ctx.fail(node, "a top-level <bsdf> needs an id to be referenced by");
             bsdfs[id] = loadBsdf(ctx, node, deferred);
         } else if (tag == "emitter") {
-            loadEmitter(ctx, node, scene);
+            loadEmitter(ctx, node, scene, deferred);
         } else if (tag == "integrator") {
             if (hasIntegrator) ctx.fail(node, "only one integrator is supported");
             // An integrator given by the caller overrides the file's, whatever its type; the file's
@@ -199,6 +216,7 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
         if (info->use.areaEmittersLight) ctx.fail(node, "the " + chosen + " integrator does not model area emitters");
         skipped.push_back(what);
     }
+    for (const auto &[node, what] : deferred.otherEmitters) skipped.push_back(what);
     for (const auto &[node, what] : deferred.nonDiffuseBsdfs) {
         if (info->use.readsReflectance)
             ctx.fail(node, "unsupported bsdf type \"" + typeOf(ctx, node) + "\": the " + chosen +

@@ -14,6 +14,8 @@ namespace mcval {
 /// Elements the chosen integrator may not use, judged once the integrator is known.
 struct Deferred {
     std::vector<std::pair<pugi::xml_node, std::string>> nonDiffuseBsdfs, areaEmitters;
+    /// Emitters of types no integrator of ours uses (directional, spot, projector, envmap): skipped.
+    std::vector<std::pair<pugi::xml_node, std::string>> otherEmitters;
 };
 
 /// Throws at the node unless p is finite and within kMaxCoordinate; `what` names p in the message.

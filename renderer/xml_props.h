@@ -42,6 +42,8 @@ public:
     /// `<point>` with value="x, y, z" or x/y/z attributes.
     Vec3f getPoint(const std::string &name, const Vec3f &def);
     Transform getTransform(const std::string &name);
+    /// Whether the element has a property called `name`.
+    bool has(const std::string &name) const { return m_props.count(name) > 0; }
     /// Accepts a property that cannot change our answer (whatever its type) without reading it.
     void ignore(const std::string &name) {
         if (m_props.count(name)) m_used.insert(name);

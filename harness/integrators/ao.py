@@ -1,13 +1,13 @@
 """ao: ambient occlusion under a constant environment (radiance 1 when the scene has none)."""
 from harness.closed_forms.sphere import ao_visible
-from harness.integrators.entry import AnalyticForm, IntegratorEntry, MitsubaMapping
+from harness.integrators.entry import UNUSED_EMITTERS, AnalyticForm, IntegratorEntry, MitsubaMapping
 
 ENTRY = IntegratorEntry(
     name="ao",
     our_spp=32,
     reference_spp=256,
     # Direct light from the environment alone: point lights and area emitters go, as our loader skips them.
-    mitsuba=MitsubaMapping("direct", (("boolean", "hide_emitters", "true"),), drop_emitters=("point",),
+    mitsuba=MitsubaMapping("direct", (("boolean", "hide_emitters", "true"),), drop_emitters=("point", *UNUSED_EMITTERS),
                            drop_area_emitters=True, add_environment=True),
     analytic=AnalyticForm("rho * L_env * V: V = 1 on a lone plane; 1 - (R/D)^3 on the floor under a resting "
                           "sphere, (1 + n.up)/2 on the sphere",

@@ -35,6 +35,11 @@ class MitsubaMapping:
         return "; ".join(parts)
 
 
+#: Mitsuba's emitter types that none of our integrators uses: our loader skips them, so Mitsuba must not see
+#: them either (renderer/scene_loader.cpp, isOtherEmitter).
+UNUSED_EMITTERS = ("directional", "spot", "projector", "envmap")
+
+
 #: shade(scene, points (..., 3), normals (3,) or (..., 3)) -> radiance (..., 3), at points of one surface
 #: (`scene.surface`) of an analytic scene (harness/closed_forms/plane_scene.py).
 Shade = Callable[[object, np.ndarray, np.ndarray], np.ndarray]

@@ -2,7 +2,8 @@
 import numpy as np
 
 from harness.closed_forms.sphere import lit
-from harness.integrators.entry import AnalyticForm, IntegratorEntry, MitsubaMapping, has_point_light
+from harness.integrators.entry import (UNUSED_EMITTERS, AnalyticForm, IntegratorEntry, MitsubaMapping,
+                                       has_point_light)
 
 
 def _point_lights(scene, p: np.ndarray, normal: np.ndarray) -> np.ndarray:
@@ -22,7 +23,7 @@ ENTRY = IntegratorEntry(
     reference_spp=256,
     # One light sample, no BSDF sample: Mitsuba's direct integrator as ours; it sees point lights only.
     mitsuba=MitsubaMapping("direct", (("integer", "emitter_samples", "1"), ("integer", "bsdf_samples", "0")),
-                           drop_emitters=("constant",)),
+                           drop_emitters=("constant", *UNUSED_EMITTERS)),
     analytic=AnalyticForm("rho/pi * I * max(0, cos) / r^2 per point light, floor points behind a resting "
                           "sphere dark", _point_lights, scenes=("plane", "sphere_floor")),
     requirements=(("a point light", has_point_light),),

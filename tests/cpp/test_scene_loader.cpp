@@ -228,3 +228,29 @@ TEST(SceneLoader, UnusedElementsAreSkippedAndAnswerChangingOnesRefused) {
         }
     }
 }
+
+TEST(SceneLoader, EmittersNoIntegratorUsesAreSkippedAndAPointLightTakesToWorld) {
+    const std::string path = writeScene(
+        "other_emitters",
+        std::string(kHeader) + sensor() + kShape +
+            "  <emitter type=\"point\"><transform name=\"to_world\"><translate x=\"1\" y=\"2\" z=\"3\"/></transform>"
+            "</emitter>\n  <emitter type=\"spot\"><float name=\"cutoff_angle\" value=\"20\"/></emitter>\n"
+            "  <emitter type=\"directional\"/>\n  <emitter type=\"projector\"/>\n"
+            "  <emitter type=\"envmap\"><string name=\"filename\" value=\"nowhere.exr\"/></emitter>\n</scene>\n");
+    for (const char *integrator : {"simple", "ao", "normals"}) {
+        const SceneDescription scene = loadScene(path, {}, integrator);
+        ASSERT_EQ(scene.pointLights.size(), 1u) << integrator;
+        EXPECT_EQ(scene.pointLights[0].position.x, 1.f);
+        EXPECT_EQ(scene.pointLights[0].position.y, 2.f);
+        EXPECT_EQ(scene.pointLights[0].position.z, 3.f);
+        EXPECT_FALSE(scene.environment.has_value());
+    }
+    const std::string both = std::string(kHeader) + sensor() + kShape +
+                             "  <emitter type=\"point\"><point name=\"position\" value=\"0, 1, 0\"/>\n"
+                             "    <transform name=\"to_world\"><translate x=\"1\"/></transform></emitter>\n</scene>\n";
+    EXPECT_NE(errorOf("point_both", both).find("position or to_world, not both"), std::string::npos);
+    EXPECT_NE(errorOf("unknown_emitter", std::string(kHeader) + sensor() + kShape +
+                                             "  <emitter type=\"sunsky\"/>\n</scene>\n")
+                  .find("unsupported emitter type \"sunsky\""),
+              std::string::npos);
+}

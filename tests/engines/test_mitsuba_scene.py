@@ -48,3 +48,14 @@ def test_scene_renders_in_mitsuba(path, integrator, meshes, mi):
     rgb = image[..., :3]
     # Much of the image sees the geometry, not only a few pixels.
     assert (np.abs(rgb).max(axis=-1) > 0).mean() > 0.25
+
+
+def test_emitters_no_integrator_uses_are_removed_as_our_loader_skips_them():
+    from harness.engines.mitsuba_scene import mitsuba_xml
+    import xml.etree.ElementTree as ET
+    text = (SCENES / "plane_point.xml").read_text().replace(
+        "</scene>", '<emitter type="spot"/><emitter type="directional"/><emitter type="projector"/>'
+                    '<emitter type="envmap"/></scene>')
+    kept = {i: [e.get("type") for e in ET.fromstring(mitsuba_xml(text, i)).findall("emitter")]
+            for i in ("simple", "ao")}
+    assert kept == {"simple": ["point"], "ao": ["constant"]}
