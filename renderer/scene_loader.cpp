@@ -2,6 +2,7 @@
 // needs is read and checked, what it does not use is skipped with a note, anything else is an error.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -41,9 +42,25 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
     if (typeOf(ctx, node) != "perspective") ctx.fail(node, "unsupported sensor type: expected \"perspective\"");
     XmlProps props(ctx, node);
     CameraSpec &cam = scene.camera;
-    cam.fov = props.getFloatRequired("fov");
-    props.requireRange("fov", cam.fov, kMinFov, kMaxFov);
-    cam.fovAxis = props.getString("fov_axis", "x");
+    if (props.has("fov")) {
+        cam.fov = props.getFloatRequired("fov");
+        props.requireRange("fov", cam.fov, kMinFov, kMaxFov);
+        cam.fovAxis = props.getString("fov_axis", "x");
+    } else {
+        // Mitsuba's alternative (and default, 50mm): a focal length in 35 mm film equivalent, which sets
+        // the field of view along the film's diagonal (36 x 24 mm).
+        if (props.has("fov_axis")) props.failAt("fov_axis", "fov_axis goes with fov, not with a focal length");
+        const std::string text = props.getString("focal_length", "50mm");
+        const std::string number = text.size() > 2 && text.compare(text.size() - 2, 2, "mm") == 0
+                                       ? text.substr(0, text.size() - 2) : text;
+        char *end = nullptr;
+        const double focal = std::strtod(number.c_str(), &end);
+        if (number.empty() || *end != '\0' || !(focal > 0.0 && focal < 1e6))
+            props.failAt("focal_length", "expected a focal length in millimetres such as \"50mm\", got \"" + text + "\"");
+        cam.fov = float(2.0 * std::atan(std::sqrt(36.0 * 36.0 + 24.0 * 24.0) / (2.0 * focal)) * 180.0 / M_PI);
+        props.requireRange("focal_length", cam.fov, kMinFov, kMaxFov);
+        cam.fovAxis = "diagonal";
+    }
     if (cam.fovAxis != "x" && cam.fovAxis != "y" && cam.fovAxis != "diagonal" && cam.fovAxis != "smaller" &&
         cam.fovAxis != "larger")
         ctx.fail(node, "fov_axis must be x, y, diagonal, smaller or larger");
@@ -54,7 +71,7 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
     requirePosition(ctx, node, "the camera (its to_world)", cam.toWorld.point({0.f, 0.f, 0.f}));
     requireRigid(ctx, node, cam.toWorld);
     props.ignore("focus_distance");  // a pinhole has no focus: accepted and ignored
-    props.finish("fov, fov_axis, near_clip, far_clip, focus_distance, to_world");
+    props.finish("fov, fov_axis, focal_length, near_clip, far_clip, focus_distance, to_world");
     for (const auto &child : props.objects()) {
         const std::string tag = child.name();
         if (tag == "film") {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "error.h"
+#include "camera.h"
 #include "scene.h"
 
 using namespace mcval;
@@ -95,8 +96,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"bad_number", std::string(kHeader) + sensor() + kShape +
                 "  <emitter type=\"point\">\n    <rgb name=\"intensity\" value=\"1, x, 1\"/>\n  </emitter>\n</scene>\n",
                 "expected a number, got \"x\"", 5},
-        BadCase{"missing_fov", std::string(kHeader) + "  <sensor type=\"perspective\"/>\n" + kShape + "</scene>\n",
-                "missing <float name=\"fov\"", 2},
+        BadCase{"fov_axis_without_fov", std::string(kHeader) +
+                "  <sensor type=\"perspective\">\n    <string name=\"fov_axis\" value=\"y\"/></sensor>\n" + kShape +
+                "</scene>\n", "fov_axis goes with fov", 3},
         BadCase{"undefined_parameter", std::string(kHeader) + sensor() +
                 "  <integrator type=\"$integrator\"/>\n" + kShape + "</scene>\n", "parameter $integrator", 3},
         BadCase{"missing_mesh", std::string(kHeader) + sensor() +
@@ -252,5 +254,26 @@ TEST(SceneLoader, EmittersNoIntegratorUsesAreSkippedAndAPointLightTakesToWorld) 
     EXPECT_NE(errorOf("unknown_emitter", std::string(kHeader) + sensor() + kShape +
                                              "  <emitter type=\"sunsky\"/>\n</scene>\n")
                   .find("unsupported emitter type \"sunsky\""),
+              std::string::npos);
+}
+
+TEST(SceneLoader, ASensorWithoutFovHasMitsubasFocalLength) {
+    // x_fov as Mitsuba 3.9 reports it (mi.traverse(sensor)["x_fov"]) on a 64 x 32 and a 32 x 64 film.
+    auto xFov = [](const std::string &property, int width, int height) {
+        const std::string body = std::string(kHeader) + "  <sensor type=\"perspective\">" + property +
+                                 "<film type=\"hdrfilm\"><integer name=\"width\" value=\"" + std::to_string(width) +
+                                 "\"/><integer name=\"height\" value=\"" + std::to_string(height) +
+                                 "\"/></film></sensor>\n" + kShape + "</scene>\n";
+        const SceneDescription scene = loadScene(writeScene("focal", body), {}, "normals");
+        return Camera(scene.camera, width, height).fovX();
+    };
+    EXPECT_NEAR(xFov("", 64, 32), 42.311714f, 1e-3f);
+    EXPECT_NEAR(xFov("", 32, 64), 21.902138f, 1e-3f);
+    EXPECT_NEAR(xFov("<string name=\"focal_length\" value=\"35mm\"/>", 64, 32), 57.871193f, 1e-3f);
+    EXPECT_NEAR(xFov("<string name=\"focal_length\" value=\"20\"/>", 64, 32), 88.105583f, 1e-3f);
+    EXPECT_NE(errorOf("focal_bad", std::string(kHeader) +
+                                       "  <sensor type=\"perspective\"><string name=\"focal_length\" value=\"wide\"/>"
+                                       "</sensor>\n" + kShape + "</scene>\n")
+                  .find("expected a focal length in millimetres"),
               std::string::npos);
 }
