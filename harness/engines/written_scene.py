@@ -7,20 +7,9 @@ import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+from harness.engines.scene_paths import absolute_paths
+
 _PARAMETER = re.compile(r"\$([A-Za-z_][A-Za-z0-9_]*)")
-#: Properties holding a file name, resolved against the scene's folder as Mitsuba resolves them.
-_FILE_PROPERTIES = ("filename",)
-
-
-def absolute_paths(root: ET.Element, folder: Path) -> None:
-    """Every relative file name under `root` made absolute against `folder` (in place)."""
-    for e in root.iter():
-        if e.tag == "string" and e.get("name") in _FILE_PROPERTIES and e.get("value"):
-            value = e.get("value")
-            if "$" not in value and not Path(value).is_absolute():
-                e.set("value", str((folder / value).resolve()))
-
-
 def resolve_defaults(root: ET.Element, params: dict[str, str], source: str) -> None:
     """Every <default> of the scene removed and every $name filled in, `params` first (in place).
     ValueError naming `source` for a $name that neither gives."""
@@ -61,7 +50,7 @@ def written_scene(path: Path, params: dict[str, str], integrator: str, spp: int)
     renderer's own name for it; `params` override the scene's <default>s (res sets width and height)."""
     root = ET.parse(path).getroot()
     resolve_defaults(root, params, str(path))
-    absolute_paths(root, path.parent)
+    absolute_paths(root, path.parent, path)
     for e in [e for e in root if e.tag == "integrator"]:
         root.remove(e)
     root.insert(0, ET.Element("integrator", type=integrator))

@@ -101,8 +101,8 @@ def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: 
     references: dict[str, Reference] = {}
 
     def failed(reason: str, mine: RenderResult | None = None, output: str = "") -> ImageResult:
-        if case.source:  # a --scene file: name the user's file, not the prepared copy the engines read
-            reason, output = (text.replace(str(case.path), case.source) for text in (reason, output))
+        if case.source and str(case.path) in reason:  # a --scene file: the engines read its prepared copy
+            reason = f"{reason} (the prepared copy of {case.source})"
         return ImageResult(case, mine, references, {}, source, s, None, alpha, run_seed, reason, tested=ours.name,
                            error_output=output)
 

@@ -1,8 +1,9 @@
 """Scene files given with --scene (a file or a folder of them, anywhere, read-only is fine): each is copied,
 prepared, into the run's output folder and rendered from there, so nothing is ever written beside it.
 
-The copy differs from the file only in what every case of the suite sets: file names made absolute (its meshes
-are read where they are), and the film's size as the `res` parameter the suite renders at (its aspect kept),
+The copy differs from the file only in what every case of the suite sets: its <include>s inlined, its <path>s
+followed and file names made absolute (its meshes are read where they are; harness/engines/scene_paths.py),
+and the film's size as the `res` parameter the suite renders at (its aspect kept),
 declared as a <default> if the file has none.
 """
 from __future__ import annotations
@@ -12,7 +13,8 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
 
-from harness.engines.written_scene import absolute_paths, film_size
+from harness.engines.scene_paths import SceneFileError, absolute_paths, anchor_paths
+from harness.engines.written_scene import film_size
 
 
 @dataclass(frozen=True)
@@ -53,7 +55,12 @@ def _prepared_text(path: Path, resolution: int) -> str:
         root = ET.fromstring(text)
     except ET.ParseError:
         return text
-    absolute_paths(root, path.resolve().parent)
+    try:
+        absolute_paths(root, path.resolve().parent, path)
+    except SceneFileError:  # a <path> or <include> that leads nowhere: each engine's case says where
+        root = ET.fromstring(text)
+        anchor_paths(root, path.resolve().parent)
+        return ET.tostring(root, encoding="unicode")
     film = next(root.iter("film"), None)
     if film is not None:
         try:

@@ -15,6 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
+from harness.engines.scene_paths import absolute_paths
+
 #: Defaults of the properties a rewrite changes, in both loaders (ours: scene_loader.cpp; Mitsuba's plugins).
 NEAR_CLIP, FAR_CLIP = 1e-2, 1e4
 DEFAULT_REFLECTANCE = 0.5
@@ -177,18 +179,14 @@ def scale_reflectance(root: ET.Element, factor: float) -> None:
             raise ValueError(f"cannot scale the reflectance of <bsdf type=\"{kind}\">")
 
 
-def absolute_paths(root: ET.Element, folder: Path) -> None:
-    """Every `filename` property made absolute against the scene's folder."""
-    for node in root.iter("string"):
-        if node.get("name") == "filename" and not Path(node.get("value", "")).is_absolute():
-            node.set("value", str((folder / node.get("value")).resolve()))
-
-
 def rewrite(scene: Path, out: Path, kind: str, value) -> Path:
     """Write `scene` transformed by (kind, value) to `out`: kind is "scale", "rotate", "translate", "light"
     or "reflectance" (value the factor)."""
     tree = ET.parse(scene)
     root = tree.getroot()
+    # Includes inlined and file names made absolute first: the rewrite must reach every shape, and the
+    # variant is written elsewhere.
+    absolute_paths(root, Path(scene).resolve().parent, Path(scene))
     if kind in ("scale", "rotate", "translate"):
         transform_scene(root, kind, value)
     elif kind == "light":
@@ -197,7 +195,6 @@ def rewrite(scene: Path, out: Path, kind: str, value) -> Path:
         scale_reflectance(root, float(value))
     else:
         raise ValueError(f"unknown rewrite {kind!r}")
-    absolute_paths(root, Path(scene).resolve().parent)
     out.parent.mkdir(parents=True, exist_ok=True)
     tree.write(out, encoding="utf-8", xml_declaration=True)
     return out

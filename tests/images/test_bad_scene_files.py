@@ -51,4 +51,5 @@ def test_each_bad_file_fails_its_case_in_one_line_and_the_run_goes_on(folder, tm
     for name in BAD:
         error = entries[name]["error"]
         assert entries[name]["pass"] is False and "\n" not in error, (name, error)
-    assert f"{folder / 'garbage.xml'}: not an XML scene file" in entries["garbage"]["error"]
+    assert "garbage.xml: not an XML scene file" in entries["garbage"]["error"]
+    assert f"(the prepared copy of {folder / 'garbage.xml'})" in entries["garbage"]["error"]
