@@ -204,6 +204,8 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
             bsdfs[id] = loadBsdf(ctx, node, deferred);
         } else if (tag == "emitter") {
             loadEmitter(ctx, node, scene, deferred);
+        } else if (tag == "texture") {
+            deferred.textures.emplace_back(node, "<texture> at line " + std::to_string(ctx.line(node)));
         } else if (tag == "integrator") {
             if (hasIntegrator) ctx.fail(node, "only one integrator is supported");
             // An integrator given by the caller overrides the file's, whatever its type; the file's
@@ -212,7 +214,8 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
             if (integrator.empty() || typeOf(ctx, node) == integrator) loadIntegrator(ctx, node, scene);
             hasIntegrator = true;
         } else {
-            ctx.fail(node, "unsupported element: expected <default>, <sensor>, <shape>, <bsdf>, <emitter> or <integrator>");
+            ctx.fail(node, "unsupported element: expected <default>, <sensor>, <shape>, <bsdf>, <texture>, <emitter> or "
+                           "<integrator>");
         }
     }
     if (!hasSensor) ctx.fail(root, "the scene has no <sensor type=\"perspective\">");
@@ -234,6 +237,14 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
         skipped.push_back(what);
     }
     for (const auto &[node, what] : deferred.otherEmitters) skipped.push_back(what);
+    for (const auto &[node, what] : deferred.textures) skipped.push_back(what);
+    for (const auto &[node, what] : deferred.unreadReflectances) {
+        if (info->use.readsReflectance)
+            ctx.fail(node, "the " + chosen + " integrator reads the reflectance, given here as " +
+                               what.substr(what.find(": ") + 2, what.size() - what.find(": ") - 3) +
+                               "; this renderer reads an <rgb>, a <float> or a constant <spectrum>");
+        skipped.push_back(what);
+    }
     for (const auto &[node, what] : deferred.nonDiffuseBsdfs) {
         if (info->use.readsReflectance)
             ctx.fail(node, "unsupported bsdf type \"" + typeOf(ctx, node) + "\": the " + chosen +

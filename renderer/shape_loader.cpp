@@ -79,6 +79,20 @@ Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node, Deferred &defe
         return {0.5f, 0.5f, 0.5f};
     }
     XmlProps props(ctx, node);
+    // A reflectance given as a texture (inline or by <ref>) or per wavelength: whether it may go unread is
+    // decided when the integrator is known.
+    std::string unread;
+    for (const auto &child : props.objects())
+        if (std::string(child.name()) == "texture" || std::string(child.name()) == "ref")
+            unread = "a <" + std::string(child.name()) + "> at line " + std::to_string(ctx.line(child));
+    const pugi::xml_node given = props.node("reflectance");
+    if (given && std::string(given.name()) == "spectrum" && isPerWavelength(given))
+        unread = "a per-wavelength <spectrum> at line " + std::to_string(ctx.line(given));
+    if (!unread.empty()) {
+        deferred.unreadReflectances.emplace_back(node, "<bsdf type=\"diffuse\"> at line " +
+                                                           std::to_string(ctx.line(node)) + " (reflectance: " + unread + ")");
+        return {0.5f, 0.5f, 0.5f};
+    }
     const Color rho = props.getColor("reflectance", {0.5f, 0.5f, 0.5f});
     props.requireRange("reflectance", rho, 0.f, 1.f);
     props.finish("reflectance");

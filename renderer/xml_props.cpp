@@ -136,6 +136,10 @@ std::string XmlProps::getStringRequired(const std::string &name) {
     return getString(name, "");
 }
 
+bool isPerWavelength(const pugi::xml_node &spectrum) {
+    return spectrum.attribute("filename") || std::string(spectrum.attribute("value").value()).find(':') != std::string::npos;
+}
+
 Vec3f XmlProps::getColor(const std::string &name, const Vec3f &def) {
     const auto it = m_props.find(name);
     if (it == m_props.end()) return def;
@@ -145,7 +149,17 @@ Vec3f XmlProps::getColor(const std::string &name, const Vec3f &def) {
         const float v = parseFloat(it->second, m_ctx.attr(it->second, "value"));
         return {v, v, v};
     }
-    if (tag != "rgb") m_ctx.fail(it->second, "property \"" + name + "\" must be an <rgb> or a <float>");
+    if (tag == "spectrum") {
+        // A constant spectrum is that value in RGB too; per-wavelength values become RGB by Mitsuba's own
+        // colour matching, which this renderer does not model.
+        const std::string value = m_ctx.attr(it->second, "value");
+        if (isPerWavelength(it->second))
+            m_ctx.fail(it->second, "property \"" + name + "\": a <spectrum> given per wavelength becomes RGB by "
+                                   "Mitsuba's colour matching, which this renderer does not model: give an <rgb>");
+        const float v = parseFloat(it->second, value);
+        return {v, v, v};
+    }
+    if (tag != "rgb") m_ctx.fail(it->second, "property \"" + name + "\" must be an <rgb>, a <spectrum> or a <float>");
     return parseTriple(it->second, m_ctx.attr(it->second, "value"));
 }
 

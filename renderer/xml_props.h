@@ -26,6 +26,9 @@ struct XmlContext {
     std::string attr(const pugi::xml_node &node, const char *name) const;
 };
 
+/// Whether a <spectrum> is given per wavelength ("400:0.2, 700:0.8" or a file) rather than as one value.
+bool isPerWavelength(const pugi::xml_node &spectrum);
+
 /// The `<float name=...>`-style children of an element. Each get* consumes one; finish() rejects leftovers.
 class XmlProps {
 public:
@@ -37,13 +40,18 @@ public:
     bool getBool(const std::string &name, bool def);
     std::string getString(const std::string &name, const std::string &def);
     std::string getStringRequired(const std::string &name);
-    /// `<rgb>` with "r, g, b" or a single value, or a `<float>` gray.
+    /// `<rgb>` with "r, g, b" or a single value, a `<float>` gray, or a constant `<spectrum>`.
     Vec3f getColor(const std::string &name, const Vec3f &def);
     /// `<point>` with value="x, y, z" or x/y/z attributes.
     Vec3f getPoint(const std::string &name, const Vec3f &def);
     Transform getTransform(const std::string &name);
     /// Whether the element has a property called `name`.
     bool has(const std::string &name) const { return m_props.count(name) > 0; }
+    /// The property element called `name`, or an empty node.
+    pugi::xml_node node(const std::string &name) const {
+        const auto it = m_props.find(name);
+        return it == m_props.end() ? pugi::xml_node() : it->second;
+    }
     /// Accepts a property that cannot change our answer (whatever its type) without reading it.
     void ignore(const std::string &name) {
         if (m_props.count(name)) m_used.insert(name);

@@ -86,7 +86,7 @@ INSTANTIATE_TEST_SUITE_P(
     Kinds, SceneLoaderErrors,
     ::testing::Values(
         BadCase{"malformed", std::string(kHeader) + sensor() + "<shape type=\"cube\">\n</scene>\n", "malformed XML", 4},
-        BadCase{"unknown_element", std::string(kHeader) + sensor() + "  <texture type=\"bitmap\"/>\n</scene>\n",
+        BadCase{"unknown_element", std::string(kHeader) + sensor() + "  <medium type=\"homogeneous\"/>\n</scene>\n",
                 "unsupported element", 3},
         BadCase{"unknown_shape", std::string(kHeader) + sensor() + "  <shape type=\"cylinder\"/>\n</scene>\n",
                 "expected obj, ply, rectangle, cube or sphere", 3},
@@ -276,4 +276,31 @@ TEST(SceneLoader, ASensorWithoutFovHasMitsubasFocalLength) {
                                        "</sensor>\n" + kShape + "</scene>\n")
                   .find("expected a focal length in millimetres"),
               std::string::npos);
+}
+
+TEST(SceneLoader, ASpectrumIsReadWhenConstantAndAnUnreadableReflectanceIsRefusedOnlyWhereItIsRead) {
+    const std::string constant = std::string(kHeader) + sensor() +
+                                 "  <shape type=\"rectangle\"><bsdf type=\"diffuse\">"
+                                 "<spectrum name=\"reflectance\" value=\"0.25\"/></bsdf></shape>\n</scene>\n";
+    const SceneDescription scene = loadScene(writeScene("spectrum_constant", constant), {}, "ao");
+    EXPECT_EQ(scene.meshes.at(0).reflectance.x, 0.25f);
+    EXPECT_EQ(scene.meshes.at(0).reflectance.z, 0.25f);
+    for (const std::string &reflectance :
+         {std::string("<spectrum name=\"reflectance\" value=\"400:0.78, 700:0.78\"/>"),
+          std::string("<texture type=\"bitmap\" name=\"reflectance\"><string name=\"filename\" value=\"x.png\"/>"
+                      "</texture>")}) {
+        const std::string body = std::string(kHeader) + sensor() + "  <texture type=\"checkerboard\" id=\"c\"/>\n" +
+                                 "  <shape type=\"rectangle\">\n    <bsdf type=\"diffuse\">" + reflectance +
+                                 "</bsdf></shape>\n</scene>\n";
+        const std::string path = writeScene("spectrum_unread", body);
+        EXPECT_NO_THROW(loadScene(path, {}, "normals")) << reflectance;
+        try {
+            loadScene(path, {}, "ao");
+            FAIL() << "ao reads the reflectance: " << reflectance;
+        } catch (const SceneError &e) {
+            EXPECT_NE(std::string(e.what()).find(":5:"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("the ao integrator reads the reflectance"), std::string::npos)
+                << e.what();
+        }
+    }
 }
