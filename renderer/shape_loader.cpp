@@ -72,6 +72,10 @@ void requirePosition(const XmlContext &ctx, const pugi::xml_node &node, const st
 }
 
 Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node, Deferred &deferred) {
+    // Every integrator of ours reads the shading normal, which these perturb (Mitsuba's sh_normal shows it).
+    if (typeOf(ctx, node) == "bumpmap" || typeOf(ctx, node) == "normalmap")
+        ctx.fail(node, "a <bsdf type=\"" + typeOf(ctx, node) + "\"> perturbs the shading normal, which every "
+                       "integrator here reads and this renderer does not model");
     if (typeOf(ctx, node) != "diffuse") {
         // Only `normals` can ignore it; whether that is allowed is decided when the integrator is known.
         deferred.nonDiffuseBsdfs.emplace_back(node, "<bsdf type=\"" + typeOf(ctx, node) + "\"> at line " +

@@ -47,6 +47,15 @@ def scene_files(paths: list[Path]) -> list[Path]:
     return list(names.values())
 
 
+def _fill_size_parameters(root: ET.Element, film: ET.Element) -> None:
+    """A film width or height given as a $parameter takes its <default> (in place): the suite sets the size."""
+    defaults = {e.get("name"): e.get("value") for e in root.iter("default")}
+    for e in film:
+        value = e.get("value", "")
+        if e.get("name") in ("width", "height") and value.startswith("$") and value[1:] in defaults:
+            e.set("value", defaults[value[1:]])
+
+
 def _prepared_text(path: Path, resolution: int) -> str:
     """The file's text as the suite renders it (see the module docstring); unchanged if it is not XML, so
     that each engine reports the error as it would on the file itself."""
@@ -63,6 +72,7 @@ def _prepared_text(path: Path, resolution: int) -> str:
         return ET.tostring(root, encoding="unicode")
     film = next(root.iter("film"), None)
     if film is not None:
+        _fill_size_parameters(root, film)
         try:
             width, height = film_size(root)
         except ValueError:  # a size given as a $parameter: left as the file has it

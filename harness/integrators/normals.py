@@ -1,14 +1,15 @@
 """normals: the shading normal of the first hit, signed, 0 on a miss."""
 import numpy as np
 
-from harness.integrators.entry import AnalyticForm, IntegratorEntry, MitsubaMapping
+from harness.integrators.entry import UNUSED_EMITTERS, AnalyticForm, IntegratorEntry, MitsubaMapping
 
 ENTRY = IntegratorEntry(
     name="normals",
     our_spp=16,
     reference_spp=64,
-    # Emitters and BSDFs cannot change a normal; area emitters go as our loader skips them.
-    mitsuba=MitsubaMapping("aov", (("string", "aovs", "nn:sh_normal"),), drop_area_emitters=True),
+    # Emitters and BSDFs cannot change a normal: every emitter goes (an envmap's missing image cannot fail it).
+    mitsuba=MitsubaMapping("aov", (("string", "aovs", "nn:sh_normal"),),
+                           drop_emitters=("point", "constant", *UNUSED_EMITTERS), drop_area_emitters=True),
     analytic=AnalyticForm("the surface's normal (the plane's; (p - c)/R on a sphere)",
                           lambda scene, p, normal: np.broadcast_to(normal, p.shape),
                           scenes=("plane", "sphere_floor")),

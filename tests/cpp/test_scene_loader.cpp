@@ -86,6 +86,9 @@ INSTANTIATE_TEST_SUITE_P(
     Kinds, SceneLoaderErrors,
     ::testing::Values(
         BadCase{"malformed", std::string(kHeader) + sensor() + "<shape type=\"cube\">\n</scene>\n", "malformed XML", 4},
+        BadCase{"normalmap", std::string(kHeader) + sensor() +
+                "  <shape type=\"rectangle\">\n    <bsdf type=\"normalmap\"/></shape>\n</scene>\n",
+                "perturbs the shading normal", 4},
         BadCase{"unknown_element", std::string(kHeader) + sensor() + "  <medium type=\"homogeneous\"/>\n</scene>\n",
                 "unsupported element", 3},
         BadCase{"unknown_shape", std::string(kHeader) + sensor() + "  <shape type=\"cylinder\"/>\n</scene>\n",

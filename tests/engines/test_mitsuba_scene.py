@@ -57,5 +57,5 @@ def test_emitters_no_integrator_uses_are_removed_as_our_loader_skips_them():
         "</scene>", '<emitter type="spot"/><emitter type="directional"/><emitter type="projector"/>'
                     '<emitter type="envmap"/></scene>')
     kept = {i: [e.get("type") for e in ET.fromstring(mitsuba_xml(text, i)).findall("emitter")]
-            for i in ("simple", "ao")}
-    assert kept == {"simple": ["point"], "ao": ["constant"]}
+            for i in ("simple", "ao", "normals")}
+    assert kept == {"simple": ["point"], "ao": ["constant"], "normals": []}

@@ -62,3 +62,15 @@ def test_user_scenes_replace_the_suite_or_join_it(tmp_path):
         select_cases(None, user=clash, with_suite=True)
     invariance_cases, _ = select(["ball:ao", "scale"], user=user)
     assert [c.key for c in invariance_cases] == ["ball:ao"] and invariance_cases[0].scene == user[0].prepared
+
+
+def test_a_film_size_given_by_parameters_takes_their_defaults(tmp_path):
+    path = _scene(tmp_path / "in")
+    text = path.read_text().replace('name="width" value="$res"', 'name="width" value="$resx"') \
+        .replace('name="height" value="$res"', 'name="height" value="$resy"')
+    path.write_text(text.replace("<scene version=\"3.0.0\">", '<scene version="3.0.0"><default name="resx" '
+                                 'value="200"/><default name="resy" value="100"/>', 1))
+    (scene,) = prepare_scenes([path], tmp_path / "cache", 96)
+    root = ET.parse(scene.prepared).getroot()
+    sizes = {e.get("name"): e.get("value") for e in next(root.iter("film")) if e.get("name") in ("width", "height")}
+    assert sizes == {"width": "$res", "height": "48"}
