@@ -58,16 +58,15 @@ def register(mi) -> None:
             self.epsilons = float(props.get("offset_epsilons", OFFSET_EPSILONS))
             self.floor = float(props["offset_floor"]) if "offset_floor" in props else None
 
-        def origin(self, si, d):
-            """si.p moved off its surface along the geometric normal, to the side d leaves by."""
-            n = dr.select(dr.dot(si.n, d) >= 0, si.n, -si.n)
-            magnitude = dr.max(dr.abs(si.p))
-            return si.p + n * (self.epsilons * 2.0**-24 * (magnitude + self.floor))
-
         def sample(self, scene, sampler, ray, medium=None, active=True):
-            if self.floor is None:
-                self.floor = smallest_shape_size(scene)
+            floor = self.floor if self.floor is not None else smallest_shape_size(scene)
             si = scene.ray_intersect(ray, active)
+
+            def origin(d):
+                """si.p moved off its surface along the geometric normal, to the side d leaves by."""
+                n = dr.select(dr.dot(si.n, d) >= 0, si.n, -si.n)
+                return si.p + n * (self.epsilons * 2.0**-24 * (dr.max(dr.abs(si.p)) + floor))
+
             result = mi.Spectrum(0.0)
             if not self.hide_emitters:
                 result += si.emitter(scene, active).eval(si, active)
@@ -77,7 +76,7 @@ def register(mi) -> None:
             for _ in range(self.emitter_samples):
                 ds, emitter_val = scene.sample_emitter_direction(si, sampler.next_2d(active), False, active)
                 active_e = active & (ds.pdf != 0.0)
-                o = self.origin(si, ds.d)
+                o = origin(ds.d)
                 to_target = ds.p - o
                 dist = dr.norm(to_target)
                 shadow = mi.Ray3f(o, to_target / dist)
@@ -92,7 +91,7 @@ def register(mi) -> None:
                 sample2 = sampler.next_2d(active)
                 bs, bsdf_val = bsdf.sample(ctx, si, sampler.next_1d(active), sample2, active)
                 d = si.to_world(bs.wo)
-                si_bsdf = scene.ray_intersect(mi.Ray3f(self.origin(si, d), d), active)
+                si_bsdf = scene.ray_intersect(mi.Ray3f(origin(d), d), active)
                 emitter = si_bsdf.emitter(scene, active)
                 active_b = active & (emitter != None)  # noqa: E711 (a Dr.Jit pointer array)
                 emitter_val = emitter.eval(si_bsdf, active_b)

@@ -68,6 +68,6 @@ def load_scene(path: str | Path, integrator: str, sampler: str | None = None, ti
         root = ET.fromstring(mitsuba_xml(path.read_text(), integrator, sampler, tight))
     except ET.ParseError as e:
         raise ValueError(f"{path}: not an XML scene file ({e})") from None
-    absolute_paths(root, path.resolve().parent, path)
+    absolute_paths(root, path)
     return mi.load_string(ET.tostring(root, encoding="unicode"), optimize=False,
                           **{k: str(v) for k, v in params.items()})

@@ -71,12 +71,12 @@ def _expand(parent: ET.Element, file: Path, folders: list[Path], chain: tuple[Pa
         index += 1
 
 
-def absolute_paths(root: ET.Element, folder: Path, file: Path | None = None) -> None:
-    """`root` (the scene read from `file`, in `folder`) with its includes inlined, its <path>s followed and
-    removed, and every relative file name made absolute (in place). SceneFileError for a <path> or
-    <include> that leads nowhere."""
-    file = file or folder / "scene.xml"
-    _expand(root, file, [folder.resolve()], (file.resolve(),))
+def absolute_paths(root: ET.Element, file: Path) -> None:
+    """`root` (the scene read from `file`) with its includes inlined, its <path>s followed and removed, and
+    every relative file name made absolute (in place). SceneFileError for a <path> or <include> that leads
+    nowhere."""
+    file = Path(file).resolve()
+    _expand(root, file, [file.parent], (file,))
 
 
 def anchor_paths(root: ET.Element, folder: Path) -> None:

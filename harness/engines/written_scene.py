@@ -50,7 +50,7 @@ def written_scene(path: Path, params: dict[str, str], integrator: str, spp: int)
     renderer's own name for it; `params` override the scene's <default>s (res sets width and height)."""
     root = ET.parse(path).getroot()
     resolve_defaults(root, params, str(path))
-    absolute_paths(root, path.parent, path)
+    absolute_paths(root, path)
     for e in [e for e in root if e.tag == "integrator"]:
         root.remove(e)
     root.insert(0, ET.Element("integrator", type=integrator))

@@ -65,7 +65,7 @@ def _prepared_text(path: Path, resolution: int) -> str:
     except ET.ParseError:
         return text
     try:
-        absolute_paths(root, path.resolve().parent, path)
+        absolute_paths(root, path)
     except SceneFileError:  # a <path> or <include> that leads nowhere: each engine's case says where
         root = ET.fromstring(text)
         anchor_paths(root, path.resolve().parent)

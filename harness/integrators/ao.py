@@ -6,9 +6,9 @@ ENTRY = IntegratorEntry(
     name="ao",
     our_spp=32,
     reference_spp=256,
-    # Direct light from the environment alone: point lights and area emitters go, as our loader skips them.
-    mitsuba=MitsubaMapping("direct", (("boolean", "hide_emitters", "true"),), drop_emitters=("point", *UNUSED_EMITTERS),
-                           drop_area_emitters=True, add_environment=True),
+    # Direct light from the environment alone: every other emitter goes, as our loader skips them.
+    mitsuba=MitsubaMapping("direct", (("boolean", "hide_emitters", "true"),),
+                           drop_emitters=("point", *UNUSED_EMITTERS), drop_area_emitters=True, add_environment=True),
     analytic=AnalyticForm("rho * L_env * V: V = 1 on a lone plane; 1 - (R/D)^3 on the floor under a resting "
                           "sphere, (1 + n.up)/2 on the sphere",
                           lambda scene, p, normal: scene.reflectance * scene.environment * ao_visible(scene, p, normal),

@@ -186,7 +186,7 @@ def rewrite(scene: Path, out: Path, kind: str, value) -> Path:
     root = tree.getroot()
     # Includes inlined and file names made absolute first: the rewrite must reach every shape, and the
     # variant is written elsewhere.
-    absolute_paths(root, Path(scene).resolve().parent, Path(scene))
+    absolute_paths(root, Path(scene))
     if kind in ("scale", "rotate", "translate"):
         transform_scene(root, kind, value)
     elif kind == "light":

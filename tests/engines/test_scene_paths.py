@@ -33,7 +33,7 @@ def _tree(tmp_path):
 def test_includes_are_inlined_in_place_and_files_found_in_the_path_folders(tmp_path):
     main = _tree(tmp_path)
     root = ET.parse(main).getroot()
-    absolute_paths(root, main.parent, main)
+    absolute_paths(root, main)
     assert [e.tag for e in root] == ["default", "sensor", "shape", "shape"]
     (mesh,) = [e.get("value") for e in root.iter("string") if e.get("name") == "filename"]
     assert mesh == str((tmp_path / "common" / "meshes" / "ball.ply").resolve())
@@ -48,7 +48,7 @@ def test_what_leads_nowhere_is_one_line_naming_the_file(tmp_path, body, message)
     main = tmp_path / "main.xml"
     main.write_text(f'<scene version="3.0.0">{body}<shape type="rectangle"/></scene>')
     with pytest.raises(SceneFileError, match=message) as raised:
-        absolute_paths(ET.parse(main).getroot(), tmp_path, main)
+        absolute_paths(ET.parse(main).getroot(), main)
     assert str(main) in str(raised.value) and "\n" not in str(raised.value)
 
 
