@@ -38,6 +38,21 @@ void requireRigid(const XmlContext &ctx, const pugi::xml_node &node, const Trans
         }
 }
 
+/// Mitsuba's alternative to fov (and its default, 50mm): a focal length in 35 mm film equivalent, which
+/// sets the field of view, in degrees, along the film's diagonal (36 x 24 mm).
+float focalLengthFov(XmlProps &props) {
+    const std::string text = props.getString("focal_length", "50mm");
+    const std::string number = text.size() > 2 && text.compare(text.size() - 2, 2, "mm") == 0
+                                   ? text.substr(0, text.size() - 2) : text;
+    char *end = nullptr;
+    const double focal = std::strtod(number.c_str(), &end);
+    if (number.empty() || *end != '\0' || !(focal > 0.0 && focal < 1e6))
+        props.failAt("focal_length", "expected a focal length in millimetres such as \"50mm\", got \"" + text + "\"");
+    const float fov = float(2.0 * std::atan(std::sqrt(36.0 * 36.0 + 24.0 * 24.0) / (2.0 * focal)) * 180.0 / M_PI);
+    props.requireRange("focal_length", fov, kMinFov, kMaxFov);
+    return fov;
+}
+
 void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene) {
     if (typeOf(ctx, node) != "perspective") ctx.fail(node, "unsupported sensor type: expected \"perspective\"");
     XmlProps props(ctx, node);
@@ -47,18 +62,8 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
         props.requireRange("fov", cam.fov, kMinFov, kMaxFov);
         cam.fovAxis = props.getString("fov_axis", "x");
     } else {
-        // Mitsuba's alternative (and default, 50mm): a focal length in 35 mm film equivalent, which sets
-        // the field of view along the film's diagonal (36 x 24 mm).
         if (props.has("fov_axis")) props.failAt("fov_axis", "fov_axis goes with fov, not with a focal length");
-        const std::string text = props.getString("focal_length", "50mm");
-        const std::string number = text.size() > 2 && text.compare(text.size() - 2, 2, "mm") == 0
-                                       ? text.substr(0, text.size() - 2) : text;
-        char *end = nullptr;
-        const double focal = std::strtod(number.c_str(), &end);
-        if (number.empty() || *end != '\0' || !(focal > 0.0 && focal < 1e6))
-            props.failAt("focal_length", "expected a focal length in millimetres such as \"50mm\", got \"" + text + "\"");
-        cam.fov = float(2.0 * std::atan(std::sqrt(36.0 * 36.0 + 24.0 * 24.0) / (2.0 * focal)) * 180.0 / M_PI);
-        props.requireRange("focal_length", cam.fov, kMinFov, kMaxFov);
+        cam.fov = focalLengthFov(props);
         cam.fovAxis = "diagonal";
     }
     if (cam.fovAxis != "x" && cam.fovAxis != "y" && cam.fovAxis != "diagonal" && cam.fovAxis != "smaller" &&
@@ -108,12 +113,11 @@ void loadEmitter(const XmlContext &ctx, const pugi::xml_node &node, SceneDescrip
     if (type == "point") {
         PointLight light;
         // Mitsuba places a point light by `position` or by `to_world` (its origin), not both.
-        if (props.has("position") && props.has("to_world"))
-            ctx.fail(node, "a point light takes position or to_world, not both");
-        light.position = props.has("to_world") ? props.getTransform("to_world").point({0.f, 0.f, 0.f})
-                                               : props.getPoint("position", {0.f, 0.f, 0.f});
-        props.requireRange(props.has("to_world") ? "to_world" : "position", light.position, -kMaxCoordinate,
-                           kMaxCoordinate);
+        const bool placed = props.has("to_world");
+        if (placed && props.has("position")) ctx.fail(node, "a point light takes position or to_world, not both");
+        light.position = placed ? props.getTransform("to_world").point({0.f, 0.f, 0.f})
+                                : props.getPoint("position", {0.f, 0.f, 0.f});
+        props.requireRange(placed ? "to_world" : "position", light.position, -kMaxCoordinate, kMaxCoordinate);
         light.intensity = props.getColor("intensity", {1.f, 1.f, 1.f});
         props.requireRange("intensity", light.intensity, 0.f, kMaxEmission);
         props.finish("position or to_world, intensity");
@@ -214,8 +218,8 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
             if (integrator.empty() || typeOf(ctx, node) == integrator) loadIntegrator(ctx, node, scene);
             hasIntegrator = true;
         } else {
-            ctx.fail(node, "unsupported element: expected <default>, <sensor>, <shape>, <bsdf>, <texture>, <emitter> or "
-                           "<integrator>");
+            ctx.fail(node, "unsupported element: expected <default>, <sensor>, <shape>, <bsdf>, <texture>, "
+                           "<emitter> or <integrator>");
         }
     }
     if (!hasSensor) ctx.fail(root, "the scene has no <sensor type=\"perspective\">");
@@ -238,12 +242,11 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     }
     for (const auto &[node, what] : deferred.otherEmitters) skipped.push_back(what);
     for (const auto &[node, what] : deferred.textures) skipped.push_back(what);
-    for (const auto &[node, what] : deferred.unreadReflectances) {
+    for (const auto &unread : deferred.unreadReflectances) {
         if (info->use.readsReflectance)
-            ctx.fail(node, "the " + chosen + " integrator reads the reflectance, given here as " +
-                               what.substr(what.find(": ") + 2, what.size() - what.find(": ") - 3) +
-                               "; this renderer reads an <rgb>, a <float> or a constant <spectrum>");
-        skipped.push_back(what);
+            ctx.fail(unread.node, "the " + chosen + " integrator reads the reflectance, given here as " + unread.given +
+                                      "; this renderer reads an <rgb>, a <float> or a constant <spectrum>");
+        skipped.push_back(unread.what);
     }
     for (const auto &[node, what] : deferred.nonDiffuseBsdfs) {
         if (info->use.readsReflectance)

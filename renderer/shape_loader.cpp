@@ -72,14 +72,15 @@ void requirePosition(const XmlContext &ctx, const pugi::xml_node &node, const st
 }
 
 Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node, Deferred &deferred) {
+    const std::string type = typeOf(ctx, node);
+    const std::string at = " at line " + std::to_string(ctx.line(node));
     // Every integrator of ours reads the shading normal, which these perturb (Mitsuba's sh_normal shows it).
-    if (typeOf(ctx, node) == "bumpmap" || typeOf(ctx, node) == "normalmap")
-        ctx.fail(node, "a <bsdf type=\"" + typeOf(ctx, node) + "\"> perturbs the shading normal, which every "
-                       "integrator here reads and this renderer does not model");
-    if (typeOf(ctx, node) != "diffuse") {
+    if (type == "bumpmap" || type == "normalmap")
+        ctx.fail(node, "a <bsdf type=\"" + type + "\"> perturbs the shading normal, which every integrator here "
+                       "reads and this renderer does not model");
+    if (type != "diffuse") {
         // Only `normals` can ignore it; whether that is allowed is decided when the integrator is known.
-        deferred.nonDiffuseBsdfs.emplace_back(node, "<bsdf type=\"" + typeOf(ctx, node) + "\"> at line " +
-                                                        std::to_string(ctx.line(node)));
+        deferred.nonDiffuseBsdfs.emplace_back(node, "<bsdf type=\"" + type + "\">" + at);
         return {0.5f, 0.5f, 0.5f};
     }
     XmlProps props(ctx, node);
@@ -93,8 +94,8 @@ Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node, Deferred &defe
     if (given && std::string(given.name()) == "spectrum" && isPerWavelength(given))
         unread = "a per-wavelength <spectrum> at line " + std::to_string(ctx.line(given));
     if (!unread.empty()) {
-        deferred.unreadReflectances.emplace_back(node, "<bsdf type=\"diffuse\"> at line " +
-                                                           std::to_string(ctx.line(node)) + " (reflectance: " + unread + ")");
+        deferred.unreadReflectances.push_back({node, "<bsdf type=\"diffuse\">" + at + " (reflectance: " + unread + ")",
+                                               unread});
         return {0.5f, 0.5f, 0.5f};
     }
     const Color rho = props.getColor("reflectance", {0.5f, 0.5f, 0.5f});

@@ -14,9 +14,13 @@ namespace mcval {
 /// Elements the chosen integrator may not use, judged once the integrator is known.
 struct Deferred {
     std::vector<std::pair<pugi::xml_node, std::string>> nonDiffuseBsdfs, areaEmitters;
-    /// Diffuse BSDFs whose reflectance we cannot read (a texture, a per-wavelength spectrum): refused
-    /// where the integrator reads the reflectance, skipped elsewhere.
-    std::vector<std::pair<pugi::xml_node, std::string>> unreadReflectances;
+    /// A diffuse BSDF whose reflectance we cannot read (`given`: a texture, a per-wavelength spectrum):
+    /// refused where the integrator reads the reflectance, skipped elsewhere (`what` in the note).
+    struct UnreadReflectance {
+        pugi::xml_node node;
+        std::string what, given;
+    };
+    std::vector<UnreadReflectance> unreadReflectances;
     /// Top-level <texture>s: read only through a BSDF, which then is an unread reflectance.
     std::vector<std::pair<pugi::xml_node, std::string>> textures;
     /// Emitters of types no integrator of ours uses (directional, spot, projector, envmap): skipped.

@@ -137,7 +137,8 @@ std::string XmlProps::getStringRequired(const std::string &name) {
 }
 
 bool isPerWavelength(const pugi::xml_node &spectrum) {
-    return spectrum.attribute("filename") || std::string(spectrum.attribute("value").value()).find(':') != std::string::npos;
+    return spectrum.attribute("filename") ||
+           std::string(spectrum.attribute("value").value()).find(':') != std::string::npos;
 }
 
 Vec3f XmlProps::getColor(const std::string &name, const Vec3f &def) {

@@ -107,8 +107,9 @@ def bench_html(benches: list[CaseBench], rays: dict | None, seed: dict | None, m
 Efficiency is 1 / (relMSE × seconds), the median over steps of 16 spp and more; a ratio takes it over the steps
 both of its curves rendered (a sampler that rounds a sample count skips that step). Each engine runs with each of its
 samplers (curves labelled engine/sampler). "Same sampler" is the tested engine (the first) over the next one run
-(by default Mitsuba llvm_ad_rgb as shipped), both with independent samples: the engine comparison. "Best against best" pairs each engine's most efficient stratified sampler on the
-case (ours: Owen-scrambled Sobol; Mitsuba: ldsampler or multijitter): what a user gets, named in the cell.
+(by default Mitsuba llvm_ad_rgb as shipped), both with independent samples: the engine comparison. "Best against
+best" pairs each engine's most efficient stratified sampler on the case (ours: Owen-scrambled Sobol; Mitsuba:
+ldsampler or multijitter): what a user gets, named in the cell.
 Slopes near −1 mean an unbiased estimator converging at the usual rate; steeper ones come from stratified
 sampling; flatter ones are a finding (a bias against the reference). "Below ref. noise": the error fell below
 what the reference's own variance lets us measure at 16 spp and more.</p>
