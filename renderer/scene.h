@@ -86,6 +86,9 @@ struct SceneDescription {
     std::vector<Sphere> spheres;
     std::vector<PointLight> pointLights;
     std::optional<Color> environment;  ///< radiance of the `constant` emitter, if any
+    /// The file's <integrator>'s `hide_emitters`, whatever its type (nested ones included): every Mitsuba
+    /// integrator reads it with one meaning, so it holds for the chosen integrator too. Unset: not given.
+    std::optional<bool> hideEmitters;
     IntegratorSpec integrator;
 };
 

@@ -144,6 +144,15 @@ void loadIntegrator(const XmlContext &ctx, const pugi::xml_node &node, SceneDesc
     scene.integrator.type = type;
 }
 
+/// The `hide_emitters` of the file's integrator or of one nested in it (`moment`, `aov`), if given.
+std::optional<bool> fileHideEmitters(const XmlContext &ctx, const pugi::xml_node &integrator) {
+    const pugi::xml_node flag = integrator.find_node([](const pugi::xml_node &n) {
+        return std::string(n.name()) == "boolean" && std::string(n.attribute("name").value()) == "hide_emitters";
+    });
+    if (!flag) return std::nullopt;
+    return XmlProps(ctx, flag.parent()).getBool("hide_emitters", true);
+}
+
 /// The whole file, refusing what is not a regular file (a FIFO would block) or is too large.
 std::string readSceneFile(const std::string &path) {
     std::error_code ec;
@@ -216,6 +225,7 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
             // parameters are read only when it names the same integrator. The caller asked for the
             // override, so it needs no note.
             if (integrator.empty() || typeOf(ctx, node) == integrator) loadIntegrator(ctx, node, scene);
+            scene.hideEmitters = fileHideEmitters(ctx, node);
             hasIntegrator = true;
         } else {
             ctx.fail(node, "unsupported element: expected <default>, <sensor>, <shape>, <bsdf>, <texture>, "

@@ -1,6 +1,7 @@
 """Our scene files, made into Mitsuba scenes: each integrator mapped onto its Mitsuba equivalent as its entry
-says (harness/integrators/<name>.py, `mitsuba`): the <integrator> replaced, and removed what our loader skips
-for that integrator (emitter types, area emitters inside shapes), a constant emitter added where ours assumes one.
+says (harness/integrators/<name>.py, `mitsuba`): the <integrator> replaced (keeping the file's `hide_emitters`),
+and removed what our loader skips for that integrator (emitter types, area emitters inside shapes), a constant
+emitter added where ours assumes one.
 A sampler Mitsuba does not have (ours: `sobol`) becomes its closest one (MITSUBA_SAMPLER).
 
 The film stores float32 (Mitsuba's hdrfilm default is float16). Nothing is written into the scene's folder.
@@ -12,6 +13,7 @@ from pathlib import Path
 
 from harness.engines import mitsuba_direct
 from harness.engines.scene_paths import absolute_paths
+from harness.engines.written_scene import file_hide_emitters
 from harness.integrators import entry
 
 
@@ -28,6 +30,7 @@ def mitsuba_xml(text: str, integrator: str, sampler: str | None = None, tight: b
     integrator with its ray offset taken to the limit (harness/engines/mitsuba_direct.py)."""
     mapping = entry(integrator).mitsuba
     root = ET.fromstring(text)
+    hide = file_hide_emitters(root)
     old = [e for e in root if e.tag == "integrator"]
     index = list(root).index(old[0]) if old else len(root)
     for e in old:
@@ -35,7 +38,8 @@ def mitsuba_xml(text: str, integrator: str, sampler: str | None = None, tight: b
     plugin = TIGHT_PLUGINS.get(mapping.plugin, mapping.plugin) if tight else mapping.plugin
     new = ET.Element("integrator", type=plugin)
     for tag, name, value in mapping.properties:
-        ET.SubElement(new, tag, name=name, value=value)
+        # The file's own hide_emitters wins over the mapping's (written_scene.file_hide_emitters).
+        ET.SubElement(new, tag, name=name, value=hide if name == "hide_emitters" and hide is not None else value)
     if mapping.add_environment and not any(e.tag == "emitter" and e.get("type") == "constant" for e in root):
         root.append(ET.Element("emitter", type="constant"))
     root.insert(index, new)

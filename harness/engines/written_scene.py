@@ -35,6 +35,17 @@ def _set_property(parent: ET.Element, tag: str, name: str, value: str) -> None:
     ET.SubElement(parent, tag, name=name, value=value)
 
 
+def file_hide_emitters(root: ET.Element) -> str | None:
+    """The `hide_emitters` value ("true"/"false") of the file's <integrator> or of one nested in it (`moment`,
+    `aov`), or None. Every Mitsuba integrator reads it with one meaning, so the integrator that replaces the
+    file's keeps it: ao then shows the environment to camera rays that escape (renderer/integrators/ao.cpp)."""
+    for integrator in (e for e in root if e.tag == "integrator"):
+        for e in integrator.iter("boolean"):
+            if e.get("name") == "hide_emitters":
+                return e.get("value", "").strip().lower()
+    return None
+
+
 def film_size(root: ET.Element) -> tuple[int, int]:
     """(width, height) of the first film, Mitsuba's defaults (768 x 576) where it says nothing."""
     film = next(root.iter("film"), None)
@@ -51,9 +62,13 @@ def written_scene(path: Path, params: dict[str, str], integrator: str, spp: int)
     root = ET.parse(path).getroot()
     resolve_defaults(root, params, str(path))
     absolute_paths(root, path)
+    hide = file_hide_emitters(root)
     for e in [e for e in root if e.tag == "integrator"]:
         root.remove(e)
-    root.insert(0, ET.Element("integrator", type=integrator))
+    new = ET.Element("integrator", type=integrator)
+    if hide is not None:
+        ET.SubElement(new, "boolean", name="hide_emitters", value=hide)
+    root.insert(0, new)
     for sensor in root.iter("sensor"):
         for e in [e for e in sensor if e.tag == "sampler"]:
             sensor.remove(e)

@@ -1,5 +1,7 @@
 // ao: ambient occlusion under the constant emitter (radiance 1 without one), cosine-weighted:
-// L = rho * L_env * mean(V(w_i)) over `samples` occlusion rays per camera sample.
+// L = rho * L_env * mean(V(w_i)) over `samples` occlusion rays per camera sample. A camera ray that
+// escapes sees black, or L_env where the file's integrator says hide_emitters = false (Mitsuba's and
+// Nori's convention; black is the suite's, so that the image is the occlusion alone).
 #include "../frame.h"
 #include "../hot.h"
 #include "../scene_limits.h"
@@ -15,8 +17,8 @@ namespace {
 /// The j-th occlusion ray of every lane goes to Embree as one packet (their directions differ: an
 /// incoherent packet). Each loop runs over all kPacketSize lanes without branches, so that it compiles to
 /// SIMD; a lane without a front-facing hit traces nothing and returns 0.
-MCVAL_HOT void aoPacket(const EmbreeScene &embree, const Color &environment, int samples, const SamplePacket &packet,
-                        const Sampler &sampler, Color *out, RayCounts &counts) {
+MCVAL_HOT void aoPacket(const EmbreeScene &embree, const Color &environment, const Color &background, int samples,
+                        const SamplePacket &packet, const Sampler &sampler, Color *out, RayCounts &counts) {
     const HitPacket &h = packet.lanes;
     alignas(64) int front[kPacketSize], visible[kPacketSize];
     // The tangent frame around each lane's shading normal, in SoA form (an array of Frames would keep
@@ -25,7 +27,7 @@ MCVAL_HOT void aoPacket(const EmbreeScene &embree, const Color &environment, int
         tz[kPacketSize];
     int traced = 0;
     for (int i = 0; i < kPacketSize; ++i) {
-        // A camera ray that escapes returns 0 (the environment itself is hidden); so does a back face.
+        // A back face returns 0; a camera ray that escapes returns the background.
         front[i] = (i < packet.count) & h.front(i);
         visible[i] = 0;
         traced += front[i];
@@ -75,22 +77,24 @@ MCVAL_HOT void aoPacket(const EmbreeScene &embree, const Color &environment, int
     for (int i = 0; i < packet.count; ++i) {
         out[i] = front[i] ? embree.reflectance(h.geom[i]) * environment *
                                 (static_cast<float>(visible[i]) / static_cast<float>(samples))
-                          : Color(0.f, 0.f, 0.f);
+                 : h.found[i] ? Color(0.f, 0.f, 0.f)
+                              : background;
     }
 }
 
 class AoIntegrator final : public Integrator {
 public:
     AoIntegrator(const SceneDescription &scene, const EmbreeScene &embree, int samples)
-        : m_embree(embree), m_environment(scene.environment.value_or(Color(1.f, 1.f, 1.f))), m_samples(samples) {}
+        : m_embree(embree), m_environment(scene.environment.value_or(Color(1.f, 1.f, 1.f))),
+          m_background(scene.hideEmitters.value_or(true) ? Color(0.f, 0.f, 0.f) : m_environment), m_samples(samples) {}
 
     void LiPacket(const SamplePacket &packet, Sampler &sampler, Color *out, RayCounts &counts) const override {
-        aoPacket(m_embree, m_environment, m_samples, packet, sampler, out, counts);
+        aoPacket(m_embree, m_environment, m_background, m_samples, packet, sampler, out, counts);
     }
 
 private:
     const EmbreeScene &m_embree;
-    Color m_environment;
+    Color m_environment, m_background;
     int m_samples;
 };
 
@@ -98,13 +102,14 @@ private:
 
 MCVAL_REGISTER_INTEGRATOR({
     "ao",
-    "ambient occlusion under the constant emitter, cosine-weighted (property: samples)",
+    "ambient occlusion under the constant emitter, cosine-weighted (properties: samples, hide_emitters = true)",
     SceneUse{/*needsPointLight=*/false, /*areaEmittersLight=*/false, /*readsReflectance=*/true},
     [](XmlProps *props) -> IntegratorMaker {
         int samples = 1;
         if (props) {
             samples = props->getInt("samples", 1);
             props->requireRange("samples", samples, 1, kMaxAoSamples);
+            props->ignore("hide_emitters");  // read by the loader for every integrator type (scene.h)
             props->finish("samples");
         }
         return [samples](const SceneDescription &scene, const EmbreeScene &embree) {
