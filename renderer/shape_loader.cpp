@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "disk_cylinder_loader.h"
 #include "error.h"
 #include "mesh.h"
 #include "scene_limits.h"
@@ -119,6 +120,20 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const std::map
         scene.spheres.push_back(std::move(sphere));
         return;
     }
+    if (type == "disk") {
+        Disk disk = loadDisk(props, toWorld);
+        disk.name = name;
+        disk.reflectance = loadShapeChildren(ctx, props, bsdfs, deferred);
+        scene.disks.push_back(std::move(disk));
+        return;
+    }
+    if (type == "cylinder") {
+        Cylinder cylinder = loadCylinder(props, toWorld);
+        cylinder.name = name;
+        cylinder.reflectance = loadShapeChildren(ctx, props, bsdfs, deferred);
+        scene.cylinders.push_back(std::move(cylinder));
+        return;
+    }
     Mesh mesh;
     if (type == "obj" || type == "ply") {
         const std::string filename = props.getStringRequired("filename");
@@ -134,7 +149,8 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const std::map
         props.finish("to_world");
         mesh = type == "rectangle" ? makeRectangle(toWorld) : makeCube(toWorld);
     } else {
-        ctx.fail(node, "unsupported shape type \"" + type + "\": expected obj, ply, rectangle, cube or sphere");
+        ctx.fail(node, "unsupported shape type \"" + type + "\": expected obj, ply, rectangle, cube, sphere, disk "
+                           "or cylinder");
     }
     requireFiniteMesh(ctx, node, mesh);
     mesh.name = name;

@@ -1,4 +1,4 @@
-// Shapes and their materials in a scene file: meshes, spheres, bsdfs and area emitters.
+// Shapes and their materials in a scene file: meshes, exact shapes, bsdfs and area emitters.
 #pragma once
 
 #include <map>
@@ -33,8 +33,8 @@ void requirePosition(const XmlContext &ctx, const pugi::xml_node &node, const st
 /// A <bsdf>'s reflectance; a type other than diffuse is deferred (only some integrators can ignore it).
 Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node, Deferred &deferred);
 
-/// A <shape> (obj, ply, rectangle, cube or sphere) with its bsdf or ref and area emitter, appended
-/// to the scene's meshes or spheres.
+/// A <shape> (obj, ply, rectangle, cube, sphere, disk or cylinder) with its bsdf or ref and area
+/// emitter, appended to the scene's meshes, spheres, disks or cylinders.
 void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const std::map<std::string, Color> &bsdfs,
                SceneDescription &scene, Deferred &deferred);
 
