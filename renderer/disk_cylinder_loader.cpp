@@ -34,10 +34,12 @@ void requireTraceable(XmlProps &props, const Shape &shape, const char *what) {
         << ", " << hi.y << ", " << hi.z << ")";
     if (!(extent <= kMaxCoordinate))
         props.failAt("to_world", msg.str() + ": it must lie within " + std::to_string(kMaxCoordinate));
-    const double size = shapeSize(shape);
-    if (!(size >= kMinSphereRadius && size >= kMinSphereRadiusToCenter * extent)) {
+    // As for the sphere: the size against the largest coordinate of the box's centre.
+    const Vec3d c = (lo + hi) * 0.5;
+    const double centre = std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)}), size = shapeSize(shape);
+    if (!(size >= kMinSphereRadius && size >= kMinSphereRadiusToCenter * centre)) {
         msg << " with size " << size << ": the size must be at least " << kMinSphereRadius << " and "
-            << kMinSphereRadiusToCenter << " times its largest coordinate (float32 could not place points on it)";
+            << kMinSphereRadiusToCenter << " times its centre's largest coordinate (float32 could not place points on it)";
         props.failAt("to_world", msg.str());
     }
 }
