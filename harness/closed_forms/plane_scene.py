@@ -192,6 +192,8 @@ def _read_plane_scene(path: str | Path, params: dict[str, str] | None) -> PlaneS
     film = sensor.find("film") if sensor is not None else None
     if film is None:
         raise NotAnalytic("no <sensor> with a <film>")
+    if sensor.get("type") != "perspective":
+        raise NotAnalytic("the closed forms see through the perspective sensor, not \"" + str(sensor.get("type")) + "\"")
     rfilter = film.find("rfilter")
     if rfilter is None or rfilter.get("type") != "box":
         raise NotAnalytic("closed forms are integrated over pixels with a box filter")
