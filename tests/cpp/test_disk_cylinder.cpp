@@ -130,6 +130,12 @@ TEST(Disk, FlipNormalsAMirroredZAndARotationTurnTheNormal) {
                                                          "</transform>\n"));
     ASSERT_TRUE(mirroredX.trace({0.3f, 0.2f, 5.f}, {0.f, 0.f, -1.f}, hit));
     expectNear(hit.ns, {0.f, 0.f, 1.f}, 1e-7f);
+    // Sheared along x by z: the disk's plane does not move, and neither does its normal (the inverse
+    // transpose; to_world applied to +z as a vector would tilt it).
+    const Traced sheared(load("disk_shear", "disk", "<transform name=\"to_world\"><matrix value=\"1 0 0.5 0 0 1 0 0 "
+                                                    "0 0 1 0 0 0 0 1\"/></transform>\n"));
+    ASSERT_TRUE(sheared.trace({0.3f, 0.2f, 5.f}, {0.f, 0.f, -1.f}, hit));
+    expectNear(hit.ns, {0.f, 0.f, 1.f}, 1e-7f);
     // Rotated: the normal follows (about x by 90 degrees, +z turns to -y).
     const Traced turned(load("disk_turned", "disk", "<transform name=\"to_world\"><rotate x=\"1\" angle=\"90\"/>"
                                                     "</transform>\n"));
