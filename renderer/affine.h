@@ -77,13 +77,15 @@ struct Affine {
     Vec3d point(const Vec3d &p) const { return vector(p) + b; }
     /// The inverse map's linear part applied to v.
     Vec3d inverseVector(const Vec3d &v) const {
-        return {inv[0][0] * v.x + inv[0][1] * v.y + inv[0][2] * v.z, inv[1][0] * v.x + inv[1][1] * v.y + inv[1][2] * v.z,
+        return {inv[0][0] * v.x + inv[0][1] * v.y + inv[0][2] * v.z,
+                inv[1][0] * v.x + inv[1][1] * v.y + inv[1][2] * v.z,
                 inv[2][0] * v.x + inv[2][1] * v.y + inv[2][2] * v.z};
     }
     Vec3d inversePoint(const Vec3d &p) const { return inverseVector(p - b); }
     /// An object-space normal in world space (the inverse transpose), not normalised.
     Vec3d normal(const Vec3d &n) const {
-        return {inv[0][0] * n.x + inv[1][0] * n.y + inv[2][0] * n.z, inv[0][1] * n.x + inv[1][1] * n.y + inv[2][1] * n.z,
+        return {inv[0][0] * n.x + inv[1][0] * n.y + inv[2][0] * n.z,
+                inv[0][1] * n.x + inv[1][1] * n.y + inv[2][1] * n.z,
                 inv[0][2] * n.x + inv[1][2] * n.y + inv[2][2] * n.z};
     }
 

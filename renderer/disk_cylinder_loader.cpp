@@ -39,7 +39,8 @@ void requireTraceable(XmlProps &props, const Shape &shape, const char *what) {
     const double centre = std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)}), size = shapeSize(shape);
     if (!(size >= kMinSphereRadius && size >= kMinSphereRadiusToCenter * centre)) {
         msg << " with size " << size << ": the size must be at least " << kMinSphereRadius << " and "
-            << kMinSphereRadiusToCenter << " times its centre's largest coordinate (float32 could not place points on it)";
+            << kMinSphereRadiusToCenter
+            << " times its centre's largest coordinate (float32 could not place points on it)";
         props.failAt("to_world", msg.str());
     }
 }

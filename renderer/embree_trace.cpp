@@ -136,7 +136,8 @@ void EmbreeScene::fillDiskCylinderHits(const RTCRayHit16 &rh, HitPacket &hits) c
         if (!hits.found[i] || hits.geom[i] < m_firstDisk) continue;
         const double t = double(rh.ray.tfar[i]) + double(rh.hit.u[i]);  // Embree's t, refined by the callback
         Vec3f p, n;
-        diskCylinderHit(hits.geom[i], {hits.ox[i], hits.oy[i], hits.oz[i]}, {hits.dx[i], hits.dy[i], hits.dz[i]}, t, p, n);
+        const Vec3f o{hits.ox[i], hits.oy[i], hits.oz[i]}, d{hits.dx[i], hits.dy[i], hits.dz[i]};
+        diskCylinderHit(hits.geom[i], o, d, t, p, n);
         hits.px[i] = p.x; hits.py[i] = p.y; hits.pz[i] = p.z;
         hits.gx[i] = n.x; hits.gy[i] = n.y; hits.gz[i] = n.z;
         hits.nx[i] = n.x; hits.ny[i] = n.y; hits.nz[i] = n.z;

@@ -193,7 +193,7 @@ def _read_plane_scene(path: str | Path, params: dict[str, str] | None) -> PlaneS
     if film is None:
         raise NotAnalytic("no <sensor> with a <film>")
     if sensor.get("type") != "perspective":
-        raise NotAnalytic("the closed forms see through the perspective sensor, not \"" + str(sensor.get("type")) + "\"")
+        raise NotAnalytic(f"the closed forms see through the perspective sensor, not {sensor.get('type')!r}")
     rfilter = film.find("rfilter")
     if rfilter is None or rfilter.get("type") != "box":
         raise NotAnalytic("closed forms are integrated over pixels with a box filter")

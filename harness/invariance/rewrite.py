@@ -1,12 +1,13 @@
 """Scene files rewritten by a physical transformation, so every scene gets each invariance for free.
 
 Geometry: a step (scale, rotate, translate) appended AFTER the existing steps of every shape's and the
-sensor's to_world (a perspective sensor's scale conjugated, S C S^-1, as Mitsuba's perspective camera must be
-rigid; an orthographic one scales) (both our loader and Mitsuba's compose steps in document order), one added where a shape
-has none; point-light positions and sphere centres are mapped by the same matrix. Scaling also scales the
-sensor's clip distances (written explicitly: their defaults would not scale) and point intensities by s^2,
-so that 1/r^2 leaves the image unchanged (an orthographic sensor's span far_clip - near_clip instead). Light and reflectance factors multiply every emitter's radiance
-or intensity and every diffuse reflectance (defaults written out). Mesh paths are made absolute, so the
+sensor's to_world (both our loader and Mitsuba's compose steps in document order), one added where a shape
+has none; a perspective sensor's scale is conjugated, S C S^-1, as Mitsuba's perspective camera must be
+rigid, while an orthographic one scales. Point-light positions and sphere centres are mapped by the same
+matrix. Scaling also scales the sensor's clip distances (written explicitly: their defaults would not
+scale; an orthographic sensor's span far_clip - near_clip instead) and point intensities by s^2, so that
+1/r^2 leaves the image unchanged. Light and reflectance factors multiply every emitter's radiance or
+intensity and every diffuse reflectance (defaults written out). Mesh paths are made absolute, so the
 variant file can live anywhere.
 """
 from __future__ import annotations
