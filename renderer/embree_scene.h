@@ -87,7 +87,7 @@ private:
     void fillHit(const Ray &ray, unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const;
 
     /// The hits of a traced packet's first `count` lanes into `hits`: the triangles' in SIMD over all
-    /// lanes (gathers from the flat tables below), then the lanes on a sphere.
+    /// lanes (gathers from the flat tables below), then the lanes on an exact shape.
     void fillHits(const RTCRayHit16 &rh, int count, HitPacket &hits) const;
     /// fillHits' pass over the lanes on a sphere: their exact points and normals.
     void fillSphereHits(const RTCRayHit16 &rh, HitPacket &hits) const;
