@@ -32,8 +32,10 @@ void requireTraceable(XmlProps &props, const Shape &shape, const char *what) {
     std::ostringstream msg;
     msg << "the " << what << " (after to_world) spans (" << lo.x << ", " << lo.y << ", " << lo.z << ") to (" << hi.x
         << ", " << hi.y << ", " << hi.z << ")";
-    if (!(extent <= kMaxCoordinate))
-        props.failAt("to_world", msg.str() + ": it must lie within " + std::to_string(kMaxCoordinate));
+    if (!(extent <= kMaxCoordinate)) {
+        msg << ": it must lie within " << kMaxCoordinate;
+        props.failAt("to_world", msg.str());
+    }
     // As for the sphere: the size against the largest coordinate of the box's centre.
     const Vec3d c = (lo + hi) * 0.5;
     const double centre = std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)}), size = shapeSize(shape);
