@@ -113,6 +113,11 @@ def _reflectance(shape: ET.Element, bsdfs: dict[str, ET.Element]) -> np.ndarray:
     return _color(bsdf, "reflectance", 0.5) if bsdf is not None else np.full(3, 0.5)
 
 
+def shape_to_world(shape: ET.Element) -> np.ndarray:
+    """A shape's to_world as a 4x4 matrix, its steps composed in file order (the identity without one)."""
+    return _transform(_prop(shape, "transform", "to_world"))
+
+
 def sphere_geometry(shape: ET.Element) -> tuple[np.ndarray, float]:
     """Mitsuba's sphere in world space, (centre, radius): center and radius, then to_world (a uniform
     scale, rotation and translation)."""
