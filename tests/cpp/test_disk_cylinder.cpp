@@ -1,6 +1,6 @@
 // The exact disk and cylinder: hits and misses where Mitsuba 3 puts them (its values, checked with its
 // ray_intersect), normals and flip_normals as it orients them, single rays and packets agreeing, hit
-// points on the surface far from the origin, the loaders' checks, finite renders, and the double affine map.
+// points on the surface far from the origin, the loaders' checks, and finite renders.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -285,21 +285,4 @@ TEST(DiskAndCylinder, ASceneOfBothRendersFiniteWithEveryIntegrator) {
         EXPECT_EQ(counts.nonFinite, 0u) << integrator;
         EXPECT_GT(counts.nonZero, out.mean.rgb.size() / 10) << integrator;
     }
-}
-
-TEST(Affine, ItsInverseUndoesItAndAProductAppliesTheRightFactorFirst) {
-    const float m[16] = {2, 0.5f, -1, 3, 0.25f, -1.5f, 0.75f, -2, 1, 2, 4, 0.5f, 0, 0, 0, 1};
-    const Affine f = Affine::from(Transform(m));
-    const Affine g = Affine::fromColumns({0, 1, 0}, {-2, 0, 0}, {0, 0, 3}, {1, 1, 1});
-    const Vec3d p{0.3, -1.7, 2.9};
-    const Vec3d back = f.inversePoint(f.point(p));
-    EXPECT_NEAR(back.x, p.x, 1e-14); EXPECT_NEAR(back.y, p.y, 1e-14); EXPECT_NEAR(back.z, p.z, 1e-14);
-    const Vec3d fg = (f * g).point(p), expected = f.point(g.point(p));
-    EXPECT_NEAR(fg.x, expected.x, 1e-13); EXPECT_NEAR(fg.y, expected.y, 1e-13); EXPECT_NEAR(fg.z, expected.z, 1e-13);
-    // The normal transform keeps normals perpendicular to transformed tangents.
-    const Vec3d n = f.normal({0, 0, 1});
-    EXPECT_NEAR(dot(n, f.vector({1, 0, 0})), 0.0, 1e-14);
-    EXPECT_NEAR(dot(n, f.vector({0, 1, 0})), 0.0, 1e-14);
-    EXPECT_FALSE(isDegenerate(f));
-    EXPECT_TRUE(isDegenerate(Affine::fromColumns({1, 0, 0}, {1, 1e-7, 0}, {0, 0, 1}, {})));
 }
