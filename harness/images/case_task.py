@@ -8,6 +8,7 @@ from dataclasses import dataclass, replace
 from typing import Callable
 
 from harness.comparison.compare import compare_summaries, summarize
+from harness.comparison.mismatch import diagnose
 from harness.distributed.bundle import Bundle, bundle_files
 from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine, RenderFailed, RenderResult
@@ -174,5 +175,7 @@ def run_image_case(case: ImageCase, ours: Engine, ref: ReferenceImage, s: int, a
     comparison = compare_summaries(inputs.test, inputs.reference, alpha, signed=signed,
                                    samples=(mine.spp, max(1, ref.spp // inputs.reference.image.k)))
     reference = Reference(inputs.reference, ref.spp, {}, source)
-    return ImageResult(case, mine, {"image": reference}, {"image": comparison}, source, s, None, alpha, run_seed,
+    # What a failed comparison looks like (a zoom, a shift, a factor, a background): the user's next step.
+    note = None if comparison.passed else diagnose(mine.mean, image)
+    return ImageResult(case, mine, {"image": reference}, {"image": comparison}, source, s, note, alpha, run_seed,
                        tested=ours.name, reference_fit=inputs.fit, reference_problem=fit_verdict(ref, inputs.fit))

@@ -63,8 +63,8 @@ class NoiseFit:
     @property
     def fits(self) -> bool:
         """Whether the stated sample count is within FIT_TOLERANCE of what the image's noise says."""
-        return self.noise_where_exact == 0 and self.pixels > 0 and \
-            self.low <= FIT_TOLERANCE and self.high >= 1.0 / FIT_TOLERANCE
+        return bool(self.noise_where_exact == 0 and self.pixels > 0 and
+                    self.low <= FIT_TOLERANCE and self.high >= 1.0 / FIT_TOLERANCE)
 
     @property
     def implied_spp(self) -> float:
@@ -84,7 +84,7 @@ class NoiseFit:
                 f"{self.rho:.3g} [{self.low:.3g}, {self.high:.3g}] on {self.pixels} flat pixels, i.e. {implied}")
 
     def to_json(self) -> dict:
-        return {"rho": self.rho, "low": self.low, "high": self.high, "pixels": self.pixels,
+        return {"rho": float(self.rho), "low": float(self.low), "high": float(self.high), "pixels": self.pixels,
                 "stated_spp": self.stated_spp, "noise_where_exact": self.noise_where_exact, "fits": self.fits,
                 "summary": self.summary}
 

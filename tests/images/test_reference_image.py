@@ -2,6 +2,8 @@
 passes and the image's noise fits N; the same image 3 % too bright fails; an image whose stated count is 16
 times too small is reported as not fitting and does not pass, unless the noise model is `measured`; an image
 of the wrong size, or with a NaN, fails the case with one line."""
+import json
+
 import numpy as np
 import pytest
 
@@ -35,6 +37,7 @@ def test_an_image_of_the_stated_count_passes(ours, made, tmp_path, seed):
     result = _run(ours, _image(tmp_path, made), K * SPP, seed=seed)
     assert result.error is None and result.reference_fit.fits, result.reference_fit.summary
     assert result.passed, result.comparisons["image"].failed_checks
+    assert json.loads(json.dumps(result.to_json()))["reference_fit"]["fits"] is True
 
 
 def test_a_biased_image_fails(ours, made, tmp_path):
