@@ -1,0 +1,85 @@
+#include "shapegroup_loader.h"
+
+#include <string>
+
+#include "mesh.h"
+#include "sphere_loader.h"
+
+namespace mcval {
+
+namespace {
+
+std::string at(const XmlContext &ctx, const pugi::xml_node &node) { return " at line " + std::to_string(ctx.line(node)); }
+
+/// The members of a <shape type="shapegroup">, each loaded as a top-level shape would be.
+ShapeGroup readGroup(const XmlContext &ctx, const pugi::xml_node &node, const Definitions &defs, Deferred &deferred) {
+    XmlProps props(ctx, node);
+    props.finish("no properties (a shapegroup only holds shapes; its instances place it)");
+    ShapeGroup group;
+    for (const auto &child : props.objects()) {
+        const std::string tag = child.name();
+        if (tag == "emitter") ctx.fail(child, "an emitter inside a shapegroup: Mitsuba does not instance emitters");
+        if (tag != "shape") ctx.fail(child, "unsupported element in a shapegroup: expected <shape>");
+        const std::string type = ctx.attr(child, "type");
+        if (type == "shapegroup") ctx.fail(child, "a shapegroup inside a shapegroup: Mitsuba does not nest them");
+        if (type == "instance") ctx.fail(child, "an instance inside a shapegroup: Mitsuba does not nest instancing");
+        for (const auto &grandchild : child.children("emitter"))
+            ctx.fail(grandchild, "a shape with an emitter inside a shapegroup: Mitsuba does not instance emitters");
+        loadShape(ctx, child, defs, group.meshes, group.spheres, deferred);
+    }
+    return group;
+}
+
+}  // namespace
+
+void loadShapeGroup(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs, Deferred &deferred) {
+    const std::string id = ctx.attr(node, "id");
+    if (id.empty()) ctx.fail(node, "a shapegroup needs an id for its instances to refer to");
+    if (defs.groups.count(id) || defs.bsdfs.count(id)) ctx.fail(node, "the id \"" + id + "\" is already defined");
+    defs.groups[id] = readGroup(ctx, node, defs, deferred);
+}
+
+void loadInstance(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs, SceneDescription &scene,
+                  Deferred &deferred) {
+    XmlProps props(ctx, node);
+    const Transform toWorld = props.getTransform("to_world");
+    props.finish("to_world");
+    const char *expected = "an instance takes one <ref id=\"...\"> to a shapegroup (or one inline shapegroup)";
+    if (props.objects().size() != 1) ctx.fail(node, expected);
+    const pugi::xml_node child = props.objects()[0];
+    ShapeGroup inlineGroup;
+    const ShapeGroup *group = nullptr;
+    std::string what;
+    if (std::string(child.name()) == "ref") {
+        const std::string id = ctx.attr(child, "id");
+        const auto it = defs.groups.find(id);
+        if (it == defs.groups.end())
+            ctx.fail(child, "no <shape type=\"shapegroup\" id=\"" + id + "\"> defined before this point");
+        group = &it->second;
+        what = "shapegroup \"" + id + "\"";
+    } else if (std::string(child.name()) == "shape" && ctx.attr(child, "type") == "shapegroup") {
+        inlineGroup = readGroup(ctx, child, defs, deferred);
+        group = &inlineGroup;
+        what = "the shapegroup" + at(ctx, child);
+    } else {
+        ctx.fail(child, expected);
+    }
+    const std::string suffix = " (instance" + at(ctx, node) + ")";
+    for (const Mesh &member : group->meshes) {
+        Mesh mesh = transformMesh(member, toWorld);
+        requireFiniteMesh(ctx, node, mesh);
+        mesh.name += suffix;
+        scene.meshes.push_back(std::move(mesh));
+    }
+    for (const Sphere &member : group->spheres) {
+        Sphere sphere;
+        // Our sphere is intersected as a sphere, so an instance may not make it an ellipsoid.
+        if (const auto refusal = placeSphere(member, toWorld, sphere))
+            ctx.fail(node, "sphere \"" + member.name + "\" of " + what + " under this instance's to_world: " +
+                               refusal->reason);
+        sphere.name += suffix;
+        scene.spheres.push_back(std::move(sphere));
+    }
+}
+
+}  // namespace mcval
