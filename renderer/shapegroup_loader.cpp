@@ -74,7 +74,7 @@ void loadInstance(const XmlContext &ctx, const pugi::xml_node &node, Definitions
     for (const Sphere &member : group->spheres) {
         Sphere sphere;
         // Our sphere is intersected as a sphere, so an instance may not make it an ellipsoid.
-        if (const auto refusal = placeSphere(member, toWorld, sphere))
+        if (const auto refusal = placeSphere(member, toWorld, false, sphere))
             ctx.fail(node, "sphere \"" + member.name + "\" of " + what + " under this instance's to_world: " +
                                refusal->reason);
         sphere.name += suffix;

@@ -40,11 +40,12 @@ Sphere loadSphere(XmlProps &props, const Transform &toWorld) {
         props.failAt("radius", msg.str());
     }
     Sphere sphere;
-    if (const auto refusal = placeSphere(local, toWorld, sphere)) props.failAt(refusal->property, refusal->reason);
+    if (const auto refusal = placeSphere(local, toWorld, true, sphere)) props.failAt(refusal->property, refusal->reason);
     return sphere;
 }
 
-std::optional<SphereRefusal> placeSphere(const Sphere &local, const Transform &toWorld, Sphere &out) {
+std::optional<SphereRefusal> placeSphere(const Sphere &local, const Transform &toWorld, bool ownTransform,
+                                         Sphere &out) {
     const double scale = similarityScale(toWorld);
     if (scale == 0.0)
         return SphereRefusal{"to_world", "a sphere's to_world may only translate, rotate and scale uniformly: "
@@ -54,7 +55,7 @@ std::optional<SphereRefusal> placeSphere(const Sphere &local, const Transform &t
     sphere.center = toWorld.point(local.center);
     const double r = scale * local.radius;
     sphere.radius = float(r);
-    sphere.flipNormals = local.flipNormals != (toWorld.determinant3() < 0.f);  // Mitsuba flips a mirrored sphere
+    sphere.flipNormals = local.flipNormals != (ownTransform && toWorld.determinant3() < 0.f);
     const Vec3f &c = sphere.center;
     const double extent = std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)}) + r;  // NaN fails below
     std::ostringstream msg;

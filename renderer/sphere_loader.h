@@ -20,8 +20,11 @@ struct SphereRefusal {
     std::string property, reason;
 };
 
-/// `sphere` under a further transform (an instance's to_world), into `out`; or, if that is not a
-/// similarity or the result breaks scene_limits.h, why not (and `out` is unchanged).
-std::optional<SphereRefusal> placeSphere(const Sphere &sphere, const Transform &toWorld, Sphere &out);
+/// `sphere` under a further transform, into `out`; or, if that is not a similarity or the result breaks
+/// scene_limits.h, why not (and `out` is unchanged). `ownTransform`: the sphere's own to_world, which
+/// flips its normals if it mirrors (as Mitsuba's does); an instance's to_world transforms the normals
+/// with the surface, so a mirrored sphere stays front side out (as in Mitsuba).
+std::optional<SphereRefusal> placeSphere(const Sphere &sphere, const Transform &toWorld, bool ownTransform,
+                                         Sphere &out);
 
 }  // namespace mcval
