@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <climits>
 #include <cstring>
+#include <functional>
 #include <type_traits>
 #include <vector>
 
@@ -22,16 +23,27 @@ constexpr uint32_t kHasNormals = 0x1, kHasTexcoords = 0x2, kHasColors = 0x8, kDo
 constexpr uint64_t kMaxCount = uint64_t(1) << 28;
 /// Longest shape name read (version 4 stores a null-terminated one).
 constexpr size_t kMaxNameBytes = 1 << 16;
+/// Deflate's largest expansion (zlib's technical details: 1032 to 1).
+constexpr uint64_t kMaxInflateRatio = 1032;
 /// Values read per step: an array grows with the data that is there, never with what a count claims.
 constexpr size_t kChunkValues = size_t(1) << 16;
 
 [[noreturn]] void fail(const std::string &path, const std::string &message) { throw SceneError(path, 0, message); }
 
+/// A little-endian integer or IEEE float at `at`.
 template <typename T>
 T littleEndian(std::string_view bytes, size_t at) {
     uint64_t bits = 0;
     for (size_t i = 0; i < sizeof(T); ++i) bits |= uint64_t(uint8_t(bytes[at + i])) << (8 * i);
-    return T(bits);
+    if constexpr (std::is_floating_point_v<T>) {
+        using Bits = std::conditional_t<sizeof(T) == 4, uint32_t, uint64_t>;
+        const Bits exact = Bits(bits);
+        T v;
+        std::memcpy(&v, &exact, sizeof(T));
+        return v;
+    } else {
+        return T(bits);
+    }
 }
 
 /// The zlib stream of one shape, inflated on demand.
@@ -78,30 +90,19 @@ public:
         return littleEndian<T>(std::string_view(reinterpret_cast<const char *>(raw), sizeof(T)), 0);
     }
 
-    /// `count` values of T; the array grows as the data arrives, so a false count costs no memory.
-    template <typename T>
-    std::vector<T> array(uint64_t count, const std::string &what) {
-        std::vector<T> values;
+    /// `count` values of T, passed to `take` one by one; read in steps, so memory follows the data that is
+    /// there, never what a count claims.
+    template <typename T, typename Take>
+    void values(uint64_t count, const std::string &what, Take take) {
         std::vector<unsigned char> raw;
         for (uint64_t done = 0; done < count;) {
             const size_t step = size_t(std::min<uint64_t>(count - done, kChunkValues));
             raw.resize(step * sizeof(T));
             read(raw.data(), raw.size(), what);
             const std::string_view view(reinterpret_cast<const char *>(raw.data()), raw.size());
-            for (size_t i = 0; i < step; ++i) {
-                if constexpr (std::is_floating_point_v<T>) {
-                    using Bits = std::conditional_t<sizeof(T) == 4, uint32_t, uint64_t>;
-                    const Bits bits = littleEndian<Bits>(view, i * sizeof(T));
-                    T v;
-                    std::memcpy(&v, &bits, sizeof(T));
-                    values.push_back(v);
-                } else {
-                    values.push_back(littleEndian<T>(view, i * sizeof(T)));
-                }
-            }
+            for (size_t i = 0; i < step; ++i) take(littleEndian<T>(view, i * sizeof(T)));
             done += step;
         }
-        return values;
     }
 
 private:
@@ -110,11 +111,21 @@ private:
     size_t m_rest = 0;
 };
 
-/// `count` vertices of `dim` floats (stored as float or double) as float32.
-std::vector<float> readFloats(Inflater &in, uint64_t count, int dim, bool doubles, const std::string &what) {
-    if (!doubles) return in.array<float>(count * dim, what);
-    const std::vector<double> wide = in.array<double>(count * dim, what);
-    return std::vector<float>(wide.begin(), wide.end());
+/// `count` vertices of `dim` values (float32, or float64 in files with kDoublePrecision), each vertex
+/// passed to `take` as float32 (a null `take` reads past them).
+void readVertices(Inflater &in, uint64_t count, int dim, bool doubles, const std::string &what,
+                  const std::function<void(const float *)> &take) {
+    float vertex[3];
+    int filled = 0;
+    const auto one = [&](auto v) {
+        vertex[filled++] = float(v);
+        if (filled == dim) {
+            if (take) take(vertex);
+            filled = 0;
+        }
+    };
+    if (doubles) in.values<double>(count * dim, what, one);
+    else in.values<float>(count * dim, what, one);
 }
 
 /// Where shape `index` starts: 0 for the first; otherwise the end-of-file table (version 4: u64
@@ -157,7 +168,8 @@ Mesh readSerialized(const std::string &path, std::string_view bytes, uint32_t sh
         std::string name;
         for (char c; (c = char(in.value<uint8_t>(shape + "'s name"))) != '\0';) {
             if (name.size() == kMaxNameBytes)
-                fail(path, shape + "'s name is longer than " + std::to_string(kMaxNameBytes) + " bytes or not terminated");
+                fail(path, shape + "'s name is longer than " + std::to_string(kMaxNameBytes) +
+                               " bytes or not terminated");
             name += c;
         }
     }
@@ -168,26 +180,32 @@ Mesh readSerialized(const std::string &path, std::string_view bytes, uint32_t sh
                        " triangles: at most 2^28 of each are supported");
     if (faceCount == 0) fail(path, shape + " has no triangles");
 
+    // Deflate inflates at most 1032 bytes from one: counts that need more than the file holds are false.
+    const uint64_t perVertex = (3 + (flags & kHasNormals ? 3 : 0) + (flags & kHasTexcoords ? 2 : 0) +
+                                (flags & kHasColors ? 3 : 0)) * (flags & kDoublePrecision ? 8 : 4);
+    const uint64_t claimed = vertexCount * perVertex + faceCount * 12;
+    if (claimed / kMaxInflateRatio > bytes.size() - start)
+        fail(path, shape + " claims " + std::to_string(vertexCount) + " vertices and " + std::to_string(faceCount) +
+                       " triangles (" + std::to_string(claimed) + " bytes), more than its " +
+                       std::to_string(bytes.size() - start) + " compressed bytes can hold");
+
     const bool doubles = (flags & kDoublePrecision) != 0;  // as in Mitsuba, double wins if both are set
     Mesh mesh;
-    const std::vector<float> positions = readFloats(in, vertexCount, 3, doubles, shape + "'s vertex positions");
-    std::vector<float> normals;
-    if (flags & kHasNormals) normals = readFloats(in, vertexCount, 3, doubles, shape + "'s vertex normals");
-    if (flags & kHasTexcoords) readFloats(in, vertexCount, 2, doubles, shape + "'s texture coordinates");
-    if (flags & kHasColors) readFloats(in, vertexCount, 3, doubles, shape + "'s vertex colours");
+    const auto into = [](std::vector<Vec3f> &out) {
+        return [&out](const float *v) { out.emplace_back(v[0], v[1], v[2]); };
+    };
+    readVertices(in, vertexCount, 3, doubles, shape + "'s vertex positions", into(mesh.positions));
+    if (flags & kHasNormals)
+        readVertices(in, vertexCount, 3, doubles, shape + "'s vertex normals", into(mesh.normals));
+    if (flags & kHasTexcoords) readVertices(in, vertexCount, 2, doubles, shape + "'s texture coordinates", nullptr);
+    if (flags & kHasColors) readVertices(in, vertexCount, 3, doubles, shape + "'s vertex colours", nullptr);
     // Mitsuba 3 reads u32 indices whatever the vertex count (its meshes index with 32 bits).
-    mesh.indices = in.array<uint32_t>(3 * faceCount, shape + "'s triangle indices");
-    for (size_t i = 0; i < mesh.indices.size(); ++i)
-        if (mesh.indices[i] >= vertexCount)
-            fail(path, shape + ": triangle " + std::to_string(i / 3) + " uses vertex " +
-                           std::to_string(mesh.indices[i]) + ", but there are " + std::to_string(vertexCount));
-    mesh.positions.resize(vertexCount);
-    for (size_t i = 0; i < vertexCount; ++i)
-        mesh.positions[i] = {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]};
-    if (!normals.empty()) {
-        mesh.normals.resize(vertexCount);
-        for (size_t i = 0; i < vertexCount; ++i) mesh.normals[i] = {normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]};
-    }
+    in.values<uint32_t>(3 * faceCount, shape + "'s triangle indices", [&](uint32_t i) {
+        if (i >= vertexCount)
+            fail(path, shape + ": triangle " + std::to_string(mesh.indices.size() / 3) + " uses vertex " +
+                           std::to_string(i) + ", but there are " + std::to_string(vertexCount));
+        mesh.indices.push_back(i);
+    });
     return mesh;
 }
 

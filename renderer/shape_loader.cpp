@@ -150,8 +150,8 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const Definiti
         props.finish("to_world");
         mesh = type == "rectangle" ? makeRectangle(toWorld) : makeCube(toWorld);
     } else {
-        ctx.fail(node, "unsupported shape type \"" + type + "\": expected obj, ply, serialized, rectangle, cube or sphere "
-                       "(or shapegroup and instance)");
+        ctx.fail(node, "unsupported shape type \"" + type +
+                           "\": expected obj, ply, serialized, rectangle, cube or sphere (or shapegroup and instance)");
     }
     requireFiniteMesh(ctx, node, mesh);
     mesh.name = name;

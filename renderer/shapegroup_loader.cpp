@@ -9,7 +9,9 @@ namespace mcval {
 
 namespace {
 
-std::string at(const XmlContext &ctx, const pugi::xml_node &node) { return " at line " + std::to_string(ctx.line(node)); }
+std::string at(const XmlContext &ctx, const pugi::xml_node &node) {
+    return " at line " + std::to_string(ctx.line(node));
+}
 
 /// The members of a <shape type="shapegroup">, each loaded as a top-level shape would be.
 ShapeGroup readGroup(const XmlContext &ctx, const pugi::xml_node &node, const Definitions &defs, Deferred &deferred) {

@@ -40,7 +40,8 @@ Sphere loadSphere(XmlProps &props, const Transform &toWorld) {
         props.failAt("radius", msg.str());
     }
     Sphere sphere;
-    if (const auto refusal = placeSphere(local, toWorld, true, sphere)) props.failAt(refusal->property, refusal->reason);
+    if (const auto refusal = placeSphere(local, toWorld, true, sphere))
+        props.failAt(refusal->property, refusal->reason);
     return sphere;
 }
 
