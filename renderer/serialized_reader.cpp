@@ -50,10 +50,11 @@ T littleEndian(std::string_view bytes, size_t at) {
 class Inflater {
 public:
     Inflater(const std::string &path, std::string_view compressed) : m_path(path) {
+        // zlib takes at most 4 GiB of input at a time; mesh files are at most 2 GiB (mesh.cpp).
+        if (compressed.size() > UINT_MAX) fail(path, "more than 4 GiB of compressed data");
         if (inflateInit(&m_z) != Z_OK) fail(path, "cannot start zlib decompression");
         m_z.next_in = reinterpret_cast<Bytef *>(const_cast<char *>(compressed.data()));
-        m_z.avail_in = uInt(std::min<size_t>(compressed.size(), UINT_MAX));
-        m_rest = compressed.size() - m_z.avail_in;
+        m_z.avail_in = uInt(compressed.size());
     }
     ~Inflater() { inflateEnd(&m_z); }
     Inflater(const Inflater &) = delete;
@@ -66,16 +67,13 @@ public:
             m_z.next_out = out;
             m_z.avail_out = uInt(std::min<size_t>(n, UINT_MAX));
             const uInt asked = m_z.avail_out;
-            if (m_z.avail_in == 0 && m_rest > 0) {  // files over 4 GiB are refused before; kept for safety
-                m_z.avail_in = uInt(std::min<size_t>(m_rest, UINT_MAX));
-                m_rest -= m_z.avail_in;
-            }
             const int status = ::inflate(&m_z, Z_NO_FLUSH);
             const size_t got = asked - m_z.avail_out;
             out += got;
             n -= got;
             if (n == 0) return;
-            if (status == Z_STREAM_END || (status == Z_BUF_ERROR && m_z.avail_in == 0))
+            // The stream's end, or no progress: the input ran out before the data it promised.
+            if (status == Z_STREAM_END || (status == Z_BUF_ERROR && got == 0))
                 fail(m_path, "the compressed data ends before " + what + " (truncated file or a count too large)");
             if (status != Z_OK && status != Z_BUF_ERROR)
                 fail(m_path, "corrupt compressed data while reading " + what + ": " +
@@ -83,6 +81,7 @@ public:
         }
     }
 
+    /// One little-endian value.
     template <typename T>
     T value(const std::string &what) {
         unsigned char raw[sizeof(T)];
@@ -108,7 +107,6 @@ public:
 private:
     std::string m_path;
     z_stream m_z{};
-    size_t m_rest = 0;
 };
 
 /// `count` vertices of `dim` values (float32, or float64 in files with kDoublePrecision), each vertex
