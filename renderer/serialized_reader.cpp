@@ -81,6 +81,20 @@ public:
         }
     }
 
+    /// Requires the stream to end here, its checksum (Adler-32) right: this catches damage that left
+    /// every value plausible, and data past what the counts said.
+    void finish(const std::string &what) {
+        unsigned char extra = 0;
+        m_z.next_out = &extra;
+        m_z.avail_out = 1;
+        const int status = ::inflate(&m_z, Z_FINISH);
+        if (status == Z_STREAM_END && m_z.avail_out == 1) return;
+        if (status == Z_DATA_ERROR)
+            fail(m_path, "corrupt compressed data after " + what + ": " + (m_z.msg ? m_z.msg : "zlib data error"));
+        fail(m_path, m_z.avail_out == 0 ? "the compressed data goes on after " + what + " (counts too small)"
+                                        : "the compressed data ends without its checksum after " + what);
+    }
+
     /// One little-endian value.
     template <typename T>
     T value(const std::string &what) {
@@ -204,6 +218,7 @@ Mesh readSerialized(const std::string &path, std::string_view bytes, uint32_t sh
                            std::to_string(i) + ", but there are " + std::to_string(vertexCount));
         mesh.indices.push_back(i);
     });
+    in.finish(shape + "'s triangle indices");
     return mesh;
 }
 

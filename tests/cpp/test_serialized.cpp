@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,9 @@ std::string errorOf(const std::string &bytes, uint32_t index = 0) {
     }
     return "";
 }
+
+/// Where a one-shape file's table starts: the end of its zlib stream.
+size_t streamEndOf(const std::string &file) { return file.size() - 12; }
 
 void expectNear(const Vec3f &a, const Vec3f &b) {
     EXPECT_NEAR(a.x, b.x, 1e-6f);
@@ -131,6 +135,35 @@ TEST(Serialized, MitsubasOwnSamplesLoadWhereTheyAreInstalled) {
     EXPECT_THROW(loadSerializedFile(matpreview, 3, Transform(), false, false), SceneError);
 }
 
+TEST(Serialized, EveryTruncationAndSeededDamageIsAMeshOrASceneError) {
+    SerializedShape normals = square(5);
+    normals.normals = std::vector<double>(12, 0.0);
+    normals.doubles = true;
+    const std::string good = serializedFile({square(), normals});
+    const size_t secondShape = 4 + serializedPayload(square()).size();
+    // Whether reading shape `index` is a SceneError; a mesh it gives back must be consistent.
+    const auto refused = [](const std::string &bytes, uint32_t index) {
+        try {
+            const Mesh mesh = readSerialized("damaged", bytes, index);
+            for (uint32_t i : mesh.indices) EXPECT_LT(i, mesh.positions.size());
+            EXPECT_TRUE(mesh.normals.empty() || mesh.normals.size() == mesh.positions.size());
+            return false;
+        } catch (const SceneError &) {
+            return true;
+        }
+    };
+    for (size_t n = 0; n < good.size(); ++n) {
+        EXPECT_EQ(refused(good.substr(0, n), 0), n < secondShape) << n;  // the first shape needs no table
+        EXPECT_TRUE(refused(good.substr(0, n), 1)) << n;
+    }
+    std::mt19937 rng(7);
+    for (int trial = 0; trial < 3000; ++trial) {
+        std::string bytes = good;
+        for (int k = 1 + int(rng() % 3); k > 0; --k) bytes[rng() % bytes.size()] = char(rng());
+        refused(bytes, trial % 2);
+    }
+}
+
 struct BadFile {
     const char *name;
     std::string bytes;
@@ -157,6 +190,8 @@ std::vector<BadFile> badFiles() {
     };
     std::string corrupt = good;
     for (size_t i = 12; i < 20; ++i) corrupt[i] = char(~corrupt[i]);
+    std::string checksum = good;
+    checksum[streamEndOf(good) - 1] ^= 1;  // the last byte of the stream: its Adler-32
     std::string badOffset = serializedFile({square(), square(1)});
     badOffset[badOffset.size() - 12] = char(0x7f);  // shape 1's u64 offset, low byte
     badOffset[badOffset.size() - 6] = char(0x7f);   // and a high byte
@@ -170,6 +205,7 @@ std::vector<BadFile> badFiles() {
         {"truncated", good.substr(0, good.size() - 30), "ends before"},
         {"only the header", good.substr(0, 4), "ends before shape 0's flags"},
         {"inflate error", corrupt, "corrupt compressed data"},
+        {"checksum", checksum, "corrupt compressed data after shape 0's triangle indices: incorrect data check"},
         {"vertex count past the data", with([](SerializedShape &s) { s.vertexCount = 1000; }),
          "ends before shape 0's vertex positions"},
         {"counts past what the file can hold", with([](SerializedShape &s) { s.vertexCount = 1000000; }),
@@ -179,6 +215,8 @@ std::vector<BadFile> badFiles() {
         {"huge vertex count", with([](SerializedShape &s) { s.vertexCount = uint64_t(1) << 40; }),
          "at most 2^28 of each"},
         {"huge triangle count", with([](SerializedShape &s) { s.faceCount = ~uint64_t(0); }), "at most 2^28 of each"},
+        {"triangle count too small", with([](SerializedShape &s) { s.faceCount = 1; }),
+         "goes on after shape 0's triangle indices"},
         {"no triangles", with([](SerializedShape &s) { s.indices.clear(); }), "has no triangles"},
         {"index out of range", with([](SerializedShape &s) { s.indices[4] = 4; }),
          "triangle 1 uses vertex 4, but there are 4"},
