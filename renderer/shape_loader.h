@@ -1,6 +1,7 @@
 // Shapes and their materials in a scene file: meshes, spheres, bsdfs and area emitters.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <utility>
@@ -38,6 +39,7 @@ struct ShapeGroup {
 struct Definitions {
     std::map<std::string, Color> bsdfs;
     std::map<std::string, ShapeGroup> groups;
+    uint64_t instancedTriangles = 0, instancedShapes = 0;  ///< copies made by instances so far (bounded)
 };
 
 /// Throws at the node unless p is finite and within kMaxCoordinate; `what` names p in the message.

@@ -9,6 +9,8 @@ namespace mcval {
 
 namespace {
 
+constexpr uint64_t kMaxInstancedTriangles = uint64_t(1) << 28, kMaxInstancedShapes = uint64_t(1) << 20;
+
 std::string at(const XmlContext &ctx, const pugi::xml_node &node) {
     return " at line " + std::to_string(ctx.line(node));
 }
@@ -66,6 +68,15 @@ void loadInstance(const XmlContext &ctx, const pugi::xml_node &node, Definitions
     } else {
         ctx.fail(child, expected);
     }
+    // Flattening copies every member: the copies are bounded as one mesh file's triangles are.
+    uint64_t triangles = 0;
+    for (const Mesh &member : group->meshes) triangles += member.indices.size() / 3;
+    defs.instancedTriangles += triangles;
+    defs.instancedShapes += group->meshes.size() + group->spheres.size();
+    if (defs.instancedTriangles > kMaxInstancedTriangles || defs.instancedShapes > kMaxInstancedShapes)
+        ctx.fail(node, "the instances so far copy " + std::to_string(defs.instancedTriangles) + " triangles and " +
+                           std::to_string(defs.instancedShapes) + " shapes: at most 2^28 triangles and 2^20 shapes "
+                           "are supported (instances are flattened, each a copy)");
     const std::string suffix = " (instance" + at(ctx, node) + ")";
     for (const Mesh &member : group->meshes) {
         Mesh mesh = transformMesh(member, toWorld);

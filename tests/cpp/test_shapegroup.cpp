@@ -12,6 +12,7 @@
 #include "embree_scene.h"
 #include "error.h"
 #include "scene.h"
+#include "shapegroup_loader.h"
 
 using namespace mcval;
 namespace fs = std::filesystem;
@@ -109,6 +110,29 @@ TEST(ShapeGroup, AMirroringInstanceKeepsFrontSidesOut) {
     const Hit hit = trace(scene, {0.5f, 0.5f, 5.f}, {0.f, 0.f, -1.f});
     EXPECT_NEAR(hit.t, 3.f, 1e-5f);
     EXPECT_NEAR(hit.ng.z, 1.f, 1e-6f);
+}
+
+TEST(ShapeGroup, InstancesCopyABoundedNumberOfShapes) {
+    // One copy short of the bound (2^20 shapes): one instance of a one-sphere group fits, the next does not.
+    XmlContext ctx;
+    ctx.file = "bound.xml";
+    ctx.text = "<shape type=\"instance\"><ref id=\"g\"/></shape>";
+    pugi::xml_document doc;
+    ASSERT_TRUE(doc.load_string(ctx.text.c_str()));
+    Definitions defs;
+    defs.groups["g"].spheres.resize(1);
+    defs.instancedShapes = (uint64_t(1) << 20) - 1;
+    SceneDescription scene;
+    Deferred deferred;
+    loadInstance(ctx, doc.first_child(), defs, scene, deferred);
+    EXPECT_EQ(scene.spheres.size(), 1u);
+    try {
+        loadInstance(ctx, doc.first_child(), defs, scene, deferred);
+        ADD_FAILURE() << "the copy past the bound loaded";
+    } catch (const SceneError &e) {
+        EXPECT_NE(std::string(e.what()).find("bound.xml:1: "), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("at most 2^28 triangles and 2^20 shapes"), std::string::npos);
+    }
 }
 
 struct BadGroup {
