@@ -16,10 +16,11 @@ INSTANCES = {
 }
 
 
-def _scene(folder, instances=INSTANCES, shape_index=1) -> str:
-    """A shapegroup (the file's sphere, a sphere and a cube) under three instances, and the file's pyramid
-    (shape 1 of the same file) flat-shaded at the top level."""
+def _scene(folder, instances=INSTANCES, shape_index=1, flip="true") -> str:
+    """A shapegroup (a serialized sphere, an exact sphere and a cube) under three instances; at the top level,
+    a pyramid (shape 1 of a version-3 file: the other table) flat-shaded, and the serialized sphere flipped."""
     write_serialized(folder / "meshes.serialized", [uv_sphere(), pyramid()], version=4)
+    write_serialized(folder / "meshes_v3.serialized", [uv_sphere(), pyramid()], version=3)
     placed = "\n".join(f'<shape type="instance"><ref id="group"/><transform name="to_world">{t}</transform></shape>'
                        for t in instances.values())
     path = folder / "scene.xml"
@@ -39,9 +40,12 @@ def _scene(folder, instances=INSTANCES, shape_index=1) -> str:
             <translate value="-0.9, 0, 0.3"/></transform></shape>
     </shape>
     {placed}
-    <shape type="serialized"><string name="filename" value="meshes.serialized"/>
+    <shape type="serialized"><string name="filename" value="meshes_v3.serialized"/>
         <integer name="shape_index" value="{shape_index}"/><boolean name="face_normals" value="true"/>
         <transform name="to_world"><scale value="0.8"/><translate value="0, -0.2, -3"/></transform></shape>
+    <shape type="serialized"><string name="filename" value="meshes.serialized"/>
+        <boolean name="flip_normals" value="{flip}"/>
+        <transform name="to_world"><scale value="0.5"/><translate value="-1, -1.3, 1.5"/></transform></shape>
 </scene>""")
     return str(path)
 
@@ -57,10 +61,16 @@ def test_ours_and_mitsuba_agree(ours, mitsuba, tmp_path):
     assert compare_batches(test, reference, signed=True).passed
 
 
-@pytest.mark.parametrize("planted", ["an instance turned", "the other shape of the file"])
+PLANTED = {
+    "an instance turned": {"instances": {**INSTANCES, "turned": INSTANCES["turned"].replace("70", "50")}},
+    "the file's other shape": {"shape_index": 0},
+    "flip_normals left out": {"flip": "false"},
+}
+
+
+@pytest.mark.parametrize("planted", PLANTED)
 def test_a_planted_difference_is_caught(ours, mitsuba, tmp_path, planted):
     reference = _render(mitsuba, _scene(tmp_path), 101)
     (tmp_path / "wrong").mkdir()
-    wrong = (_scene(tmp_path / "wrong", {**INSTANCES, "turned": INSTANCES["turned"].replace("70", "50")})
-             if planted == "an instance turned" else _scene(tmp_path / "wrong", shape_index=0))
+    wrong = _scene(tmp_path / "wrong", **PLANTED[planted])
     assert not compare_batches(_render(ours, wrong, 1), reference, signed=True).passed
