@@ -199,6 +199,7 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     SceneDescription scene;
     scene.file = path;
     Definitions defs;
+    std::vector<pugi::xml_node> instances;
     bool hasSensor = false, hasIntegrator = false;
     Deferred deferred;
     std::vector<std::string> skipped;
@@ -213,7 +214,7 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
         } else if (tag == "shape") {
             const std::string type = typeOf(ctx, node);
             if (type == "shapegroup") loadShapeGroup(ctx, node, defs, deferred);
-            else if (type == "instance") loadInstance(ctx, node, defs, scene, deferred);
+            else if (type == "instance") instances.push_back(node);
             else loadShape(ctx, node, defs, scene.meshes, scene.spheres, deferred);
         } else if (tag == "bsdf") {
             const std::string id = ctx.attr(node, "id");
@@ -237,6 +238,8 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
                            "<emitter> or <integrator>");
         }
     }
+    // Instances last: a <ref> may name a shapegroup further down, as Mitsuba resolves references.
+    for (const pugi::xml_node &node : instances) loadInstance(ctx, node, defs, scene);
     if (!hasSensor) ctx.fail(root, "the scene has no <sensor type=\"perspective\">");
     if (scene.meshes.empty() && scene.spheres.empty()) ctx.fail(root, "the scene has no <shape>");
 

@@ -18,7 +18,8 @@ std::string at(const XmlContext &ctx, const pugi::xml_node &node) {
 /// The members of a <shape type="shapegroup">, each loaded as a top-level shape would be.
 ShapeGroup readGroup(const XmlContext &ctx, const pugi::xml_node &node, const Definitions &defs, Deferred &deferred) {
     XmlProps props(ctx, node);
-    props.finish("no properties (a shapegroup only holds shapes; its instances place it)");
+    props.finish("no properties (a shapegroup only holds shapes: Mitsuba ignores its to_world; its instances "
+                 "place it)");
     ShapeGroup group;
     for (const auto &child : props.objects()) {
         const std::string tag = child.name();
@@ -37,37 +38,27 @@ ShapeGroup readGroup(const XmlContext &ctx, const pugi::xml_node &node, const De
 }  // namespace
 
 void loadShapeGroup(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs, Deferred &deferred) {
-    const std::string id = ctx.attr(node, "id");
-    if (id.empty()) ctx.fail(node, "a shapegroup needs an id for its instances to refer to");
+    ShapeGroup group = readGroup(ctx, node, defs, deferred);
+    const std::string id = node.attribute("id") ? ctx.attr(node, "id") : "";
+    if (id.empty()) return;  // no instance can place it: checked, and not rendered (as in Mitsuba)
     if (defs.groups.count(id) || defs.bsdfs.count(id)) ctx.fail(node, "the id \"" + id + "\" is already defined");
-    defs.groups[id] = readGroup(ctx, node, defs, deferred);
+    defs.groups[id] = std::move(group);
 }
 
-void loadInstance(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs, SceneDescription &scene,
-                  Deferred &deferred) {
+void loadInstance(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs, SceneDescription &scene) {
     XmlProps props(ctx, node);
     const Transform toWorld = props.getTransform("to_world");
     props.finish("to_world");
-    const char *expected = "an instance takes one <ref id=\"...\"> to a shapegroup (or one inline shapegroup)";
-    if (props.objects().size() != 1) ctx.fail(node, expected);
-    const pugi::xml_node child = props.objects()[0];
-    ShapeGroup inlineGroup;
-    const ShapeGroup *group = nullptr;
-    std::string what;
-    if (std::string(child.name()) == "ref") {
-        const std::string id = ctx.attr(child, "id");
-        const auto it = defs.groups.find(id);
-        if (it == defs.groups.end())
-            ctx.fail(child, "no <shape type=\"shapegroup\" id=\"" + id + "\"> defined before this point");
-        group = &it->second;
-        what = "shapegroup \"" + id + "\"";
-    } else if (std::string(child.name()) == "shape" && ctx.attr(child, "type") == "shapegroup") {
-        inlineGroup = readGroup(ctx, child, defs, deferred);
-        group = &inlineGroup;
-        what = "the shapegroup" + at(ctx, child);
-    } else {
-        ctx.fail(child, expected);
-    }
+    // Mitsuba 3.9 fails on a shapegroup inline in an instance, so only a <ref> is read.
+    const char *expected = "an instance takes one <ref id=\"...\"> to a shapegroup";
+    if (props.objects().size() != 1 || std::string(props.objects()[0].name()) != "ref")
+        ctx.fail(props.objects().empty() ? node : props.objects()[0], expected);
+    const pugi::xml_node ref = props.objects()[0];
+    const std::string id = ctx.attr(ref, "id");
+    const auto it = defs.groups.find(id);
+    if (it == defs.groups.end()) ctx.fail(ref, "no <shape type=\"shapegroup\" id=\"" + id + "\"> in the file");
+    const ShapeGroup *group = &it->second;
+    const std::string what = "shapegroup \"" + id + "\"";
     // Flattening copies every member: the copies are bounded as one mesh file's triangles are.
     uint64_t triangles = 0;
     for (const Mesh &member : group->meshes) triangles += member.indices.size() / 3;
