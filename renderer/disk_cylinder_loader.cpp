@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
+#include <string>
 
 #include "cylinder.h"
 #include "disk.h"
@@ -19,12 +21,12 @@ void frameAround(const Vec3d &n, Vec3d &s, Vec3d &t) {
     t = {b, sign + n.y * n.y * a, -n.y};
 }
 
-/// Refuses, at to_world, a degenerate map or a shape (its box and size) that float32 cannot trace.
+/// whyUntraceable for either shape; `what` names it in the message.
 template <typename Shape>
-void requireTraceable(XmlProps &props, const Shape &shape, const char *what) {
+std::optional<std::string> untraceable(const Shape &shape, const char *what) {
     if (isDegenerate(shape.toWorld))
-        props.failAt("to_world", std::string("the ") + what + "'s to_world is degenerate (a zero scale, or axes that "
-                                 "(nearly) coincide): the shape would have no area");
+        return std::string("the ") + what + "'s to_world is degenerate (a zero scale, or axes that (nearly) "
+               "coincide): the shape would have no area";
     Vec3d lo, hi;
     shapeBounds(shape, lo, hi);
     const double extent = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x),
@@ -34,7 +36,7 @@ void requireTraceable(XmlProps &props, const Shape &shape, const char *what) {
         << ", " << hi.y << ", " << hi.z << ")";
     if (!(extent <= kMaxCoordinate)) {
         msg << ": it must lie within " << kMaxCoordinate;
-        props.failAt("to_world", msg.str());
+        return msg.str();
     }
     // As for the sphere: the size against the largest coordinate of the box's centre.
     const Vec3d c = (lo + hi) * 0.5;
@@ -43,18 +45,29 @@ void requireTraceable(XmlProps &props, const Shape &shape, const char *what) {
         msg << " with size " << size << ": the size must be at least " << kMinSphereRadius << " and "
             << kMinSphereRadiusToCenter
             << " times its centre's largest coordinate (float32 could not place points on it)";
-        props.failAt("to_world", msg.str());
+        return msg.str();
     }
+    return std::nullopt;
+}
+
+/// Refuses, at to_world, what untraceable() names.
+template <typename Shape>
+void requireTraceable(XmlProps &props, const Shape &shape) {
+    if (const auto why = whyUntraceable(shape)) props.failAt("to_world", *why);
 }
 
 }  // namespace
+
+std::optional<std::string> whyUntraceable(const Disk &disk) { return untraceable(disk, "disk"); }
+
+std::optional<std::string> whyUntraceable(const Cylinder &cyl) { return untraceable(cyl, "cylinder"); }
 
 Disk loadDisk(XmlProps &props, const Transform &toWorld) {
     Disk disk;
     disk.flipNormals = props.getBool("flip_normals", false);
     props.finish("flip_normals, to_world");
     disk.toWorld = Affine::from(toWorld);
-    requireTraceable(props, disk, "disk");
+    requireTraceable(props, disk);
     return disk;
 }
 
@@ -78,7 +91,7 @@ Cylinder loadCylinder(XmlProps &props, const Transform &toWorld) {
     frameAround(n, s, t);
     const Affine local = Affine::fromColumns(s * radius, t * radius, n * length, p0);
     cyl.toWorld = Affine::from(toWorld) * local;
-    requireTraceable(props, cyl, "cylinder");
+    requireTraceable(props, cyl);
     return cyl;
 }
 

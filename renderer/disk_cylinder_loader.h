@@ -2,6 +2,9 @@
 // result an object-to-world map in double.
 #pragma once
 
+#include <optional>
+#include <string>
+
 #include "scene.h"
 #include "xml_props.h"
 
@@ -16,5 +19,10 @@ Disk loadDisk(XmlProps &props, const Transform &toWorld);
 /// with `flip_normals`. A radius that is not positive, p0 = p1, a degenerate to_world, or a cylinder
 /// outside scene_limits.h, is an error.
 Cylinder loadCylinder(XmlProps &props, const Transform &toWorld);
+
+/// Why float32 and Embree cannot trace the disk or cylinder as it is placed (a degenerate map, a box beyond
+/// kMaxCoordinate, a size too small for its distance from the origin), or nothing if they can.
+std::optional<std::string> whyUntraceable(const Disk &disk);
+std::optional<std::string> whyUntraceable(const Cylinder &cyl);
 
 }  // namespace mcval

@@ -13,6 +13,7 @@
 #include "error.h"
 #include "obj_reader.h"
 #include "ply_reader.h"
+#include "serialized_reader.h"
 
 namespace mcval {
 
@@ -79,13 +80,13 @@ bool hasExtension(const std::string &path, const std::string &ext) {
     return true;
 }
 
-/// Applies toWorld; a mirroring transform gets its winding reversed so the front side stays
-/// where the transformed normal points (as Mitsuba's analytic shapes do).
-Mesh transformed(Mesh mesh, const Transform &toWorld) {
-    for (Vec3f &p : mesh.positions) p = toWorld.point(p);
-    for (Vec3f &n : mesh.normals) n = normalize(toWorld.normal(n));
-    if (toWorld.determinant3() < 0.f)
-        for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+/// A file's triangles in world space: the file's normals (unless faceNormals) or Mitsuba's vertex normals
+/// (unless faceNormals: then flat).
+Mesh placed(Mesh mesh, const Transform &toWorld, bool faceNormals) {
+    if (faceNormals) mesh.normals.clear();
+    const bool fileHasNormals = !mesh.normals.empty();
+    mesh = transformMesh(std::move(mesh), toWorld);
+    if (!fileHasNormals && !faceNormals) computeVertexNormals(mesh);
     return mesh;
 }
 
@@ -101,7 +102,7 @@ void addQuad(Mesh &m, const Vec3f &a, const Vec3f &b, const Vec3f &c, const Vec3
 Mesh makeRectangle(const Transform &toWorld) {
     Mesh m;
     addQuad(m, {-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0});
-    return transformed(std::move(m), toWorld);
+    return transformMesh(std::move(m), toWorld);
 }
 
 Mesh makeCube(const Transform &toWorld) {
@@ -119,7 +120,7 @@ Mesh makeCube(const Transform &toWorld) {
             addQuad(m, corner(-1, -1), corner(1, -1), corner(1, 1), corner(-1, 1));
         }
     }
-    return transformed(std::move(m), toWorld);
+    return transformMesh(std::move(m), toWorld);
 }
 
 Mesh loadMeshFile(const std::string &path, const Transform &toWorld, bool faceNormals) {
@@ -132,10 +133,25 @@ Mesh loadMeshFile(const std::string &path, const Transform &toWorld, bool faceNo
     if (!isObj && !isPly) throw SceneError(path, 0, "unknown mesh format: expected a .obj file or a PLY file");
     Mesh mesh = isObj ? readObj(path, bytes) : readPly(path, bytes);
     if (mesh.indices.empty()) throw SceneError(path, 0, "mesh has no triangles");
-    if (faceNormals) mesh.normals.clear();
-    const bool fileHasNormals = !mesh.normals.empty();
-    mesh = transformed(std::move(mesh), toWorld);
-    if (!fileHasNormals && !faceNormals) computeVertexNormals(mesh);
+    return placed(std::move(mesh), toWorld, faceNormals);
+}
+
+Mesh loadSerializedFile(const std::string &path, uint32_t shapeIndex, const Transform &toWorld, bool faceNormals,
+                        bool flipNormals) {
+    Mesh mesh = placed(readSerialized(path, readRegularFile(path), shapeIndex), toWorld, faceNormals);
+    // Mitsuba negates both normals; with one-sided surfaces that is the winding reversed as well.
+    if (flipNormals) {
+        for (Vec3f &n : mesh.normals) n = -n;
+        for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+    }
+    return mesh;
+}
+
+Mesh transformMesh(Mesh mesh, const Transform &toWorld) {
+    for (Vec3f &p : mesh.positions) p = toWorld.point(p);
+    for (Vec3f &n : mesh.normals) n = normalize(toWorld.normal(n));
+    if (toWorld.determinant3() < 0.f)
+        for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
     return mesh;
 }
 

@@ -14,6 +14,7 @@
 #include "scene.h"
 #include "sensor_loader.h"
 #include "shape_loader.h"
+#include "shapegroup_loader.h"
 #include "xml_props.h"
 #include "integrators/registry.h"
 
@@ -126,7 +127,8 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
 
     SceneDescription scene;
     scene.file = path;
-    std::map<std::string, Color> bsdfs;
+    Definitions defs;
+    std::vector<pugi::xml_node> instances;
     bool hasSensor = false, hasIntegrator = false;
     Deferred deferred;
     std::vector<std::string> skipped;
@@ -139,11 +141,15 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
             loadSensor(ctx, node, scene);
             hasSensor = true;
         } else if (tag == "shape") {
-            loadShape(ctx, node, bsdfs, scene, deferred);
+            const std::string type = typeOf(ctx, node);
+            if (type == "shapegroup") loadShapeGroup(ctx, node, defs, deferred);
+            else if (type == "instance") instances.push_back(node);
+            else loadShape(ctx, node, defs, {scene.meshes, scene.spheres, scene.disks, scene.cylinders}, deferred);
         } else if (tag == "bsdf") {
             const std::string id = ctx.attr(node, "id");
             if (id.empty()) ctx.fail(node, "a top-level <bsdf> needs an id to be referenced by");
-            bsdfs[id] = loadBsdf(ctx, node, deferred);
+            if (defs.groups.count(id)) ctx.fail(node, "the id \"" + id + "\" is already a shapegroup's");
+            defs.bsdfs[id] = loadBsdf(ctx, node, deferred);
         } else if (tag == "emitter") {
             loadEmitter(ctx, node, scene, deferred);
         } else if (tag == "texture") {
@@ -161,6 +167,8 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
                            "<emitter> or <integrator>");
         }
     }
+    // Instances last: a <ref> may name a shapegroup further down, as Mitsuba resolves references.
+    for (const pugi::xml_node &node : instances) loadInstance(ctx, node, defs, scene);
     if (!hasSensor) ctx.fail(root, "the scene has no <sensor type=\"perspective\"> or <sensor type=\"orthographic\">");
     if (scene.meshes.empty() && scene.spheres.empty() && scene.disks.empty() && scene.cylinders.empty())
         ctx.fail(root, "the scene has no <shape>");

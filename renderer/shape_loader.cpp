@@ -1,5 +1,6 @@
 #include "shape_loader.h"
 
+#include <climits>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -22,20 +23,9 @@ bool inRange(const Vec3f &p, float bound) {
     return std::abs(p.x) <= bound && std::abs(p.y) <= bound && std::abs(p.z) <= bound;  // false for NaN
 }
 
-/// Positions finite and bounded, normals unit length, after to_world: what Embree and the
-/// integrators can trace without producing NaN.
-void requireFiniteMesh(const XmlContext &ctx, const pugi::xml_node &node, const Mesh &mesh) {
-    for (size_t i = 0; i < mesh.positions.size(); ++i)
-        requirePosition(ctx, node, "vertex " + std::to_string(i) + " (after to_world)", mesh.positions[i]);
-    for (size_t i = 0; i < mesh.normals.size(); ++i)
-        if (!(std::abs(squaredNorm(mesh.normals[i]) - 1.f) < 1e-3f))
-            ctx.fail(node, "the normal of vertex " + std::to_string(i) + " is zero or not finite (after to_world)");
-}
-
 /// The shape's one <bsdf> or <ref> (its reflectance; the default without one) and its area emitter,
 /// whatever the shape.
-Color loadShapeChildren(const XmlContext &ctx, const XmlProps &props, const std::map<std::string, Color> &bsdfs,
-                        Deferred &deferred) {
+Color loadShapeChildren(const XmlContext &ctx, const XmlProps &props, const Definitions &defs, Deferred &deferred) {
     Color reflectance{0.5f, 0.5f, 0.5f};
     bool hasBsdf = false;
     for (const auto &child : props.objects()) {
@@ -51,8 +41,11 @@ Color loadShapeChildren(const XmlContext &ctx, const XmlProps &props, const std:
             reflectance = loadBsdf(ctx, child, deferred);
         } else if (tag == "ref") {
             const std::string id = ctx.attr(child, "id");
-            const auto it = bsdfs.find(id);
-            if (it == bsdfs.end()) ctx.fail(child, "no <bsdf id=\"" + id + "\"> defined before this point");
+            if (defs.groups.count(id))
+                ctx.fail(child, "<ref id=\"" + id + "\"> names a shapegroup: only a <shape type=\"instance\"> "
+                                "may refer to one");
+            const auto it = defs.bsdfs.find(id);
+            if (it == defs.bsdfs.end()) ctx.fail(child, "no <bsdf id=\"" + id + "\"> defined before this point");
             reflectance = it->second;
         } else {
             ctx.fail(child, "unsupported element in <shape>: expected <bsdf>, <ref> or <emitter type=\"area\">");
@@ -63,6 +56,16 @@ Color loadShapeChildren(const XmlContext &ctx, const XmlProps &props, const std:
 }
 
 }  // namespace
+
+// Positions finite and bounded, normals unit length, after to_world: what Embree and the integrators
+// can trace without producing NaN.
+void requireFiniteMesh(const XmlContext &ctx, const pugi::xml_node &node, const Mesh &mesh) {
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+        requirePosition(ctx, node, "vertex " + std::to_string(i) + " (after to_world)", mesh.positions[i]);
+    for (size_t i = 0; i < mesh.normals.size(); ++i)
+        if (!(std::abs(squaredNorm(mesh.normals[i]) - 1.f) < 1e-3f))
+            ctx.fail(node, "the normal of vertex " + std::to_string(i) + " is zero or not finite (after to_world)");
+}
 
 void requirePosition(const XmlContext &ctx, const pugi::xml_node &node, const std::string &what, const Vec3f &p) {
     if (inRange(p, kMaxCoordinate)) return;
@@ -106,8 +109,8 @@ Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node, Deferred &defe
     return rho;
 }
 
-void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const std::map<std::string, Color> &bsdfs,
-               SceneDescription &scene, Deferred &deferred) {
+void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const Definitions &defs, ShapeLists out,
+               Deferred &deferred) {
     const std::string type = typeOf(ctx, node);
     XmlProps props(ctx, node);
     const Transform toWorld = props.getTransform("to_world");
@@ -116,22 +119,22 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const std::map
     if (type == "sphere") {
         Sphere sphere = loadSphere(props, toWorld);
         sphere.name = name;
-        sphere.reflectance = loadShapeChildren(ctx, props, bsdfs, deferred);
-        scene.spheres.push_back(std::move(sphere));
+        sphere.reflectance = loadShapeChildren(ctx, props, defs, deferred);
+        out.spheres.push_back(std::move(sphere));
         return;
     }
     if (type == "disk") {
         Disk disk = loadDisk(props, toWorld);
         disk.name = name;
-        disk.reflectance = loadShapeChildren(ctx, props, bsdfs, deferred);
-        scene.disks.push_back(std::move(disk));
+        disk.reflectance = loadShapeChildren(ctx, props, defs, deferred);
+        out.disks.push_back(std::move(disk));
         return;
     }
     if (type == "cylinder") {
         Cylinder cylinder = loadCylinder(props, toWorld);
         cylinder.name = name;
-        cylinder.reflectance = loadShapeChildren(ctx, props, bsdfs, deferred);
-        scene.cylinders.push_back(std::move(cylinder));
+        cylinder.reflectance = loadShapeChildren(ctx, props, defs, deferred);
+        out.cylinders.push_back(std::move(cylinder));
         return;
     }
     Mesh mesh;
@@ -145,17 +148,31 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const std::map
         } catch (const SceneError &e) {
             ctx.fail(node, e.what());
         }
+    } else if (type == "serialized") {
+        const std::string filename = props.getStringRequired("filename");
+        const int shapeIndex = props.getInt("shape_index", 0);
+        props.requireRange("shape_index", shapeIndex, 0, INT_MAX);
+        const bool faceNormals = props.getBool("face_normals", false);
+        const bool flipNormals = props.getBool("flip_normals", false);
+        props.finish("filename, shape_index, face_normals, flip_normals, to_world");
+        const fs::path path = fs::path(ctx.file).parent_path() / filename;
+        try {
+            mesh = loadSerializedFile(path.string(), uint32_t(shapeIndex), toWorld, faceNormals, flipNormals);
+        } catch (const SceneError &e) {
+            ctx.fail(node, e.what());
+        }
     } else if (type == "rectangle" || type == "cube") {
         props.finish("to_world");
         mesh = type == "rectangle" ? makeRectangle(toWorld) : makeCube(toWorld);
     } else {
-        ctx.fail(node, "unsupported shape type \"" + type + "\": expected obj, ply, rectangle, cube, sphere, disk "
-                           "or cylinder");
+        ctx.fail(node, "unsupported shape type \"" + type +
+                           "\": expected obj, ply, serialized, rectangle, cube, sphere, disk or cylinder (or "
+                           "shapegroup and instance)");
     }
     requireFiniteMesh(ctx, node, mesh);
     mesh.name = name;
-    mesh.reflectance = loadShapeChildren(ctx, props, bsdfs, deferred);
-    scene.meshes.push_back(std::move(mesh));
+    mesh.reflectance = loadShapeChildren(ctx, props, defs, deferred);
+    out.meshes.push_back(std::move(mesh));
 }
 
 }  // namespace mcval

@@ -29,37 +29,47 @@ double similarityScale(const Transform &t) {
 }  // namespace
 
 Sphere loadSphere(XmlProps &props, const Transform &toWorld) {
-    const Vec3f center = props.getPoint("center", {0.f, 0.f, 0.f});
-    const float radius = props.getFloat("radius", 1.f);
-    const bool flip = props.getBool("flip_normals", false);
+    Sphere local;
+    local.center = props.getPoint("center", {0.f, 0.f, 0.f});
+    local.radius = props.getFloat("radius", 1.f);
+    local.flipNormals = props.getBool("flip_normals", false);
     props.finish("center, radius, flip_normals, to_world");
-    if (!(radius > 0.f)) {
+    if (!(local.radius > 0.f)) {
         std::ostringstream msg;
-        msg << "radius must be positive, got " << radius;
+        msg << "radius must be positive, got " << local.radius;
         props.failAt("radius", msg.str());
     }
+    Sphere sphere;
+    if (const auto refusal = placeSphere(local, toWorld, true, sphere))
+        props.failAt(refusal->property, refusal->reason);
+    return sphere;
+}
+
+std::optional<SphereRefusal> placeSphere(const Sphere &local, const Transform &toWorld, bool ownTransform,
+                                         Sphere &out) {
     const double scale = similarityScale(toWorld);
     if (scale == 0.0)
-        props.failAt("to_world", "a sphere's to_world may only translate, rotate and scale uniformly: this one "
-                                 "shears or scales unevenly (Mitsuba would keep a sphere anyway; use a mesh)");
-
-    Sphere sphere;
-    sphere.center = toWorld.point(center);
-    const double r = scale * radius;
+        return SphereRefusal{"to_world", "a sphere's to_world may only translate, rotate and scale uniformly: "
+                                         "this one shears or scales unevenly (Mitsuba would keep a sphere anyway; "
+                                         "use a mesh)"};
+    Sphere sphere = local;
+    sphere.center = toWorld.point(local.center);
+    const double r = scale * local.radius;
     sphere.radius = float(r);
-    sphere.flipNormals = flip != (toWorld.determinant3() < 0.f);  // Mitsuba flips a mirrored sphere's normals
+    sphere.flipNormals = local.flipNormals != (ownTransform && toWorld.determinant3() < 0.f);
     const Vec3f &c = sphere.center;
     const double extent = std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)}) + r;  // NaN fails below
     std::ostringstream msg;
     msg << "the sphere (after to_world) has centre (" << c.x << ", " << c.y << ", " << c.z << ") and radius " << r;
     if (!(extent <= kMaxCoordinate))
-        props.failAt("to_world", msg.str() + ": it must lie within " + std::to_string(kMaxCoordinate));
+        return SphereRefusal{"to_world", msg.str() + ": it must lie within " + std::to_string(kMaxCoordinate)};
     if (!(r >= kMinSphereRadius && r >= kMinSphereRadiusToCenter * (extent - r))) {
         msg << ": the radius must be at least " << kMinSphereRadius << " and " << kMinSphereRadiusToCenter
             << " times the centre's largest coordinate (float32 could not place points on it)";
-        props.failAt("radius", msg.str());
+        return SphereRefusal{"radius", msg.str()};
     }
-    return sphere;
+    out = sphere;
+    return std::nullopt;
 }
 
 }  // namespace mcval

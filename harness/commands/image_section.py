@@ -47,6 +47,7 @@ def engine_meta(role: str, engine) -> dict[str, str]:
 def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: Path | None,
                       not_applicable=(), invariance: dict | None = None, executor=None) -> tuple[bool, dict]:
     """Every case against its references; returns (all pass, the results.json fields)."""
+    from harness.commands.reference_image_options import reference_image
     from harness.engines.registry import make_engine
     from harness.images.real_scenes import real_scenes_json, split
     from harness.images.run import run_images
@@ -61,7 +62,7 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     with task_progress("images", executor) as show:
         results, alpha = run_images(cases, ours, reference, args.seed, on_status=show,
                                     on_message=lambda m: err.print(f"[yellow]{escape(m)}[/]", soft_wrap=True),
-                                    executor=executor)
+                                    executor=executor, reference_image=reference_image(args))
         where = executor.description
     seconds = time.perf_counter() - start
     synthetic, real = split(results)
@@ -69,6 +70,9 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
         console.print(image_table(synthetic, alpha))
     if real or not_applicable:
         _print_real_scenes(real, not_applicable, alpha)
+    for r in results:
+        if r.reference_fit is not None:
+            console.print(f"{escape(r.case.key)}: {escape(r.reference_fit.summary)}", soft_wrap=True)
     for name in match().without_entry:
         console.print(f"[yellow]{escape(name)}[/]: no harness entry (not validated; see `python -m harness "
                       "integrators`)")
@@ -83,7 +87,7 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     console.print(f"{len(results) - len(failed)} of {len(results)} image comparisons pass, in {seconds:.1f} s. "
                   f"Report: {run_dir / 'report.html'}")
     for r in failed:
-        why = "; ".join(x for x in (r.error, r.note) if x)
+        why = "; ".join(x for x in (r.error, r.reference_problem, r.note) if x)
         console.print(f"[red]FAIL[/] {r.case.key}{' — ' + escape(why) if why else ''}: "
                       f"{escape(reproduce_command(r, run))}", soft_wrap=True)
     return not failed, payload

@@ -4,6 +4,7 @@ from __future__ import annotations
 import argparse
 
 from harness.commands.options import add_common, add_image_options
+from harness.commands.reference_image_options import add_reference_image_options, chosen_image_case
 from harness.commands.run_folder import RunFolder
 
 NAME = "images"
@@ -16,6 +17,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                      "their provenance matches) and closed forms.")
     add_common(p)
     add_image_options(p)
+    add_reference_image_options(p)
 
 
 def run(args: argparse.Namespace, run: RunFolder) -> int:
@@ -24,5 +26,6 @@ def run(args: argparse.Namespace, run: RunFolder) -> int:
     from harness.distributed.cluster import open_executor
     from harness.images.suite import select_cases
 
+    cases = chosen_image_case(args, select_cases(args.scenes, **case_selection(args)))
     with open_executor(args) as executor:
-        return run_sections(args, run, executor, [], select_cases(args.scenes, **case_selection(args)))
+        return run_sections(args, run, executor, [], cases)

@@ -42,7 +42,11 @@ def _case_selection(args: argparse.Namespace) -> dict:
     if getattr(args, "scene", None):
         from harness.images.references import RESOLUTION
         from harness.images.user_scenes import prepare_scenes
-        user = prepare_scenes(args.scene, args.out / ".scenes", RESOLUTION)
+        from harness.commands.reference_image_options import check_reference_image, reference_image
+        check_reference_image(args)
+        image = reference_image(args)
+        # Against a reference image the scene renders at the image's size.
+        user = prepare_scenes(args.scene, args.out / ".scenes", image.size[0] if image else RESOLUTION)
     return {"integrators": tested_integrators(args), "user": user,
             "with_suite": getattr(args, "with_suite", False)}
 

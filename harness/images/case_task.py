@@ -8,10 +8,12 @@ from dataclasses import dataclass, replace
 from typing import Callable
 
 from harness.comparison.compare import compare_summaries, summarize
+from harness.comparison.mismatch import diagnose
 from harness.distributed.bundle import Bundle, bundle_files
 from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine, RenderFailed, RenderResult
 from harness.images.oracle import decide
+from harness.images.reference_image import ReferenceImage, against_image, fit_verdict
 from harness.images.references import (CLOSED_FORM, RESOLUTION, Reference, load_reference, reference_path,
                                        render_reference)
 from harness.images.result import ImageResult
@@ -29,6 +31,8 @@ class CaseJob:
     closed_form: bool        # whether the analytic engine renders this case too
     test: Engine             # the engine under test
     reference: Engine
+    #: A reference image (--reference-image) in place of the reference engine's render.
+    reference_image: ReferenceImage | None = None
 
 
 def share_scene_bundles(executor, cases, engines: Sequence[Engine]) -> dict[str, object]:
@@ -65,8 +69,11 @@ def run_case_job(job: CaseJob, bundle: Bundle | None = None):
     """(ImageResult, messages). With a bundle, the case reads the bundle's copy of its files."""
     case = on_files(job.case, bundle)
     messages: list[str] = []
-    result = run_case(case, job.test, job.reference, AnalyticEngine() if job.closed_form else None,
-                       {"res": str(RESOLUTION)}, job.seed, job.alpha, job.run_seed, messages.append)
+    if job.reference_image is not None:
+        result = run_image_case(case, job.test, job.reference_image, job.seed, job.alpha, job.run_seed)
+    else:
+        result = run_case(case, job.test, job.reference, AnalyticEngine() if job.closed_form else None,
+                          {"res": str(RESOLUTION)}, job.seed, job.alpha, job.run_seed, messages.append)
     result.case = job.case
     if result.ours is not None and (result.passed or result.error is not None):
         result.ours = result.ours.light()  # a failed comparison keeps its batches for results/<run>/images/
@@ -138,3 +145,37 @@ def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: 
                      analytic.name if analytic is not None else "")
     return ImageResult(case, mine, references, comparisons, source, s, None, alpha, run_seed, finding=finding,
                        tested=ours.name)
+
+
+def run_image_case(case: ImageCase, ours: Engine, ref: ReferenceImage, s: int, alpha: float,
+                   run_seed: int) -> ImageResult:
+    """One case against a reference image: the tested engine's batches at the image's size, the fit of the
+    image's noise to its model, and the comparison under that model (harness/images/reference_image.py)."""
+    source = ref.describe()
+
+    def failed(reason: str, mine: RenderResult | None = None, output: str = "") -> ImageResult:
+        return ImageResult(case, mine, {}, {}, source, s, None, alpha, run_seed, reason, tested=ours.name,
+                           error_output=output)
+
+    try:
+        image = ref.read()
+    except ValueError as e:
+        return failed(str(e))
+    try:
+        mine = ours.render(str(case.path), case.integrator, OUR_SPP[case.integrator], IMAGE_BATCHES, s,
+                           {"res": str(image.shape[1])})
+    except RenderFailed as e:
+        return failed(f"{ours.name} render: {e.reason}", output=e.output)
+    try:
+        inputs = against_image(ref, image, summarize(mine.batches), mine.batches, mine.spp)
+    except ValueError as e:
+        return failed(str(e), mine)
+    signed = entry(case.integrator).signed
+    # The image as K batches of N / K samples, so that its variance floors ours where our batches missed.
+    comparison = compare_summaries(inputs.test, inputs.reference, alpha, signed=signed,
+                                   samples=(mine.spp, max(1, ref.spp // inputs.reference.image.k)))
+    reference = Reference(inputs.reference, ref.spp, {}, source)
+    # What a failed comparison looks like (a zoom, a shift, a factor, a background): the user's next step.
+    note = None if comparison.passed else diagnose(mine.mean, image)
+    return ImageResult(case, mine, {"image": reference}, {"image": comparison}, source, s, note, alpha, run_seed,
+                       tested=ours.name, reference_fit=inputs.fit, reference_problem=fit_verdict(ref, inputs.fit))

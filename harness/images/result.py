@@ -12,6 +12,7 @@ from harness.engines.base import RenderResult
 from harness.images.oracle import Finding
 from harness.images.references import Reference
 from harness.images.suite import ImageCase
+from harness.statistics.noise_fit import NoiseFit
 from harness.statistics.constants import SIGNIFICANCE
 
 #: On the other cases of a scene whose normals failed: normals see only the camera and the geometry, unless
@@ -44,11 +45,16 @@ class ImageResult:
     tested: str = ""  # the tested engine's name, for a result without our render
     #: The last lines (up to 50) a failed render printed, where it printed any.
     error_output: str = ""
+    #: Against a reference image (--reference-image): how its noise fits its model, and why it cannot be
+    #: compared under that model (one line; the case then fails whatever the comparison says).
+    reference_fit: NoiseFit | None = None
+    reference_problem: str | None = None
 
     @property
     def passed(self) -> bool:
         overruled = self.finding.overruled if self.finding else None
-        return self.error is None and all(c.passed for name, c in self.comparisons.items() if name != overruled)
+        return self.error is None and self.reference_problem is None and \
+            all(c.passed for name, c in self.comparisons.items() if name != overruled)
 
     def to_json(self) -> dict:
         if self.error is not None or self.ours is None:
@@ -72,7 +78,13 @@ class ImageResult:
             "image_mean": batch_means.mean(axis=0).tolist(),
             "image_mean_se": (batch_means.std(axis=0, ddof=1) / np.sqrt(len(batch_means))).tolist(),
             "idiff": self.idiff, "finding": self.finding.to_json() if self.finding else None, **self._source(),
+            **self._reference_fit(),
         }
+
+    def _reference_fit(self) -> dict:
+        if self.reference_fit is None:
+            return {}
+        return {"reference_fit": self.reference_fit.to_json(), "reference_problem": self.reference_problem}
 
     def _source(self) -> dict:
         """A user's scene file (--scene) as given."""

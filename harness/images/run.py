@@ -10,6 +10,7 @@ from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine
 from harness.images.case_task import CaseJob, run_case_job, share_scene_bundles
 from harness.images.references import RESOLUTION
+from harness.images.reference_image import ReferenceImage
 from harness.images.result import GEOMETRY_NOTE, ImageResult
 from harness.images.suite import ImageCase
 from harness.integrators import entry
@@ -35,17 +36,19 @@ def comparison_level(cases: list[ImageCase], has_closed_form: dict[ImageCase, bo
 def run_images(cases: list[ImageCase], ours: Engine, reference: Engine, seed: int = 0,
                on_status: Callable[[Status], None] | None = None,
                on_message: Callable[[str], None] | None = None,
-               executor: Executor | None = None) -> tuple[list[ImageResult], float]:
+               executor: Executor | None = None,
+               reference_image: ReferenceImage | None = None) -> tuple[list[ImageResult], float]:
     """Every case, one task each on `executor` (default: here, one after another); all comparisons of the
     run share a family-wise false-alarm rate of SIGNIFICANCE (Sidak). Returns the results, in the order of
     `cases`, and the per-comparison alpha. A render that fails (our RenderFailed, or any exception of a
     reference engine), or a task whose worker dies, fails its case with the reason, and the run goes on."""
     executor = executor or SerialExecutor()
-    has_closed_form = closed_forms(cases)
+    has_closed_form = closed_forms(cases) if reference_image is None else dict.fromkeys(cases, False)
     alpha = comparison_level(cases, has_closed_form)
     bundles = share_scene_bundles(executor, cases, (ours, reference))
     tasks = [Task(case.key, run_case_job,
-                  (CaseJob(case, case_seed(case, seed), alpha, seed, has_closed_form[case], ours, reference),
+                  (CaseJob(case, case_seed(case, seed), alpha, seed, has_closed_form[case], ours, reference,
+                           reference_image),
                    bundles.get(case.scene)))
              for case in cases]
     outcomes = executor.run(tasks, on_status)

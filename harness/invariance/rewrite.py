@@ -148,7 +148,8 @@ def transform_scene(root: ET.Element, kind: str, value) -> None:
             for name, default in (("near_clip", NEAR_CLIP), ("far_clip", FAR_CLIP), ("focus_distance", None)):
                 if default is not None or _prop(sensor, name) is not None:
                     _scale_property(sensor, name, s, default)
-    for shape in root.iter("shape"):
+    # The shapes that stand in the world: a shapegroup's members are placed by its instances, which move.
+    for shape in [e for e in root.findall("shape") if e.get("type") != "shapegroup"]:
         if shape.get("type") == "sphere" and not any(e.tag == "transform" for e in shape):
             # Mitsuba's sphere is to_world * translate(center) * scale(radius): without a to_world, move those.
             centre = _prop(shape, "center")
@@ -187,6 +188,8 @@ def scale_lights(root: ET.Element, factor: float) -> None:
 def scale_reflectance(root: ET.Element, factor: float) -> None:
     """Every diffuse reflectance times `factor`; a shape with no material gets the default one, scaled."""
     for shape in root.iter("shape"):
+        if shape.get("type") in ("shapegroup", "instance"):  # their members carry the materials
+            continue
         if not any(e.tag in ("bsdf", "ref") for e in shape):
             ET.SubElement(shape, "bsdf", type="diffuse")
     for bsdf in root.iter("bsdf"):

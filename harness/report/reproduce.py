@@ -11,7 +11,8 @@ ENVIRONMENT = ("MCVAL_ENGINE_PATH", "MCVAL_INTEGRATOR_PATH", "MCVAL_RENDER", "MC
 #: Options whose value changes an outcome, and their defaults (left out when at them).
 OPTIONS = (("engine", "--engine", "mcval"), ("reference", "--reference", "mitsuba"),
            ("variant", "--variant", "llvm_ad_rgb"), ("warp_library", "--warp-library", None),
-           ("out", "--out", "results"))
+           ("reference_image", "--reference-image", None), ("reference_spp", "--reference-spp", None),
+           ("reference_noise", "--reference-noise", "stated"), ("out", "--out", "results"))
 
 
 def invocation(args) -> dict:

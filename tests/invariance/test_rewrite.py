@@ -101,6 +101,25 @@ def test_defaults_are_written_before_scaling(tmp_path):
     assert [float(_prop(root.find("sensor"), n).get("value")) for n in ("near_clip", "far_clip")] == [0.1, 1e5]
 
 
+def test_a_shapegroup_moves_through_its_instances(tmp_path):
+    """The step goes on the instance only (on its members too it would apply twice), and no material is
+    given to a shapegroup or an instance, which take none."""
+    scene = tmp_path / "group.xml"
+    scene.write_text("""<scene version="3.0.0">
+    <shape type="shapegroup" id="g"><shape type="cube"><transform name="to_world"><scale value="0.5"/></transform>
+        </shape></shape>
+    <shape type="instance"><ref id="g"/><transform name="to_world"><translate value="1, 0, 0"/></transform></shape>
+</scene>""")
+    root = ET.parse(rewrite(scene, tmp_path / "scaled.xml", "scale", 2.0)).getroot()
+    group, instance = root.findall("shape")
+    assert [e.tag for e in _steps(instance)] == ["translate", "scale"]
+    assert not any(e.tag == "transform" for e in group) and [e.tag for e in _steps(group.find("shape"))] == ["scale"]
+    root = ET.parse(rewrite(scene, tmp_path / "darker.xml", "reflectance", 0.5)).getroot()
+    group, instance = root.findall("shape")
+    assert group.find("bsdf") is None and instance.find("bsdf") is None
+    assert group.find("shape").find("bsdf").get("type") == "diffuse"
+
+
 def test_unknown_emitters_are_refused(tmp_path):
     scene = tmp_path / "spot.xml"
     scene.write_text('<scene version="3.0.0"><emitter type="spot"/></scene>')
