@@ -21,15 +21,19 @@ float horizontalFov(float fov, const std::string &axis, float width, float heigh
 }  // namespace
 
 Camera::Camera(const CameraSpec &spec, int width, int height)
-    : m_origin(spec.toWorld.point({0.f, 0.f, 0.f})),
-      m_fovX(horizontalFov(spec.fov, spec.fovAxis, float(width), float(height))),
+    : m_orthographic(spec.projection == CameraSpec::Projection::Orthographic),
+      m_origin(spec.toWorld.point({0.f, 0.f, m_orthographic ? spec.nearClip : 0.f})),
+      m_fovX(m_orthographic ? 0.f : horizontalFov(spec.fov, spec.fovAxis, float(width), float(height))),
       m_tanHalfX(std::tan(0.5f * m_fovX * kDegToRad)), m_aspect(float(width) / float(height)),
       m_near(spec.nearClip), m_far(spec.farClip) {
     m_axisX = spec.toWorld.vector({1.f, 0.f, 0.f});
     m_axisY = spec.toWorld.vector({0.f, 1.f, 0.f});
     m_axisZ = spec.toWorld.vector({0.f, 0.f, 1.f});
-    m_scaleX = 2.f * m_tanHalfX / float(width);
-    m_scaleY = 2.f * m_tanHalfX / m_aspect / float(height);
+    m_forward = normalize(m_axisZ);
+    // Orthographic: the [-1, 1] x [-1/aspect, 1/aspect] square over the film, 2 / width units per pixel both ways.
+    const float halfWidth = m_orthographic ? 1.f : m_tanHalfX;
+    m_scaleX = 2.f * halfWidth / float(width);
+    m_scaleY = 2.f * halfWidth / m_aspect / float(height);
 }
 
 }  // namespace mcval

@@ -6,8 +6,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "cylinder.h"
+#include "disk.h"
 #include "error.h"
 #include "sphere.h"
+#include "user_geometry.h"
 
 namespace mcval {
 
@@ -38,8 +41,9 @@ float halfExtent(const std::vector<Vec3f> &points) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphere> &spheres)
-    : m_meshes(meshes), m_spheres(spheres) {
+EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphere> &spheres,
+                         const std::vector<Disk> &disks, const std::vector<Cylinder> &cylinders)
+    : m_meshes(meshes), m_spheres(spheres), m_disks(disks), m_cylinders(cylinders) {
     m_device = rtcNewDevice(nullptr);
     if (!m_device) throw std::runtime_error("cannot create an Embree device");
     rtcSetDeviceErrorFunction(m_device, onEmbreeError, nullptr);
@@ -95,6 +99,18 @@ EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphe
         attachSphere(m_device, m_scene, sphere);  // ids after the meshes'
         m_reflectance.push_back(sphere.reflectance);
         smallest = std::min(smallest, sphere.radius);
+    }
+    m_firstDisk = static_cast<uint32_t>(meshes.size() + spheres.size());
+    m_firstCylinder = m_firstDisk + static_cast<uint32_t>(m_disks.size());
+    for (const Disk &disk : m_disks) {
+        attachUserGeometry(m_device, m_scene, disk);  // ids after the spheres'
+        m_reflectance.push_back(disk.reflectance);
+        smallest = std::min(smallest, float(shapeSize(disk)));
+    }
+    for (const Cylinder &cylinder : m_cylinders) {
+        attachUserGeometry(m_device, m_scene, cylinder);  // ids after the disks'
+        m_reflectance.push_back(cylinder.reflectance);
+        smallest = std::min(smallest, float(shapeSize(cylinder)));
     }
     if (std::isfinite(smallest)) m_offsetFloor = kOffsetFloorPerSize * smallest;
     rtcCommitScene(m_scene);

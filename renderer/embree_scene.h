@@ -1,4 +1,4 @@
-// The scene's triangle meshes and exact spheres in one Embree 3 BVH, behind a small RAII class.
+// The scene's triangle meshes and exact shapes (spheres, disks, cylinders) in one Embree 3 BVH, behind a small RAII class.
 #pragma once
 
 #include <vector>
@@ -56,9 +56,11 @@ struct RayHitPacket {
 
 class EmbreeScene {
 public:
-    /// Builds the BVH over all meshes and spheres; they must outlive this object. Geometry ids are
-    /// the meshes' indices, then the spheres' after them.
-    explicit EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphere> &spheres = {});
+    /// Builds the BVH over all meshes and exact shapes; meshes and spheres must outlive this object
+    /// (disks and cylinders are copied). Geometry ids are the meshes' indices, then the spheres', the
+    /// disks' and the cylinders' after them.
+    explicit EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphere> &spheres = {},
+                         const std::vector<Disk> &disks = {}, const std::vector<Cylinder> &cylinders = {});
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene &) = delete;
     EmbreeScene &operator=(const EmbreeScene &) = delete;
@@ -76,19 +78,23 @@ public:
     /// Traces the set lanes of `packet` (nothing if none); read the answers with packet.blocked(i).
     void occluded(OcclusionPacket &packet, bool coherent) const;
 
-    /// The diffuse reflectance of geometry `geom` (Hit::geom), mesh or sphere alike.
+    /// The diffuse reflectance of geometry `geom` (Hit::geom), whatever the shape.
     const Color &reflectance(uint32_t geom) const { return m_reflectance[geom]; }
 
 private:
-    /// Position and normals of a hit: on triangle prim of a mesh at barycentrics (u, v), or on a
-    /// sphere at t + u (u holds what float32 rounded off t).
+    /// Position and normals of a hit: on triangle prim of a mesh at barycentrics (u, v), or on an
+    /// exact shape at t + u (u holds what float32 rounded off t).
     void fillHit(const Ray &ray, unsigned geom, unsigned prim, float u, float v, float t, Hit &hit) const;
 
     /// The hits of a traced packet's first `count` lanes into `hits`: the triangles' in SIMD over all
-    /// lanes (gathers from the flat tables below), then the lanes on a sphere.
+    /// lanes (gathers from the flat tables below), then the lanes on an exact shape.
     void fillHits(const RTCRayHit16 &rh, int count, HitPacket &hits) const;
     /// fillHits' pass over the lanes on a sphere: their exact points and normals.
     void fillSphereHits(const RTCRayHit16 &rh, HitPacket &hits) const;
+    /// fillHits' pass over the lanes on a disk or a cylinder, one lane at a time.
+    void fillDiskCylinderHits(const RTCRayHit16 &rh, HitPacket &hits) const;
+    /// The exact point and normal (geometric and shading alike) on disk or cylinder `geom`.
+    void diskCylinderHit(unsigned geom, const Vec3f &o, const Vec3f &d, double t, Vec3f &p, Vec3f &n) const;
 
     /// A triangle as a hit reads it: its corners and unit face normal (computed once) in one record,
     /// so that the packet's hits can be gathered in SIMD rather than walked through index arrays.
@@ -103,6 +109,9 @@ private:
 
     const std::vector<Mesh> &m_meshes;
     const std::vector<Sphere> &m_spheres;
+    std::vector<Disk> m_disks;          ///< copies: Embree holds pointers to them, so never resized
+    std::vector<Cylinder> m_cylinders;
+    uint32_t m_firstDisk = 0, m_firstCylinder = 0;  ///< their first geometry ids
     std::vector<Color> m_reflectance;  ///< by geometry id: one table whatever the shape
     /// Every mesh's triangles, then a zero record that lanes without a triangle read harmlessly.
     std::vector<TriangleRecord> m_triangles;

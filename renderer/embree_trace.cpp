@@ -3,6 +3,8 @@
 // machine's widest SIMD); and the hit records made from Embree's answers.
 #include <limits>
 
+#include "cylinder.h"
+#include "disk.h"
 #include "embree_scene.h"
 #include "error.h"
 #include "sphere.h"
@@ -54,8 +56,11 @@ __attribute__((always_inline)) inline void EmbreeScene::fillHit(const Ray &ray, 
     hit.prim = prim;
     hit.offsetFloor = m_offsetFloor;
     if (geom >= m_meshes.size()) {
-        // A sphere: the exact point and normal; its shading normal is its geometric one.
-        sphereHitPoint(m_spheres[geom - m_meshes.size()], ray.o, ray.d, double(t) + double(u), hit.p, hit.ng);
+        // An exact shape: the exact point and normal; its shading normal is its geometric one.
+        if (geom < m_firstDisk)
+            sphereHitPoint(m_spheres[geom - m_meshes.size()], ray.o, ray.d, double(t) + double(u), hit.p, hit.ng);
+        else
+            diskCylinderHit(geom, ray.o, ray.d, double(t) + double(u), hit.p, hit.ng);
         hit.ns = hit.ng;
         return;
     }
@@ -82,7 +87,7 @@ MCVAL_HOT void EmbreeScene::fillHits(const RTCRayHit16 &rh, int count, HitPacket
     const TriangleRecord *tris = m_triangles.data();
     const TriangleNormals *smooth = m_normals.data();
     const uint32_t *firstTriangle = m_firstTriangle.data(), *firstNormals = m_firstNormals.data();
-    int others = 0;  // lanes on a sphere
+    int spheres = 0, others = 0;  // lanes on a sphere, on a disk or a cylinder
     for (int i = 0; i < kPacketSize; ++i) {
         const bool found = (i < count) & (h.geomID[i] != RTC_INVALID_GEOMETRY_ID);
         const bool mesh = found & (h.geomID[i] < meshes);
@@ -111,10 +116,32 @@ MCVAL_HOT void EmbreeScene::fillHits(const RTCRayHit16 &rh, int count, HitPacket
         hits.geom[i] = found ? h.geomID[i] : 0;
         hits.prim[i] = found ? h.primID[i] : 0;
         hits.found[i] = found;
-        others += found & !mesh;
+        spheres += found & !mesh & (h.geomID[i] < m_firstDisk);
+        others += found & (h.geomID[i] >= m_firstDisk);
     }
     hits.offsetFloor = m_offsetFloor;
-    if (others != 0) fillSphereHits(rh, hits);
+    if (spheres != 0) fillSphereHits(rh, hits);
+    if (others != 0) fillDiskCylinderHits(rh, hits);
+}
+
+void EmbreeScene::diskCylinderHit(unsigned geom, const Vec3f &o, const Vec3f &d, double t, Vec3f &p, Vec3f &n) const {
+    if (geom < m_firstCylinder)
+        shapeHitPoint(m_disks[geom - m_firstDisk], o, d, t, p, n);
+    else
+        shapeHitPoint(m_cylinders[geom - m_firstCylinder], o, d, t, p, n);
+}
+
+void EmbreeScene::fillDiskCylinderHits(const RTCRayHit16 &rh, HitPacket &hits) const {
+    for (int i = 0; i < kPacketSize; ++i) {
+        if (!hits.found[i] || hits.geom[i] < m_firstDisk) continue;
+        const double t = double(rh.ray.tfar[i]) + double(rh.hit.u[i]);  // Embree's t, refined by the callback
+        Vec3f p, n;
+        const Vec3f o{hits.ox[i], hits.oy[i], hits.oz[i]}, d{hits.dx[i], hits.dy[i], hits.dz[i]};
+        diskCylinderHit(hits.geom[i], o, d, t, p, n);
+        hits.px[i] = p.x; hits.py[i] = p.y; hits.pz[i] = p.z;
+        hits.gx[i] = n.x; hits.gy[i] = n.y; hits.gz[i] = n.z;
+        hits.nx[i] = n.x; hits.ny[i] = n.y; hits.nz[i] = n.z;
+    }
 }
 
 // sphereHitPoint's arithmetic (the same bits) over the lanes on a sphere, in double SIMD; the other
@@ -124,7 +151,7 @@ MCVAL_HOT void EmbreeScene::fillSphereHits(const RTCRayHit16 &rh, HitPacket &hit
     alignas(64) double cx[kPacketSize], cy[kPacketSize], cz[kPacketSize], r[kPacketSize], sign[kPacketSize];
     alignas(64) int onSphere[kPacketSize];
     for (int i = 0; i < kPacketSize; ++i) {
-        onSphere[i] = hits.found[i] & (hits.geom[i] >= meshes);
+        onSphere[i] = hits.found[i] & (hits.geom[i] >= meshes) & (hits.geom[i] < m_firstDisk);
         const Sphere &s = m_spheres[onSphere[i] ? hits.geom[i] - meshes : 0];
         cx[i] = s.center.x; cy[i] = s.center.y; cz[i] = s.center.z;
         r[i] = s.radius;

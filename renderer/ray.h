@@ -28,7 +28,7 @@ struct Hit {
     Vec3f p;          ///< position, from the barycentrics (more exact than o + t d)
     Vec3f ng;         ///< unit geometric normal; its side is the front
     Vec3f ns;         ///< unit shading normal (interpolated, or ng for flat meshes)
-    uint32_t geom = 0;  ///< Embree geometry id: a mesh's index, or a sphere's after the meshes
+    uint32_t geom = 0;  ///< Embree geometry id: a mesh's index, or an exact shape's after the meshes
     uint32_t prim = 0;
     float offsetFloor = 0.f;  ///< smallest offset of a ray leaving the hit (offsetRayOrigin)
 };

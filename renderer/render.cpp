@@ -106,10 +106,17 @@ MCVAL_HOT void renderPixel(const RenderContext &ctx, int batch, int x, int y, Im
         }
         const Vec3f origin = ctx.camera.origin();
         const float nearClip = ctx.camera.nearClip(), farClip = ctx.camera.farClip();
-        for (int i = 0; i < kPacketSize; ++i) {
-            float length;
-            const Vec3f d = ctx.camera.direction(filmX[i], filmY[i], length);
-            camera.set(i, i < count, origin, d, nearClip * length, farClip * length);
+        if (ctx.camera.orthographic()) {
+            // Parallel rays from the near plane over Mitsuba's maxt, far_clip - near_clip.
+            for (int i = 0; i < kPacketSize; ++i)
+                camera.set(i, i < count, ctx.camera.orthographicOrigin(filmX[i], filmY[i]), ctx.camera.forward(), 0.f,
+                           farClip - nearClip);
+        } else {
+            for (int i = 0; i < kPacketSize; ++i) {
+                float length;
+                const Vec3f d = ctx.camera.direction(filmX[i], filmY[i], length);
+                camera.set(i, i < count, origin, d, nearClip * length, farClip * length);
+            }
         }
         ctx.embree.intersect(camera, count, lanes);
         counts.camera += static_cast<uint64_t>(count);
@@ -199,7 +206,7 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
 
     workersStart();
     auto start = std::chrono::steady_clock::now();
-    const EmbreeScene embree(scene.meshes, scene.spheres);
+    const EmbreeScene embree(scene.meshes, scene.spheres, scene.disks, scene.cylinders);
     const auto integrator = createIntegrator(spec, scene, embree);  // validates the name before any work
     out.stats.bvhSeconds = secondsSince(start);
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "affine.h"
 #include "sampler.h"
 #include "transform.h"
 #include "vector.h"
@@ -35,16 +36,35 @@ struct Sphere {
     Color reflectance{0.5f, 0.5f, 0.5f};
 };
 
+/// Mitsuba's `disk`: the unit disk at z = 0 of object space under an affine to_world, intersected exactly.
+struct Disk {
+    std::string name;                ///< what the scene called it (for messages)
+    Affine toWorld;
+    bool flipNormals = false;        ///< flip_normals: the front is object-space -z
+    Color reflectance{0.5f, 0.5f, 0.5f};
+};
+
+/// Mitsuba's `cylinder`: the open unit cylinder (radius 1, z in [0, 1]) of object space under
+/// `toWorld`, which already holds p0, p1 and radius (to_world * translate(p0) * frame * scale).
+struct Cylinder {
+    std::string name;                ///< what the scene called it (for messages)
+    Affine toWorld;
+    bool flipNormals = false;        ///< flip_normals: the normals point inward
+    Color reflectance{0.5f, 0.5f, 0.5f};
+};
+
 /// An isotropic point light; intensity in W/sr.
 struct PointLight {
     Vec3f position;
     Color intensity;
 };
 
-/// Mitsuba's `perspective` sensor.
+/// Mitsuba's `perspective` or `orthographic` sensor.
 struct CameraSpec {
+    /// orthographic: parallel rays along to_world's +z from the [-1, 1] x [-1/aspect, 1/aspect] square.
+    enum class Projection { Perspective, Orthographic } projection = Projection::Perspective;
     Transform toWorld;
-    float fov = 0.f;                 ///< degrees, along fovAxis
+    float fov = 0.f;                 ///< degrees, along fovAxis (perspective only)
     std::string fovAxis = "x";       ///< x, y, diagonal, smaller, larger
     float nearClip = 1e-2f;
     float farClip = 1e4f;
@@ -84,6 +104,8 @@ struct SceneDescription {
     SamplerType sampler = SamplerType::Independent;  ///< <sampler type="...">
     std::vector<Mesh> meshes;
     std::vector<Sphere> spheres;
+    std::vector<Disk> disks;
+    std::vector<Cylinder> cylinders;
     std::vector<PointLight> pointLights;
     std::optional<Color> environment;  ///< radiance of the `constant` emitter, if any
     /// The file's <integrator>'s `hide_emitters`, whatever its type (nested ones included): every Mitsuba

@@ -9,10 +9,10 @@
 #include <sstream>
 
 #include "error.h"
-#include "film_loader.h"
 #include "scene_limits.h"
 #include "mesh.h"
 #include "scene.h"
+#include "sensor_loader.h"
 #include "shape_loader.h"
 #include "shapegroup_loader.h"
 #include "xml_props.h"
@@ -25,77 +25,6 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string typeOf(const XmlContext &ctx, const pugi::xml_node &node) { return ctx.attr(node, "type"); }
-
-/// Mitsuba refuses a camera whose to_world scales or shears (Transform::has_scale: its columns are
-/// orthonormal within 1e-3), and a scaled camera's rays would not be unit length (at 1e-30 they are 0).
-void requireRigid(const XmlContext &ctx, const pugi::xml_node &node, const Transform &t) {
-    for (int i = 0; i < 3; ++i)
-        for (int j = i; j < 3; ++j) {
-            const double dot = double(t.m[0][i]) * t.m[0][j] + double(t.m[1][i]) * t.m[1][j] +
-                               double(t.m[2][i]) * t.m[2][j];
-            if (!(std::abs(dot - (i == j ? 1.0 : 0.0)) <= 1e-3))
-                ctx.fail(node, "the camera's to_world scales or shears (its axes must be orthonormal, as Mitsuba "
-                               "requires): move the scale to the shapes");
-        }
-}
-
-/// Mitsuba's alternative to fov (and its default, 50mm): a focal length in 35 mm film equivalent, which
-/// sets the field of view, in degrees, along the film's diagonal (36 x 24 mm).
-float focalLengthFov(XmlProps &props) {
-    const std::string text = props.getString("focal_length", "50mm");
-    const std::string number = text.size() > 2 && text.compare(text.size() - 2, 2, "mm") == 0
-                                   ? text.substr(0, text.size() - 2) : text;
-    char *end = nullptr;
-    const double focal = std::strtod(number.c_str(), &end);
-    if (number.empty() || *end != '\0' || !(focal > 0.0 && focal < 1e6))
-        props.failAt("focal_length", "expected a focal length in millimetres such as \"50mm\", got \"" + text + "\"");
-    const float fov = float(2.0 * std::atan(std::sqrt(36.0 * 36.0 + 24.0 * 24.0) / (2.0 * focal)) * 180.0 / M_PI);
-    props.requireRange("focal_length", fov, kMinFov, kMaxFov);
-    return fov;
-}
-
-void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene) {
-    if (typeOf(ctx, node) != "perspective") ctx.fail(node, "unsupported sensor type: expected \"perspective\"");
-    XmlProps props(ctx, node);
-    CameraSpec &cam = scene.camera;
-    if (props.has("fov")) {
-        cam.fov = props.getFloatRequired("fov");
-        props.requireRange("fov", cam.fov, kMinFov, kMaxFov);
-        cam.fovAxis = props.getString("fov_axis", "x");
-    } else {
-        if (props.has("fov_axis")) props.failAt("fov_axis", "fov_axis goes with fov, not with a focal length");
-        cam.fov = focalLengthFov(props);
-        cam.fovAxis = "diagonal";
-    }
-    if (cam.fovAxis != "x" && cam.fovAxis != "y" && cam.fovAxis != "diagonal" && cam.fovAxis != "smaller" &&
-        cam.fovAxis != "larger")
-        ctx.fail(node, "fov_axis must be x, y, diagonal, smaller or larger");
-    cam.nearClip = props.getFloat("near_clip", 1e-2f);
-    cam.farClip = props.getFloat("far_clip", 1e4f);
-    if (!(cam.nearClip > 0.f && cam.farClip > cam.nearClip)) ctx.fail(node, "need 0 < near_clip < far_clip");
-    cam.toWorld = props.getTransform("to_world");
-    requirePosition(ctx, node, "the camera (its to_world)", cam.toWorld.point({0.f, 0.f, 0.f}));
-    requireRigid(ctx, node, cam.toWorld);
-    props.ignore("focus_distance");  // a pinhole has no focus: accepted and ignored
-    props.finish("fov, fov_axis, focal_length, near_clip, far_clip, focus_distance, to_world");
-    for (const auto &child : props.objects()) {
-        const std::string tag = child.name();
-        if (tag == "film") {
-            loadFilm(ctx, child, scene.film);
-        } else if (tag == "sampler") {
-            const auto type = parseSampler(typeOf(ctx, child));
-            if (!type) ctx.fail(child, "unsupported sampler type: expected \"independent\" or \"sobol\"");
-            scene.sampler = *type;
-            XmlProps sp(ctx, child);
-            scene.sampleCount = sp.getInt("sample_count", 4);
-            sp.requireRange("sample_count", scene.sampleCount, 1, kMaxSampleCount);
-            sp.finish("sample_count");
-            if (!sp.objects().empty()) ctx.fail(sp.objects()[0], "unexpected element inside <sampler>");
-        } else {
-            ctx.fail(child, "unsupported element in <sensor>: expected <film> or <sampler>");
-        }
-    }
-}
 
 /// Mitsuba 3's emitter types that none of our integrators uses; each is skipped with a note (and the
 /// harness removes them from Mitsuba's scene as well).
@@ -215,7 +144,7 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
             const std::string type = typeOf(ctx, node);
             if (type == "shapegroup") loadShapeGroup(ctx, node, defs, deferred);
             else if (type == "instance") instances.push_back(node);
-            else loadShape(ctx, node, defs, scene.meshes, scene.spheres, deferred);
+            else loadShape(ctx, node, defs, {scene.meshes, scene.spheres, scene.disks, scene.cylinders}, deferred);
         } else if (tag == "bsdf") {
             const std::string id = ctx.attr(node, "id");
             if (id.empty()) ctx.fail(node, "a top-level <bsdf> needs an id to be referenced by");
@@ -240,8 +169,9 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     }
     // Instances last: a <ref> may name a shapegroup further down, as Mitsuba resolves references.
     for (const pugi::xml_node &node : instances) loadInstance(ctx, node, defs, scene);
-    if (!hasSensor) ctx.fail(root, "the scene has no <sensor type=\"perspective\">");
-    if (scene.meshes.empty() && scene.spheres.empty()) ctx.fail(root, "the scene has no <shape>");
+    if (!hasSensor) ctx.fail(root, "the scene has no <sensor type=\"perspective\"> or <sensor type=\"orthographic\">");
+    if (scene.meshes.empty() && scene.spheres.empty() && scene.disks.empty() && scene.cylinders.empty())
+        ctx.fail(root, "the scene has no <shape>");
 
     // What the chosen integrator uses, as it declared: refuse what would change its answer, skip the rest.
     if (!integrator.empty() && integrator != scene.integrator.type) scene.integrator = {integrator, {}};

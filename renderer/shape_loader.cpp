@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "disk_cylinder_loader.h"
 #include "error.h"
 #include "mesh.h"
 #include "scene_limits.h"
@@ -108,8 +109,8 @@ Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node, Deferred &defe
     return rho;
 }
 
-void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const Definitions &defs, std::vector<Mesh> &meshes,
-               std::vector<Sphere> &spheres, Deferred &deferred) {
+void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const Definitions &defs, ShapeLists out,
+               Deferred &deferred) {
     const std::string type = typeOf(ctx, node);
     XmlProps props(ctx, node);
     const Transform toWorld = props.getTransform("to_world");
@@ -119,7 +120,21 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const Definiti
         Sphere sphere = loadSphere(props, toWorld);
         sphere.name = name;
         sphere.reflectance = loadShapeChildren(ctx, props, defs, deferred);
-        spheres.push_back(std::move(sphere));
+        out.spheres.push_back(std::move(sphere));
+        return;
+    }
+    if (type == "disk") {
+        Disk disk = loadDisk(props, toWorld);
+        disk.name = name;
+        disk.reflectance = loadShapeChildren(ctx, props, defs, deferred);
+        out.disks.push_back(std::move(disk));
+        return;
+    }
+    if (type == "cylinder") {
+        Cylinder cylinder = loadCylinder(props, toWorld);
+        cylinder.name = name;
+        cylinder.reflectance = loadShapeChildren(ctx, props, defs, deferred);
+        out.cylinders.push_back(std::move(cylinder));
         return;
     }
     Mesh mesh;
@@ -151,12 +166,13 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const Definiti
         mesh = type == "rectangle" ? makeRectangle(toWorld) : makeCube(toWorld);
     } else {
         ctx.fail(node, "unsupported shape type \"" + type +
-                           "\": expected obj, ply, serialized, rectangle, cube or sphere (or shapegroup and instance)");
+                           "\": expected obj, ply, serialized, rectangle, cube, sphere, disk or cylinder (or "
+                           "shapegroup and instance)");
     }
     requireFiniteMesh(ctx, node, mesh);
     mesh.name = name;
     mesh.reflectance = loadShapeChildren(ctx, props, defs, deferred);
-    meshes.push_back(std::move(mesh));
+    out.meshes.push_back(std::move(mesh));
 }
 
 }  // namespace mcval

@@ -1,4 +1,4 @@
-// Shapes and their materials in a scene file: meshes, spheres, bsdfs and area emitters.
+// Shapes and their materials in a scene file: meshes, exact shapes, bsdfs and area emitters.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +32,8 @@ struct Deferred {
 struct ShapeGroup {
     std::vector<Mesh> meshes;
     std::vector<Sphere> spheres;
+    std::vector<Disk> disks;
+    std::vector<Cylinder> cylinders;
 };
 
 /// What earlier elements defined, for a <ref id>: bsdfs (their reflectance) and shapegroups, which only
@@ -48,10 +50,18 @@ void requirePosition(const XmlContext &ctx, const pugi::xml_node &node, const st
 /// A <bsdf>'s reflectance; a type other than diffuse is deferred (only some integrators can ignore it).
 Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node, Deferred &deferred);
 
-/// A <shape> (obj, ply, serialized, rectangle, cube or sphere) with its bsdf or ref and area emitter,
-/// appended to `meshes` or `spheres`.
-void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const Definitions &defs, std::vector<Mesh> &meshes,
-               std::vector<Sphere> &spheres, Deferred &deferred);
+/// Where loadShape appends what it reads: the scene's shapes, or a shapegroup's.
+struct ShapeLists {
+    std::vector<Mesh> &meshes;
+    std::vector<Sphere> &spheres;
+    std::vector<Disk> &disks;
+    std::vector<Cylinder> &cylinders;
+};
+
+/// A <shape> (obj, ply, serialized, rectangle, cube, sphere, disk or cylinder) with its bsdf or ref and
+/// area emitter, appended to its list in `out`.
+void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const Definitions &defs, ShapeLists out,
+               Deferred &deferred);
 
 /// Throws at the node unless the mesh's positions are finite and bounded and its normals unit length.
 void requireFiniteMesh(const XmlContext &ctx, const pugi::xml_node &node, const Mesh &mesh);

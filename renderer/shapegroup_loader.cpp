@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "disk_cylinder_loader.h"
 #include "mesh.h"
 #include "sphere_loader.h"
 
@@ -30,7 +31,7 @@ ShapeGroup readGroup(const XmlContext &ctx, const pugi::xml_node &node, const De
         if (type == "instance") ctx.fail(child, "an instance inside a shapegroup: Mitsuba does not nest instancing");
         for (const auto &grandchild : child.children("emitter"))
             ctx.fail(grandchild, "a shape with an emitter inside a shapegroup: Mitsuba does not instance emitters");
-        loadShape(ctx, child, defs, group.meshes, group.spheres, deferred);
+        loadShape(ctx, child, defs, {group.meshes, group.spheres, group.disks, group.cylinders}, deferred);
     }
     return group;
 }
@@ -63,7 +64,7 @@ void loadInstance(const XmlContext &ctx, const pugi::xml_node &node, Definitions
     uint64_t triangles = 0;
     for (const Mesh &member : group->meshes) triangles += member.indices.size() / 3;
     defs.instancedTriangles += triangles;
-    defs.instancedShapes += group->meshes.size() + group->spheres.size();
+    defs.instancedShapes += group->meshes.size() + group->spheres.size() + group->disks.size() + group->cylinders.size();
     if (defs.instancedTriangles > kMaxInstancedTriangles || defs.instancedShapes > kMaxInstancedShapes)
         ctx.fail(node, "the instances so far copy " + std::to_string(defs.instancedTriangles) + " triangles and " +
                            std::to_string(defs.instancedShapes) + " shapes: at most 2^28 triangles and 2^20 shapes "
@@ -83,6 +84,26 @@ void loadInstance(const XmlContext &ctx, const pugi::xml_node &node, Definitions
                                refusal->reason);
         sphere.name += suffix;
         scene.spheres.push_back(std::move(sphere));
+    }
+    // A disk or a cylinder takes any affine map: the instance's composed after its own, normals by the
+    // inverse transpose of the product, as Mitsuba transforms an instanced shape's normals.
+    const Affine instance = Affine::from(toWorld);
+    const auto refuse = [&](const char *kind, const std::string &name, const std::string &why) {
+        ctx.fail(node, std::string(kind) + " \"" + name + "\" of " + what + " under this instance's to_world: " + why);
+    };
+    for (const Disk &member : group->disks) {
+        Disk disk = member;
+        disk.toWorld = instance * member.toWorld;
+        if (const auto why = whyUntraceable(disk)) refuse("disk", member.name, *why);
+        disk.name += suffix;
+        scene.disks.push_back(std::move(disk));
+    }
+    for (const Cylinder &member : group->cylinders) {
+        Cylinder cylinder = member;
+        cylinder.toWorld = instance * member.toWorld;
+        if (const auto why = whyUntraceable(cylinder)) refuse("cylinder", member.name, *why);
+        cylinder.name += suffix;
+        scene.cylinders.push_back(std::move(cylinder));
     }
 }
 

@@ -10,11 +10,7 @@ namespace mcval {
 
 namespace {
 
-struct Vec3d {
-    double x, y, z;
-};
-double dot(const Vec3d &a, const Vec3d &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-Vec3d toDouble(const Vec3f &v) { return {v.x, v.y, v.z}; }
+Vec3d toDouble(const Vec3f &v) { return Vec3d(v); }
 
 }  // namespace
 

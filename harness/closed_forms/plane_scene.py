@@ -113,6 +113,11 @@ def _reflectance(shape: ET.Element, bsdfs: dict[str, ET.Element]) -> np.ndarray:
     return _color(bsdf, "reflectance", 0.5) if bsdf is not None else np.full(3, 0.5)
 
 
+def shape_to_world(shape: ET.Element) -> np.ndarray:
+    """A shape's to_world as a 4x4 matrix, its steps composed in file order (the identity without one)."""
+    return _transform(_prop(shape, "transform", "to_world"))
+
+
 def sphere_geometry(shape: ET.Element) -> tuple[np.ndarray, float]:
     """Mitsuba's sphere in world space, (centre, radius): center and radius, then to_world (a uniform
     scale, rotation and translation)."""
@@ -192,6 +197,8 @@ def _read_plane_scene(path: str | Path, params: dict[str, str] | None) -> PlaneS
     film = sensor.find("film") if sensor is not None else None
     if film is None:
         raise NotAnalytic("no <sensor> with a <film>")
+    if sensor.get("type") != "perspective":
+        raise NotAnalytic(f"the closed forms see through the perspective sensor, not {sensor.get('type')!r}")
     rfilter = film.find("rfilter")
     if rfilter is None or rfilter.get("type") != "box":
         raise NotAnalytic("closed forms are integrated over pixels with a box filter")

@@ -1,11 +1,13 @@
 """Scene files rewritten by a physical transformation, so every scene gets each invariance for free.
 
 Geometry: a step (scale, rotate, translate) appended AFTER the existing steps of every shape's and the
-sensor's to_world (the sensor's scale conjugated, S C S^-1, as Mitsuba's cameras must be rigid) (both our loader and Mitsuba's compose steps in document order), one added where a shape
-has none; point-light positions and sphere centres are mapped by the same matrix. Scaling also scales the
-sensor's clip distances (written explicitly: their defaults would not scale) and point intensities by s^2,
-so that 1/r^2 leaves the image unchanged. Light and reflectance factors multiply every emitter's radiance
-or intensity and every diffuse reflectance (defaults written out). Mesh paths are made absolute, so the
+sensor's to_world (both our loader and Mitsuba's compose steps in document order), one added where a shape
+has none; a perspective sensor's scale is conjugated, S C S^-1, as Mitsuba's perspective camera must be
+rigid, while an orthographic one scales. Point-light positions and sphere centres are mapped by the same
+matrix. Scaling also scales the sensor's clip distances (written explicitly: their defaults would not
+scale; an orthographic sensor's span far_clip - near_clip instead) and point intensities by s^2, so that
+1/r^2 leaves the image unchanged. Light and reflectance factors multiply every emitter's radiance or
+intensity and every diffuse reflectance (defaults written out). Mesh paths are made absolute, so the
 variant file can live anywhere.
 """
 from __future__ import annotations
@@ -118,14 +120,30 @@ def _scale_property(owner: ET.Element, name: str, factor: float, default: float)
     _scale_value(node, factor)
 
 
+def _scale_orthographic_clips(sensor: ET.Element, s: float) -> None:
+    """An orthographic camera may scale, so S C (the step appended) scales its view and moves its near plane
+    with the world; its rays run far_clip - near_clip in world units, so that span is scaled, near_clip kept."""
+    values = {}
+    for name, default in (("near_clip", NEAR_CLIP), ("far_clip", FAR_CLIP)):
+        node = _prop(sensor, name)
+        if node is None:
+            node = ET.SubElement(sensor, "float", name=name, value=_fmt(default))
+        values[name] = node
+    near, far = (float(_numbers(values[n])[0]) for n in ("near_clip", "far_clip"))
+    values["far_clip"].tag = "float"
+    values["far_clip"].set("value", _fmt(near + s * (far - near)))
+
+
 def transform_scene(root: ET.Element, kind: str, value) -> None:
     """Apply the rigid or scaling step (kind "scale", "rotate" (axis, degrees) or "translate") to everything."""
     m = step_matrix(kind, value)
     s = float(value) if kind == "scale" else 1.0
     for sensor in root.iter("sensor"):
         _append_step(sensor, _step_element(kind, value))
-        if kind == "scale":
-            # Mitsuba's cameras refuse a scaled to_world: S C S^-1 moves the camera as S does and stays rigid.
+        if kind == "scale" and sensor.get("type") == "orthographic":
+            _scale_orthographic_clips(sensor, s)
+        elif kind == "scale":
+            # Mitsuba's perspective camera refuses a scaled to_world: S C S^-1 moves it as S does and stays rigid.
             _prepend_step(sensor, _step_element(kind, 1.0 / s))
             for name, default in (("near_clip", NEAR_CLIP), ("far_clip", FAR_CLIP), ("focus_distance", None)):
                 if default is not None or _prop(sensor, name) is not None:

@@ -18,9 +18,9 @@ NUMBERS = ["nan", "NaN", "-nan", "inf", "-inf", "Infinity", "1e39", "-1e39", "3.
            "4294967296", "9999999999999", "0x1p3", "1,2", "1 2 3 4", "", " ", "abc", "$missing", "1e", "--1",
            "16384", "16385", "100000", "1024", "1025", "0.01", "0.049", "4.01", "179.95", "1e15", "1.1e15"]
 #: Types an element's type attribute is changed to: ours, Mitsuba's that we lack, nonsense.
-TYPES = ["point", "constant", "area", "spot", "obj", "ply", "rectangle", "cube", "sphere", "serialized", "diffuse",
-         "conductor", "box", "gaussian", "tent", "independent", "stratified", "multijitter", "perspective",
-         "orthographic", "hdrfilm", "normals", "simple", "ao", "path", "direct", "", "$missing"]
+TYPES = ["point", "constant", "area", "spot", "obj", "ply", "rectangle", "cube", "sphere", "disk", "cylinder",
+         "serialized", "diffuse", "conductor", "box", "gaussian", "tent", "independent", "stratified", "multijitter",
+         "perspective", "orthographic", "hdrfilm", "normals", "simple", "ao", "path", "direct", "", "$missing"]
 #: Mesh file names that must be refused cleanly (the driver creates FIFO, DIR and BIG in the work folder).
 FILENAMES = ["/dev/zero", "/dev/null", "/dev/urandom", "FIFO", "DIR", "missing.ply", "x" * 5000 + ".ply",
              "../" * 40 + "etc/passwd", "", ".", "meshes", "meshes/sphere.ply/..", "mesh.obj", "mesh.ply"]

@@ -1,7 +1,10 @@
 """Breaks float32 explains: judged from the rewritten scene file, never from the engine's word."""
 from __future__ import annotations
 
+import contextlib
 from pathlib import Path
+
+import pytest
 
 from harness.engines.base import Engine, RenderFailed, RenderResult
 from harness.invariance.check import InvarianceCase, run_invariances
@@ -25,6 +28,26 @@ def test_representable_rewrites_have_no_float32_limit(tmp_path):
                                ("sphere_floor_kilo", "scale", 1e3),
                                ("cornell", "translate", TRANSLATION)):
         assert float32_limit(rewrite(SCENES / f"{scene}.xml", tmp_path / f"{scene}.xml", kind, value)) is None
+
+
+def test_a_small_disk_or_cylinder_moved_far_is_beyond_float32_as_our_loader_says(tmp_path, ours):
+    """The same limit as our loader's (renderer/disk_cylinder_loader.cpp), read from the file: a 1e-3 disk
+    or cylinder at 30 from the origin is beyond it, one of size 1 is not."""
+    for shape in ('<shape type="disk"><transform name="to_world"><scale value="1e-3, 2e-3, 1"/>'
+                  '<translate value="TX, 0, 0"/></transform></shape>',
+                  '<shape type="cylinder"><point name="p0" value="TX, 0, 0"/><point name="p1" value="TX, 0, 1e-3"/>'
+                  '<float name="radius" value="0.5"/></shape>'):
+        for tx, beyond in (("30", True), ("3", False)):
+            scene = tmp_path / "shape.xml"
+            scene.write_text('<scene version="3.0.0"><sensor type="orthographic"><film type="hdrfilm">'
+                             '<integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>'
+                             + shape.replace("TX", tx) + "</scene>")
+            why = float32_limit(scene)
+            assert bool(why) == beyond, (shape, tx, why)
+            if beyond:
+                assert "largest coordinate 30" in why and "size 0.001" in why
+            with pytest.raises(RenderFailed) if beyond else contextlib.nullcontext():
+                ours.render(str(scene), "normals", 1, 1, 0)
 
 
 class RefusesTranslations(Engine):

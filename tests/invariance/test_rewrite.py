@@ -136,3 +136,19 @@ def test_both_engines_load_every_variant(tmp_path, variant):
     for engine in (OurEngine(), MitsubaEngine()):
         out = engine.render(str(path), "ao", 1, 2, 0, {"res": "8"})
         assert out.batches.shape == (2, 8, 8, 3) and np.isfinite(out.batches).all()
+
+
+def test_an_orthographic_camera_scales_with_the_scene(tmp_path, ours):
+    """Its to_world may scale, so S C scales its view; its rays' span far - near scales, near_clip stays. The
+    normals image is then the same; conjugating it as a perspective camera would shrink the view by s."""
+    scene = Path(__file__).resolve().parents[1] / "renderer" / "scenes" / "orthographic.xml"
+    before = ours.render(str(scene), "normals", 4, 1, 0).batches
+    for s in (1e-3, 1e3):
+        root = ET.parse(rewrite(scene, tmp_path / f"ortho.{s:g}.xml", "scale", s)).getroot()
+        sensor = root.find("sensor")
+        assert (_steps(sensor)[-1].tag, float(_steps(sensor)[-1].get("value"))) == ("scale", s)
+        assert _steps(sensor)[0].tag == "scale" and _steps(sensor)[0].get("x") == "$scale"  # nothing prepended
+        assert float(_prop(sensor, "near_clip").get("value")) == 0.5
+        assert float(_prop(sensor, "far_clip").get("value")) == pytest.approx(0.5 + s * 49.5)
+        after = ours.render(str(tmp_path / f"ortho.{s:g}.xml"), "normals", 4, 1, 0).batches
+        np.testing.assert_allclose(after, before, atol=1e-4)

@@ -1,0 +1,121 @@
+#include "sensor_loader.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+#include "film_loader.h"
+#include "scene_limits.h"
+#include "shape_loader.h"
+
+namespace mcval {
+
+namespace {
+
+std::string typeOf(const XmlContext &ctx, const pugi::xml_node &node) { return ctx.attr(node, "type"); }
+
+/// Mitsuba refuses a camera whose to_world scales or shears (Transform::has_scale: its columns are
+/// orthonormal within 1e-3), and a scaled camera's rays would not be unit length (at 1e-30 they are 0).
+void requireRigid(const XmlContext &ctx, const pugi::xml_node &node, const Transform &t) {
+    for (int i = 0; i < 3; ++i)
+        for (int j = i; j < 3; ++j) {
+            const double dot = double(t.m[0][i]) * t.m[0][j] + double(t.m[1][i]) * t.m[1][j] +
+                               double(t.m[2][i]) * t.m[2][j];
+            if (!(std::abs(dot - (i == j ? 1.0 : 0.0)) <= 1e-3))
+                ctx.fail(node, "the camera's to_world scales or shears (its axes must be orthonormal, as Mitsuba "
+                               "requires): move the scale to the shapes");
+        }
+}
+
+/// Mitsuba's alternative to fov (and its default, 50mm): a focal length in 35 mm film equivalent, which
+/// sets the field of view, in degrees, along the film's diagonal (36 x 24 mm).
+float focalLengthFov(XmlProps &props) {
+    const std::string text = props.getString("focal_length", "50mm");
+    const std::string number = text.size() > 2 && text.compare(text.size() - 2, 2, "mm") == 0
+                                   ? text.substr(0, text.size() - 2) : text;
+    char *end = nullptr;
+    const double focal = std::strtod(number.c_str(), &end);
+    if (number.empty() || *end != '\0' || !(focal > 0.0 && focal < 1e6))
+        props.failAt("focal_length", "expected a focal length in millimetres such as \"50mm\", got \"" + text + "\"");
+    const float fov = float(2.0 * std::atan(std::sqrt(36.0 * 36.0 + 24.0 * 24.0) / (2.0 * focal)) * 180.0 / M_PI);
+    props.requireRange("focal_length", fov, kMinFov, kMaxFov);
+    return fov;
+}
+
+/// The perspective camera's own properties: fov (or focal_length), fov_axis, focus_distance.
+void loadPerspective(const XmlContext &ctx, const pugi::xml_node &node, XmlProps &props, CameraSpec &cam) {
+    if (props.has("fov")) {
+        cam.fov = props.getFloatRequired("fov");
+        props.requireRange("fov", cam.fov, kMinFov, kMaxFov);
+        cam.fovAxis = props.getString("fov_axis", "x");
+    } else {
+        if (props.has("fov_axis")) props.failAt("fov_axis", "fov_axis goes with fov, not with a focal length");
+        cam.fov = focalLengthFov(props);
+        cam.fovAxis = "diagonal";
+    }
+    if (cam.fovAxis != "x" && cam.fovAxis != "y" && cam.fovAxis != "diagonal" && cam.fovAxis != "smaller" &&
+        cam.fovAxis != "larger")
+        ctx.fail(node, "fov_axis must be x, y, diagonal, smaller or larger");
+    props.ignore("focus_distance");  // a pinhole has no focus: accepted and ignored
+}
+
+/// An orthographic camera's to_world may scale and shear (its scale sizes the view, as in Mitsuba), but
+/// not collapse: its image of the [-1, 1]^2 square must have an area and its +z a length.
+void requireOrthographicFrame(const XmlContext &ctx, const pugi::xml_node &node, const Transform &t) {
+    if (isDegenerate(Affine::from(t)))
+        ctx.fail(node, "the orthographic camera's to_world is degenerate (a zero scale, or axes that (nearly) "
+                       "coincide): its view would have no area or no direction");
+}
+
+/// Every corner of the orthographic camera's near-plane rectangle (the film's aspect known) in bounds.
+void requireOrthographicCorners(const XmlContext &ctx, const pugi::xml_node &node, const SceneDescription &scene) {
+    const float aspect = float(scene.film.width) / float(scene.film.height);
+    for (const float x : {-1.f, 1.f})
+        for (const float y : {-1.f, 1.f})
+            requirePosition(ctx, node, "a corner of the orthographic camera's view (its to_world)",
+                            scene.camera.toWorld.point({x, y / aspect, scene.camera.nearClip}));
+}
+
+}  // namespace
+
+void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene) {
+    const std::string type = typeOf(ctx, node);
+    if (type != "perspective" && type != "orthographic")
+        ctx.fail(node, "unsupported sensor type: expected \"perspective\" or \"orthographic\"");
+    const bool orthographic = type == "orthographic";
+    XmlProps props(ctx, node);
+    CameraSpec &cam = scene.camera;
+    cam.projection = orthographic ? CameraSpec::Projection::Orthographic : CameraSpec::Projection::Perspective;
+    if (!orthographic) loadPerspective(ctx, node, props, cam);
+    cam.nearClip = props.getFloat("near_clip", 1e-2f);
+    cam.farClip = props.getFloat("far_clip", 1e4f);
+    if (!(cam.nearClip > 0.f && cam.farClip > cam.nearClip)) ctx.fail(node, "need 0 < near_clip < far_clip");
+    cam.toWorld = props.getTransform("to_world");
+    requirePosition(ctx, node, "the camera (its to_world)", cam.toWorld.point({0.f, 0.f, 0.f}));
+    if (orthographic)
+        requireOrthographicFrame(ctx, node, cam.toWorld);
+    else
+        requireRigid(ctx, node, cam.toWorld);
+    props.finish(orthographic ? "near_clip, far_clip, to_world"
+                              : "fov, fov_axis, focal_length, near_clip, far_clip, focus_distance, to_world");
+    for (const auto &child : props.objects()) {
+        const std::string tag = child.name();
+        if (tag == "film") {
+            loadFilm(ctx, child, scene.film);
+        } else if (tag == "sampler") {
+            const auto type = parseSampler(typeOf(ctx, child));
+            if (!type) ctx.fail(child, "unsupported sampler type: expected \"independent\" or \"sobol\"");
+            scene.sampler = *type;
+            XmlProps sp(ctx, child);
+            scene.sampleCount = sp.getInt("sample_count", 4);
+            sp.requireRange("sample_count", scene.sampleCount, 1, kMaxSampleCount);
+            sp.finish("sample_count");
+            if (!sp.objects().empty()) ctx.fail(sp.objects()[0], "unexpected element inside <sampler>");
+        } else {
+            ctx.fail(child, "unsupported element in <sensor>: expected <film> or <sampler>");
+        }
+    }
+    if (orthographic) requireOrthographicCorners(ctx, node, scene);
+}
+
+}  // namespace mcval
