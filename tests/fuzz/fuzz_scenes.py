@@ -30,7 +30,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mutate import mutate_obj, mutate_ply, mutate_xml  # noqa: E402
+from mutate import mutate_bytes, mutate_obj, mutate_ply, mutate_xml  # noqa: E402
 from outcome import FINDINGS, OUTCOMES, judge, render_command  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -71,7 +71,48 @@ OBJ_SCENE = b"""<scene version="3.0.0">
     <emitter type="constant"><rgb name="radiance" value="1"/></emitter>
 </scene>
 """
+#: A serialized mesh (Mitsuba's compressed format) under two instances of a shapegroup, one mirroring.
+SERIALIZED_SCENE = b"""<scene version="3.0.0">
+    <default name="res" value="32"/>
+    <sensor type="perspective">
+        <float name="fov" value="40"/>
+        <transform name="to_world"><lookat origin="0, 2, 6" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <sampler type="independent"><integer name="sample_count" value="4"/></sampler>
+        <film type="hdrfilm"><integer name="width" value="$res"/><integer name="height" value="$res"/></film>
+    </sensor>
+    <shape type="shapegroup" id="group">
+        <shape type="serialized"><string name="filename" value="mesh.serialized"/>
+            <integer name="shape_index" value="1"/></shape>
+        <shape type="sphere"><float name="radius" value="0.3"/><point name="center" value="0, 1, 0"/></shape>
+    </shape>
+    <shape type="instance"><ref id="group"/></shape>
+    <shape type="instance"><ref id="group"/>
+        <transform name="to_world"><scale value="-1, 1, 1"/><translate x="1.5"/></transform></shape>
+    <shape type="rectangle"><transform name="to_world"><scale value="5"/><rotate x="1" angle="-90"/></transform></shape>
+    <emitter type="point"><point name="position" value="2, 3, 2"/><rgb name="intensity" value="10"/></emitter>
+</scene>
+"""
 FILENAME_RE = re.compile(rb'name="filename"\s+value="([^"]*)"')
+#: Scenes beside the suite's that hold what the suite's do not (disks, cylinders, an orthographic sensor).
+EXTRA_SEED_DIRS = (ROOT / "tests" / "renderer" / "scenes",)
+
+
+def _serialized_mesh() -> bytes:
+    """Two shapes (version 4): a sphere with normals and a pyramid without."""
+    import tempfile
+
+    sys.path.insert(0, str(ROOT / "tests" / "helpers"))
+    from serialized_files import pyramid, uv_sphere, write_serialized
+
+    with tempfile.TemporaryDirectory() as tmp:
+        return write_serialized(Path(tmp) / "m.serialized", [uv_sphere(), pyramid()]).read_bytes()
+
+
+def _mutate_serialized(rng: random.Random, data: bytes) -> tuple[bytes, str]:
+    return mutate_bytes(rng, data), "serialized bytes"
+
+
+MESH_MUTATIONS = {".obj": mutate_obj, ".ply": mutate_ply, ".serialized": _mutate_serialized}
 
 
 @dataclass
@@ -86,12 +127,14 @@ class Seed:
 
 def load_seeds() -> list[Seed]:
     seeds = []
-    for path in sorted((ROOT / "scenes").glob("*.xml")):
+    paths = sorted((ROOT / "scenes").glob("*.xml")) + [p for d in EXTRA_SEED_DIRS for p in sorted(d.glob("*.xml"))]
+    for path in paths:
         xml = path.read_bytes()
         meshes = {m.decode(): path.parent / m.decode() for m in FILENAME_RE.findall(xml)}
         big = any(p.stat().st_size > 1 << 20 for p in meshes.values())
         seeds.append(Seed(path.stem, xml, meshes, 0.15 if big else 1.0))  # large meshes load slowly
     seeds.append(Seed("obj_tetrahedron", OBJ_SCENE, {"mesh.obj": OBJ_MESH}, 1.5))
+    seeds.append(Seed("serialized_instances", SERIALIZED_SCENE, {"mesh.serialized": _serialized_mesh()}, 1.5))
     return seeds
 
 
@@ -128,7 +171,7 @@ def make_variant(index: int, campaign_seed: int, seeds: list[Seed], work: Path) 
         name = rng.choice(mesh_names)
         source = seed.meshes[name]
         data = source if isinstance(source, bytes) else source.read_bytes()
-        data, what = (mutate_obj if name.endswith(".obj") else mutate_ply)(rng, data)
+        data, what = MESH_MUTATIONS[Path(name).suffix](rng, data)
         (folder / name).parent.mkdir(parents=True, exist_ok=True)
         (folder / name).write_bytes(data)
         mutations.append(what)
