@@ -17,6 +17,7 @@ from harness.engines.base import Engine, RenderFailed, RenderResult
 from harness.engines.child_process import run_child
 from harness.engines.engine_file import EngineFile, read_engine_file
 from harness.engines.render_process import THREADS_ENV, default_timeout
+from harness.engines.nori.to_nori import written_nori_scene
 from harness.engines.written_scene import written_scene
 from harness.exr import ExrError, read_image
 
@@ -128,11 +129,17 @@ class CommandEngine(Engine):
         timeout = self.file.timeout or default_timeout(spp, 1, params)
         with tempfile.TemporaryDirectory(prefix=f"mcval-{self.name}-") as tmp:
             try:
-                text, width, height = written_scene(Path(scene), dict(params or {}), theirs, spp)
+                if self.file.scene_format == "nori":
+                    text, width, height, meshes = written_nori_scene(Path(scene), dict(params or {}), integrator,
+                                                                     theirs, spp)
+                else:
+                    (text, width, height), meshes = written_scene(Path(scene), dict(params or {}), theirs, spp), {}
             except (OSError, ValueError) as e:
                 raise RenderFailed(f"the harness could not write the scene for it: {e}") from None
             scene_file = Path(tmp) / "scene.xml"
             scene_file.write_text(text)
+            for name, mesh in meshes.items():  # the OBJ files of a Nori scene's flat shapes, beside it
+                (Path(tmp) / name).write_text(mesh)
             values = {"spp": str(spp), "integrator": theirs, "width": str(width), "height": str(height),
                       "threads": str(self._threads())}
 

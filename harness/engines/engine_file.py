@@ -15,7 +15,7 @@ from pathlib import Path
 PLACEHOLDERS = ("scene", "output", "spp", "seed", "integrator", "width", "height", "threads", "here")
 REQUIRED_PLACEHOLDERS = ("scene", "output")
 KEYS = ("name", "command", "version", "scene_format", "jobs", "timeout", "integrators")
-SCENE_FORMATS = ("mitsuba",)
+SCENE_FORMATS = ("mitsuba", "nori")
 
 
 class EngineFileError(ValueError):

@@ -7,7 +7,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 from harness.engines.nori import read_elements as read
-from harness.engines.nori.integrator_map import map_integrator
+from harness.engines.nori.integrator_map import DIRECT, map_integrator
 from harness.engines.nori.lined_xml import parse_lined
 from harness.engines.nori.reader import Reader
 
@@ -48,12 +48,16 @@ def nori_to_mitsuba(text: str, path: Path) -> ET.Element:
     mapping = map_integrator(integrator.get("type", ""), kinds)
     if mapping.why_not:
         raise r.fail(integrator, f"no integrator of mcval's computes this: {mapping.why_not}")
-    if integrator.get("type") != "simple":
+    hide = mapping.hide_emitters
+    if integrator.get("type") in DIRECT:  # whether camera rays see the environment (Nori's: they do)
+        given = r.props(integrator, {"hide_emitters": "boolean"}).get("hide_emitters")
+        hide = hide if given is None else given.get("value", "").strip().lower()
+    elif integrator.get("type") != "simple":
         r.props(integrator, {})
     out = ET.Element("scene", version="3.0.0")
     written = ET.SubElement(out, "integrator", type=mapping.integrator)
-    if mapping.hide_emitters is not None:
-        ET.SubElement(written, "boolean", name="hide_emitters", value=mapping.hide_emitters)
+    if hide is not None and mapping.integrator == "ao":
+        ET.SubElement(written, "boolean", name="hide_emitters", value=hide)
     out.append(read.camera(r, _one(r, root, "camera", required=True),
                            read.sampler(r, _one(r, root, "sampler", required=False))))
     out.extend(read.mesh(r, e, mapping.albedo_one) for e in root if e.tag == "mesh")
