@@ -39,7 +39,7 @@ class Reader:
 
     def number(self, e: ET.Element | None, default: float, low: float = -math.inf) -> float:
         if e is None:
-            return default
+            return float(default)
         values = numbers(e.get("value", ""))
         if values is None or len(values) != 1 or values[0] < low:
             raise self.fail(e, f"expected one finite number{f' of at least {low:g}' if low > -math.inf else ''}")

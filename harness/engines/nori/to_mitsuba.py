@@ -60,12 +60,12 @@ def nori_to_mitsuba(text: str, path: Path) -> ET.Element:
         ET.SubElement(written, "boolean", name="hide_emitters", value=hide)
     out.append(read.camera(r, _one(r, root, "camera", required=True),
                            read.sampler(r, _one(r, root, "sampler", required=False))))
-    out.extend(read.mesh(r, e, mapping.albedo_one) for e in root if e.tag == "mesh")
+    out.extend([read.mesh(r, e, mapping.albedo_one) for e in root if e.tag == "mesh"])
     if integrator.get("type") == "simple":
         out.append(read.integrator_light(r, integrator))
     elif integrator.get("type") == "ao":
         ao_light = ET.SubElement(out, "emitter", type="constant")
         ET.SubElement(ao_light, "rgb", name="radiance", value="1, 1, 1")
     if not mapping.own_lights_only:
-        out.extend(e for _, e in lights)
+        out.extend([e for _, e in lights])
     return out

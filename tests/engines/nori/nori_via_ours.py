@@ -1,8 +1,8 @@
 """A stand-in for a student's Nori build, for the tests: it reads the Nori scene the harness wrote (through
 harness/engines/nori/to_mitsuba.py, the other direction) and renders it with our renderer. With
-`--bug fov_vertical` it reads Nori's fov as vertical, a planted defect the comparison must catch.
+`--bug fov` its field of view is 5 % too wide, a planted camera defect the comparison must catch.
 
-usage: nori_via_ours.py SCENE OUTPUT SEED [--bug fov_vertical]"""
+usage: nori_via_ours.py SCENE OUTPUT SEED [--bug fov]"""
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -14,8 +14,9 @@ from harness.engines.nori.to_mitsuba import nori_to_mitsuba  # noqa: E402
 
 def main(scene: str, output: str, seed: str, *bug: str) -> int:
     root = nori_to_mitsuba(Path(scene).read_text(), Path(scene))
-    if bug == ("--bug", "fov_vertical"):
-        next(e for e in root.iter("string") if e.get("name") == "fov_axis").set("value", "y")
+    if bug == ("--bug", "fov"):
+        fov = next(e for e in root.iter("float") if e.get("name") == "fov")
+        fov.set("value", str(1.05 * float(fov.get("value"))))
     mitsuba = Path("mitsuba.xml").resolve()
     # Nori resolves mesh files against the scene's folder; the copy lives elsewhere, so name them absolutely.
     for e in root.iter("string"):
