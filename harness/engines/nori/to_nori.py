@@ -119,11 +119,13 @@ def written_nori_scene(path: Path, params: dict[str, str], ours: str, theirs: st
     absolute_paths(doc.root, path)
     if "res" in params:
         for sensor in doc.root.iter("sensor"):
-            for film in (c for c in sensor if c.tag == "film"):
-                for e in [e for e in film if e.get("name") in ("width", "height")]:
-                    film.remove(e)
-                for name in ("width", "height"):
-                    ET.SubElement(film, "integer", name=name, value=number_text(int(params["res"])))
+            film = next((c for c in sensor if c.tag == "film"), None)
+            if film is None:
+                film = ET.SubElement(sensor, "film", type="hdrfilm")
+            for e in [e for e in film if e.get("name") in ("width", "height")]:
+                film.remove(e)
+            for name in ("width", "height"):
+                ET.SubElement(film, "integer", name=name, value=number_text(int(params["res"])))
     scene, width, height, files = mitsuba_to_nori(doc, ours, theirs, spp)
     ET.indent(scene)
     return ET.tostring(scene, encoding="unicode") + "\n", width, height, files
