@@ -28,7 +28,7 @@ def _one(r: Reader, root: ET.Element, tag: str, required: bool) -> ET.Element | 
     if len(found) > 1:
         raise r.fail(found[1], f"a Nori scene has one <{tag}>")
     if required and not found:
-        raise r.fail(root, f"a Nori scene needs an <{tag}>")
+        raise r.fail(root, f"a Nori scene needs {'an' if tag[0] in 'aeiou' else 'a'} <{tag}>")
     return found[0] if found else None
 
 

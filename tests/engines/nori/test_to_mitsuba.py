@@ -67,7 +67,8 @@ def test_a_bad_camera_is_refused_on_its_line(tmp_path):
     refused(tmp_path, "nearClip < farClip", camera='<camera type="perspective"><float name="nearClip" '
                                                     'value="5"/><float name="farClip" value="1"/></camera>')
     refused(tmp_path, "Nori's camera is perspective", camera='<camera type="thinlens"/>')
-    refused(tmp_path, "needs an <camera>", camera="")
+    refused(tmp_path, "needs a <camera>", camera="")
+    refused(tmp_path, "needs an <integrator>", integrator="")
 
 
 def test_the_filter_is_mitsubas_of_the_same_shape(tmp_path):
