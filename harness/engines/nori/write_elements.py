@@ -7,7 +7,9 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 from typing import Callable
 
+from harness.engines.nori.baked_obj import world_obj
 from harness.engines.nori.obj_shapes import OBJ_TEXT
+from harness.engines.nori.ply_mesh import PlyError, read_ply
 from harness.engines.nori.reader import obj_has_normals
 from harness.engines.nori.transforms import mitsuba_to_nori as transform_to_nori
 from harness.engines.nori.values import number_text, numbers, triple_text
@@ -129,18 +131,32 @@ def mesh(shape: ET.Element, index: int, albedo: list[float], fail: Fail) -> tupl
     elif kind in OBJ_TEXT:
         name = f"{kind}_{index}.obj"
         files[name] = OBJ_TEXT[kind]
+    elif kind == "ply":
+        name = f"ply_{index}.obj"
+        filename = prop(shape, "filename")
+        try:
+            ply = read_ply(Path("" if filename is None else filename.get("value", "")))
+        except (OSError, PlyError) as e:
+            raise fail(shape, f"cannot be written as OBJ for Nori: {getattr(e, 'strerror', None) or e}") from None
+        face = prop(shape, "face_normals")
+        files[name] = world_obj(ply, _to_world(shape), face is not None and
+                                face.get("value", "").strip().lower() == "true")
     else:
-        raise fail(shape, "Nori's meshes are OBJ files: of Mitsuba's shapes only obj, rectangle and cube are "
-                          "written for it")
+        raise fail(shape, "Nori's meshes are OBJ files: of Mitsuba's shapes only obj, ply, rectangle and cube "
+                          "are written for it")
     if prop(shape, "flip_normals") is not None:
         raise fail(prop(shape, "flip_normals"), "Nori has no flip_normals")
     ET.SubElement(out, "string", name="filename", value=name)
-    transform = next((c for c in shape if c.tag == "transform" and c.get("name") == "to_world"), None)
-    if transform is not None:
+    transform = _to_world(shape)
+    if transform is not None and kind != "ply":  # a PLY's OBJ is written in world space
         out.append(transform_to_nori(transform, fail))
     bsdf = ET.SubElement(out, "bsdf", type="diffuse")
     bsdf.append(color_element("albedo", albedo))
     return out, files
+
+
+def _to_world(e: ET.Element) -> ET.Element | None:
+    return next((c for c in e if c.tag == "transform" and c.get("name") == "to_world"), None)
 
 
 def point_position(emitter: ET.Element, fail: Fail) -> list[float]:
