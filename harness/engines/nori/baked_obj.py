@@ -32,8 +32,7 @@ def step_matrix(step: ET.Element) -> np.ndarray:
     elif step.tag == "scale":
         m[:3, :3] = np.diag(_vector(step, 1.0))
     elif step.tag == "rotate":
-        axis = _vector(step, 0.0)
-        x, y, z = axis / np.linalg.norm(axis)
+        x, y, z = _vector(step, 0.0)  # as given: Mitsuba does not normalise it (a non-unit axis shears)
         a = math.radians(float(step.get("angle")))
         c, s = math.cos(a), math.sin(a)
         k = np.array([[0, -z, y], [z, 0, -x], [-y, x, 0]])

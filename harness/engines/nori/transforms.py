@@ -1,6 +1,7 @@
 """<transform> in both dialects. Both compose their steps in file order, each applied after the previous, and
 mean the same by each step (Nori's src/parser.cpp, Mitsuba's src/core/parser.cpp): `lookat` builds the same
-frame (left = up x dir), `rotate` is right-handed in degrees about a normalised axis, `matrix` is row-major.
+frame (left = up x dir), `rotate` is right-handed in degrees (Nori normalises its axis, Mitsuba uses it as
+given), `matrix` is row-major.
 They differ only in spelling: Nori writes every vector as value="x, y, z" and a rotation axis as axis="...",
 Mitsuba writes x/y/z attributes (or one `value`, which may be one number for all three)."""
 from __future__ import annotations
@@ -13,6 +14,8 @@ from harness.engines.nori.values import number_text, numbers, triple_text
 
 Fail = Callable[[ET.Element, str], Exception]
 _STEPS = ("translate", "scale", "rotate", "matrix", "lookat")
+#: How far from length 1 a Mitsuba rotation axis may be (renderer/xml_props.cpp refuses the same).
+UNIT_AXIS_TOLERANCE = 1e-5
 
 
 def _triple(step: ET.Element, key: str, fail: Fail) -> list[float]:
@@ -91,7 +94,10 @@ def mitsuba_to_nori(transform: ET.Element, fail: Fail) -> ET.Element:
             angle = numbers(step.get("angle", ""))
             if angle is None or len(angle) != 1:
                 raise fail(step, "angle must be one finite number (degrees)")
-            axis = _axis(_xyz(step, 0.0, fail), step, fail)
+            axis = _xyz(step, 0.0, fail)
+            if abs(math.sqrt(sum(a * a for a in axis)) - 1) > UNIT_AXIS_TOLERANCE:
+                raise fail(step, "give a unit axis: Mitsuba 3 uses the axis as given (a shear when it is not "
+                                 "unit), Nori normalises it")
             ET.SubElement(out, "rotate", axis=triple_text(axis), angle=number_text(angle[0]))
         elif step.tag == "matrix":
             ET.SubElement(out, "matrix", value=_matrix(step, fail))

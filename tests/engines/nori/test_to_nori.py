@@ -3,6 +3,7 @@ engine file with scene_format = "nori" gets it; what Nori cannot express is refu
 import math
 import xml.etree.ElementTree as ET
 
+import numpy as np
 import pytest
 
 from harness.engines.nori.lined_xml import NoriSceneError
@@ -92,6 +93,13 @@ def test_flat_shapes_become_obj_files_beside_the_scene(tmp_path):
     assert meshes[0].find("transform/scale").attrib == {"value": "2, 2, 2"}
 
 
+def test_a_rotation_about_a_non_unit_axis_is_refused(tmp_path):
+    body = '<shape type="cube"><transform name="to_world"><rotate x="1" y="1" angle="30"/></transform></shape>'
+    refused(tmp_path, "give a unit axis", body=body)
+    root, *_ = write(tmp_path, body.replace('x="1" y="1"', 'x="1"'))
+    assert root.find("mesh/transform/rotate").attrib == {"axis": "1, 0, 0", "angle": "30"}
+
+
 def test_an_obj_mesh_keeps_its_file_and_its_normals(tmp_path):
     (tmp_path / "flat.obj").write_text(OBJ_TEXT["rectangle"])
     root, *_ = write(tmp_path, '<shape type="obj"><string name="filename" value="flat.obj"/><boolean '
@@ -101,9 +109,58 @@ def test_an_obj_mesh_keeps_its_file_and_its_normals(tmp_path):
             body='<shape type="obj"><string name="filename" value="flat.obj"/></shape>')
 
 
-@pytest.mark.parametrize("shape", ['<shape type="sphere"/>', '<shape type="ply"/>', '<shape type="disk"/>'])
+@pytest.mark.parametrize("shape", ['<shape type="sphere"/>', '<shape type="disk"/>'])
 def test_shapes_nori_has_no_obj_for_are_refused(tmp_path, shape):
     refused(tmp_path, "Nori's meshes are OBJ files", body=shape)
+
+
+PLY = """ply
+format ascii 1.0
+element vertex 4
+property float x
+property float y
+property float z
+element face 1
+property list uchar int vertex_indices
+end_header
+0 0 0
+1 0 0
+1 1 0
+0 1 0
+4 0 1 2 3
+"""
+
+
+def test_a_ply_mesh_becomes_a_world_space_obj_with_mitsubas_normals(tmp_path):
+    (tmp_path / "quad.ply").write_text(PLY)
+    body = '<shape type="ply"><string name="filename" value="quad.ply"/><transform name="to_world"><rotate ' \
+           'x="1" angle="90"/><translate value="0, 0, 5"/></transform></shape>'
+    root, _, _, files = write(tmp_path, body)
+    (mesh,) = root.findall("mesh")
+    assert props(mesh)["filename"] == "ply_0.obj" and mesh.find("transform") is None
+    lines = files["ply_0.obj"].splitlines()
+    v = [[float(x) for x in line.split()[1:]] for line in lines if line.startswith("v ")]
+    assert np.allclose(v, [[0, 0, 5], [1, 0, 5], [1, 0, 6], [0, 0, 6]], atol=1e-12)
+    vn = [[float(x) for x in line.split()[1:]] for line in lines if line.startswith("vn ")]
+    assert np.allclose(vn, [[0, -1, 0]] * 4, atol=1e-12)  # +z turned by 90 degrees about x
+    assert [line for line in lines if line.startswith("f ")] == ["f 1//1 2//2 3//3", "f 1//1 3//3 4//4"]
+    flat, _, _, files = write(tmp_path, body.replace("</shape>", '<boolean name="face_normals" value="true"/>'
+                                                                    "</shape>"))
+    assert "vn " not in files["ply_0.obj"] and "f 1 2 3" in files["ply_0.obj"]
+    (tmp_path / "broken.ply").write_text("ply\nformat ascii 1.0\nend_header\n")
+    refused(tmp_path, "cannot be written as OBJ for Nori", body=body.replace("quad.ply", "broken.ply"))
+
+
+def test_computed_normals_weigh_each_triangle_by_its_angle():
+    from harness.engines.nori.baked_obj import _vertex_normals
+    # Vertex 0 is shared by a triangle in z = 0 with 90 degrees there and one in x = 0 with about 5.7 degrees
+    # there but ten times the area: angle weighting leans to the first (+z), area weighting to the second (-x).
+    p = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 10], [0, 1, 10.0]])
+    n = _vertex_normals(p, np.array([[0, 1, 2], [0, 3, 4]]))[0]
+    angle = np.arccos(np.dot(p[3], p[4]) / (np.linalg.norm(p[3]) * np.linalg.norm(p[4])))
+    expected = np.pi / 2 * np.array([0, 0, 1.0]) + angle * np.array([-1.0, 0, 0])
+    assert n[2] > -n[0] > 0
+    assert n == pytest.approx(expected / np.linalg.norm(expected))
 
 
 def test_the_reflectance_is_the_albedo_inline_or_by_reference(tmp_path):
@@ -164,3 +221,23 @@ def test_the_suites_flat_scenes_are_written_and_its_curved_ones_refused(tmp_path
         assert "<mesh" in text and 'type="point"' in text
     with pytest.raises(NoriSceneError, match=r"sphere_floor_unit.xml:\d+: <shape type=\"sphere\""):
         written_nori_scene(SCENES_DIR / "sphere_floor_unit.xml", {"res": "16"}, "normals", "normals", 2)
+
+
+STEPS = '<scale value="2, 1, 0.5"/><rotate x="1" y="1" angle="30"/><matrix value="1 0 0 1 0 1 0 2 0 0 1 3 0 0 0 1"/>' \
+        '<lookat origin="1, 2, 3" target="0, 1, 0" up="0, 0, 1"/><translate x="-1"/>'
+
+
+@pytest.mark.mitsuba
+def test_baked_positions_are_where_mitsuba_puts_them():
+    import mitsuba as mi
+    from harness.engines.nori.baked_obj import transform_matrix
+    mi.set_variant("scalar_rgb")
+    scene = mi.load_string(f'<scene version="3.0.0"><shape type="obj" id="s"><string name="filename" '
+                           f'value="{SCENES_DIR.parent / "tests/engines/nori/tri.obj"}"/><transform name="to_world">'
+                           f'{STEPS}</transform></shape></scene>')
+    theirs = np.array(mi.traverse(scene)["s.vertex_positions"]).reshape(-1, 3)
+    m = transform_matrix(ET.fromstring(f"<transform>{STEPS}</transform>"))
+    corners = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0.0]])
+    assert np.allclose(corners @ m[:3, :3].T + m[:3, 3], theirs, atol=1e-5)
+    swapped = transform_matrix(ET.fromstring(f"<transform>{STEPS.replace('30', '-30')}</transform>"))
+    assert not np.allclose(corners @ swapped[:3, :3].T + swapped[:3, 3], theirs, atol=1e-3)
