@@ -13,7 +13,11 @@ from harness.engines.nori.values import numbers, triple_text
 #: Nori's property tags and Mitsuba's name for each (a <color> is RGB).
 PROPERTY_TAGS = {"float": "float", "integer": "integer", "boolean": "boolean", "string": "string",
                  "point": "point", "vector": "vector", "color": "rgb", "transform": "transform"}
+
+
 class Reader:
+    """One Nori file's elements read with their checks; `fail` makes the error naming an element's line."""
+
     def __init__(self, doc: LinedXml) -> None:
         self.doc = doc
         self.fail = doc.fail

@@ -15,6 +15,8 @@ from harness.engines.written_scene import file_hide_emitters, resolve_defaults
 
 #: The top-level elements of a suite scene; emitters other than these are used by none of mcval's integrators.
 TOP_LEVEL = ("integrator", "sensor", "shape", "emitter", "bsdf")
+#: A light as (its element, its position or [], its RGB intensity or radiance).
+Light = tuple[ET.Element, list[float], list[float]]
 
 
 def _shape_albedo(doc: LinedXml, shape: ET.Element, named: dict[str, ET.Element]) -> list[float]:
@@ -28,7 +30,7 @@ def _shape_albedo(doc: LinedXml, shape: ET.Element, named: dict[str, ET.Element]
     return write.reflectance(None, doc.fail)
 
 
-def _lights(doc: LinedXml, root: ET.Element, ours: str) -> list[tuple[ET.Element, list[float], list[float]]]:
+def _lights(doc: LinedXml, root: ET.Element, ours: str) -> list[Light]:
     """The lights `ours` reads, as (element, position or [], RGB value): point lights (intensity) for simple,
     constant environments (radiance, 1 where the scene has none, as mcval's ao assumes) for ao."""
     kind = {"simple": "point", "ao": "constant"}.get(ours)
@@ -44,7 +46,8 @@ def _lights(doc: LinedXml, root: ET.Element, ours: str) -> list[tuple[ET.Element
     return []
 
 
-def _nori_simple(doc, root, integrator, lights, albedos) -> None:
+def _nori_simple(doc: LinedXml, root: ET.Element, integrator: ET.Element, lights: list[Light],
+                 albedos: list[list[float]]) -> None:
     """Nori's own simple integrator: one point light on the integrator (energy in W), no albedo (rho = 1):
     the shapes' common reflectance is folded into the energy, which is exact (L = rho/pi I cos / r^2)."""
     if len(lights) != 1:
@@ -58,7 +61,7 @@ def _nori_simple(doc, root, integrator, lights, albedos) -> None:
     integrator.append(write.color_element("energy", [4 * math.pi * i * r for i, r in zip(intensity, rho)]))
 
 
-def _nori_ao(doc, root, lights, albedos) -> None:
+def _nori_ao(doc: LinedXml, lights: list[Light], albedos: list[list[float]]) -> None:
     """Nori's own ao integrator: an environment of radiance 1 and albedo 1, nothing to set."""
     radiance = lights[0][2]
     for a in albedos:
@@ -95,7 +98,7 @@ def mitsuba_to_nori(doc: LinedXml, ours: str, theirs: str, spp: int) -> tuple[ET
     if ours == "simple" and theirs == "simple":
         _nori_simple(doc, root, integrator, lights, albedos)
     elif ours == "ao" and theirs == "ao":
-        _nori_ao(doc, root, lights, albedos)
+        _nori_ao(doc, lights, albedos)
     elif ours == "simple":
         for _, position, intensity in lights:  # Nori's point lights are given by their power: 4 pi I
             light = ET.SubElement(out, "emitter", type="point")
