@@ -139,6 +139,8 @@ def mesh(shape: ET.Element, index: int, albedo: list[float], fail: Fail) -> tupl
         except (OSError, PlyError) as e:
             raise fail(shape, f"cannot be written as OBJ for Nori: {getattr(e, 'strerror', None) or e}") from None
         face = prop(shape, "face_normals")
+        if _to_world(shape) is not None:
+            transform_to_nori(_to_world(shape), fail)  # its steps checked as any shape's are
         files[name] = world_obj(ply, _to_world(shape), face is not None and
                                 face.get("value", "").strip().lower() == "true")
     else:

@@ -1,6 +1,6 @@
 """Both directions together: Nori -> Mitsuba -> Nori -> Mitsuba gives the same scene, a Nori file of one's own
 renders in both engines through the harness and they agree, and an engine file with scene_format = "nori" (a
-stand-in Nori build, nori_via_ours.py) passes the suite's scenes unless a defect is planted in it."""
+stand-in Nori build, tests/helpers/nori_via_ours.py) passes the suite's scenes unless a defect is planted in it."""
 import json
 import sys
 import xml.etree.ElementTree as ET
@@ -12,7 +12,7 @@ from harness.engines.engine_file import EngineFileError, read_engine_file
 from harness.engines.nori.to_mitsuba import nori_to_mitsuba
 from harness.engines.nori.to_nori import written_nori_scene
 
-HERE = Path(__file__).resolve().parent
+HELPERS = Path(__file__).resolve().parents[2] / "helpers"
 QUAD = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n"
 NORI = """<scene>
   <sampler type="independent"><integer name="sampleCount" value="4"/></sampler>
@@ -115,7 +115,7 @@ def test_a_nori_file_without_a_translation_fails_its_case_in_one_line(tmp_path):
 
 
 def _engine_file(tmp_path, *bug: str) -> Path:
-    words = [sys.executable, str(HERE / "nori_via_ours.py"), "{scene}", "{output}", "{seed}", *bug]
+    words = [sys.executable, str(HELPERS / "nori_via_ours.py"), "{scene}", "{output}", "{seed}", *bug]
     toml = tmp_path / "nori.toml"
     toml.write_text(f"name = \"nori-via-ours\"\ncommand = {json.dumps(words)}\nscene_format = \"nori\"\n"
                     "[integrators]\nnormals = \"normals\"\nsimple = \"direct_ems\"\nao = \"direct_ems\"\n")
