@@ -93,6 +93,7 @@ def test_an_engine_file_may_ask_for_noris_dialect(tmp_path):
         read_engine_file(toml)
 
 
+@pytest.mark.slow
 @pytest.mark.mitsuba
 def test_a_nori_file_renders_in_both_engines_and_they_agree(tmp_path):
     from harness.cli import main
@@ -103,6 +104,7 @@ def test_a_nori_file_renders_in_both_engines_and_they_agree(tmp_path):
     assert entry["pass"] is True and entry["scene"] == "quads"
 
 
+@pytest.mark.slow
 @pytest.mark.mitsuba
 def test_a_nori_file_without_a_translation_fails_its_case_in_one_line(tmp_path):
     from harness.cli import main
@@ -122,6 +124,7 @@ def _engine_file(tmp_path, *bug: str) -> Path:
     return toml
 
 
+@pytest.mark.slow
 @pytest.mark.mitsuba
 @pytest.mark.parametrize("bug, passes", [((), True), (("--bug", "fov"), False)])
 def test_a_nori_build_renders_the_suites_scenes_written_in_its_dialect(tmp_path, bug, passes):
