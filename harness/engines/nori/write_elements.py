@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Callable
 
 from harness.engines.nori.baked_obj import world_obj
+from harness.engines.nori.obj_mesh import read_obj
 from harness.engines.nori.obj_shapes import OBJ_TEXT
 from harness.engines.nori.ply_mesh import PlyError, read_ply
 from harness.engines.nori.reader import obj_has_normals
@@ -115,43 +116,37 @@ def reflectance(bsdf: ET.Element | None, fail: Fail) -> list[float]:
 
 
 def mesh(shape: ET.Element, index: int, albedo: list[float], fail: Fail) -> tuple[ET.Element, dict[str, str]]:
-    """A shape as Nori's OBJ mesh, and the OBJ files to write beside the scene (name -> text)."""
+    """A shape as Nori's OBJ mesh, and the OBJ files to write beside the scene (name -> text). An OBJ that Nori
+    shades as Mitsuba does (its `vn` normals, or face normals under face_normals and no `vn`) is named as it is;
+    other meshes are written again in world space with the normals Mitsuba shades them with (baked_obj.py),
+    flat shapes as they are (obj_shapes.py)."""
     kind, files = shape.get("type"), {}
-    out = ET.Element("mesh", type="obj")
-    if kind == "obj":
-        filename = prop(shape, "filename")
-        name = "" if filename is None else filename.get("value", "")
-        has_normals = obj_has_normals(name, Path(name)) if name else None
-        face = prop(shape, "face_normals")
-        face_normals = face is not None and face.get("value", "").strip().lower() == "true"
-        if has_normals is not None and has_normals == face_normals:
-            raise fail(shape, "Nori shades an OBJ with its vn normals if it has them and with face normals if not; "
-                              + ("face_normals would drop them" if has_normals else
-                                 "Mitsuba would compute vertex normals here (say face_normals)"))
-    elif kind in OBJ_TEXT:
+    face = prop(shape, "face_normals")
+    face_normals = face is not None and face.get("value", "").strip().lower() == "true"
+    if prop(shape, "flip_normals") is not None:
+        raise fail(prop(shape, "flip_normals"), "Nori has no flip_normals")
+    transform = _to_world(shape)
+    written = None if transform is None else transform_to_nori(transform, fail)  # checks its steps too
+    filename = prop(shape, "filename")
+    source = Path("" if filename is None else filename.get("value", ""))
+    if kind in OBJ_TEXT:
         name = f"{kind}_{index}.obj"
         files[name] = OBJ_TEXT[kind]
-    elif kind == "ply":
-        name = f"ply_{index}.obj"
-        filename = prop(shape, "filename")
+    elif kind == "obj" and obj_has_normals(str(source), source) is (not face_normals):
+        name = str(source)  # Nori shades it as Mitsuba does: with its vn normals, or flat without any
+    elif kind in ("obj", "ply"):
+        name, written = f"{kind}_{index}.obj", None  # in world space: no toWorld
         try:
-            ply = read_ply(Path("" if filename is None else filename.get("value", "")))
+            files[name] = world_obj((read_obj if kind == "obj" else read_ply)(source), transform, face_normals)
         except (OSError, PlyError) as e:
             raise fail(shape, f"cannot be written as OBJ for Nori: {getattr(e, 'strerror', None) or e}") from None
-        face = prop(shape, "face_normals")
-        if _to_world(shape) is not None:
-            transform_to_nori(_to_world(shape), fail)  # its steps checked as any shape's are
-        files[name] = world_obj(ply, _to_world(shape), face is not None and
-                                face.get("value", "").strip().lower() == "true")
     else:
         raise fail(shape, "Nori's meshes are OBJ files: of Mitsuba's shapes only obj, ply, rectangle and cube "
                           "are written for it")
-    if prop(shape, "flip_normals") is not None:
-        raise fail(prop(shape, "flip_normals"), "Nori has no flip_normals")
+    out = ET.Element("mesh", type="obj")
     ET.SubElement(out, "string", name="filename", value=name)
-    transform = _to_world(shape)
-    if transform is not None and kind != "ply":  # a PLY's OBJ is written in world space
-        out.append(transform_to_nori(transform, fail))
+    if written is not None:
+        out.append(written)
     bsdf = ET.SubElement(out, "bsdf", type="diffuse")
     bsdf.append(color_element("albedo", albedo))
     return out, files

@@ -100,13 +100,32 @@ def test_a_rotation_about_a_non_unit_axis_is_refused(tmp_path):
     assert root.find("mesh/transform/rotate").attrib == {"axis": "1, 0, 0", "angle": "30"}
 
 
-def test_an_obj_mesh_keeps_its_file_and_its_normals(tmp_path):
-    (tmp_path / "flat.obj").write_text(OBJ_TEXT["rectangle"])
-    root, *_ = write(tmp_path, '<shape type="obj"><string name="filename" value="flat.obj"/><boolean '
-                               'name="face_normals" value="true"/></shape>')
-    assert props(root.find("mesh"))["filename"] == str(tmp_path / "flat.obj")
-    refused(tmp_path, "Mitsuba would compute vertex normals",
-            body='<shape type="obj"><string name="filename" value="flat.obj"/></shape>')
+def test_an_obj_mesh_with_normals_is_named_and_one_without_is_baked_with_mitsubas(tmp_path):
+    (tmp_path / "smooth.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n")
+    (tmp_path / "bare.obj").write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1\nf 1 2 3 4\n")
+    to_world = '<transform name="to_world"><translate x="2"/></transform>'
+    root, _, _, files = write(tmp_path, f'<shape type="obj"><string name="filename" value="smooth.obj"/>{to_world}'
+                                        '</shape>')
+    (mesh,) = root.findall("mesh")
+    assert props(mesh)["filename"] == str(tmp_path / "smooth.obj") and files == {}
+    assert mesh.find("transform/translate").attrib == {"value": "2, 0, 0"}
+    root, _, _, files = write(tmp_path, f'<shape type="obj"><string name="filename" value="bare.obj"/>{to_world}'
+                                        '</shape>')
+    (mesh,) = root.findall("mesh")
+    assert props(mesh)["filename"] == "obj_0.obj" and mesh.find("transform") is None
+    lines = files["obj_0.obj"].splitlines()
+    assert [line for line in lines if line.startswith("v ")][0] == "v 2 0 0"
+    assert len([line for line in lines if line.startswith("vn ")]) == 4  # a fan of two over four corners
+    assert [line for line in lines if line.startswith("f ")] == ["f 1//1 2//2 3//3", "f 1//1 3//3 4//4"]
+    flat, _, _, files = write(tmp_path, '<shape type="obj"><string name="filename" value="bare.obj"/><boolean '
+                                        'name="face_normals" value="true"/></shape>')
+    assert props(flat.find("mesh"))["filename"] == str(tmp_path / "bare.obj") and files == {}
+    # face_normals drops a file's own normals: baked without any.
+    root, _, _, files = write(tmp_path, '<shape type="obj"><string name="filename" value="smooth.obj"/><boolean '
+                                        'name="face_normals" value="true"/></shape>')
+    assert "vn " not in files["obj_0.obj"]
+    refused(tmp_path, "cannot be written as OBJ", body='<shape type="obj"><string name="filename" '
+                                                       'value="missing.obj"/></shape>')
 
 
 @pytest.mark.parametrize("shape", ['<shape type="sphere"/>', '<shape type="disk"/>'])
@@ -241,3 +260,36 @@ def test_baked_positions_are_where_mitsuba_puts_them():
     assert np.allclose(corners @ m[:3, :3].T + m[:3, 3], theirs, atol=1e-5)
     swapped = transform_matrix(ET.fromstring(f"<transform>{STEPS.replace('30', '-30')}</transform>"))
     assert not np.allclose(corners @ swapped[:3, :3].T + swapped[:3, 3], theirs, atol=1e-3)
+
+
+@pytest.mark.mitsuba
+@pytest.mark.parametrize("kind", ["obj", "ply"])
+def test_baked_normals_are_mitsubas(tmp_path, kind):
+    import mitsuba as mi
+    mi.set_variant("scalar_rgb")
+    # A bent strip of four triangles, unevenly scaled: the normals are computed in world space, angle-weighted.
+    p = [(0, 0, 0), (1, 0, 0.3), (2, 0, 0), (0, 1, 0.5), (1, 1, 0), (2, 1, 0.8)]
+    faces = [(0, 1, 4), (0, 4, 3), (1, 2, 5), (1, 5, 4)]
+    if kind == "obj":
+        (tmp_path / "strip.obj").write_text("".join(f"v {x} {y} {z}\n" for x, y, z in p) +
+                                            "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces))
+    else:
+        (tmp_path / "strip.ply").write_text(PLY.replace("element vertex 4", "element vertex 6").replace(
+            "element face 1", "element face 4").split("end_header\n")[0] + "end_header\n" +
+            "".join(f"{x} {y} {z}\n" for x, y, z in p) + "".join(f"3 {a} {b} {c}\n" for a, b, c in faces))
+    to_world = '<transform name="to_world"><scale value="1, 3, 0.5"/><rotate z="1" angle="20"/></transform>'
+    shape = f'<shape type="{kind}" id="s"><string name="filename" value="{tmp_path / f"strip.{kind}"}"/>' \
+            f'{to_world}</shape>'
+    _, _, _, files = write(tmp_path, shape)
+    lines = files[f"{kind}_0.obj"].splitlines()
+    ours_p = np.array([[float(x) for x in line.split()[1:]] for line in lines if line.startswith("v ")])
+    ours_n = np.array([[float(x) for x in line.split()[1:]] for line in lines if line.startswith("vn ")])
+    params = mi.traverse(mi.load_string(f'<scene version="3.0.0">{shape}</scene>'))
+    theirs_p = np.array(params["s.vertex_positions"]).reshape(-1, 3)
+    theirs_n = np.array(params["s.vertex_normals"]).reshape(-1, 3)
+    order = [int(np.argmin(np.linalg.norm(ours_p - q, axis=1))) for q in theirs_p]
+    assert np.allclose(ours_p[order], theirs_p, atol=1e-5)
+    assert np.allclose(ours_n[order], theirs_n, atol=1e-5)
+    wrong = ours_n.copy()
+    wrong[1] = [0, 0, 1]  # a wrong normal at one vertex is seen
+    assert not np.allclose(wrong[order], theirs_n, atol=1e-5)
