@@ -29,7 +29,10 @@ class Mapping:
     integrator: str
     albedo_one: bool = False          # every diffuse reflectance becomes 1 (the integrator ignores it)
     own_lights_only: bool = False     # the file's top-level emitters are dropped (the integrator ignores them)
-    hide_emitters: str | None = None  # kept on the written <integrator> (harness/engines/written_scene.py)
+    light_from_integrator: bool = False  # its point light is the integrator's position and energy
+    unit_environment: bool = False    # its light is an environment of radiance 1
+    hide_emitters: str | None = None  # kept on the written <integrator> (harness/engines/written_scene.py),
+    #                                   unless the Nori integrator says otherwise (then it reads the boolean)
     why_not: str | None = None        # set: there is no mapping, and this is why
 
 
@@ -39,9 +42,9 @@ def map_integrator(kind: str, emitters: set[str]) -> Mapping:
     if kind == "normals":
         return Mapping("normals")
     if kind == "simple":
-        return Mapping("simple", albedo_one=True, own_lights_only=True)
+        return Mapping("simple", albedo_one=True, own_lights_only=True, light_from_integrator=True)
     if kind == "ao":
-        return Mapping("ao", albedo_one=True, own_lights_only=True)
+        return Mapping("ao", albedo_one=True, own_lights_only=True, unit_environment=True)
     if kind in DIRECT:
         if "area" in emitters:
             return Mapping("", why_not="area lights are lit by none of mcval's integrators (it models point "

@@ -7,7 +7,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 from harness.engines.nori import read_elements as read
-from harness.engines.nori.integrator_map import DIRECT, map_integrator
+from harness.engines.nori.integrator_map import map_integrator
 from harness.engines.nori.lined_xml import parse_lined
 from harness.engines.nori.reader import Reader
 
@@ -49,21 +49,22 @@ def nori_to_mitsuba(text: str, path: Path) -> ET.Element:
     if mapping.why_not:
         raise r.fail(integrator, f"no integrator of mcval's computes this: {mapping.why_not}")
     hide = mapping.hide_emitters
-    if integrator.get("type") in DIRECT:  # whether camera rays see the environment (Nori's: they do)
+    if not mapping.light_from_integrator:  # whether camera rays see the environment: the file may say
         given = r.props(integrator, {"hide_emitters": "boolean"}).get("hide_emitters")
-        hide = hide if given is None else given.get("value", "").strip().lower()
-    elif integrator.get("type") != "simple":
-        r.props(integrator, {})
+        if given is not None:
+            hide = given.get("value", "").strip().lower()
+            if hide not in ("true", "false"):
+                raise r.fail(given, "hide_emitters is true or false")
     out = ET.Element("scene", version="3.0.0")
     written = ET.SubElement(out, "integrator", type=mapping.integrator)
-    if hide is not None and mapping.integrator == "ao":
+    if hide is not None and mapping.integrator == "ao":  # only ao shows an emitter to camera rays
         ET.SubElement(written, "boolean", name="hide_emitters", value=hide)
     out.append(read.camera(r, _one(r, root, "camera", required=True),
                            read.sampler(r, _one(r, root, "sampler", required=False))))
     out.extend([read.mesh(r, e, mapping.albedo_one) for e in root if e.tag == "mesh"])
-    if integrator.get("type") == "simple":
+    if mapping.light_from_integrator:
         out.append(read.integrator_light(r, integrator))
-    elif integrator.get("type") == "ao":
+    if mapping.unit_environment:
         ao_light = ET.SubElement(out, "emitter", type="constant")
         ET.SubElement(ao_light, "rgb", name="radiance", value="1, 1, 1")
     if not mapping.own_lights_only:

@@ -172,6 +172,11 @@ def test_a_full_sphere_distant_disk_is_a_constant_environment(tmp_path):
         {"radiance": "0.6, 0.6, 0.6"}
     # direct_ems shows the environment to camera rays, as Nori's sphere_ao reference does.
     assert root.find("integrator").get("type") == "ao" and props(root.find("integrator")) == {"hide_emitters": "false"}
+    hidden = translate(tmp_path, body, '<integrator type="direct_mis"><boolean name="hide_emitters" '
+                                       'value="true"/></integrator>')
+    assert props(hidden.find("integrator")) == {"hide_emitters": "true"}
+    refused(tmp_path, "true or false", body=body, integrator='<integrator type="direct_mis"><boolean '
+                                                          'name="hide_emitters" value="maybe"/></integrator>')
     refused(tmp_path, "narrower than thetaA = 180", body=body.replace('"180"', '"30"'),
             integrator='<integrator type="direct_ems"/>')
 
