@@ -293,3 +293,18 @@ def test_baked_normals_are_mitsubas(tmp_path, kind):
     wrong = ours_n.copy()
     wrong[1] = [0, 0, 1]  # a wrong normal at one vertex is seen
     assert not np.allclose(wrong[order], theirs_n, atol=1e-5)
+
+
+def test_what_nori_cannot_hold_is_refused_on_its_line(tmp_path):
+    message = refused(tmp_path, "has no Nori counterpart", body='<medium type="homogeneous"/>')
+    assert ":3: <medium" in message
+    refused(tmp_path, "colours are RGB", body='<shape type="cube"><bsdf type="diffuse"><texture type="bitmap" '
+                                              'name="reflectance"/></bsdf></shape>')
+    refused(tmp_path, "refers to no top-level <bsdf>", body='<shape type="cube"><ref id="nope"/></shape>')
+    refused(tmp_path, "Nori has no flip_normals", body='<shape type="cube"><boolean name="flip_normals" '
+                                                       'value="true"/></shape>')
+    refused(tmp_path, "one camera", sensor=SENSOR + SENSOR)
+    refused(tmp_path, "Nori's camera is perspective", sensor='<sensor type="orthographic"/>')
+    root, *_ = write(tmp_path, '<shape type="cube"><bsdf type="diffuse"><spectrum name="reflectance" '
+                               'value="0.25"/></bsdf></shape>')
+    assert props(root.find("mesh/bsdf")) == {"albedo": "0.25, 0.25, 0.25"}
