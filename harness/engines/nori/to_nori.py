@@ -62,7 +62,12 @@ def _nori_simple(doc: LinedXml, root: ET.Element, integrator: ET.Element, lights
 
 
 def _nori_ao(doc: LinedXml, lights: list[Light], albedos: list[list[float]]) -> None:
-    """Nori's own ao integrator: an environment of radiance 1 and albedo 1, nothing to set."""
+    """Nori's own ao integrator: an environment of radiance 1 and albedo 1 that escaping camera rays do not
+    see; nothing to set."""
+    if file_hide_emitters(doc.root) == "false":
+        integrator = next(e for e in doc.root if e.tag == "integrator")
+        raise doc.fail(integrator, "Nori's ao integrator shows nothing to a camera ray that escapes; this scene "
+                                   "shows it the environment (hide_emitters false)")
     radiance = lights[0][2]
     for a in albedos:
         if any(not math.isclose(x * r, 1.0, rel_tol=1e-6) for x, r in zip(a, radiance)):

@@ -232,6 +232,8 @@ def test_noris_own_ao_needs_reflectance_times_radiance_one(tmp_path):
     assert root.findall("emitter") == [] and props(root.find("integrator")) == {}
     refused(tmp_path, "reflectance x radiance = 1", body=ok.replace('value="2"', 'value="1"'), ours="ao",
             theirs="ao")
+    refused(tmp_path, "shows nothing to a camera ray that escapes", body=ok + '<integrator type="path"><boolean '
+            'name="hide_emitters" value="false"/></integrator>', ours="ao", theirs="ao")
 
 
 def test_the_suites_flat_scenes_are_written_and_its_curved_ones_refused(tmp_path):
