@@ -20,13 +20,15 @@ class LinedXml:
     root: ET.Element
     lines: dict[int, int] = field(default_factory=dict)
 
-    def line(self, e: ET.Element) -> int:
-        return self.lines.get(id(e), 1)
+    def line(self, e: ET.Element) -> int | None:
+        """`e`'s line, or None for an element that was not read from this file (one an <include> brought)."""
+        return self.lines.get(id(e))
 
     def fail(self, e: ET.Element, why: str) -> NoriSceneError:
         """The error naming the file, `e`'s line, `e` as it is written (tag and attributes) and `why`."""
         attrs = "".join(f' {k}="{v}"' for k, v in e.attrib.items())
-        return NoriSceneError(f"{self.path}:{self.line(e)}: <{e.tag}{attrs}>: {why}")
+        line = self.line(e)
+        return NoriSceneError(f"{self.path}{'' if line is None else f':{line}'}: <{e.tag}{attrs}>: {why}")
 
 
 def parse_lined(text: str, path: Path) -> LinedXml:

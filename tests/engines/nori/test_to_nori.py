@@ -310,3 +310,9 @@ def test_what_nori_cannot_hold_is_refused_on_its_line(tmp_path):
     root, *_ = write(tmp_path, '<shape type="cube"><bsdf type="diffuse"><spectrum name="reflectance" '
                                'value="0.25"/></bsdf></shape>')
     assert props(root.find("mesh/bsdf")) == {"albedo": "0.25, 0.25, 0.25"}
+
+
+def test_an_included_element_is_refused_without_a_line_of_the_wrong_file(tmp_path):
+    (tmp_path / "inc.xml").write_text('<scene version="3.0.0">\n\n\n<shape type="sphere"/></scene>')
+    message = refused(tmp_path, "Nori's meshes are OBJ files", body='<include filename="inc.xml"/>')
+    assert message.startswith(f"{tmp_path / 'scene.xml'}: <shape type=\"sphere\">")
