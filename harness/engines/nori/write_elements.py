@@ -63,6 +63,9 @@ def horizontal_fov(sensor: ET.Element, width: int, height: int, fail: Fail) -> f
     scale = {"x": 1.0, "y": width / height, "diagonal": width / math.hypot(width, height)}.get(axis)
     if scale is None:
         raise fail(axis_e, "fov_axis must be x, y, diagonal, smaller or larger")
+    if not 0 < fov < 180:
+        raise fail(fov_e if fov_e is not None else sensor, f"the field of view must be between 0 and 180 degrees "
+                                                           f"(got {fov:g})")
     return math.degrees(2 * math.atan(math.tan(math.radians(fov) / 2) * scale))
 
 
@@ -91,7 +94,10 @@ def camera(sensor: ET.Element, fail: Fail) -> tuple[ET.Element, int, int]:
     if sensor.get("type") != "perspective":
         raise fail(sensor, "Nori's camera is perspective")
     film = next((c for c in sensor if c.tag == "film"), ET.Element("film", type="hdrfilm"))
-    width, height = (int(number(prop(film, k), MITSUBA_FILM[k], fail)) for k in ("width", "height"))
+    size = [number(prop(film, k), MITSUBA_FILM[k], fail) for k in ("width", "height")]
+    if not all(v >= 1 and float(v).is_integer() for v in size):
+        raise fail(film, f"the film's size must be whole numbers of pixels, at least 1 (got {size[0]:g} x {size[1]:g})")
+    width, height = (int(v) for v in size)
     out = ET.Element("camera", type="perspective")
     transform = next((c for c in sensor if c.tag == "transform" and c.get("name") == "to_world"), None)
     if transform is not None:

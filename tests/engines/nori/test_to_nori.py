@@ -61,6 +61,10 @@ def test_the_field_of_view_becomes_horizontal(tmp_path, fov, width, height, expe
 def test_the_film_size_is_the_suites_resolution(tmp_path):
     root, width, height, _ = write(tmp_path, params={"res": "32"})
     assert (width, height) == (32, 32) and props(root.find("camera"))["width"] == "32"
+    refused(tmp_path, "whole numbers of pixels", sensor='<sensor type="perspective"><film type="hdrfilm"><integer '
+                                                        'name="width" value="0"/></film></sensor>')
+    refused(tmp_path, "between 0 and 180", sensor='<sensor type="perspective"><float name="fov" value="180"/>'
+                                                  '</sensor>')
 
 
 @pytest.mark.parametrize("mitsuba, nori", [
