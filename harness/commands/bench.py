@@ -103,6 +103,9 @@ def run(args: argparse.Namespace, run: RunFolder) -> int:
 
     cases = [c for c in select_cases(args.scenes, **case_selection(args))
              if args.scenes or (entry(c.integrator).benchmarked and c.group != "real")]
+    unreadable = next((c for c in cases if c.problem), None)
+    if unreadable is not None:  # a --scene file no engine can be given: there is nothing to time
+        raise ValueError(unreadable.problem)
     reference = make_engine(args.reference)
     engines = _engines(args)
     ladder = tuple(2**k for k in range(args.max_spp.bit_length()) if 2**k <= args.max_spp)

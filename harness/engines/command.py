@@ -1,5 +1,6 @@
 """A renderer described by an engine file (docs/engines.md): one call of its command per image, each in a
-temporary folder of its own, with the scene file the harness writes for it (written_scene)."""
+temporary folder of its own, with the scene file the harness writes for it (scene_writers: written_scene, or
+nori/to_nori for scene_format = "nori")."""
 from __future__ import annotations
 
 import os
@@ -17,7 +18,7 @@ from harness.engines.base import Engine, RenderFailed, RenderResult
 from harness.engines.child_process import run_child
 from harness.engines.engine_file import EngineFile, read_engine_file
 from harness.engines.render_process import THREADS_ENV, default_timeout
-from harness.engines.written_scene import written_scene
+from harness.engines.scene_writers import SCENE_WRITERS
 from harness.exr import ExrError, read_image
 
 #: Seconds the version command may take.
@@ -128,11 +129,14 @@ class CommandEngine(Engine):
         timeout = self.file.timeout or default_timeout(spp, 1, params)
         with tempfile.TemporaryDirectory(prefix=f"mcval-{self.name}-") as tmp:
             try:
-                text, width, height = written_scene(Path(scene), dict(params or {}), theirs, spp)
+                text, width, height, meshes = SCENE_WRITERS[self.file.scene_format](
+                    Path(scene), dict(params or {}), integrator, theirs, spp)
             except (OSError, ValueError) as e:
                 raise RenderFailed(f"the harness could not write the scene for it: {e}") from None
             scene_file = Path(tmp) / "scene.xml"
             scene_file.write_text(text)
+            for name, mesh in meshes.items():  # e.g. the OBJ files of a Nori scene's meshes, beside it
+                (Path(tmp) / name).write_text(mesh)
             values = {"spp": str(spp), "integrator": theirs, "width": str(width), "height": str(height),
                       "threads": str(self._threads())}
 

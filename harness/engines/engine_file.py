@@ -15,7 +15,6 @@ from pathlib import Path
 PLACEHOLDERS = ("scene", "output", "spp", "seed", "integrator", "width", "height", "threads", "here")
 REQUIRED_PLACEHOLDERS = ("scene", "output")
 KEYS = ("name", "command", "version", "scene_format", "jobs", "timeout", "integrators")
-SCENE_FORMATS = ("mitsuba",)
 
 
 class EngineFileError(ValueError):
@@ -119,9 +118,10 @@ def read_engine_file(path: str | Path) -> EngineFile:
     version = data.get("version", [])
     if version and not _words(version):
         raise error("version", "version must be a list of strings (a command printing the version)")
-    scene_format = data.get("scene_format", "mitsuba")
-    if scene_format not in SCENE_FORMATS:
-        raise error("scene_format", f"scene_format {scene_format!r} is not one of {', '.join(SCENE_FORMATS)}")
+    from harness.engines.scene_writers import SCENE_WRITERS
+    scene_format = data.get("scene_format", next(iter(SCENE_WRITERS)))
+    if scene_format not in SCENE_WRITERS:
+        raise error("scene_format", f"scene_format {scene_format!r} is not one of {', '.join(SCENE_WRITERS)}")
     jobs = data.get("jobs", 1)
     if not isinstance(jobs, int) or isinstance(jobs, bool) or jobs < 1:
         raise error("jobs", f"jobs must be a whole number of at least 1 (got {jobs!r})")

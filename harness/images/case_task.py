@@ -113,6 +113,8 @@ def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: 
         return ImageResult(case, mine, references, {}, source, s, None, alpha, run_seed, reason, tested=ours.name,
                            error_output=output)
 
+    if case.problem:  # a --scene file no engine can be given (a Nori file without a translation)
+        return failed(case.problem)
     try:
         reference, source = load_reference(case, reference_engine)
         if reference is None:

@@ -86,6 +86,8 @@ class ImageCase:
     root: Path = field(default=ROOT, compare=False, repr=False)
     #: A user's scene file as given (--scene), for reports and the command that reproduces the case.
     source: str = field(default="", compare=False)
+    #: Why a user's scene cannot be rendered at all (its cases fail with it), or "".
+    problem: str = field(default="", compare=False)
 
     @property
     def key(self) -> str:
@@ -114,7 +116,7 @@ def scene_cases(user: Sequence[UserScene] | None = None, with_suite: bool = Fals
         if u.name in taken:
             raise ValueError(f"--scene {u.source}: the suite has a scene called {u.name} too; rename the file "
                              "or run it without --with-suite")
-    return suite + [ImageCase(u.name, "", USER, u.prepared.parent, str(u.source)) for u in user or ()]
+    return suite + [ImageCase(u.name, "", USER, u.prepared.parent, str(u.source), u.problem) for u in user or ()]
 
 
 def _all_cases(integrators: Sequence[str] | None = None, user: Sequence[UserScene] | None = None,

@@ -4,7 +4,8 @@ prepared, into the run's output folder and rendered from there, so nothing is ev
 The copy differs from the file only in what every case of the suite sets: its <include>s inlined, its <path>s
 followed and file names made absolute (its meshes are read where they are; harness/engines/scene_paths.py),
 and the film's size as the `res` parameter the suite renders at (its aspect kept),
-declared as a <default> if the file has none.
+declared as a <default> if the file has none. A file in Nori's dialect is first translated into Mitsuba 3's
+(harness/engines/nori); one that cannot be is kept as it is, and its cases fail with the translation's one line.
 """
 from __future__ import annotations
 
@@ -13,6 +14,8 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
 
+from harness.engines.nori.lined_xml import NoriSceneError
+from harness.engines.nori.to_mitsuba import is_nori, nori_to_mitsuba
 from harness.engines.scene_paths import SceneFileError, absolute_paths, anchor_paths
 from harness.engines.written_scene import film_size
 
@@ -22,6 +25,7 @@ class UserScene:
     name: str        # the file's stem: the scene's name in reports and in --only
     source: Path     # the file as given
     prepared: Path   # the copy that is rendered
+    problem: str = ""  # why the file cannot be rendered at all (a Nori file without a translation), or ""
 
 
 def scene_files(paths: list[Path]) -> list[Path]:
@@ -58,12 +62,16 @@ def _fill_size_parameters(root: ET.Element, film: ET.Element) -> None:
 
 def _prepared_text(path: Path, resolution: int) -> str:
     """The file's text as the suite renders it (see the module docstring); unchanged if it is not XML, so
-    that each engine reports the error as it would on the file itself."""
+    that each engine reports the error as it would on the file itself. NoriSceneError for a Nori file that
+    has no translation."""
     text = path.read_text(errors="replace")
     try:
         root = ET.fromstring(text)
     except ET.ParseError:
         return text
+    if is_nori(root):
+        root = nori_to_mitsuba(text, path)
+        text = ET.tostring(root, encoding="unicode")
     try:
         absolute_paths(root, path)
     except SceneFileError:  # a <path> or <include> that leads nowhere: each engine's case says where
@@ -91,10 +99,13 @@ def prepare_scenes(paths: list[Path], cache: Path, resolution: int) -> list[User
     """The scenes `paths` name, each prepared into cache/<digest>/<name>.xml (written once per content)."""
     scenes = []
     for path in scene_files(paths):
+        problem = ""
         try:
             text = _prepared_text(path, resolution)
         except OSError as e:
             raise ValueError(f"--scene {path}: cannot read it ({e.strerror or e})") from None
+        except NoriSceneError as e:
+            text, problem = path.read_text(errors="replace"), str(e)
         digest = hashlib.sha256(f"{path.resolve()}\0{text}".encode()).hexdigest()[:16]
         prepared = cache / digest / f"{path.stem}.xml"
         if not prepared.exists():
@@ -102,5 +113,5 @@ def prepare_scenes(paths: list[Path], cache: Path, resolution: int) -> list[User
             tmp = prepared.with_suffix(".tmp")
             tmp.write_text(text)
             tmp.replace(prepared)
-        scenes.append(UserScene(path.stem, path, prepared))
+        scenes.append(UserScene(path.stem, path, prepared, problem))
     return scenes

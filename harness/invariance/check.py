@@ -35,6 +35,8 @@ class InvarianceCase:
     integrator: str
     spp: int
     res: int
+    #: Why the scene cannot be rendered at all (a --scene Nori file without a translation), or "".
+    problem: str = ""
 
     @property
     def key(self) -> str:
@@ -129,6 +131,10 @@ def run_cell_group(engine: Engine, case: InvarianceCase, invariances: list[Invar
     the = entry(case.integrator)
     signed = the.signed
     cells = [Cell(engine.name, inv.name, case) for inv in invariances]
+    if case.problem:
+        for cell in cells:
+            cell.base_error = case.problem
+        return cells
     try:
         base = engine.render(str(case.scene), case.integrator, case.spp, batches,
                              case_seed(engine.name, case, "base", seed), params).batches

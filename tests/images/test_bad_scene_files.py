@@ -1,5 +1,5 @@
-"""A file that is no scene mcval can read (not XML, Nori's dialect, no sensor) fails its cases with one line
-naming the file, and the run goes on with the others."""
+"""A file that is no scene mcval can render (not XML, a Nori file whose mesh is missing, no sensor) fails its
+cases with one line naming the file, and the run goes on with the others."""
 import json
 import shutil
 

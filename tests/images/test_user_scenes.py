@@ -74,3 +74,24 @@ def test_a_film_size_given_by_parameters_takes_their_defaults(tmp_path):
     root = ET.parse(scene.prepared).getroot()
     sizes = {e.get("name"): e.get("value") for e in next(root.iter("film")) if e.get("name") in ("width", "height")}
     assert sizes == {"width": "$res", "height": "48"}
+
+
+def test_a_nori_file_is_prepared_as_mitsubas_and_one_without_a_translation_carries_why(tmp_path):
+    folder = tmp_path / "in"
+    folder.mkdir()
+    (folder / "quad.obj").write_text("v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n")
+    nori = ('<scene>\n<integrator type="{}"/>\n<mesh type="obj"><string name="filename" value="quad.obj"/></mesh>\n'
+            '<camera type="perspective"><integer name="width" value="64"/><integer name="height" value="32"/>'
+            '</camera>\n</scene>\n')
+    (folder / "good.xml").write_text(nori.format("normals"))
+    (folder / "bad.xml").write_text(nori.format("whitted"))
+    bad, good = prepare_scenes([folder], tmp_path / "cache", 96)
+    root = ET.parse(good.prepared).getroot()
+    assert good.problem == "" and root.find("sensor") is not None and root.find("camera") is None
+    (mesh,) = [e.get("value") for e in root.iter("string") if e.get("name") == "filename"]
+    assert mesh == str(folder / "quad.obj")
+    sizes = {e.get("name"): e.get("value") for e in root.find("sensor/film") if e.get("name") in ("width", "height")}
+    assert sizes == {"width": "$res", "height": "48"}
+    assert bad.problem.startswith(f"{folder / 'bad.xml'}:2: <integrator type=\"whitted\">")
+    (case,) = [c for c in select_cases(["bad:normals"], user=[bad, good])]
+    assert case.problem == bad.problem

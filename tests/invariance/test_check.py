@@ -112,3 +112,29 @@ def test_ao_without_a_constant_emitter_keeps_its_fixed_ambient_under_doubled_lig
     assert np.allclose(light.expected(entry("ao"), image, has_environment=True), 0.2)
     assert np.allclose(light.expected(entry("ao"), image, has_environment=False), 0.4)
     assert np.allclose(light.expected(entry("simple"), image, has_environment=False), 0.2)
+
+
+class NeverRenders(Engine):
+    """An engine that fails the test if it is asked to render."""
+
+    name = "never"
+
+    def version(self) -> str:
+        return "never"
+
+    def render(self, scene, integrator, spp, batches, seed, params=None) -> RenderResult:
+        raise AssertionError(f"rendered {scene}")
+
+
+def test_a_scene_that_cannot_be_rendered_fails_its_cells_with_why(tmp_path):
+    from harness.images.user_scenes import prepare_scenes
+    (tmp_path / "quad.obj").write_text("v -1 -1 0\nv 1 -1 0\nv 1 1 0\nf 1 2 3\n")
+    (tmp_path / "paths.xml").write_text('<scene>\n<integrator type="path_mis"/>\n<mesh type="obj"><string '
+                                        'name="filename" value="quad.obj"/></mesh><camera type="perspective"/>'
+                                        '\n</scene>\n')
+    user = prepare_scenes([tmp_path / "paths.xml"], tmp_path / "cache", RES)
+    cases, invariances = select(["paths:normals", "scale"], user=user)
+    assert cases[0].problem.startswith(f"{tmp_path / 'paths.xml'}:2: <integrator type=\"path_mis\">")
+    cells, _ = run_invariances([NeverRenders()], cases, invariances, seed=0)
+    assert [c.base_error for c in cells] == [cases[0].problem]
+    assert _cases("plane_point:normals")[0].problem == ""

@@ -1,0 +1,50 @@
+"""XML read with the line of every element, which ElementTree does not keep: Nori's scene files are read with
+expat, so that a refusal names the line of the element it refuses."""
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
+from pathlib import Path
+from xml.parsers import expat
+
+
+class NoriSceneError(ValueError):
+    """A Nori scene file that cannot be translated, as one line: "FILE:LINE: <element>: why"."""
+
+
+@dataclass
+class LinedXml:
+    """A parsed file: its root and the line each element starts on (keyed by the element itself)."""
+
+    path: Path
+    root: ET.Element
+    lines: dict[int, int] = field(default_factory=dict)
+
+    def line(self, e: ET.Element) -> int | None:
+        """`e`'s line, or None for an element that was not read from this file (one an <include> brought)."""
+        return self.lines.get(id(e))
+
+    def fail(self, e: ET.Element, why: str) -> NoriSceneError:
+        """The error naming the file, `e`'s line, `e` as it is written (tag and attributes) and `why`."""
+        attrs = "".join(f' {k}="{v}"' for k, v in e.attrib.items())
+        line = self.line(e)
+        return NoriSceneError(f"{self.path}{'' if line is None else f':{line}'}: <{e.tag}{attrs}>: {why}")
+
+
+def parse_lined(text: str, path: Path) -> LinedXml:
+    """`text` (the file at `path`) parsed; NoriSceneError with the line of the first syntax error."""
+    builder = ET.TreeBuilder()
+    parser = expat.ParserCreate()
+    lines: dict[int, int] = {}
+
+    def start(tag: str, attrs: dict[str, str]) -> None:
+        lines[id(builder.start(tag, attrs))] = parser.CurrentLineNumber
+
+    parser.StartElementHandler = start
+    parser.EndElementHandler = builder.end
+    parser.CharacterDataHandler = builder.data
+    try:
+        parser.Parse(text, True)
+    except expat.ExpatError as e:
+        raise NoriSceneError(f"{path}:{e.lineno}: not valid XML: {expat.ErrorString(e.code)}") from None
+    return LinedXml(path, builder.close(), lines)

@@ -1,0 +1,139 @@
+"""The suite's Mitsuba 3 scenes written in Nori's dialect, for an engine file with scene_format = "nori"
+(docs/engines.md#nori-scene-files): the same scene for the integrator the case runs, so that a student's Nori
+build renders what Mitsuba does. What Nori cannot express is one NoriSceneError naming the element and why."""
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+from harness.engines.nori import write_elements as write
+from harness.engines.nori.lined_xml import LinedXml, parse_lined
+from harness.engines.nori.values import number_text, triple_text
+from harness.engines.scene_paths import absolute_paths
+from harness.engines.written_scene import file_hide_emitters, resolve_defaults
+
+#: The top-level elements of a suite scene; emitters other than these are used by none of mcval's integrators.
+TOP_LEVEL = ("integrator", "sensor", "shape", "emitter", "bsdf")
+#: A light as (its element, its position or [], its RGB intensity or radiance).
+Light = tuple[ET.Element, list[float], list[float]]
+
+
+def _shape_albedo(doc: LinedXml, shape: ET.Element, named: dict[str, ET.Element]) -> list[float]:
+    for c in shape:
+        if c.tag == "bsdf":
+            return write.reflectance(c, doc.fail)
+        if c.tag == "ref":
+            if c.get("id") not in named:
+                raise doc.fail(c, "refers to no top-level <bsdf> of that id")
+            return write.reflectance(named[c.get("id")], doc.fail)
+    return write.reflectance(None, doc.fail)
+
+
+def _lights(doc: LinedXml, root: ET.Element, ours: str) -> list[Light]:
+    """The lights `ours` reads, as (element, position or [], RGB value): point lights (intensity) for simple,
+    constant environments (radiance, 1 where the scene has none, as mcval's ao assumes) for ao."""
+    kind = {"simple": "point", "ao": "constant"}.get(ours)
+    found = [e for e in root if e.tag == "emitter" and e.get("type") == kind]
+    if kind == "point":
+        return [(e, write.point_position(e, doc.fail), write.color(write.prop(e, "intensity"), 1, doc.fail))
+                for e in found]
+    if kind == "constant":
+        if len(found) > 1:
+            raise doc.fail(found[1], "Nori's environment is one distantdisk")
+        return [(e, [], write.color(write.prop(e, "radiance"), 1, doc.fail)) for e in found] or \
+            [(root, [], [1.0, 1.0, 1.0])]
+    return []
+
+
+def _nori_simple(doc: LinedXml, root: ET.Element, integrator: ET.Element, lights: list[Light],
+                 albedos: list[list[float]]) -> None:
+    """Nori's own simple integrator: one point light on the integrator (energy in W), no albedo (rho = 1):
+    the shapes' common reflectance is folded into the energy, which is exact (L = rho/pi I cos / r^2)."""
+    if len(lights) != 1:
+        raise doc.fail(lights[1][0] if lights else root, "Nori's simple integrator has one point light")
+    if any(a != albedos[0] for a in albedos):
+        raise doc.fail(root, "Nori's simple integrator ignores the albedo, and these shapes differ in "
+                             "reflectance: write the scene for a direct-lighting integrator instead")
+    (_, position, intensity), = lights
+    rho = albedos[0] if albedos else [1.0] * 3
+    ET.SubElement(integrator, "point", name="position", value=triple_text(position))
+    integrator.append(write.color_element("energy", [4 * math.pi * i * r for i, r in zip(intensity, rho)]))
+
+
+def _nori_ao(doc: LinedXml, lights: list[Light], albedos: list[list[float]]) -> None:
+    """Nori's own ao integrator: an environment of radiance 1 and albedo 1 that escaping camera rays do not
+    see; nothing to set."""
+    if file_hide_emitters(doc.root) == "false":
+        integrator = next(e for e in doc.root if e.tag == "integrator")
+        raise doc.fail(integrator, "Nori's ao integrator shows nothing to a camera ray that escapes; this scene "
+                                   "shows it the environment (hide_emitters false)")
+    radiance = lights[0][2]
+    for a in albedos:
+        if any(not math.isclose(x * r, 1.0, rel_tol=1e-6) for x, r in zip(a, radiance)):
+            raise doc.fail(lights[0][0], "Nori's ao integrator computes reflectance x radiance = 1; this scene has "
+                                         f"{triple_text([x * r for x, r in zip(a, radiance)])}")
+
+
+def mitsuba_to_nori(doc: LinedXml, ours: str, theirs: str, spp: int) -> tuple[ET.Element, int, int, dict[str, str]]:
+    """(Nori's scene, width, height, OBJ files to write beside it) for the Mitsuba scene `doc` (defaults and
+    paths resolved) rendered with mcval's integrator `ours`, called `theirs` by the Nori build."""
+    root = doc.root
+    for e in root:
+        if e.tag not in TOP_LEVEL:
+            raise doc.fail(e, f"has no Nori counterpart (a scene written for Nori holds {', '.join(TOP_LEVEL)})")
+    sensors = [e for e in root if e.tag == "sensor"]
+    if len(sensors) != 1:
+        raise doc.fail(sensors[1] if sensors else root, "a Nori scene has one camera")
+    out = ET.Element("scene")
+    sampler = ET.SubElement(out, "sampler", type="independent")
+    ET.SubElement(sampler, "integer", name="sampleCount", value=str(spp))
+    integrator = ET.SubElement(out, "integrator", type=theirs)
+    camera, width, height = write.camera(sensors[0], doc.fail)
+    out.append(camera)
+    named = {e.get("id"): e for e in root if e.tag == "bsdf" and e.get("id")}
+    files: dict[str, str] = {}
+    albedos = []
+    for index, shape in enumerate(e for e in root if e.tag == "shape"):
+        albedos.append(_shape_albedo(doc, shape, named))
+        mesh, extra = write.mesh(shape, index, albedos[-1], doc.fail)
+        out.append(mesh)
+        files.update(extra)
+    lights = _lights(doc, root, ours)
+    if ours == "simple" and theirs == "simple":
+        _nori_simple(doc, root, integrator, lights, albedos)
+    elif ours == "ao" and theirs == "ao":
+        _nori_ao(doc, lights, albedos)
+    elif ours == "simple":
+        for _, position, intensity in lights:  # Nori's point lights are given by their power: 4 pi I
+            light = ET.SubElement(out, "emitter", type="point")
+            ET.SubElement(light, "point", name="position", value=triple_text(position))
+            light.append(write.color_element("power", [4 * math.pi * i for i in intensity]))
+    elif ours == "ao":
+        light = ET.SubElement(out, "emitter", type="distantdisk")
+        light.append(write.color_element("radiance", lights[0][2]))
+        ET.SubElement(light, "float", name="thetaA", value="180")
+        hide = file_hide_emitters(root)
+        ET.SubElement(integrator, "boolean", name="hide_emitters", value=hide or "true")
+    return out, width, height, files
+
+
+def written_nori_scene(path: Path, params: dict[str, str], ours: str, theirs: str,
+                       spp: int) -> tuple[str, int, int, dict[str, str]]:
+    """(the Nori XML text, width, height, OBJ files by name) of the suite's scene `path` for an engine file
+    with scene_format = "nori"; `params` override the scene's <default>s (res sets width and height)."""
+    doc = parse_lined(Path(path).read_text(), Path(path))
+    resolve_defaults(doc.root, params, str(path))
+    absolute_paths(doc.root, path)
+    if "res" in params:
+        for sensor in doc.root.iter("sensor"):
+            film = next((c for c in sensor if c.tag == "film"), None)
+            if film is None:
+                film = ET.SubElement(sensor, "film", type="hdrfilm")
+            for e in [e for e in film if e.get("name") in ("width", "height")]:
+                film.remove(e)
+            for name in ("width", "height"):
+                ET.SubElement(film, "integer", name=name, value=number_text(int(params["res"])))
+    scene, width, height, files = mitsuba_to_nori(doc, ours, theirs, spp)
+    ET.indent(scene)
+    return ET.tostring(scene, encoding="unicode") + "\n", width, height, files
