@@ -36,15 +36,29 @@ def check_reference_image(args: argparse.Namespace) -> None:
 
 
 def chosen_image_case(args: argparse.Namespace, cases: list) -> list:
-    """With --reference-image, the one case the image is the render of; the cases as they are otherwise.
-    ValueError when the scene has several and --only names none of them."""
+    """With --reference-image, the one case the image is the render of: the only one selected, or the one whose
+    integrator the file itself names; the cases as they are otherwise. ValueError when neither says which."""
     if getattr(args, "reference_image", None) is None:
         return cases
+    own = [c for c in cases if c.integrator == _file_integrator(c.path)]
+    if len(cases) > 1 and len(own) == 1:  # the file names one of ours (a Nori file's, as translated)
+        return own
     if len(cases) != 1:
         keys = ", ".join(c.key for c in cases) or "none"
         raise ValueError(f"--reference-image: the image is one integrator's render; choose its case with --only "
                          f"(this scene's cases: {keys})")
     return cases
+
+
+def _file_integrator(path: Path) -> str | None:
+    """The type of the scene file's top-level <integrator>, or None."""
+    import xml.etree.ElementTree as ET
+
+    try:
+        node = ET.parse(path).getroot().find("integrator")
+    except (ET.ParseError, OSError):
+        return None
+    return None if node is None else node.get("type")
 
 
 def reference_image(args: argparse.Namespace):

@@ -159,6 +159,8 @@ def run_image_case(case: ImageCase, ours: Engine, ref: ReferenceImage, s: int, a
         return ImageResult(case, mine, {}, {}, source, s, None, alpha, run_seed, reason, tested=ours.name,
                            error_output=output)
 
+    if case.problem:
+        return failed(case.problem)
     try:
         image = ref.read()
     except ValueError as e:

@@ -65,3 +65,19 @@ def test_an_image_with_a_nan_fails(ours, made, tmp_path):
     bad[3, 4, 1] = np.nan
     result = _run(ours, _image(tmp_path, bad), K * SPP)
     assert not result.passed and "NaN or infinite" in result.error
+
+
+def test_the_case_is_the_one_whose_integrator_the_file_names(tmp_path):
+    from argparse import Namespace
+
+    from harness.commands.reference_image_options import chosen_image_case
+
+    scene = tmp_path / "s.xml"
+    scene.write_text('<scene version="3.0.0"><integrator type="ao"/></scene>')
+    cases = [ImageCase("s", name, "user", tmp_path) for name in ("normals", "ao")]
+    args = Namespace(reference_image=tmp_path / "ref.exr")
+    assert [c.key for c in chosen_image_case(args, cases)] == ["s:ao"]
+    scene.write_text('<scene version="3.0.0"><integrator type="path"/></scene>')
+    with pytest.raises(ValueError, match="choose its case with --only"):
+        chosen_image_case(args, cases)
+    assert chosen_image_case(Namespace(reference_image=None), cases) == cases
