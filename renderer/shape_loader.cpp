@@ -55,6 +55,16 @@ Color loadShapeChildren(const XmlContext &ctx, const XmlProps &props, const Defi
     return reflectance;
 }
 
+/// An exact shape (sphere, disk, cylinder), already read from `props`, with its name and its bsdf's
+/// reflectance, appended to `list`.
+template <typename Shape>
+void appendExact(std::vector<Shape> &list, Shape shape, const std::string &name, const XmlContext &ctx,
+                 const XmlProps &props, const Definitions &defs, Deferred &deferred) {
+    shape.name = name;
+    shape.reflectance = loadShapeChildren(ctx, props, defs, deferred);
+    list.push_back(std::move(shape));
+}
+
 }  // namespace
 
 // Positions finite and bounded, normals unit length, after to_world: what Embree and the integrators
@@ -116,27 +126,10 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const Definiti
     const Transform toWorld = props.getTransform("to_world");
     const std::string name =
         node.attribute("id") ? ctx.attr(node, "id") : type + " at line " + std::to_string(ctx.line(node));
-    if (type == "sphere") {
-        Sphere sphere = loadSphere(props, toWorld);
-        sphere.name = name;
-        sphere.reflectance = loadShapeChildren(ctx, props, defs, deferred);
-        out.spheres.push_back(std::move(sphere));
-        return;
-    }
-    if (type == "disk") {
-        Disk disk = loadDisk(props, toWorld);
-        disk.name = name;
-        disk.reflectance = loadShapeChildren(ctx, props, defs, deferred);
-        out.disks.push_back(std::move(disk));
-        return;
-    }
-    if (type == "cylinder") {
-        Cylinder cylinder = loadCylinder(props, toWorld);
-        cylinder.name = name;
-        cylinder.reflectance = loadShapeChildren(ctx, props, defs, deferred);
-        out.cylinders.push_back(std::move(cylinder));
-        return;
-    }
+    if (type == "sphere") return appendExact(out.spheres, loadSphere(props, toWorld), name, ctx, props, defs, deferred);
+    if (type == "disk") return appendExact(out.disks, loadDisk(props, toWorld), name, ctx, props, defs, deferred);
+    if (type == "cylinder")
+        return appendExact(out.cylinders, loadCylinder(props, toWorld), name, ctx, props, defs, deferred);
     Mesh mesh;
     if (type == "obj" || type == "ply") {
         const std::string filename = props.getStringRequired("filename");

@@ -91,20 +91,17 @@ void loadInstance(const XmlContext &ctx, const pugi::xml_node &node, Definitions
     const auto refuse = [&](const char *kind, const std::string &name, const std::string &why) {
         ctx.fail(node, std::string(kind) + " \"" + name + "\" of " + what + " under this instance's to_world: " + why);
     };
-    for (const Disk &member : group->disks) {
-        Disk disk = member;
-        disk.toWorld = instance * member.toWorld;
-        if (const auto why = whyUntraceable(disk)) refuse("disk", member.name, *why);
-        disk.name += suffix;
-        scene.disks.push_back(std::move(disk));
-    }
-    for (const Cylinder &member : group->cylinders) {
-        Cylinder cylinder = member;
-        cylinder.toWorld = instance * member.toWorld;
-        if (const auto why = whyUntraceable(cylinder)) refuse("cylinder", member.name, *why);
-        cylinder.name += suffix;
-        scene.cylinders.push_back(std::move(cylinder));
-    }
+    const auto place = [&](const auto &members, auto &into, const char *kind) {
+        for (const auto &member : members) {
+            auto shape = member;
+            shape.toWorld = instance * member.toWorld;
+            if (const auto why = whyUntraceable(shape)) refuse(kind, member.name, *why);
+            shape.name += suffix;
+            into.push_back(std::move(shape));
+        }
+    };
+    place(group->disks, scene.disks, "disk");
+    place(group->cylinders, scene.cylinders, "cylinder");
 }
 
 }  // namespace mcval
