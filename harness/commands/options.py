@@ -47,6 +47,10 @@ def _case_selection(args: argparse.Namespace) -> dict:
         image = reference_image(args)
         # Against a reference image the scene renders at the image's size.
         user = prepare_scenes(args.scene, args.out / ".scenes", image.size[0] if image else RESOLUTION)
+        from harness.commands.output import err
+        from rich.markup import escape
+        for note in (n for u in user for n in u.notes):
+            err.print(f"[yellow]note:[/] {escape(note)}", soft_wrap=True)
     return {"integrators": tested_integrators(args), "user": user,
             "with_suite": getattr(args, "with_suite", False)}
 

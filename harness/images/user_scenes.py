@@ -26,6 +26,7 @@ class UserScene:
     source: Path     # the file as given
     prepared: Path   # the copy that is rendered
     problem: str = ""  # why the file cannot be rendered at all (a Nori file without a translation), or ""
+    notes: tuple[str, ...] = ()  # what its translation left out (only the file's own integrator would use it)
 
 
 def scene_files(paths: list[Path]) -> list[Path]:
@@ -60,17 +61,17 @@ def _fill_size_parameters(root: ET.Element, film: ET.Element) -> None:
             e.set("value", defaults[value[1:]])
 
 
-def _prepared_text(path: Path, resolution: int) -> str:
+def _prepared_text(path: Path, resolution: int, notes: list[str] | None = None) -> str:
     """The file's text as the suite renders it (see the module docstring); unchanged if it is not XML, so
     that each engine reports the error as it would on the file itself. NoriSceneError for a Nori file that
-    has no translation."""
+    has no translation; what a Nori file's translation leaves out is a line in `notes`."""
     text = path.read_text(errors="replace")
     try:
         root = ET.fromstring(text)
     except ET.ParseError:
         return text
     if is_nori(root):
-        root = nori_to_mitsuba(text, path)
+        root = nori_to_mitsuba(text, path, notes)
         text = ET.tostring(root, encoding="unicode")
     try:
         absolute_paths(root, path)
@@ -99,9 +100,9 @@ def prepare_scenes(paths: list[Path], cache: Path, resolution: int) -> list[User
     """The scenes `paths` name, each prepared into cache/<digest>/<name>.xml (written once per content)."""
     scenes = []
     for path in scene_files(paths):
-        problem = ""
+        problem, notes = "", []
         try:
-            text = _prepared_text(path, resolution)
+            text = _prepared_text(path, resolution, notes)
         except OSError as e:
             raise ValueError(f"--scene {path}: cannot read it ({e.strerror or e})") from None
         except NoriSceneError as e:
@@ -113,5 +114,5 @@ def prepare_scenes(paths: list[Path], cache: Path, resolution: int) -> list[User
             tmp = prepared.with_suffix(".tmp")
             tmp.write_text(text)
             tmp.replace(prepared)
-        scenes.append(UserScene(path.stem, path, prepared, problem))
+        scenes.append(UserScene(path.stem, path, prepared, problem, tuple(notes)))
     return scenes

@@ -84,14 +84,19 @@ def test_a_nori_file_is_prepared_as_mitsubas_and_one_without_a_translation_carri
             '<camera type="perspective"><integer name="width" value="64"/><integer name="height" value="32"/>'
             '</camera>\n</scene>\n')
     (folder / "good.xml").write_text(nori.format("normals"))
-    (folder / "bad.xml").write_text(nori.format("whitted"))
-    bad, good = prepare_scenes([folder], tmp_path / "cache", 96)
+    (folder / "bad.xml").write_text(nori.format("normals").replace('camera type="perspective"',
+                                                                   'camera type="thinlens"'))
+    (folder / "noted.xml").write_text(nori.format("whitted"))
+    bad, good, noted = prepare_scenes([folder], tmp_path / "cache", 96)
     root = ET.parse(good.prepared).getroot()
     assert good.problem == "" and root.find("sensor") is not None and root.find("camera") is None
     (mesh,) = [e.get("value") for e in root.iter("string") if e.get("name") == "filename"]
     assert mesh == str(folder / "quad.obj")
     sizes = {e.get("name"): e.get("value") for e in root.find("sensor/film") if e.get("name") in ("width", "height")}
     assert sizes == {"width": "$res", "height": "48"}
-    assert bad.problem.startswith(f"{folder / 'bad.xml'}:2: <integrator type=\"whitted\">")
+    assert bad.problem.startswith(f"{folder / 'bad.xml'}:4: <camera type=\"thinlens\">")
+    # An integrator of Nori's that none of ours computes is left out with a note; the scene still renders.
+    assert noted.problem == "" and len(noted.notes) == 1
+    assert noted.notes[0].startswith(f"{folder / 'noted.xml'}:2: <integrator type=\"whitted\">: not compared")
     (case,) = [c for c in select_cases(["bad:normals"], user=[bad, good])]
     assert case.problem == bad.problem

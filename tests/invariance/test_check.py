@@ -129,12 +129,12 @@ class NeverRenders(Engine):
 def test_a_scene_that_cannot_be_rendered_fails_its_cells_with_why(tmp_path):
     from harness.images.user_scenes import prepare_scenes
     (tmp_path / "quad.obj").write_text("v -1 -1 0\nv 1 -1 0\nv 1 1 0\nf 1 2 3\n")
-    (tmp_path / "paths.xml").write_text('<scene>\n<integrator type="path_mis"/>\n<mesh type="obj"><string '
-                                        'name="filename" value="quad.obj"/></mesh><camera type="perspective"/>'
+    (tmp_path / "paths.xml").write_text('<scene>\n<integrator type="normals"/>\n<mesh type="obj"><string '
+                                        'name="filename" value="quad.obj"/></mesh><camera type="thinlens"/>'
                                         '\n</scene>\n')
     user = prepare_scenes([tmp_path / "paths.xml"], tmp_path / "cache", RES)
     cases, invariances = select(["paths:normals", "scale"], user=user)
-    assert cases[0].problem.startswith(f"{tmp_path / 'paths.xml'}:2: <integrator type=\"path_mis\">")
+    assert cases[0].problem.startswith(f"{tmp_path / 'paths.xml'}:3: <camera type=\"thinlens\">")
     cells, _ = run_invariances([NeverRenders()], cases, invariances, seed=0)
     assert [c.base_error for c in cells] == [cases[0].problem]
     assert _cases("plane_point:normals")[0].problem == ""

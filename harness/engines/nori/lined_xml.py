@@ -24,11 +24,15 @@ class LinedXml:
         """`e`'s line, or None for an element that was not read from this file (one an <include> brought)."""
         return self.lines.get(id(e))
 
+    def where(self, e: ET.Element) -> str:
+        """"FILE:LINE" of `e` ("FILE" when its line is unknown)."""
+        line = self.line(e)
+        return f"{self.path}{'' if line is None else f':{line}'}"
+
     def fail(self, e: ET.Element, why: str) -> NoriSceneError:
         """The error naming the file, `e`'s line, `e` as it is written (tag and attributes) and `why`."""
         attrs = "".join(f' {k}="{v}"' for k, v in e.attrib.items())
-        line = self.line(e)
-        return NoriSceneError(f"{self.path}{'' if line is None else f':{line}'}: <{e.tag}{attrs}>: {why}")
+        return NoriSceneError(f"{self.where(e)}: <{e.tag}{attrs}>: {why}")
 
 
 def parse_lined(text: str, path: Path) -> LinedXml:
