@@ -94,11 +94,42 @@ def camera(r: Reader, e: ET.Element, sampler_element: ET.Element) -> ET.Element:
 def bsdf(r: Reader, e: ET.Element | None, albedo_one: bool) -> ET.Element:
     """Nori's diffuse BSDF (albedo, default 0.5, src/diffuse.cpp) as Mitsuba's; albedo 1 where the integrator
     ignores it."""
+    if e is not None and e.get("type") in OTHER_BSDFS:
+        return _other_bsdf(r, e)
     if e is not None and e.get("type") != "diffuse":
-        raise r.fail(e, "of Nori's BSDFs only diffuse has a counterpart that mcval's integrators model")
+        raise r.fail(e, f"Nori's BSDFs are diffuse, {', '.join(OTHER_BSDFS)}")
     p = r.props(e, {"albedo": "color"}) if e is not None else {}
     out = ET.Element("bsdf", type="diffuse")
     out.append(rgb("reflectance", [1.0] * 3 if albedo_one else r.color(p.get("albedo"), 0.5)))
+    return out
+
+
+#: Nori's other BSDFs (src/microfacet.cpp, dielectric.cpp, mirror.cpp): what each reads, with its default, and
+#: Mitsuba's BSDF of that surface with the name of each value there.
+OTHER_BSDFS = {
+    "microfacet": ("roughplastic", {"alpha": ("float", 0.1, "alpha"), "intIOR": ("float", 1.5046, "int_ior"),
+                                    "extIOR": ("float", 1.000277, "ext_ior"),
+                                    "kd": ("color", 0.5, "diffuse_reflectance")}),
+    "dielectric": ("dielectric", {"intIOR": ("float", 1.5046, "int_ior"), "extIOR": ("float", 1.000277, "ext_ior")}),
+    "mirror": ("conductor", {}),
+}
+
+
+def _other_bsdf(r: Reader, e: ET.Element) -> ET.Element:
+    """A Nori BSDF other than diffuse as Mitsuba's of the same kind. None of mcval's integrators models it:
+    normals does not read it, and ao and simple refuse it (the engines say so)."""
+    kind, reads = OTHER_BSDFS[e.get("type")]
+    p = r.props(e, {name: tag for name, (tag, _, _) in reads.items()})
+    out = ET.Element("bsdf", type=kind)
+    if kind == "roughplastic":
+        ET.SubElement(out, "string", name="distribution", value="beckmann")
+    if kind == "conductor":
+        ET.SubElement(out, "string", name="material", value="none")
+    for name, (tag, default, mitsuba) in reads.items():
+        if tag == "color":
+            out.append(rgb(mitsuba, r.color(p.get(name), default)))
+        else:
+            ET.SubElement(out, "float", name=mitsuba, value=repr(r.number(p.get(name), default, low=0.0)))
     return out
 
 

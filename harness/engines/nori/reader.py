@@ -21,6 +21,8 @@ class Reader:
     def __init__(self, doc: LinedXml) -> None:
         self.doc = doc
         self.fail = doc.fail
+        #: What was read past, one line each: properties no Nori class reads (Nori ignores them too).
+        self.notes: list[str] = []
 
     def props(self, e: ET.Element, allowed: dict[str, str], objects: tuple[str, ...] = ()) -> dict[str, ET.Element]:
         """`e`'s properties by name, each checked against `allowed` (name -> Nori tag); its object children
@@ -32,10 +34,14 @@ class Reader:
             name = child.get("name", "")
             if child.tag not in PROPERTY_TAGS:
                 raise self.fail(child, f"<{e.tag} type=\"{e.get('type')}\"> holds no <{child.tag}> here")
-            if allowed.get(name) != child.tag:
-                known = ", ".join(f"{t} {n}" for n, t in allowed.items()) or "none"
-                raise self.fail(child, f"Nori's {e.get('type')} {e.tag} has no {child.tag} property {name!r} "
-                                       f"(it reads: {known})")
+            known = ", ".join(f"{t} {n}" for n, t in allowed.items()) or "none"
+            if name not in allowed:  # Nori's classes ask for what they read; the rest goes unread
+                self.notes.append(f"{self.doc.where(child)}: <{child.tag} name=\"{name}\">: ignored, as Nori ignores "
+                                  f"it: its {e.get('type')} {e.tag} reads {known}")
+                continue
+            if allowed[name] != child.tag:
+                raise self.fail(child, f"Nori's {e.get('type')} {e.tag} reads {name!r} as a <{allowed[name]}>, not a "
+                                       f"<{child.tag}>")
             if name in found:
                 raise self.fail(child, f"{name!r} is given twice")
             found[name] = child

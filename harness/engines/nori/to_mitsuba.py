@@ -89,4 +89,5 @@ def nori_to_mitsuba(text: str, path: Path, notes: list[str] | None = None) -> ET
         ET.SubElement(ao_light, "rgb", name="radiance", value="1, 1, 1")
     if not mapping.own_lights_only:
         out.extend([e for _, e in lights])
+    notes.extend(r.notes)
     return out

@@ -71,9 +71,13 @@ def test_the_camera_reads_its_fov_clips_size_and_to_world(tmp_path):
 
 
 def test_a_bad_camera_is_refused_on_its_line(tmp_path):
-    message = refused(tmp_path, "has no float property 'fovy'",
-                      camera='<camera type="perspective">\n<float name="fovy" value="3"/></camera>')
-    assert ":4: <float" in message
+    # A property no Nori class reads is ignored by Nori: a note says so.
+    _, note = noted(tmp_path, "ignored, as Nori ignores it",
+                    camera='<camera type="perspective">\n<float name="fovy" value="3"/></camera>')
+    assert ':4: <float name="fovy">' in note
+    message = refused(tmp_path, "reads 'fov' as a <float>, not a <integer>",
+                      camera='<camera type="perspective">\n<integer name="fov" value="3"/></camera>')
+    assert ":4: <integer" in message
     refused(tmp_path, "nearClip < farClip", camera='<camera type="perspective"><float name="nearClip" '
                                                     'value="5"/><float name="farClip" value="1"/></camera>')
     refused(tmp_path, "Nori's camera is perspective", camera='<camera type="thinlens"/>')
@@ -126,8 +130,8 @@ def test_the_diffuse_albedo_is_the_reflectance(tmp_path):
     # Nori's ao and simple integrators ignore the albedo: rho = 1 computes what they do.
     assert reflectance('<bsdf type="diffuse"><color name="albedo" value="0.1,0.2,0.3"/></bsdf>',
                        '<integrator type="ao"/>') == "1, 1, 1"
-    refused(tmp_path, "only diffuse", body='<mesh type="obj"><string name="filename" value="quad.obj"/>'
-                                           '<bsdf type="dielectric"/></mesh>')
+    refused(tmp_path, "Nori's BSDFs are diffuse", body='<mesh type="obj"><string name="filename" value="quad.obj"/>'
+                                                       '<bsdf type="plastic"/></mesh>')
     refused(tmp_path, "three finite numbers", body='<mesh type="obj"><string name="filename" value="quad.obj"/>'
                                                    '<bsdf type="diffuse"><color name="albedo" value="1,2"/></bsdf>'
                                                    '</mesh>')
@@ -233,3 +237,16 @@ def test_other_refusals_name_their_line(tmp_path):
     path.write_text('<test type="ttest"><scene/></test>')
     with pytest.raises(NoriSceneError, match=":1: <test type=\"ttest\">: a Nori test file"):
         nori_to_mitsuba(path.read_text(), path)
+
+
+@pytest.mark.parametrize("nori, mitsuba, values", [
+    ('<bsdf type="microfacet"><color name="kd" value="0.1,0.2,0.3"/><float name="alpha" value="0.02"/></bsdf>',
+     "roughplastic", {"distribution": "beckmann", "alpha": "0.02", "int_ior": "1.5046", "ext_ior": "1.000277",
+                      "diffuse_reflectance": "0.1, 0.2, 0.3"}),
+    ('<bsdf type="dielectric"><float name="intIOR" value="1.33"/></bsdf>', "dielectric",
+     {"int_ior": "1.33", "ext_ior": "1.000277"}),
+    ('<bsdf type="mirror"/>', "conductor", {"material": "none"})], ids=["microfacet", "dielectric", "mirror"])
+def test_noris_other_bsdfs_are_mitsubas_of_the_same_kind(tmp_path, nori, mitsuba, values):
+    body = f'<mesh type="obj"><string name="filename" value="quad.obj"/>{nori}</mesh>'
+    bsdf = translate(tmp_path, body).find("shape/bsdf")
+    assert bsdf.get("type") == mitsuba and props(bsdf) == values
