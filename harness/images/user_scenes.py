@@ -61,6 +61,13 @@ def _fill_size_parameters(root: ET.Element, film: ET.Element) -> None:
             e.set("value", defaults[value[1:]])
 
 
+def _written(root: ET.Element) -> str:
+    """The prepared copy's text, one element a line: an engine's error then names a line that means something
+    in the copy (which the case's error names beside the file as given)."""
+    ET.indent(root)
+    return ET.tostring(root, encoding="unicode")
+
+
 def _prepared_text(path: Path, resolution: int, notes: list[str] | None = None) -> str:
     """The file's text as the suite renders it (see the module docstring); unchanged if it is not XML, so
     that each engine reports the error as it would on the file itself. NoriSceneError for a Nori file that
@@ -72,20 +79,20 @@ def _prepared_text(path: Path, resolution: int, notes: list[str] | None = None) 
         return text
     if is_nori(root):
         root = nori_to_mitsuba(text, path, notes)
-        text = ET.tostring(root, encoding="unicode")
+        text = _written(root)
     try:
         absolute_paths(root, path)
     except SceneFileError:  # a <path> or <include> that leads nowhere: each engine's case says where
         root = ET.fromstring(text)
         anchor_paths(root, path.resolve().parent)
-        return ET.tostring(root, encoding="unicode")
+        return _written(root)
     film = next(root.iter("film"), None)
     if film is not None:
         _fill_size_parameters(root, film)
         try:
             width, height = film_size(root)
         except ValueError:  # a size given as a $parameter: left as the file has it
-            return ET.tostring(root, encoding="unicode")
+            return _written(root)
         for e in [e for e in film if e.get("name") in ("width", "height")]:
             film.remove(e)
         ET.SubElement(film, "integer", name="width", value="$res")
@@ -93,7 +100,7 @@ def _prepared_text(path: Path, resolution: int, notes: list[str] | None = None) 
                       value="$res" if width == height else str(max(1, round(resolution * height / width))))
         if not any(e.tag == "default" and e.get("name") == "res" for e in root):
             root.insert(0, ET.Element("default", name="res", value=str(resolution)))
-    return ET.tostring(root, encoding="unicode")
+    return _written(root)
 
 
 def prepare_scenes(paths: list[Path], cache: Path, resolution: int) -> list[UserScene]:
