@@ -19,6 +19,9 @@ def add_case_choice(q: argparse.ArgumentParser, default: str) -> None:
                    help=f"scenes, integrators or scene:integrator cases, e.g. cornell ao plane_point:simple "
                         f"cornell_box (default: {default})")
     add_scene_files(q)
+    q.add_argument("--resolution", type=int, metavar="N",
+                   help="with --scene: render your scenes N pixels wide, the height keeping the film's aspect "
+                        "(default: 128, the suite's)")
 
 
 def add_scene_files(q: argparse.ArgumentParser) -> None:
@@ -46,7 +49,10 @@ def _case_selection(args: argparse.Namespace) -> dict:
         check_reference_image(args)
         image = reference_image(args)
         # Against a reference image the scene renders at the image's size.
-        user = prepare_scenes(args.scene, args.out / ".scenes", image.size[0] if image else RESOLUTION)
+        width = getattr(args, "resolution", None) or RESOLUTION
+        if width < 1:
+            raise ValueError(f"--resolution {width}: expected a width of at least 1 pixel")
+        user = prepare_scenes(args.scene, args.out / ".scenes", image.size[0] if image else width)
         from harness.commands.output import err
         from rich.markup import escape
         for note in (n for u in user for n in u.notes):

@@ -14,7 +14,7 @@ from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine, RenderFailed, RenderResult
 from harness.images.oracle import decide
 from harness.images.reference_image import ReferenceImage, against_image, fit_verdict
-from harness.images.references import (CLOSED_FORM, RESOLUTION, Reference, load_reference, reference_path,
+from harness.images.references import (CLOSED_FORM, Reference, load_reference, reference_path, render_params,
                                        render_reference)
 from harness.images.result import ImageResult
 from harness.images.suite import OUR_SPP, ROOT, USER, ImageCase
@@ -73,7 +73,7 @@ def run_case_job(job: CaseJob, bundle: Bundle | None = None):
         result = run_image_case(case, job.test, job.reference_image, job.seed, job.alpha, job.run_seed)
     else:
         result = run_case(case, job.test, job.reference, AnalyticEngine() if job.closed_form else None,
-                          {"res": str(RESOLUTION)}, job.seed, job.alpha, job.run_seed, messages.append)
+                          render_params(case), job.seed, job.alpha, job.run_seed, messages.append)
     result.case = job.case
     if result.ours is not None and (result.passed or result.error is not None):
         result.ours = result.ours.light()  # a failed comparison keeps its batches for results/<run>/images/
@@ -167,7 +167,7 @@ def run_image_case(case: ImageCase, ours: Engine, ref: ReferenceImage, s: int, a
         return failed(str(e))
     try:
         mine = ours.render(str(case.path), case.integrator, OUR_SPP[case.integrator], IMAGE_BATCHES, s,
-                           {"res": str(image.shape[1])})
+                           {"res": str(image.shape[1])})  # the image's width; the height keeps the film's aspect
     except RenderFailed as e:
         return failed(f"{ours.name} render: {e.reason}", output=e.output)
     try:

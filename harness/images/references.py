@@ -42,6 +42,12 @@ REFERENCE_BATCHES = 16
 RESOLUTION = 128
 
 
+def render_params(case: ImageCase) -> dict[str, str]:
+    """The parameters every render of `case` is given: the suite's resolution for the suite's scenes; none for
+    a --scene file, whose prepared copy declares the size the run asked for (harness/images/user_scenes.py)."""
+    return {} if case.group == USER else {"res": str(RESOLUTION)}
+
+
 #: The source of a reference that is the integrator's closed form (harness/engines/analytic.py).
 CLOSED_FORM = "closed form"
 
@@ -219,7 +225,7 @@ def load_reference(case: ImageCase, engine: Engine) -> tuple[Reference | None, s
 def render_reference(case: ImageCase, engine: Engine) -> Reference:
     """The reference engine's K batches for `case` at the reference budget, summarised."""
     result = engine.render(str(engine.scene_file(case.path)), case.integrator, REFERENCE_SPP[case.integrator],
-                           REFERENCE_BATCHES, REFERENCE_SEED, {"res": str(RESOLUTION)})
+                           REFERENCE_BATCHES, REFERENCE_SEED, render_params(case))
     return Reference(summarize(result.batches), result.spp, result.seconds, "rendered now")
 
 

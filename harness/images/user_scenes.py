@@ -3,8 +3,8 @@ prepared, into the run's output folder and rendered from there, so nothing is ev
 
 The copy differs from the file only in what every case of the suite sets: its <include>s inlined, its <path>s
 followed and file names made absolute (its meshes are read where they are; harness/engines/scene_paths.py),
-and the film's size as the `res` parameter the suite renders at (its aspect kept),
-declared as a <default> if the file has none. A file in Nori's dialect is first translated into Mitsuba 3's
+and the film's size as the `res` parameter, declared as a <default> of the resolution the run asks for (the
+suite's, --resolution, or a reference image's width; the aspect kept), which every render of the copy keeps. A file in Nori's dialect is first translated into Mitsuba 3's
 (harness/engines/nori); one that cannot be is kept as it is, and its cases fail with the translation's one line.
 """
 from __future__ import annotations
@@ -98,8 +98,9 @@ def _prepared_text(path: Path, resolution: int, notes: list[str] | None = None) 
         ET.SubElement(film, "integer", name="width", value="$res")
         ET.SubElement(film, "integer", name="height",
                       value="$res" if width == height else str(max(1, round(resolution * height / width))))
-        if not any(e.tag == "default" and e.get("name") == "res" for e in root):
-            root.insert(0, ET.Element("default", name="res", value=str(resolution)))
+        for e in [e for e in root if e.tag == "default" and e.get("name") == "res"]:
+            root.remove(e)  # the file's own default would give another size
+        root.insert(0, ET.Element("default", name="res", value=str(resolution)))
     return _written(root)
 
 

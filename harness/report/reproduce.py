@@ -12,7 +12,8 @@ ENVIRONMENT = ("MCVAL_ENGINE_PATH", "MCVAL_INTEGRATOR_PATH", "MCVAL_RENDER", "MC
 OPTIONS = (("engine", "--engine", "mcval"), ("reference", "--reference", "mitsuba"),
            ("variant", "--variant", "llvm_ad_rgb"), ("warp_library", "--warp-library", None),
            ("reference_image", "--reference-image", None), ("reference_spp", "--reference-spp", None),
-           ("reference_noise", "--reference-noise", "stated"), ("out", "--out", "results"))
+           ("reference_noise", "--reference-noise", "stated"), ("resolution", "--resolution", None),
+           ("out", "--out", "results"))
 
 
 def invocation(args) -> dict:

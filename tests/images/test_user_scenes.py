@@ -40,6 +40,26 @@ def test_a_wide_film_keeps_its_aspect(tmp_path):
     assert sizes == {"width": "$res", "height": "48"}
 
 
+def test_the_copy_declares_the_asked_size_over_the_files_own_default(tmp_path):
+    path = _scene(tmp_path / "in")  # sphere_plane declares <default name="res" value="128"/>
+    (scene,) = prepare_scenes([path], tmp_path / "cache", 64)
+    root = ET.parse(scene.prepared).getroot()
+    assert [e.get("value") for e in root if e.tag == "default" and e.get("name") == "res"] == ["64"]
+
+
+@pytest.mark.mitsuba
+def test_a_scene_renders_at_the_resolution_asked_for(tmp_path):
+    from harness.images.case_task import CaseJob, run_case_job
+    from harness.engines.mitsuba import MitsubaEngine
+    from harness.engines.ours import OurEngine
+
+    (scene,) = prepare_scenes([_scene(tmp_path / "in", source="plane_point.xml")], tmp_path / "cache", 40)
+    (case,) = select_cases(["ball:normals"], user=[scene])
+    result, _ = run_case_job(CaseJob(case, 1, 0.01, 0, False, OurEngine(), MitsubaEngine()))
+    assert result.error is None, result.error
+    assert result.ours.mean.shape == (40, 40, 3) and result.passed
+
+
 def test_bad_paths_are_one_line(tmp_path):
     with pytest.raises(ValueError, match="no such file or folder"):
         scene_files([tmp_path / "nope.xml"])
