@@ -12,6 +12,7 @@
 #include "scene_limits.h"
 #include "mesh.h"
 #include "scene.h"
+#include "scene_files.h"
 #include "sensor_loader.h"
 #include "shape_loader.h"
 #include "shapegroup_loader.h"
@@ -83,20 +84,66 @@ std::optional<bool> fileHideEmitters(const XmlContext &ctx, const pugi::xml_node
     return XmlProps(ctx, flag.parent()).getBool("hide_emitters", true);
 }
 
-/// The whole file, refusing what is not a regular file (a FIFO would block) or is too large.
-std::string readSceneFile(const std::string &path) {
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (ec) throw SceneError(path, 0, "cannot open scene file: " + ec.message());
-    if (!fs::is_regular_file(status)) throw SceneError(path, 0, "not a regular file");
-    const auto size = fs::file_size(path, ec);
-    if (ec || size > static_cast<uintmax_t>(kMaxSceneFileBytes))
-        throw SceneError(path, 0, "scene file larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw SceneError(path, 0, "cannot open scene file");
-    std::stringstream buf;
-    buf << in.rdbuf();
-    return buf.str();
+/// What the walk over a scene's elements gathers (the scene file's and its includes').
+struct Walk {
+    Walk(SceneDescription &s, const std::string &i) : scene(s), integrator(i) {}
+    SceneDescription &scene;
+    const std::string &integrator;  ///< the caller's, overriding the file's; empty: the file's
+    Definitions defs;
+    std::vector<pugi::xml_node> instances;
+    bool hasSensor = false, hasIntegrator = false;
+    Deferred deferred;
+};
+
+/// The elements under `parent` (the <scene> of a file in `chain`, the outermost first), in document order:
+/// an <include> walks its file's elements where it stands, a <path> is searched from there on.
+void walkElements(XmlContext &ctx, const pugi::xml_node &parent, Walk &w, const std::vector<std::string> &chain) {
+    for (pugi::xml_node node : parent.children()) {
+        if (node.type() != pugi::node_element) continue;
+        const std::string tag = node.name();
+        if (tag == "default") {
+            // The scene file's were read first; an included file's count where not given already.
+            if (chain.size() > 1 && !node.attribute("name").empty())
+                ctx.params.emplace(node.attribute("name").value(), node.attribute("value").value());
+        } else if (tag == "path") {
+            addPath(ctx, node);
+        } else if (tag == "include") {
+            std::vector<std::string> inner = chain;
+            const pugi::xml_node root = includeFile(ctx, node, chain);
+            inner.push_back(fs::weakly_canonical(ctx.fileOf(root)).string());
+            walkElements(ctx, root, w, inner);
+        } else if (tag == "sensor") {
+            if (w.hasSensor) ctx.fail(node, "only one sensor is supported");
+            loadSensor(ctx, node, w.scene);
+            w.hasSensor = true;
+        } else if (tag == "shape") {
+            const std::string type = typeOf(ctx, node);
+            if (type == "shapegroup") loadShapeGroup(ctx, node, w.defs, w.deferred);
+            else if (type == "instance") w.instances.push_back(node);
+            else loadShape(ctx, node, w.defs, {w.scene.meshes, w.scene.spheres, w.scene.disks, w.scene.cylinders},
+                           w.deferred);
+        } else if (tag == "bsdf") {
+            const std::string id = ctx.attr(node, "id");
+            if (id.empty()) ctx.fail(node, "a top-level <bsdf> needs an id to be referenced by");
+            if (w.defs.groups.count(id)) ctx.fail(node, "the id \"" + id + "\" is already a shapegroup's");
+            w.defs.bsdfs[id] = loadBsdf(ctx, node, w.deferred);
+        } else if (tag == "emitter") {
+            loadEmitter(ctx, node, w.scene, w.deferred);
+        } else if (tag == "texture") {
+            w.deferred.textures.emplace_back(node, "<texture> at line " + std::to_string(ctx.line(node)));
+        } else if (tag == "integrator") {
+            if (w.hasIntegrator) ctx.fail(node, "only one integrator is supported");
+            // An integrator given by the caller overrides the file's, whatever its type; the file's
+            // parameters are read only when it names the same integrator. The caller asked for the
+            // override, so it needs no note.
+            if (w.integrator.empty() || typeOf(ctx, node) == w.integrator) loadIntegrator(ctx, node, w.scene);
+            w.scene.hideEmitters = fileHideEmitters(ctx, node);
+            w.hasIntegrator = true;
+        } else {
+            ctx.fail(node, "unsupported element: expected <default>, <path>, <include>, <sensor>, <shape>, <bsdf>, "
+                           "<texture>, <emitter> or <integrator>");
+        }
+    }
 }
 
 }  // namespace
@@ -108,11 +155,7 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     ctx.text = readSceneFile(path);
 
     pugi::xml_document doc;
-    const pugi::xml_parse_result parsed = doc.load_buffer(ctx.text.data(), ctx.text.size());
-    if (!parsed) {
-        const int line = 1 + static_cast<int>(std::count(ctx.text.begin(), ctx.text.begin() + parsed.offset, '\n'));
-        throw SceneError(path, line, std::string("malformed XML: ") + parsed.description());
-    }
+    parseSceneText(doc, ctx.text, path);
     const pugi::xml_node root = doc.document_element();
     if (std::string(root.name()) != "scene") ctx.fail(root, "the root element must be <scene>");
     if (!root.attribute("version")) ctx.fail(root, "missing version attribute, e.g. version=\"3.0.0\"");
@@ -124,52 +167,18 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
         ctx.params[name] = node.attribute("value").value();
     }
     for (const auto &[k, v] : params) ctx.params[k] = v;
+    ctx.folders = {fs::path(path).parent_path().string()};
 
     SceneDescription scene;
     scene.file = path;
-    Definitions defs;
-    std::vector<pugi::xml_node> instances;
-    bool hasSensor = false, hasIntegrator = false;
-    Deferred deferred;
+    Walk w(scene, integrator);
+    std::error_code ec;
+    walkElements(ctx, root, w, {fs::weakly_canonical(path, ec).string()});
+    Deferred &deferred = w.deferred;
     std::vector<std::string> skipped;
-    for (pugi::xml_node node : root.children()) {
-        if (node.type() != pugi::node_element) continue;
-        const std::string tag = node.name();
-        if (tag == "default") continue;
-        if (tag == "sensor") {
-            if (hasSensor) ctx.fail(node, "only one sensor is supported");
-            loadSensor(ctx, node, scene);
-            hasSensor = true;
-        } else if (tag == "shape") {
-            const std::string type = typeOf(ctx, node);
-            if (type == "shapegroup") loadShapeGroup(ctx, node, defs, deferred);
-            else if (type == "instance") instances.push_back(node);
-            else loadShape(ctx, node, defs, {scene.meshes, scene.spheres, scene.disks, scene.cylinders}, deferred);
-        } else if (tag == "bsdf") {
-            const std::string id = ctx.attr(node, "id");
-            if (id.empty()) ctx.fail(node, "a top-level <bsdf> needs an id to be referenced by");
-            if (defs.groups.count(id)) ctx.fail(node, "the id \"" + id + "\" is already a shapegroup's");
-            defs.bsdfs[id] = loadBsdf(ctx, node, deferred);
-        } else if (tag == "emitter") {
-            loadEmitter(ctx, node, scene, deferred);
-        } else if (tag == "texture") {
-            deferred.textures.emplace_back(node, "<texture> at line " + std::to_string(ctx.line(node)));
-        } else if (tag == "integrator") {
-            if (hasIntegrator) ctx.fail(node, "only one integrator is supported");
-            // An integrator given by the caller overrides the file's, whatever its type; the file's
-            // parameters are read only when it names the same integrator. The caller asked for the
-            // override, so it needs no note.
-            if (integrator.empty() || typeOf(ctx, node) == integrator) loadIntegrator(ctx, node, scene);
-            scene.hideEmitters = fileHideEmitters(ctx, node);
-            hasIntegrator = true;
-        } else {
-            ctx.fail(node, "unsupported element: expected <default>, <sensor>, <shape>, <bsdf>, <texture>, "
-                           "<emitter> or <integrator>");
-        }
-    }
     // Instances last: a <ref> may name a shapegroup further down, as Mitsuba resolves references.
-    for (const pugi::xml_node &node : instances) loadInstance(ctx, node, defs, scene);
-    if (!hasSensor) ctx.fail(root, "the scene has no <sensor type=\"perspective\"> or <sensor type=\"orthographic\">");
+    for (const pugi::xml_node &node : w.instances) loadInstance(ctx, node, w.defs, scene);
+    if (!w.hasSensor) ctx.fail(root, "the scene has no <sensor type=\"perspective\"> or <sensor type=\"orthographic\">");
     if (scene.meshes.empty() && scene.spheres.empty() && scene.disks.empty() && scene.cylinders.empty())
         ctx.fail(root, "the scene has no <shape>");
 

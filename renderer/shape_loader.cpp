@@ -135,7 +135,7 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const Definiti
         const std::string filename = props.getStringRequired("filename");
         const bool faceNormals = props.getBool("face_normals", false);
         props.finish("filename, face_normals, to_world");
-        const fs::path path = fs::path(ctx.file).parent_path() / filename;
+        const fs::path path = ctx.resolve(filename);
         try {
             mesh = loadMeshFile(path.string(), toWorld, faceNormals);
         } catch (const SceneError &e) {
@@ -148,7 +148,7 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const Definiti
         const bool faceNormals = props.getBool("face_normals", false);
         const bool flipNormals = props.getBool("flip_normals", false);
         props.finish("filename, shape_index, face_normals, flip_normals, to_world");
-        const fs::path path = fs::path(ctx.file).parent_path() / filename;
+        const fs::path path = ctx.resolve(filename);
         try {
             mesh = loadSerializedFile(path.string(), uint32_t(shapeIndex), toWorld, faceNormals, flipNormals);
         } catch (const SceneError &e) {

@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <iomanip>
 #include <sstream>
 
@@ -25,14 +26,43 @@ std::vector<std::string> splitNumbers(const std::string &text) {
 }
 }  // namespace
 
+namespace {
+/// The included file `node` was read from, or null for the scene file itself.
+const XmlContext::Included *includedOf(const XmlContext &ctx, const pugi::xml_node &node) {
+    const pugi::xml_node document = node.root();
+    for (const auto &inc : ctx.included)
+        if (inc.doc == document) return &inc;
+    return nullptr;
+}
+}  // namespace
+
 int XmlContext::line(const pugi::xml_node &node) const {
     const ptrdiff_t offset = node.offset_debug();
     if (offset < 0) return 0;
-    return 1 + static_cast<int>(std::count(text.begin(), text.begin() + std::min<size_t>(offset, text.size()), '\n'));
+    const Included *inc = includedOf(*this, node);
+    const std::string &source = inc ? inc->text : text;
+    return 1 + static_cast<int>(std::count(source.begin(), source.begin() + std::min<size_t>(offset, source.size()),
+                                           '\n'));
+}
+
+const std::string &XmlContext::fileOf(const pugi::xml_node &node) const {
+    const Included *inc = includedOf(*this, node);
+    return inc ? inc->file : file;
+}
+
+std::string XmlContext::resolve(const std::string &name) const {
+    const std::filesystem::path given(name);
+    if (given.is_absolute() || folders.empty()) return name;
+    std::error_code ec;
+    for (const std::string &folder : folders) {
+        const std::filesystem::path candidate = std::filesystem::path(folder) / given;
+        if (std::filesystem::exists(candidate, ec)) return candidate.string();
+    }
+    return (std::filesystem::path(folders.back()) / given).string();
 }
 
 void XmlContext::fail(const pugi::xml_node &node, const std::string &message) const {
-    throw SceneError(file, line(node), "<" + std::string(node.name()) + ">: " + message);
+    throw SceneError(fileOf(node), line(node), "<" + std::string(node.name()) + ">: " + message);
 }
 
 std::string XmlContext::attr(const pugi::xml_node &node, const char *name) const {

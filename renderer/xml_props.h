@@ -1,6 +1,7 @@
 // Typed access to the property children of one Mitsuba XML element, with file:line errors.
 #pragma once
 
+#include <list>
 #include <map>
 #include <set>
 #include <string>
@@ -13,13 +14,27 @@
 
 namespace mcval {
 
-/// The parse state shared by all elements of one file: its name, text (for line numbers) and $parameters.
+/// The parse state shared by all elements of one scene: its file's name and text (for line numbers), the
+/// files its <include>s brought in, where relative file names are looked for, and the $parameters.
 struct XmlContext {
     std::string file;
     std::string text;
     std::map<std::string, std::string> params;
+    /// Mitsuba's file resolver: every <path> folder so far (the newest first), then the scene file's folder.
+    std::vector<std::string> folders;
+    /// A file that <include> brought in, parsed once and kept for its nodes' file and line.
+    struct Included {
+        pugi::xml_document doc;
+        std::string file, text;
+    };
+    std::list<Included> included;
 
     int line(const pugi::xml_node &node) const;
+    /// The file the node was read from: the scene file or an included one.
+    const std::string &fileOf(const pugi::xml_node &node) const;
+    /// `name` as Mitsuba finds it: absolute as it is, else in the first of `folders` that has it (the scene
+    /// file's folder when none does, so that the error names where it was expected).
+    std::string resolve(const std::string &name) const;
     /// Throws SceneError at the node's line.
     [[noreturn]] void fail(const pugi::xml_node &node, const std::string &message) const;
     /// An attribute's value with $name parameters substituted.
