@@ -31,7 +31,11 @@ SNIPPETS = ['<shape type="cube"/>', '<emitter type="point"/>', '<emitter type="c
             '<sensor type="perspective"><float name="fov" value="30"/></sensor>', '<ref id="nothing"/>',
             '<rgb name="reflectance" value="0.5"/>', '<!-- c -->', '<![CDATA[x]]>', '<default name="res" value="8"/>',
             '<shape type="ply"><string name="filename" value="meshes/sphere.ply"/></shape>', '&amp;', '<',
-            '<shape type="sphere"><float name="radius" value="1e-3"/><point name="center" value="0, 1, 0"/></shape>']
+            '<shape type="sphere"><float name="radius" value="1e-3"/><point name="center" value="0, 1, 0"/></shape>',
+            # The scene's own file (a cycle), the special files and folders, a missing one.
+            '<include filename="scene.xml"/>', '<include filename="FIFO"/>', '<include filename="DIR"/>',
+            '<include filename="mesh.obj"/>', '<include filename="missing.xml"/>', '<include filename="/dev/zero"/>',
+            '<path value="DIR"/>', '<path value="FIFO"/>', '<path value="meshes"/>', '<path value="$missing"/>']
 
 NUMBER_RE = re.compile(rb"-?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 ATTR_RE = re.compile(rb'(value|angle|x|y|z|origin|target|up)="([^"]*)"')
