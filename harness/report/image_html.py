@@ -68,6 +68,10 @@ def _entry(r: ImageResult, run: dict | None = None) -> str:
     parts = [f'<h3 id="{_esc(r.case.key)}">{_esc(r.case.scene)} — {_esc(r.case.integrator)}: {_verdict(r.passed)}</h3>']
     if r.note:
         parts.append(f'<p class="fail">{_esc(r.note)}</p>')
+    if r.reference_problem:
+        parts.append(f'<p class="fail">{_esc(r.reference_problem)}</p>')
+    if r.reference_fit is not None:
+        parts.append(f"<p class='meta'>{_esc(r.reference_fit.summary)}</p>")
     if not r.passed:
         parts.append(f"<p>Reproduce: <code>{_esc(reproduce_command(r, run))}</code></p>")
     if r.case.source:
@@ -89,7 +93,8 @@ def _entry(r: ImageResult, run: dict | None = None) -> str:
                         for s in comparison.scales)
         metrics = "".join(f"<tr><td>{_esc(k)}</td><td>{v:.4g}</td></tr>" for k, v in comparison.metrics.items())
         parts.append(
-            f"<p class='meta'>against {_esc(name)} ({ref.spp} spp × {ref.summary.image.k} batches"
+            f"<p class='meta'>against {_esc(name)} ({ref.spp} spp × "
+            f"{'one image' if r.reference_fit is not None else f'{ref.summary.image.k} batches'}"
             f"{', ' + _esc(r.reference_source) if ref.source != CLOSED_FORM else ''}); {_esc(tested)} {r.ours.spp} spp × "
             f"{r.ours.count} batches, seed {r.seed}; smallest detectable bias of the image mean "
             f"{comparison.detectable_bias:.2%}</p>"
