@@ -158,9 +158,10 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const Definiti
         props.finish("to_world");
         mesh = type == "rectangle" ? makeRectangle(toWorld) : makeCube(toWorld);
     } else {
+        // Every integrator sees every shape: leaving one out would change any image.
         ctx.fail(node, "unsupported shape type \"" + type +
-                           "\": expected obj, ply, serialized, rectangle, cube, sphere, disk or cylinder (or "
-                           "shapegroup and instance)");
+                           "\" (every integrator sees it, so it cannot be left out): expected obj, ply, serialized, "
+                           "rectangle, cube, sphere, disk or cylinder (or shapegroup and instance)");
     }
     requireFiniteMesh(ctx, node, mesh);
     mesh.name = name;

@@ -92,7 +92,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"unknown_element", std::string(kHeader) + sensor() + "  <medium type=\"homogeneous\"/>\n</scene>\n",
                 "unsupported element", 3},
         BadCase{"unknown_shape", std::string(kHeader) + sensor() + "  <shape type=\"hair\"/>\n</scene>\n",
-                "expected obj, ply, serialized, rectangle, cube, sphere, disk or cylinder", 3},
+                "(every integrator sees it, so it cannot be left out): expected obj, ply, serialized, rectangle, "
+                "cube, sphere, disk or cylinder", 3},
         BadCase{"unknown_property", std::string(kHeader) + sensor() +
                 "  <shape type=\"cube\">\n    <boolean name=\"flip_normals\" value=\"true\"/>\n  </shape>\n</scene>\n",
                 "unsupported property \"flip_normals\"", 4},
