@@ -84,6 +84,12 @@ std::optional<bool> fileHideEmitters(const XmlContext &ctx, const pugi::xml_node
     return XmlProps(ctx, flag.parent()).getBool("hide_emitters", true);
 }
 
+/// A top-level element of Nori's dialect (<camera>, <mesh>, a <sampler> outside the sensor).
+[[noreturn]] void failNoriDialect(const XmlContext &ctx, const pugi::xml_node &node) {
+    ctx.fail(node, "this is Nori's scene dialect, not Mitsuba 3's: the harness translates it for every engine "
+                   "(python -m harness images --scene FILE)");
+}
+
 /// What the walk over a scene's elements gathers (the scene file's and its includes').
 struct Walk {
     Walk(SceneDescription &s, const std::string &i) : scene(s), integrator(i) {}
@@ -139,6 +145,8 @@ void walkElements(XmlContext &ctx, const pugi::xml_node &parent, Walk &w, const 
             if (w.integrator.empty() || typeOf(ctx, node) == w.integrator) loadIntegrator(ctx, node, w.scene);
             w.scene.hideEmitters = fileHideEmitters(ctx, node);
             w.hasIntegrator = true;
+        } else if (tag == "camera" || tag == "mesh" || tag == "sampler") {
+            failNoriDialect(ctx, node);
         } else {
             ctx.fail(node, "unsupported element: expected <default>, <path>, <include>, <sensor>, <shape>, <bsdf>, "
                            "<texture>, <emitter> or <integrator>");
@@ -158,6 +166,8 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     parseSceneText(doc, ctx.text, path);
     const pugi::xml_node root = doc.document_element();
     if (std::string(root.name()) != "scene") ctx.fail(root, "the root element must be <scene>");
+    for (const char *nori : {"camera", "mesh"})  // Nori's files have no version: say what they are instead
+        if (const pugi::xml_node node = root.child(nori)) failNoriDialect(ctx, node);
     if (!root.attribute("version")) ctx.fail(root, "missing version attribute, e.g. version=\"3.0.0\"");
 
     // <default> values first (Mitsuba takes them in document order, before use), then overrides.

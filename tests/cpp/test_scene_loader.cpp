@@ -91,6 +91,8 @@ INSTANTIATE_TEST_SUITE_P(
                 "perturbs the shading normal", 4},
         BadCase{"unknown_element", std::string(kHeader) + sensor() + "  <medium type=\"homogeneous\"/>\n</scene>\n",
                 "unsupported element", 3},
+        BadCase{"nori_dialect", std::string(kHeader) + "  <camera type=\"perspective\"/>\n</scene>\n",
+                "this is Nori's scene dialect, not Mitsuba 3's: the harness translates it", 2},
         BadCase{"unknown_shape", std::string(kHeader) + sensor() + "  <shape type=\"hair\"/>\n</scene>\n",
                 "(every integrator sees it, so it cannot be left out): expected obj, ply, serialized, rectangle, "
                 "cube, sphere, disk or cylinder", 3},
