@@ -13,16 +13,17 @@ and under the model E[d_i^2] = v_i (s / N + 1 / K): the image's own noise plus t
 high-pass of every batch sees the same pixel filter as the reference does, so the correlation the filter puts
 between neighbours is in v_i too. Pixels are taken on a lattice three apart (their high-passes share no
 pixel) and where the signal's own high-pass is within FLAT_SIGMAS standard errors of 0 (an edge that both images place differently
-would read as noise). The reference's noise relative to the model is
+would read as noise); a pixel without variance whose neighbours have some (all K batches missed a rare
+contribution there) is left out. The reference's noise relative to the model is
 
     rho = (sum d^2 - sum v / K) / sum (v s / N),
 
 1 when the stated N is right, N / N' for a reference of N' samples of the same estimator. Its interval comes
 from the ratio sum d^2 / sum v (s/N + 1/K), F-distributed with Satterthwaite's degrees of freedom (the
 numerator's over the pixels, the denominator's K - 1 per pixel). Noise where the test engine has none (its
-estimator is exact there, the reference's is not) is infinite rho: the model cannot hold. The batches'
-variance is averaged over a VARIANCE_WINDOW neighbourhood first, so a pixel where all K batches missed a
-rare occluder is not taken for an exact one.
+estimator is exact there, the reference's is not) is infinite rho: the model cannot hold. A region is exact
+where the batches' variance, averaged over a VARIANCE_WINDOW neighbourhood, is 0, so that a pixel where all
+K batches missed a rare occluder is not taken for an exact one.
 """
 from __future__ import annotations
 
@@ -109,9 +110,11 @@ def fit_noise(batches: np.ndarray, spp: int, image: np.ndarray, image_spp: int) 
     r = np.asarray(image, np.float64).mean(axis=-1)
     k = b.shape[0]
     lb = high_pass(b)
-    # The variance over K batches, averaged over a neighbourhood: a pixel whose K batches all missed a rare
-    # occluder has no variance of its own, its neighbours do.
-    v = uniform_filter(lb.var(axis=0, ddof=1), VARIANCE_WINDOW, mode="nearest")[::LATTICE, ::LATTICE]
+    per_pixel = lb.var(axis=0, ddof=1)
+    v = per_pixel[::LATTICE, ::LATTICE]
+    # Averaged over a neighbourhood, the variance tells an exact region from a pixel whose K batches all
+    # missed a rare occluder (no variance of its own, its neighbours have some): the latter is left out.
+    near = uniform_filter(per_pixel, VARIANCE_WINDOW, mode="nearest")[::LATTICE, ::LATTICE]
     signal = lb.mean(axis=0)[::LATTICE, ::LATTICE]
     lr = high_pass(r)[::LATTICE, ::LATTICE]
     d = lr - signal
@@ -120,7 +123,7 @@ def fit_noise(batches: np.ndarray, spp: int, image: np.ndarray, image_spp: int) 
     # than EXACT_EDGE of the pixel's value).
     level = np.abs(r[1:-1, 1:-1][::LATTICE, ::LATTICE])
     flat = np.isfinite(d) & np.isfinite(v) & np.where(v > 0, np.square(signal) <= FLAT_SIGMAS ** 2 * v / k,
-                                                      np.abs(signal) <= EXACT_EDGE * level)
+                                                      (near == 0) & (np.abs(signal) <= EXACT_EDGE * level))
     d, v = d[flat], v[flat]
     # Float32 sums scatter an exact value by a few ulps: that is no noise.
     rounding = ROUNDING_TOLERANCE * (level[flat] + np.abs(signal[flat]))
@@ -131,7 +134,7 @@ def fit_noise(batches: np.ndarray, spp: int, image: np.ndarray, image_spp: int) 
         return NoiseFit(rho, rho, rho, int(d.size), image_spp, exact)
     ratio = float(np.square(d).sum() / (own + model).sum())
     nu1 = _satterthwaite(own + model)
-    nu2 = (k - 1) * _satterthwaite(v)  # conservative: each v averages several pixels' variances
+    nu2 = (k - 1) * _satterthwaite(v)
     tail = (1.0 - CONFIDENCE) / 2.0
     low_ratio = ratio / sps.f.ppf(1.0 - tail, nu1, nu2)
     high_ratio = ratio / sps.f.ppf(tail, nu1, nu2)
