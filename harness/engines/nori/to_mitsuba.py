@@ -49,7 +49,11 @@ def nori_to_mitsuba(text: str, path: Path, notes: list[str] | None = None) -> ET
     doc = parse_lined(text, Path(path))
     r, root = Reader(doc), doc.root
     if root.tag == "test":
-        raise r.fail(root, "a Nori test file (ttest, chi2test) holds several scenes; give each <scene> a file")
+        scenes = sum(e.tag == "scene" for e in root)
+        what = (f"{scenes} one-pixel scenes, each with the value Nori's t-test expects of it" if scenes else
+                "BSDFs for Nori's sampling tests, and no scene")
+        raise r.fail(root, f"a Nori test file, not a scene file: it holds {what}; mcval does not run Nori's tests "
+                           "(give a <scene> a file of its own to compare it)")
     for e in root:
         if e.tag not in SCENE_CHILDREN:
             raise r.fail(e, f"a Nori scene holds only {', '.join(SCENE_CHILDREN)}")

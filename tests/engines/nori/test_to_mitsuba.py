@@ -235,7 +235,11 @@ def test_other_refusals_name_their_line(tmp_path):
     refused(tmp_path, "has one <integrator>", body='<integrator type="ao"/>')
     path = tmp_path / "test.xml"
     path.write_text('<test type="ttest"><scene/></test>')
-    with pytest.raises(NoriSceneError, match=":1: <test type=\"ttest\">: a Nori test file"):
+    with pytest.raises(NoriSceneError, match=":1: <test type=\"ttest\">: a Nori test file, not a scene file: "
+                                             "it holds 1 one-pixel scenes"):
+        nori_to_mitsuba(path.read_text(), path)
+    path.write_text('<test type="chi2test"><bsdf type="microfacet"/></test>')
+    with pytest.raises(NoriSceneError, match="holds BSDFs for Nori's sampling tests, and no scene"):
         nori_to_mitsuba(path.read_text(), path)
 
 
