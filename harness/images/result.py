@@ -87,8 +87,10 @@ class ImageResult:
         return {"reference_fit": self.reference_fit.to_json(), "reference_problem": self.reference_problem}
 
     def _source(self) -> dict:
-        """A user's scene file (--scene) as given."""
-        return {"scene_file": self.case.source} if self.case.source else {}
+        """A user's scene file (--scene) as given, and what its preparation left out."""
+        if not self.case.source:
+            return {}
+        return {"scene_file": self.case.source, **({"scene_notes": list(self.case.notes)} if self.case.notes else {})}
 
     @property
     def engine(self) -> str:

@@ -88,6 +88,8 @@ class ImageCase:
     source: str = field(default="", compare=False)
     #: Why a user's scene cannot be rendered at all (its cases fail with it), or "".
     problem: str = field(default="", compare=False)
+    #: What the preparation of a user's scene left out, one line each (a Nori file's own integrator), or ().
+    notes: tuple[str, ...] = field(default=(), compare=False)
 
     @property
     def key(self) -> str:
@@ -116,7 +118,8 @@ def scene_cases(user: Sequence[UserScene] | None = None, with_suite: bool = Fals
         if u.name in taken:
             raise ValueError(f"--scene {u.source}: the suite has a scene called {u.name} too; rename the file "
                              "or run it without --with-suite")
-    return suite + [ImageCase(u.name, "", USER, u.prepared.parent, str(u.source), u.problem) for u in user or ()]
+    return suite + [ImageCase(u.name, "", USER, u.prepared.parent, str(u.source), u.problem, u.notes)
+                   for u in user or ()]
 
 
 def _all_cases(integrators: Sequence[str] | None = None, user: Sequence[UserScene] | None = None,

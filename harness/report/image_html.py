@@ -76,6 +76,7 @@ def _entry(r: ImageResult, run: dict | None = None) -> str:
         parts.append(f"<p>Reproduce: <code>{_esc(reproduce_command(r, run))}</code></p>")
     if r.case.source:
         parts.append(f"<p class='meta'>scene file: {_esc(r.case.source)}</p>")
+        parts.extend(f"<p class='meta'>note: {_esc(note)}</p>" for note in r.case.notes)
     parts.append(f"<p>{_esc(idiff_sentence(r.idiff))}</p>")
     if r.error is not None or r.ours is None:
         parts.append(f'<p class="fail">Render failed: {_esc(r.error)}; nothing to compare.</p>')

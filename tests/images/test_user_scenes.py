@@ -118,5 +118,9 @@ def test_a_nori_file_is_prepared_as_mitsubas_and_one_without_a_translation_carri
     # An integrator of Nori's that none of ours computes is left out with a note; the scene still renders.
     assert noted.problem == "" and len(noted.notes) == 1
     assert noted.notes[0].startswith(f"{folder / 'noted.xml'}:2: <integrator type=\"whitted\">: not compared")
+    (noted_case,) = select_cases(["noted:normals"], user=[bad, good, noted])
+    assert noted_case.notes == noted.notes  # carried to the results and the report
+    from harness.images.result import ImageResult
+    assert ImageResult(noted_case, None, {}, {}, "none", 0, error="x").to_json()["scene_notes"] == list(noted.notes)
     (case,) = [c for c in select_cases(["bad:normals"], user=[bad, good])]
     assert case.problem == bad.problem
