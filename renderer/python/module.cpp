@@ -1,6 +1,7 @@
 // Python bindings: the warps over whole numpy arrays (no Python call per sample).
 #include <cstddef>
 #include <cstring>
+#include <utility>
 
 #include <nanobind/nanobind.h>
 #include <nanobind/stl/string.h>
@@ -10,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include "../integrators/registry.h"
+#include "buffer_pool.h"
 #include "../warp.h"
 
 namespace nb = nanobind;
@@ -43,7 +45,7 @@ auto mapRows(const PointsIn<InDim> &in, F f) {
     using Result = decltype(f(load<InDim>(nullptr)));
     constexpr size_t outDim = dimOf(Result{});
     const size_t n = in.shape(0);
-    float *out = new float[n * outDim];
+    float *out = BufferPool::instance().take(n * outDim);
     const float *src = in.data();
     {
         nb::gil_scoped_release release;
@@ -52,10 +54,24 @@ auto mapRows(const PointsIn<InDim> &in, F f) {
                 store(out + i * outDim, f(load<InDim>(src + i * InDim)));
         });
     }
-    nb::capsule owner(out, [](void *p) noexcept { delete[] static_cast<float *>(p); });
+    // The capsule's deleter gets only the pointer: the size travels in a small heap record beside it.
+    auto *block = new std::pair<float *, size_t>(out, n * outDim);
+    nb::capsule owner(block, [](void *p) noexcept {
+        auto *b = static_cast<std::pair<float *, size_t> *>(p);
+        BufferPool::instance().release(b->first, b->second);
+        delete b;
+    });
     if constexpr (outDim == 1) return ValuesOut(out, {n}, owner);
     else return PointsOut<outDim>(out, {n, outDim}, owner);
 }
+
+/// A warp function as a type of its own, so that mapRows inlines it (through a function pointer every
+/// sample would be an indirect call, and the loop could not be vectorised).
+template <auto F>
+struct Fn {
+    template <typename... A>
+    auto operator()(const A &...a) const { return F(a...); }
+};
 
 /// Binds a sampler and its pdf (no extra parameter) under Mitsuba's names.
 template <size_t OutDim, typename Sample, typename Pdf>
@@ -76,16 +92,16 @@ NB_MODULE(mcval_renderer, m) {
           "The names of the integrators this build registered, sorted (render()'s `integrator` choices).");
 
     bindWarp<2>(m, "square_to_uniform_square", "square_to_uniform_square_pdf",
-                squareToUniformSquare, squareToUniformSquarePdf);
-    bindWarp<2>(m, "square_to_tent", "square_to_tent_pdf", squareToTent, squareToTentPdf);
-    bindWarp<2>(m, "square_to_uniform_disk", "square_to_uniform_disk_pdf", squareToUniformDisk,
-                squareToUniformDiskPdf);
+                Fn<squareToUniformSquare>{}, Fn<squareToUniformSquarePdf>{});
+    bindWarp<2>(m, "square_to_tent", "square_to_tent_pdf", Fn<squareToTent>{}, Fn<squareToTentPdf>{});
+    bindWarp<2>(m, "square_to_uniform_disk", "square_to_uniform_disk_pdf",
+                Fn<squareToUniformDisk>{}, Fn<squareToUniformDiskPdf>{});
     bindWarp<3>(m, "square_to_uniform_sphere", "square_to_uniform_sphere_pdf",
-                squareToUniformSphere, squareToUniformSpherePdf);
+                Fn<squareToUniformSphere>{}, Fn<squareToUniformSpherePdf>{});
     bindWarp<3>(m, "square_to_uniform_hemisphere", "square_to_uniform_hemisphere_pdf",
-                squareToUniformHemisphere, squareToUniformHemispherePdf);
+                Fn<squareToUniformHemisphere>{}, Fn<squareToUniformHemispherePdf>{});
     bindWarp<3>(m, "square_to_cosine_hemisphere", "square_to_cosine_hemisphere_pdf",
-                squareToCosineHemisphere, squareToCosineHemispherePdf);
+                Fn<squareToCosineHemisphere>{}, Fn<squareToCosineHemispherePdf>{});
 
     m.def("square_to_beckmann", [](const PointsIn<2> &u, float alpha) {
         return mapRows<2>(u, [alpha](const Vec2f &s) { return squareToBeckmann(s, alpha); });
