@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include "error.h"
+#include "temp_files.h"
 #include "mesh.h"
 #include "obj_reader.h"
 #include "ply_reader.h"
@@ -29,27 +30,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// A folder of its own per process, so parallel test runs do not collide.
-fs::path tempDir() {
-    const fs::path dir = fs::temp_directory_path() / ("mcval_mesh_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-    return dir;
-}
-
-/// Removes the folder after the last test.
-class TempDirCleanup : public ::testing::Environment {
-public:
-    void TearDown() override {
-        std::error_code ec;
-        fs::remove_all(tempDir(), ec);
-    }
-};
-[[maybe_unused]] ::testing::Environment *const kCleanup = ::testing::AddGlobalTestEnvironment(new TempDirCleanup);
+/// A folder of its own per process, removed after the last test.
+fs::path tempDir() { return mcval::test::tempFolder("mcval_mesh_"); }
+[[maybe_unused]] ::testing::Environment *const kCleanup =
+    ::testing::AddGlobalTestEnvironment(new mcval::test::TempFolderCleanup(tempDir()));
 
 std::string writeFile(const std::string &name, const std::string &bytes) {
-    const fs::path path = tempDir() / name;
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path.string();
+    return mcval::test::writeFileIn(tempDir(), name, bytes);
 }
 
 /// The SceneError message of loading the file, or "" if it loads.

@@ -14,6 +14,7 @@
 
 #include "embree_scene.h"
 #include "error.h"
+#include "temp_files.h"
 #include "mesh.h"
 #include "scene.h"
 #include "serialized_reader.h"
@@ -26,22 +27,12 @@ namespace fs = std::filesystem;
 namespace {
 
 /// A folder of its own per process, removed after the last test.
-fs::path tempDir() { return fs::temp_directory_path() / ("mcval_serialized_" + std::to_string(::getpid())); }
-
-class TempDirCleanup : public ::testing::Environment {
-public:
-    void TearDown() override {
-        std::error_code ec;
-        fs::remove_all(tempDir(), ec);
-    }
-};
-[[maybe_unused]] ::testing::Environment *const kCleanup = ::testing::AddGlobalTestEnvironment(new TempDirCleanup);
+fs::path tempDir() { return mcval::test::tempFolder("mcval_serialized_"); }
+[[maybe_unused]] ::testing::Environment *const kCleanup =
+    ::testing::AddGlobalTestEnvironment(new mcval::test::TempFolderCleanup(tempDir()));
 
 std::string writeFile(const std::string &name, const std::string &bytes) {
-    const fs::path dir = tempDir();
-    fs::create_directories(dir);
-    std::ofstream(dir / name, std::ios::binary) << bytes;
-    return (dir / name).string();
+    return mcval::test::writeFileIn(tempDir(), name, bytes);
 }
 
 /// The SceneError message of reading shape `index` of the bytes, or "" if it reads.
