@@ -45,7 +45,7 @@ void addPath(XmlContext &ctx, const pugi::xml_node &node) {
     ctx.folders.insert(ctx.folders.begin(), folder.string());
 }
 
-pugi::xml_node includeFile(XmlContext &ctx, const pugi::xml_node &node, const std::vector<std::string> &chain) {
+pugi::xml_node includeFile(XmlContext &ctx, const pugi::xml_node &node, std::vector<std::string> &chain) {
     const std::string name = ctx.attr(node, "filename");
     if (name.empty()) ctx.fail(node, "expected filename=\"a scene file\"");
     const std::string found = ctx.resolve(name);
@@ -58,6 +58,7 @@ pugi::xml_node includeFile(XmlContext &ctx, const pugi::xml_node &node, const st
     const std::string canonical = fs::weakly_canonical(found, ec).string();
     if (std::find(chain.begin(), chain.end(), canonical) != chain.end() || chain.size() >= kMaxIncludeDepth)
         ctx.fail(node, "the file includes itself (" + canonical + ")");
+    chain.push_back(canonical);
     XmlContext::Included &inc = ctx.included.emplace_back();
     inc.file = found;
     inc.text = readSceneFile(found);

@@ -23,7 +23,8 @@ void parseSceneText(pugi::xml_document &doc, const std::string &text, const std:
 void addPath(XmlContext &ctx, const pugi::xml_node &node);
 
 /// An <include filename="...">: the included file's <scene>, read, kept in `ctx` (its nodes keep their file
-/// and line) and returned. `chain`: the files that include it, outermost first, to refuse a cycle.
-pugi::xml_node includeFile(XmlContext &ctx, const pugi::xml_node &node, const std::vector<std::string> &chain);
+/// and line) and returned. `chain`: the files that include it, outermost first, to refuse a cycle; the
+/// included file is appended to it.
+pugi::xml_node includeFile(XmlContext &ctx, const pugi::xml_node &node, std::vector<std::string> &chain);
 
 }  // namespace mcval

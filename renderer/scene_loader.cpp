@@ -115,9 +115,7 @@ void walkElements(XmlContext &ctx, const pugi::xml_node &parent, Walk &w, const 
             addPath(ctx, node);
         } else if (tag == "include") {
             std::vector<std::string> inner = chain;
-            const pugi::xml_node root = includeFile(ctx, node, chain);
-            inner.push_back(fs::weakly_canonical(ctx.fileOf(root)).string());
-            walkElements(ctx, root, w, inner);
+            walkElements(ctx, includeFile(ctx, node, inner), w, inner);
         } else if (tag == "sensor") {
             if (w.hasSensor) ctx.fail(node, "only one sensor is supported");
             loadSensor(ctx, node, w.scene);
