@@ -43,18 +43,19 @@ def case_selection(args: argparse.Namespace) -> dict:
 def _case_selection(args: argparse.Namespace) -> dict:
     user = None
     if getattr(args, "scene", None):
+        from rich.markup import escape
+
+        from harness.commands.output import err
+        from harness.commands.reference_image_options import check_reference_image, reference_image
         from harness.images.references import RESOLUTION
         from harness.images.user_scenes import prepare_scenes
-        from harness.commands.reference_image_options import check_reference_image, reference_image
         check_reference_image(args)
         image = reference_image(args)
-        # Against a reference image the scene renders at the image's size.
         width = getattr(args, "resolution", None) or RESOLUTION
         if width < 1:
             raise ValueError(f"--resolution {width}: expected a width of at least 1 pixel")
+        # Against a reference image the scene renders at the image's size.
         user = prepare_scenes(args.scene, args.out / ".scenes", image.size[0] if image else width)
-        from harness.commands.output import err
-        from rich.markup import escape
         for note in (n for u in user for n in u.notes):
             err.print(f"[yellow]note:[/] {escape(note)}", soft_wrap=True)
     return {"integrators": tested_integrators(args), "user": user,
