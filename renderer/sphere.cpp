@@ -1,6 +1,7 @@
 #include "sphere.h"
 
 #include "hot.h"
+#include "user_geometry.h"
 
 #include <cmath>
 #include <limits>
@@ -53,29 +54,13 @@ void sphereHitPoint(const Sphere &sphere, const Vec3f &o, const Vec3f &d, double
     n = Vec3f(float(sign * u.x), float(sign * u.y), float(sign * u.z));
 }
 
-namespace {
-
-void bounds(const RTCBoundsFunctionArguments *args) {
-    const Sphere &s = *static_cast<const Sphere *>(args->geometryUserPtr);
-    // Rounded outward: the float box must contain the double sphere.
-    const auto down = [](double x) { return std::nextafter(float(x), -std::numeric_limits<float>::infinity()); };
-    const auto up = [](double x) { return std::nextafter(float(x), std::numeric_limits<float>::infinity()); };
-    const double r = s.radius;
-    RTCBounds *b = args->bounds_o;
-    b->lower_x = down(double(s.center.x) - r); b->upper_x = up(double(s.center.x) + r);
-    b->lower_y = down(double(s.center.y) - r); b->upper_y = up(double(s.center.y) + r);
-    b->lower_z = down(double(s.center.z) - r); b->upper_z = up(double(s.center.z) + r);
+void shapeBounds(const Sphere &sphere, Vec3d &lo, Vec3d &hi) {
+    const double r = sphere.radius;
+    lo = {double(sphere.center.x) - r, double(sphere.center.y) - r, double(sphere.center.z) - r};
+    hi = {double(sphere.center.x) + r, double(sphere.center.y) + r, double(sphere.center.z) + r};
 }
 
-/// Ray i of an Embree packet of N (N is 1 for rtcIntersect1, up to 16 for rtcIntersect16).
-struct RayView {
-    RTCRayN *ray;
-    unsigned N, i;
-    Vec3f o() const { return {RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i)}; }
-    Vec3f d() const { return {RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i)}; }
-    float &tnear() const { return RTCRayN_tnear(ray, N, i); }
-    float &tfar() const { return RTCRayN_tfar(ray, N, i); }
-};
+namespace {
 
 /// intersectSphere for lanes [0, N) of an Embree RTCRayN at once, branch-free so that GCC turns the
 /// loop into SIMD: the same operations in the same order (so the same bits), every root computed
@@ -164,57 +149,23 @@ __attribute__((always_inline)) inline void occludedPacket(const RTCOccludedFunct
             ray[8 * N + i] = -std::numeric_limits<float>::infinity();  // Embree's mark of an occluded ray
 }
 
+// Packets of 16 and 8 (the renderer's and Embree's own) at once; any other width lane by lane.
 MCVAL_HOT void intersect(const RTCIntersectFunctionNArguments *args) {
     if (args->N == 16) return intersectPacket<16>(args);
     if (args->N == 8) return intersectPacket<8>(args);
-    const Sphere &s = *static_cast<const Sphere *>(args->geometryUserPtr);
-    RTCRayN *rays = RTCRayHitN_RayN(args->rayhit, args->N);
-    RTCHitN *hits = RTCRayHitN_HitN(args->rayhit, args->N);
-    for (unsigned i = 0; i < args->N; ++i) {
-        if (args->valid[i] != -1) continue;
-        const RayView ray{rays, args->N, i};
-        double t;
-        if (!intersectSphere(s, ray.o(), ray.d(), ray.tnear(), ray.tfar(), t)) continue;
-        const float tf = float(t);
-        if (tf > ray.tfar()) continue;  // rounded up past the closest hit so far
-        ray.tfar() = tf;
-        // u keeps what float32 rounded off t, so the hit point is rebuilt from t in double.
-        RTCHitN_u(hits, args->N, i) = float(t - double(tf));
-        RTCHitN_v(hits, args->N, i) = 0.f;
-        RTCHitN_Ng_x(hits, args->N, i) = 0.f;
-        RTCHitN_Ng_y(hits, args->N, i) = 0.f;
-        RTCHitN_Ng_z(hits, args->N, i) = 1.f;
-        RTCHitN_primID(hits, args->N, i) = args->primID;
-        RTCHitN_geomID(hits, args->N, i) = args->geomID;
-        RTCHitN_instID(hits, args->N, i, 0) = args->context->instID[0];
-    }
+    user_geometry_detail::intersect<Sphere>(args);
 }
 
 MCVAL_HOT void occluded(const RTCOccludedFunctionNArguments *args) {
     if (args->N == 16) return occludedPacket<16>(args);
     if (args->N == 8) return occludedPacket<8>(args);
-    const Sphere &s = *static_cast<const Sphere *>(args->geometryUserPtr);
-    for (unsigned i = 0; i < args->N; ++i) {
-        if (args->valid[i] != -1) continue;
-        const RayView ray{args->ray, args->N, i};
-        double t;
-        if (intersectSphere(s, ray.o(), ray.d(), ray.tnear(), ray.tfar(), t))
-            ray.tfar() = -std::numeric_limits<float>::infinity();  // Embree's mark of an occluded ray
-    }
+    user_geometry_detail::occluded<Sphere>(args);
 }
 
 }  // namespace
 
 void attachSphere(RTCDevice device, RTCScene scene, const Sphere &sphere) {
-    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-    rtcSetGeometryUserPrimitiveCount(geom, 1);
-    rtcSetGeometryUserData(geom, const_cast<Sphere *>(&sphere));
-    rtcSetGeometryBoundsFunction(geom, bounds, nullptr);
-    rtcSetGeometryIntersectFunction(geom, intersect);
-    rtcSetGeometryOccludedFunction(geom, occluded);
-    rtcCommitGeometry(geom);
-    rtcAttachGeometry(scene, geom);
-    rtcReleaseGeometry(geom);
+    attachUserGeometry(device, scene, sphere, intersect, occluded);
 }
 
 }  // namespace mcval

@@ -1,5 +1,6 @@
-// An exact shape without SIMD kernels of its own (disk, cylinder) as an Embree 3 user geometry: each
-// lane of a packet is intersected on its own, in double, as the sphere's scalar path does.
+// An exact shape (sphere, disk, cylinder) as an Embree 3 user geometry: its bounds, and callbacks that
+// intersect each lane of a packet on its own, in double (the sphere has packet kernels for 8 and 16 lanes
+// and falls back on these for other widths).
 #pragma once
 
 #include <cmath>
@@ -76,15 +77,18 @@ void occluded(const RTCOccludedFunctionNArguments *args) {
 }  // namespace user_geometry_detail
 
 /// Attaches `shape` to the scene as one Embree user geometry; it must outlive the scene. Shape needs
-/// intersectShape(shape, o, d, tnear, tfar, double &t) and shapeBounds(shape, Vec3d &lo, Vec3d &hi).
+/// intersectShape(shape, o, d, tnear, tfar, double &t) and shapeBounds(shape, Vec3d &lo, Vec3d &hi). A shape
+/// with packet kernels of its own (the sphere) gives its own intersect and occluded callbacks.
 template <typename Shape>
-void attachUserGeometry(RTCDevice device, RTCScene scene, const Shape &shape) {
+void attachUserGeometry(RTCDevice device, RTCScene scene, const Shape &shape,
+                        RTCIntersectFunctionN intersect = user_geometry_detail::intersect<Shape>,
+                        RTCOccludedFunctionN occluded = user_geometry_detail::occluded<Shape>) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(geom, 1);
     rtcSetGeometryUserData(geom, const_cast<Shape *>(&shape));
     rtcSetGeometryBoundsFunction(geom, user_geometry_detail::bounds<Shape>, nullptr);
-    rtcSetGeometryIntersectFunction(geom, user_geometry_detail::intersect<Shape>);
-    rtcSetGeometryOccludedFunction(geom, user_geometry_detail::occluded<Shape>);
+    rtcSetGeometryIntersectFunction(geom, intersect);
+    rtcSetGeometryOccludedFunction(geom, occluded);
     rtcCommitGeometry(geom);
     rtcAttachGeometry(scene, geom);
     rtcReleaseGeometry(geom);
