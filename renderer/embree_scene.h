@@ -73,6 +73,9 @@ public:
     /// Traces the first `count` lanes of `packet` (all set) and gives back, lane by lane, each ray as
     /// set and its hit (hits.found[i]; lanes past `count` have none).
     void intersect(RayHitPacket &packet, int count, HitPacket &hits) const;
+    /// intersect() for `n` packets at once, traced as one coherent Embree stream (neighbouring packets
+    /// traverse the BVH together): packet j's first counts[j] lanes, its hits into hits[j].
+    void intersect(RayHitPacket *packets, const int *counts, int n, HitPacket *hits) const;
     /// Whether anything lies on the ray in [tnear, tfar].
     bool occluded(const Ray &ray) const;
     /// Traces the set lanes of `packet` (nothing if none); read the answers with packet.blocked(i).

@@ -231,6 +231,30 @@ MCVAL_HOT void EmbreeScene::intersect(RayHitPacket &packet, int count, HitPacket
     fillHits(packet.rh, count, hits);
 }
 
+MCVAL_HOT void EmbreeScene::intersect(RayHitPacket *packets, const int *counts, int n, HitPacket *hits) const {
+    for (int j = 0; j < n; ++j) {
+        MCR_ASSERT(counts[j] > 0 && counts[j] <= kPacketSize);
+        RTCRay16 &r = packets[j].rh.ray;
+        HitPacket &h = hits[j];
+        for (int i = 0; i < kPacketSize; ++i) {  // the rays as set, before the trace shortens tfar
+            h.ox[i] = r.org_x[i]; h.oy[i] = r.org_y[i]; h.oz[i] = r.org_z[i];
+            h.dx[i] = r.dir_x[i]; h.dy[i] = r.dir_y[i]; h.dz[i] = r.dir_z[i];
+            h.tnear[i] = r.tnear[i];
+            h.tfar[i] = r.tfar[i];
+            // A stream has no valid mask: a lane is left out by an empty interval.
+            const bool on = packets[j].valid[i] != 0;
+            r.tnear[i] = on ? r.tnear[i] : 1.f;
+            r.tfar[i] = on ? r.tfar[i] : 0.f;
+        }
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersectNM(m_scene, &context, reinterpret_cast<RTCRayHitN *>(packets), kPacketSize, static_cast<unsigned>(n),
+                   sizeof(RayHitPacket));
+    for (int j = 0; j < n; ++j) fillHits(packets[j].rh, counts[j], hits[j]);
+}
+
 void EmbreeScene::occluded(OcclusionPacket &packet, bool coherent) const {
     if (packet.active == 0) return;
     // An inactive lane gets a finite ray: Embree's AVX2 kernels (16 rays as two packets of 8) assert on a

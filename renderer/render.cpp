@@ -79,57 +79,95 @@ struct RenderContext {
     SamplerType sampler;
 };
 
-/// Every sample of pixel (x, y) in batch `batch`, splatted into `block` (pbrt's EvaluatePixelSample,
-/// for all the samples of a pixel). The samples of one pixel are coherent: their camera rays are
-/// traced kPacketSize at a time, and the integrator gets them as one packet for its own rays.
-MCVAL_HOT void renderPixel(const RenderContext &ctx, int batch, int x, int y, ImageBlock &block, RayCounts &counts) {
-    Sampler sampler(ctx.sampler, ctx.seed, static_cast<uint64_t>(batch), static_cast<uint64_t>(y) * ctx.width + x);
-    RayHitPacket camera;
-    HitPacket lanes;
-    for (int first = 0; first < ctx.spp; first += kPacketSize) {
-        const int count = std::min(kPacketSize, ctx.spp - first);
-        alignas(64) float filmX[kPacketSize], filmY[kPacketSize];
-        // Every lane computed (the unused ones left out of the trace), each loop branch-free, so
-        // that they run in SIMD.
-        if (sampler.type() == SamplerType::Independent) {
-            for (int i = 0; i < kPacketSize; ++i) {
-                const Vec2f jitter = sampler.independent2D(static_cast<uint32_t>(first + i), 0);
-                filmX[i] = static_cast<float>(x) + jitter.x;
-                filmY[i] = static_cast<float>(y) + jitter.y;
-            }
-        } else {
-            for (int i = 0; i < kPacketSize; ++i) {
-                const Vec2f jitter = sampler.sample2D(static_cast<uint32_t>(first + i), 0);
-                filmX[i] = static_cast<float>(x) + jitter.x;
-                filmY[i] = static_cast<float>(y) + jitter.y;
-            }
+/// Camera-ray packets traced as one Embree stream: the coherent-stream traversal takes several packets
+/// of neighbouring rays through the BVH together, a fifth faster here than one packet at a time.
+constexpr int kStreamPackets = 4;
+
+/// One packet of a pixel's samples: lanes first .. first + count - 1 of pixel x.
+struct PacketJob {
+    int x;
+    int first;
+    int count;
+};
+
+/// Film positions of a job's lanes (every lane computed, branch-free, so that the loop runs in SIMD).
+MCVAL_HOT void jitter(const Sampler &sampler, int x, int y, int first, float *filmX, float *filmY) {
+    if (sampler.type() == SamplerType::Independent) {
+        for (int i = 0; i < kPacketSize; ++i) {
+            const Vec2f j = sampler.independent2D(static_cast<uint32_t>(first + i), 0);
+            filmX[i] = static_cast<float>(x) + j.x;
+            filmY[i] = static_cast<float>(y) + j.y;
         }
-        const Vec3f origin = ctx.camera.origin();
-        const float nearClip = ctx.camera.nearClip(), farClip = ctx.camera.farClip();
-        if (ctx.camera.orthographic()) {
-            // Parallel rays from the near plane over Mitsuba's maxt, far_clip - near_clip.
-            for (int i = 0; i < kPacketSize; ++i)
-                camera.set(i, i < count, ctx.camera.orthographicOrigin(filmX[i], filmY[i]), ctx.camera.forward(), 0.f,
-                           farClip - nearClip);
-        } else {
-            for (int i = 0; i < kPacketSize; ++i) {
-                float length;
-                const Vec3f d = ctx.camera.direction(filmX[i], filmY[i], length);
-                camera.set(i, i < count, origin, d, nearClip * length, farClip * length);
-            }
+    } else {
+        for (int i = 0; i < kPacketSize; ++i) {
+            const Vec2f j = sampler.sample2D(static_cast<uint32_t>(first + i), 0);
+            filmX[i] = static_cast<float>(x) + j.x;
+            filmY[i] = static_cast<float>(y) + j.y;
         }
-        ctx.embree.intersect(camera, count, lanes);
-        counts.camera += static_cast<uint64_t>(count);
-        Color radiance[kPacketSize];
-        ctx.integrator.LiPacket({count, static_cast<uint32_t>(first), lanes}, sampler, radiance, counts);
-        block.putPacket(x, y, filmX, filmY, radiance, count);
     }
 }
 
-/// One tile of one batch (Nori's renderBlock).
+/// The camera rays of one job's lanes (the unused ones left out of the trace).
+MCVAL_HOT void cameraRays(const Camera &camera, const float *filmX, const float *filmY, int count, RayHitPacket &packet) {
+    const Vec3f origin = camera.origin();
+    const float nearClip = camera.nearClip(), farClip = camera.farClip();
+    if (camera.orthographic()) {
+        // Parallel rays from the near plane over Mitsuba's maxt, far_clip - near_clip.
+        for (int i = 0; i < kPacketSize; ++i)
+            packet.set(i, i < count, camera.orthographicOrigin(filmX[i], filmY[i]), camera.forward(), 0.f,
+                       farClip - nearClip);
+    } else {
+        for (int i = 0; i < kPacketSize; ++i) {
+            float length;
+            const Vec3f d = camera.direction(filmX[i], filmY[i], length);
+            packet.set(i, i < count, origin, d, nearClip * length, farClip * length);
+        }
+    }
+}
+
+/// The jobs of one row, at most kStreamPackets (pbrt's EvaluatePixelSample for a run of samples): their
+/// camera rays traced as one stream, then each packet's hits handed to the integrator and splatted, in
+/// job order (pixel by pixel, packet by packet), so the film adds the same values in the same order as
+/// one packet at a time would.
+MCVAL_HOT void renderJobs(const RenderContext &ctx, int batch, int y, const PacketJob *jobs, int n, RayHitPacket *camera,
+                          HitPacket *lanes, ImageBlock &block, RayCounts &counts) {
+    alignas(64) float filmX[kStreamPackets][kPacketSize], filmY[kStreamPackets][kPacketSize];
+    int laneCounts[kStreamPackets] = {};
+    for (int j = 0; j < n; ++j) {
+        const Sampler sampler(ctx.sampler, ctx.seed, static_cast<uint64_t>(batch),
+                              static_cast<uint64_t>(y) * ctx.width + jobs[j].x);
+        jitter(sampler, jobs[j].x, y, jobs[j].first, filmX[j], filmY[j]);
+        cameraRays(ctx.camera, filmX[j], filmY[j], jobs[j].count, camera[j]);
+        laneCounts[j] = jobs[j].count;
+        counts.camera += static_cast<uint64_t>(jobs[j].count);
+    }
+    ctx.embree.intersect(camera, laneCounts, n, lanes);
+    for (int j = 0; j < n; ++j) {
+        Sampler sampler(ctx.sampler, ctx.seed, static_cast<uint64_t>(batch), static_cast<uint64_t>(y) * ctx.width + jobs[j].x);
+        Color radiance[kPacketSize];
+        ctx.integrator.LiPacket({jobs[j].count, static_cast<uint32_t>(jobs[j].first), lanes[j]}, sampler, radiance, counts);
+        block.putPacket(jobs[j].x, y, filmX[j], filmY[j], radiance, jobs[j].count);
+    }
+}
+
+/// One tile of one batch (Nori's renderBlock): each row's pixels, their samples kPacketSize at a time
+/// (the samples of one pixel are coherent), kStreamPackets packets to a stream.
 void renderTile(const RenderContext &ctx, int batch, const Tile &tile, ImageBlock &block, RayCounts &counts) {
-    for (int y = tile.y0; y < tile.y0 + tile.height; ++y)
-        for (int x = tile.x0; x < tile.x0 + tile.width; ++x) renderPixel(ctx, batch, x, y, block, counts);
+    PacketJob jobs[kStreamPackets];
+    RayHitPacket camera[kStreamPackets];  // their fixed fields set once
+    HitPacket lanes[kStreamPackets];
+    for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
+        int n = 0;
+        for (int x = tile.x0; x < tile.x0 + tile.width; ++x)
+            for (int first = 0; first < ctx.spp; first += kPacketSize) {
+                jobs[n++] = {x, first, std::min(kPacketSize, ctx.spp - first)};
+                if (n == kStreamPackets) {
+                    renderJobs(ctx, batch, y, jobs, n, camera, lanes, block, counts);
+                    n = 0;
+                }
+            }
+        if (n > 0) renderJobs(ctx, batch, y, jobs, n, camera, lanes, block, counts);
+    }
 }
 
 /// Tiles finished so far, reported one call at a time from the worker threads.
