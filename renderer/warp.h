@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "log_exp.h"
 #include "sincos.h"
 #include "vector.h"
 
@@ -109,7 +110,7 @@ inline float squareToCosineHemispherePdf(const Vec3f &v) { return v.z > 0.f ? v.
 /// Beckmann microfacet normals, distributed as D(m) cos(theta_m):
 /// tan^2(theta) = -alpha^2 log(1 - u.y), azimuth 2 pi u.x.
 inline Vec3f squareToBeckmann(const Vec2f &u, float alpha) {
-    const float tan2Theta = -alpha * alpha * std::log1p(-detail::openUnit(u.y));
+    const float tan2Theta = -alpha * alpha * detail::log1pNonPositive(-detail::openUnit(u.y));
     const float cosTheta = 1.f / std::sqrt(1.f + tan2Theta);
     const float sinTheta = std::sqrt(tan2Theta) * cosTheta;
     return detail::sphericalDirection(cosTheta, sinTheta, u.x);
@@ -117,12 +118,13 @@ inline Vec3f squareToBeckmann(const Vec2f &u, float alpha) {
 /// Density w.r.t. solid angle: D(m) cos(theta) = exp(-tan^2/alpha^2) / (pi alpha^2 cos^3),
 /// 0 for z <= 0.
 inline float squareToBeckmannPdf(const Vec3f &m, float alpha) {
-    if (m.z <= 0.f) return 0.f;
     const float cos3 = m.z * m.z * m.z;
     const float exponent = (m.x * m.x + m.y * m.y) / (m.z * m.z * alpha * alpha);
-    // Far in the tail exp() underflows while cos^3 may reach 0: the density is 0 there.
-    if (!(exponent < 100.f) || cos3 == 0.f) return 0.f;
-    return std::exp(-exponent) / (kPi * alpha * alpha * cos3);
+    // Far in the tail exp() underflows while cos^3 may reach 0: the density is 0 there. Operands
+    // selected, not results, so that arrays of it run in SIMD (no division in one arm of a ?:).
+    const bool zero = !(m.z > 0.f) || !(exponent <= 87.f) || cos3 == 0.f;
+    const float density = detail::expNegative(zero ? 0.f : exponent) / (kPi * alpha * alpha * (zero ? 1.f : cos3));
+    return zero ? 0.f : density;
 }
 
 }  // namespace mcval
