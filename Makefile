@@ -57,11 +57,13 @@ fuzz: sanitize-build
 references: build
 	$(PY) -m harness references
 
-## bench: speed against error for every case and engine, and ray rates beside a raw Embree loop
+## bench: warp throughput of both engines (interleaved), speed against error for every case and engine, and ray
+## rates beside a raw Embree loop
 bench: build
 	@mkdir -p results
 	cmake --build $(BUILD) --target bench_rays
 	$(BUILD)/bench_rays scenes/highpoly.xml --json results/bench_rays.json
+	$(PY) bench/warp_throughput.py --json results/warp_throughput.json
 	$(PY) -m harness bench --rays-json results/bench_rays.json
 
 ## mutate: mutation testing (mutmut, not in CI) of the statistics, checks and reports against the fast tests;

@@ -10,7 +10,7 @@ from harness.warps.evaluate import CHECK_NAMES, WarpResult, format_params
 
 #: Column headers, short enough for an 80-column terminal.
 _HEADERS = {"chi2": "χ² p", "normalisation": "∫pdf", "domain": "bad", "pdf_vs_mitsuba": "pdf≈mi",
-            "samples_vs_mitsuba": "smp≈mi", "hard_inputs": "NaN", "throughput": "M/s (mi)"}
+            "samples_vs_mitsuba": "smp≈mi", "hard_inputs": "NaN", "throughput": "M/s (mi, ×)"}
 
 
 def _figure(name: str, c: CheckResult) -> str:
@@ -23,8 +23,8 @@ def _figure(name: str, c: CheckResult) -> str:
     if name == "pdf_vs_mitsuba":
         return f"{c.details.get('max_relative_difference', f):.0e}"
     if name == "throughput":
-        ref = c.details.get("reference_samples_per_second")
-        return f"{f / 1e6:.0f}" + (f" ({ref / 1e6:.0f})" if ref else "")
+        ref, ratio = c.details.get("reference_samples_per_second"), c.details.get("ratio")
+        return f"{f / 1e6:.0f}" + (f" ({ref / 1e6:.0f}, {ratio:.2f}×)" if ref and ratio else "")
     return f"{int(f)}"
 
 
@@ -69,5 +69,5 @@ def warp_table(results: list[WarpResult], level: float) -> Table:
         table.add_row(label, *cells, power_cell(r), warp_verdict_text(r))
     table.caption = ("green pass, yellow pass with warnings (listed in warps.html), red fail. χ² p, smp≈mi p: "
                      "p-values; ∫pdf: integral; bad: domain violations; pdf≈mi: max rel. diff; NaN: NaN/Inf on "
-                     "hard inputs in [0,1); M/s: ours (Mitsuba); " + POWER_CAPTION)
+                     "hard inputs in [0,1); M/s: ours (Mitsuba, ours ÷ Mitsuba: median of interleaved pairs); " + POWER_CAPTION)
     return table

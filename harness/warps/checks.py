@@ -288,6 +288,23 @@ def hard_inputs_check(domain: Domain, variants: dict[str, tuple[Sampler, Pdf]]) 
                        findings=findings)
 
 
+def measure_rates_interleaved(ours: Callable[[], Any], reference: Callable[[], Any], n: int,
+                              pairs: int = 9) -> tuple[float, float, float]:
+    """Samples per second of two calls that warp n samples each, timed in alternation (ours, reference, ours,
+    ...), each timed call straight after an untimed one of its own (its threads awake, its arrays cached, as
+    the other's were before it): the median rate of each, and the median over the pairs of ours' rate over
+    the reference's, in which the machine's drift between the two runs of a pair cancels."""
+    t_ours, t_ref = [], []
+    for _ in range(pairs):
+        for call, times in ((ours, t_ours), (reference, t_ref)):
+            call()
+            start = time.perf_counter()
+            call()
+            times.append(time.perf_counter() - start)
+    ratios = np.array(t_ref) / np.array(t_ours)
+    return n / float(np.median(t_ours)), n / float(np.median(t_ref)), float(np.median(ratios))
+
+
 def measure_rate(sample: Callable[[], Any], n: int, repeats: int = 5) -> float:
     """Samples per second of a call that warps n samples: the median of several runs after a warm-up."""
     sample()

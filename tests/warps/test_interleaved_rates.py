@@ -1,0 +1,51 @@
+"""measure_rates_interleaved: the engines alternate, each timed call follows an untimed one of its own, and the
+ratio is the median of the per-pair ratios (on a scripted clock, so nothing here depends on timing)."""
+import harness.warps.checks as wc
+
+
+class ScriptedClock:
+    """perf_counter that advances only when a fake warp runs, by that warp's scripted seconds."""
+
+    def __init__(self):
+        self.now = 0.0
+
+    def __call__(self):
+        return self.now
+
+
+def fake_warp(clock, calls, name, seconds):
+    durations = iter(seconds)
+
+    def run():
+        calls.append(name)
+        clock.now += next(durations)
+    return run
+
+
+def test_alternates_with_a_warm_up_before_each_timed_call(monkeypatch):
+    clock, calls = ScriptedClock(), []
+    monkeypatch.setattr(wc.time, "perf_counter", clock)
+    ours = fake_warp(clock, calls, "ours", [9.0, 1.0] * 3)
+    ref = fake_warp(clock, calls, "ref", [9.0, 2.0] * 3)
+    ours_rate, ref_rate, ratio = wc.measure_rates_interleaved(ours, ref, n=100, pairs=3)
+    assert calls == ["ours", "ours", "ref", "ref"] * 3
+    assert (ours_rate, ref_rate, ratio) == (100.0, 50.0, 2.0)  # the warm-up calls (9 s) are not counted
+
+
+def test_the_ratio_is_the_median_of_pairs_so_drift_cancels(monkeypatch):
+    # The machine slows down tenfold in the middle pair: both engines alike, so that pair's ratio is still 2,
+    # while the ratio of the two medians of times would not be.
+    clock, calls = ScriptedClock(), []
+    monkeypatch.setattr(wc.time, "perf_counter", clock)
+    ours = fake_warp(clock, calls, "ours", [0.0, 1.0, 0.0, 10.0, 0.0, 1.5])
+    ref = fake_warp(clock, calls, "ref", [0.0, 2.0, 0.0, 20.0, 0.0, 3.0])
+    _, _, ratio = wc.measure_rates_interleaved(ours, ref, n=1, pairs=3)
+    assert ratio == 2.0
+
+
+def test_a_slower_warp_reads_below_one(monkeypatch):
+    clock, calls = ScriptedClock(), []
+    monkeypatch.setattr(wc.time, "perf_counter", clock)
+    ours = fake_warp(clock, calls, "ours", [0.0, 4.0] * 5)
+    ref = fake_warp(clock, calls, "ref", [0.0, 1.0] * 5)
+    assert wc.measure_rates_interleaved(ours, ref, n=1, pairs=5)[2] == 0.25
