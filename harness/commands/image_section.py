@@ -45,8 +45,10 @@ def engine_meta(role: str, engine) -> dict[str, str]:
 
 
 def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: Path | None,
-                      not_applicable=(), invariance: dict | None = None, executor=None) -> tuple[bool, dict]:
-    """Every case against its references; returns (all pass, the results.json fields)."""
+                      not_applicable=(), invariance: dict | None = None, executor=None,
+                      phases: dict[str, float] | None = None) -> tuple[bool, dict]:
+    """Every case against its references; returns (all pass, the results.json fields). `phases`: the run's
+    phases so far (name -> seconds), shown in the report's header."""
     from harness.commands.reference_image_options import reference_image
     from harness.engines.registry import make_engine
     from harness.images.real_scenes import real_scenes_json, split
@@ -79,6 +81,8 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     run = invocation(args)
     meta = {**engine_meta("engine", ours), **engine_meta("reference", reference), "seed": args.seed,
             "image seconds": round(seconds, 1), "ran on": where}
+    if phases:
+        meta["phases before the images"] = " · ".join(f"{name} {s:.1f} s" for name, s in phases.items())
     payload = write_image_outputs(run_dir, results, alpha, warps, meta, baseline, invariance, run)
     if real or not_applicable:
         payload["real_scenes"] = real_scenes_json(results, not_applicable)

@@ -5,6 +5,7 @@ from __future__ import annotations
 from harness.commands.image_section import run_image_section
 from harness.commands.invariance_section import run_invariance_section
 from harness.commands.output import console
+from harness.commands.phases import Phases, seconds_since_process_start
 from harness.commands.run_folder import RunFolder
 
 
@@ -16,6 +17,7 @@ def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=N
     from harness.commands.warp_section import run_warp_section, warp_engine
     from harness.images.suite import not_applicable_cases
 
+    phases = Phases()
     not_applicable = not_applicable_cases(args.scenes, **case_selection(args)) if cases else []
     # The regression baseline is the newest complete run with images (a warps-only run has none).
     baseline = getattr(args, "baseline", None) or ((run.out / "images-latest").resolve() / "results.json")
@@ -28,7 +30,8 @@ def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=N
         console.print(f"[yellow]Warps[/]: {payload['warps_not_checked']}: not checked")
         specs = []
     if specs:
-        warps_ok, warps = run_warp_section(args, specs, run_dir)
+        with phases.timed("warps"):
+            warps_ok, warps = run_warp_section(args, specs, run_dir)
         ok &= warps_ok
         payload.update(warps=warps["warps"], warp_level=warps["level"])
         if warps["problems"]:
@@ -36,16 +39,23 @@ def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=N
     if invariances:
         # Before the images, so report.html (written with them) carries the matrix.
         console.rule("[bold]Invariances[/] (each engine against itself)")
-        invariance_ok, payload["invariance"] = run_invariance_section(args, invariance_only, run_dir, executor)
+        with phases.timed("invariances"):
+            invariance_ok, payload["invariance"] = run_invariance_section(args, invariance_only, run_dir, executor)
         ok &= invariance_ok
     if cases:
-        images_ok, images = run_image_section(args, cases, run_dir, warps, baseline, not_applicable,
-                                              payload.get("invariance"), executor)
+        with phases.timed("images"):
+            images_ok, images = run_image_section(args, cases, run_dir, warps, baseline, not_applicable,
+                                                  payload.get("invariance"), executor, phases=phases.seconds)
         ok &= images_ok
         payload.update(images)
     payload["pass"] = ok
     index = ("warps.html", "Warp conformance") if not cases and warps is not None else None
-    run.finish(payload, links=("latest", "images-latest") if cases else ("latest",), index=index,
-               json_copy=json_copy)
+    # The phases up to the results; writing them is timed on the terminal's line only.
+    payload["phase_seconds"] = dict(phases.seconds)
+    payload["wall_seconds"] = round(seconds_since_process_start(), 2)
+    with phases.timed("results"):
+        run.finish(payload, links=("latest", "images-latest") if cases else ("latest",), index=index,
+                   json_copy=json_copy)
+    console.print(f"Phases: {phases.line()}")
     console.print(f"Results: {run_dir / 'results.json'} — {'PASS' if ok else 'FAIL'}")
     return 0 if ok else 1
