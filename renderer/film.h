@@ -7,31 +7,11 @@
 #include <cstring>
 #include <vector>
 
+#include "log_exp.h"
 #include "ray.h"
 #include "scene.h"
 
 namespace mcval {
-
-/// e^x for x <= 0, to 2 ulp (Cephes' expf: x = n ln2 + r, a degree-7 polynomial in r, times 2^n), in
-/// plain multiplies and adds, so that a loop of them vectorises and every target_clone gives the
-/// same bits. Below -87 (where 2^n would leave the normal floats) it returns e^-87 (~1.6e-38).
-inline float expNonPositive(float x) {
-    x = std::max(x, -87.f);
-    const float n = (x * 1.44269504f + 12582912.f) - 12582912.f;  // x / ln2 rounded to an integer
-    float r = x - n * 0.693359375f;  // exact: ln2's high part has 9 bits, n at most 8
-    r = r - n * -2.12194440e-4f;
-    float p = 1.9875691500e-4f;
-    p = p * r + 1.3981999507e-3f;
-    p = p * r + 8.3334519073e-3f;
-    p = p * r + 4.1665795894e-2f;
-    p = p * r + 1.6666665459e-1f;
-    p = p * r + 5.0000001201e-1f;
-    p = p * (r * r) + r + 1.f;
-    const int32_t bits = (static_cast<int32_t>(n) + 127) << 23;
-    float scale;
-    std::memcpy(&scale, &bits, sizeof scale);
-    return p * scale;
-}
 
 /// Per-pixel sums (in double) for the pixels a tile's samples can reach: the tile plus a
 /// border as wide as the filter. Each tile has its own block, so threads never share one.

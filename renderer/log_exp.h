@@ -1,12 +1,38 @@
 // log1p and exp in float without branches or library calls, so that a loop over many values runs in SIMD
 // (glibc's log1pf and expf are scalar calls); the same operations, hence the same bits, in every ISA
 // clone. Cephes' minimax polynomials (logf, expf) after a reduction by the exponent; within 2 float ulps
-// of the exact values on the ranges the warps use.
+// of the exact values on the ranges the film and the warps use.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+
+namespace mcval {
+
+/// e^x for x <= 0, to 2 ulp (Cephes' expf: x = n ln2 + r, a degree-7 polynomial in r, times 2^n), in
+/// plain multiplies and adds, so that a loop of them vectorises and every target_clone gives the
+/// same bits. Below -87 (where 2^n would leave the normal floats) it returns e^-87 (~1.6e-38).
+inline float expNonPositive(float x) {
+    x = std::max(x, -87.f);
+    const float n = (x * 1.44269504f + 12582912.f) - 12582912.f;  // x / ln2 rounded to an integer
+    float r = x - n * 0.693359375f;  // exact: ln2's high part has 9 bits, n at most 8
+    r = r - n * -2.12194440e-4f;
+    float p = 1.9875691500e-4f;
+    p = p * r + 1.3981999507e-3f;
+    p = p * r + 8.3334519073e-3f;
+    p = p * r + 4.1665795894e-2f;
+    p = p * r + 1.6666665459e-1f;
+    p = p * r + 5.0000001201e-1f;
+    p = p * (r * r) + r + 1.f;
+    const int32_t bits = (static_cast<int32_t>(n) + 127) << 23;
+    float scale;
+    std::memcpy(&scale, &bits, sizeof scale);
+    return p * scale;
+}
+
+}  // namespace mcval
 
 namespace mcval::detail {
 
@@ -57,25 +83,10 @@ inline float log1pNonPositive(float x) {
     return one ? x : l * (x / d);
 }
 
-/// exp(-y) for y in [0, 87]: 0 is returned for larger y (below float's normal range) and for NaN.
+/// exp(-y) for y in [0, 87], 0 for larger y (below float's normal range) and for NaN.
 inline float expNegative(float y) {
     const bool inRange = y <= 87.f;  // false for NaN
-    const float x = inRange ? -y : 0.f;
-    // x = n log 2 + r with |r| <= log(2) / 2, log 2 split in two parts so that n log 2 is exact.
-    const float n = std::floor(1.44269504088896341f * x + 0.5f);
-    float r = x - n * 0.693359375f;
-    r = r - n * -2.12194440e-4f;
-    const float z = r * r;
-    float p = 1.9875691500e-4f;
-    p = p * r + 1.3981999507e-3f;
-    p = p * r + 8.3334519073e-3f;
-    p = p * r + 4.1665795894e-2f;
-    p = p * r + 1.6666665459e-1f;
-    p = p * r + 5.0000001201e-1f;
-    p = p * z + r + 1.f;
-    // 2^n from its exponent bits: n in [-126, 0] here.
-    const float scale = bitsToFloat(static_cast<uint32_t>(static_cast<int>(n) + 127) << 23);
-    return inRange ? p * scale : 0.f;
+    return inRange ? expNonPositive(inRange ? -y : 0.f) : 0.f;
 }
 
 }  // namespace mcval::detail
