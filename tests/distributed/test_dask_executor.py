@@ -18,6 +18,11 @@ from harness.distributed.executor import SerialExecutor, Task
 pytestmark = [pytest.mark.dask, pytest.mark.slow]  # a loopback cluster per test
 
 
+#: results.json keys that differ between any two runs: times, speeds, names, where and how it ran.
+VOLATILE = ("seconds", "run", "throughput", "image seconds", "ran on", "invocation", "phase_seconds", "wall_seconds",
+            "phases before the images")
+
+
 def _stripped(value, rounded: bool = False):
     """results.json without what differs between any two runs: times and speeds, run names, where it ran and
     the options it was run with (--out, --scheduler). Mitsuba's own
@@ -25,7 +30,7 @@ def _stripped(value, rounded: bool = False):
     from one run to the next (two serial runs: ratios by 1e-9), wherever it runs."""
     if isinstance(value, dict):
         rounded = rounded or value.get("engine", "").startswith("mitsuba")
-        return {k: _stripped(v, rounded) for k, v in value.items() if k not in ("seconds", "run", "throughput", "image seconds", "ran on", "invocation")}
+        return {k: _stripped(v, rounded) for k, v in value.items() if k not in VOLATILE}
     if isinstance(value, list):
         return [_stripped(v, rounded) for v in value]
     if rounded and isinstance(value, float):
