@@ -1,5 +1,5 @@
-"""measure_rates_interleaved: the engines alternate, each timed call follows an untimed one of its own, and the
-ratio is the median of the per-pair ratios (on a scripted clock, so nothing here depends on timing)."""
+"""measure_rates_interleaved: the engines alternate, each timed call follows untimed ones of its own for the
+warm-up time, and the ratio is the median of the per-pair ratios (on a scripted clock, so nothing here depends on timing)."""
 import harness.warps.checks as wc
 
 
@@ -27,9 +27,18 @@ def test_alternates_with_a_warm_up_before_each_timed_call(monkeypatch):
     monkeypatch.setattr(wc.time, "perf_counter", clock)
     ours = fake_warp(clock, calls, "ours", [9.0, 1.0] * 3)
     ref = fake_warp(clock, calls, "ref", [9.0, 2.0] * 3)
-    ours_rate, ref_rate, ratio = wc.measure_rates_interleaved(ours, ref, n=100, pairs=3)
+    ours_rate, ref_rate, ratio = wc.measure_rates_interleaved(ours, ref, n=100, pairs=3, warm=5.0)
     assert calls == ["ours", "ours", "ref", "ref"] * 3
     assert (ours_rate, ref_rate, ratio) == (100.0, 50.0, 2.0)  # the warm-up calls (9 s) are not counted
+
+
+def test_the_warm_up_repeats_calls_until_its_time_has_passed(monkeypatch):
+    clock, calls = ScriptedClock(), []
+    monkeypatch.setattr(wc.time, "perf_counter", clock)
+    ours = fake_warp(clock, calls, "ours", [1.0, 1.0, 1.0, 4.0])  # three warm-up calls fill 2.5 s, then the timed one
+    ref = fake_warp(clock, calls, "ref", [3.0, 8.0])
+    assert wc.measure_rates_interleaved(ours, ref, n=1, pairs=1, warm=2.5)[2] == 2.0
+    assert calls == ["ours"] * 4 + ["ref"] * 2
 
 
 def test_the_ratio_is_the_median_of_pairs_so_drift_cancels(monkeypatch):
@@ -37,15 +46,15 @@ def test_the_ratio_is_the_median_of_pairs_so_drift_cancels(monkeypatch):
     # while the ratio of the two medians of times would not be.
     clock, calls = ScriptedClock(), []
     monkeypatch.setattr(wc.time, "perf_counter", clock)
-    ours = fake_warp(clock, calls, "ours", [0.0, 1.0, 0.0, 10.0, 0.0, 1.5])
-    ref = fake_warp(clock, calls, "ref", [0.0, 2.0, 0.0, 20.0, 0.0, 3.0])
-    _, _, ratio = wc.measure_rates_interleaved(ours, ref, n=1, pairs=3)
+    ours = fake_warp(clock, calls, "ours", [1.0, 1.0, 1.0, 10.0, 1.0, 1.5])
+    ref = fake_warp(clock, calls, "ref", [1.0, 2.0, 1.0, 20.0, 1.0, 3.0])
+    _, _, ratio = wc.measure_rates_interleaved(ours, ref, n=1, pairs=3, warm=1.0)
     assert ratio == 2.0
 
 
 def test_a_slower_warp_reads_below_one(monkeypatch):
     clock, calls = ScriptedClock(), []
     monkeypatch.setattr(wc.time, "perf_counter", clock)
-    ours = fake_warp(clock, calls, "ours", [0.0, 4.0] * 5)
-    ref = fake_warp(clock, calls, "ref", [0.0, 1.0] * 5)
-    assert wc.measure_rates_interleaved(ours, ref, n=1, pairs=5)[2] == 0.25
+    ours = fake_warp(clock, calls, "ours", [1.0, 4.0] * 5)
+    ref = fake_warp(clock, calls, "ref", [1.0, 1.0] * 5)
+    assert wc.measure_rates_interleaved(ours, ref, n=1, pairs=5, warm=1.0)[2] == 0.25
