@@ -53,9 +53,12 @@ class Throughput:
         return float(np.median(self.seconds[engine]))
 
     def ratio(self) -> float:
-        """Mitsuba's median render time over ours, per sample (the same as per render unless Mitsuba's sampler
-        rounded the count): above 1, ours is faster per sample."""
-        return (self.median(MITSUBA) / self.rendered_spp(MITSUBA)) / (self.median(OURS) / self.spp)
+        """Mitsuba's render time over ours, per sample (the same as per render unless Mitsuba's sampler rounded
+        the count), taken run by run (each round renders ours, then Mitsuba) and the median of those: the
+        machine's drift between rounds cancels within a round. Above 1, ours is faster per sample."""
+        per_round = [(m / self.rendered_spp(MITSUBA)) / (o / self.spp)
+                     for o, m in zip(self.seconds[OURS], self.seconds[MITSUBA])]
+        return float(np.median(per_round))
 
     def to_json(self) -> dict:
         samples = {e: self.resolution ** 2 * self.rendered_spp(e) for e in self.seconds}
