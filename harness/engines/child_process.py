@@ -34,10 +34,10 @@ def signal_name(number: int) -> str:
         return "an unknown signal"
 
 
-def output_tail(log: Path, lines: int = TAIL_LINES) -> str:
-    """The last `lines` non-empty lines of a log (read from its end only)."""
+def output_tail(log: Path, lines: int = TAIL_LINES, start: int = 0) -> str:
+    """The last `lines` non-empty lines of a log after byte `start` (read from its end only)."""
     with open(log, "rb") as f:
-        f.seek(max(0, f.seek(0, os.SEEK_END) - 256 * lines))
+        f.seek(max(start, f.seek(0, os.SEEK_END) - 256 * lines))
         text = f.read().decode(errors="replace")
     kept = [line.rstrip() for line in text.splitlines() if line.strip()]
     return "\n".join(kept[-lines:])

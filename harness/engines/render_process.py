@@ -1,7 +1,9 @@
-"""Our renderer as a child process: the `render` CLI writes an EXR into a temporary folder, we read it back.
+"""Our renderer in a child process: a long-lived `render --serve` worker (see render_worker) writes each
+render's EXR, uncompressed, into a temporary folder, and we read it back.
 
-A crash (SIGSEGV, an Embree abort), a kill or a hang of the renderer then ends only that render,
-as a RenderFailed with a one-line reason, and never the harness.
+A crash (SIGSEGV, an Embree abort), a kill or a hang of the renderer then ends only that render (and
+its worker, which the next render replaces), as a RenderFailed with a one-line reason, and never the
+harness.
 
 Environment:
 
@@ -18,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from harness.engines.base import RenderFailed
-from harness.engines.child_process import run_child
+from harness.engines.render_worker import last_line, run_in_worker
 
 ROOT = Path(__file__).resolve().parents[2]
 RENDER_ENV = "MCVAL_RENDER"
@@ -89,8 +91,8 @@ def read_render_exr(path: Path, batches: int) -> ChildRender:
 def run_render(scene: str, integrator: str, spp: int, batches: int, seed: int,
                params: dict[str, str] | None = None, timeout: float | None = None,
                binary: str | Path | None = None, sampler: str | None = None) -> ChildRender:
-    """Run `render SCENE --integrator I --spp N --batches K --seed S [--sampler X] -D name=value ... -q -o TMP.exr` in a
-    temporary folder (deleted afterwards) and read the EXR. `timeout` in seconds (default:
+    """Render `SCENE --integrator I --spp N --batches K --seed S [--sampler X] -D name=value ... -q --uncompressed
+    -o TMP.exr` in a worker of `binary`, into a temporary folder (deleted afterwards), and read the EXR. `timeout` in seconds (default:
     `default_timeout`); `binary` defaults to `render_binary()`. Raises RenderFailed on a crash, a kill,
     a timeout, a non-zero exit or a missing image; RuntimeError if the binary does not exist."""
     # Absolute: the child runs in a temporary folder, where a relative path would not resolve.
@@ -100,8 +102,8 @@ def run_render(scene: str, integrator: str, spp: int, batches: int, seed: int,
                            f"or point {RENDER_ENV} at a `render` binary")
     timeout = default_timeout(spp, batches, params) if timeout is None else timeout
     with tempfile.TemporaryDirectory(prefix="mcval-render-") as tmp:
-        out, log = Path(tmp) / "render.exr", Path(tmp) / "output.txt"
-        command = [str(binary), str(Path(scene).resolve()), "--integrator", integrator, "--spp", str(spp),
+        out = Path(tmp) / "render.exr"
+        command = [str(Path(scene).resolve()), "--integrator", integrator, "--spp", str(spp),
                    "--batches", str(batches), "--seed", str(seed)]
         if sampler:
             command += ["--sampler", sampler]
@@ -109,8 +111,10 @@ def run_render(scene: str, integrator: str, spp: int, batches: int, seed: int,
             command += ["-D", f"{name}={value}"]
         if os.environ.get(THREADS_ENV):
             command += ["--threads", os.environ[THREADS_ENV]]
-        command += ["-q", "-o", str(out)]
-        run_child(command, Path(tmp), log, timeout)
+        command += ["-q", "--uncompressed", "-o", str(out)]
+        status, tail = run_in_worker(binary, command, timeout)
+        if status:
+            raise RenderFailed(f"exited with status {status}: {last_line(tail)}", tail)
         if not out.exists():
             raise RenderFailed("wrote no image")
         return read_render_exr(out, batches)

@@ -1,7 +1,8 @@
 """Stand-ins for the `render` binary (pointed at through MCVAL_RENDER) that misbehave on purpose.
 
 Each is a small Python script: for the renders whose arguments contain `target` (e.g. "simple", an
-integrator name) it misbehaves; every other render runs the real renderer unchanged.
+integrator name) it misbehaves; every other render runs the real renderer unchanged. It speaks
+`render --serve` too, as the harness's workers run it (see harness/engines/render_worker.py).
 """
 from __future__ import annotations
 
@@ -12,9 +13,40 @@ from pathlib import Path
 REAL_RENDER = Path(__file__).resolve().parents[2] / "build" / "render"
 
 _HEADER = f"""#!{sys.executable}
-import os, signal, sys, time
-real, args = {str(REAL_RENDER)!r}, sys.argv[1:]
-hit = {{target!r}} in args
+import os, signal, subprocess, sys, time
+real = {str(REAL_RENDER)!r}
+"""
+
+# Run as `render --serve` (the harness's worker), the wrapper answers each request itself: it misbehaves
+# as the behaviour says (the worker itself crashing, hanging or being killed) or renders that request with
+# the real renderer as a command of its own. Run otherwise, it is one render.
+_MAIN = """
+def render(args, serve):
+    scope = {{"args": args, "hit": {target!r} in args, "os": os, "signal": signal, "sys": sys, "time": time}}
+    try:
+        exec(BEHAVIOUR, scope)
+    except SystemExit as e:
+        if not serve:
+            raise
+        return e.code or 0
+    if not serve:
+        os.execv(real, [real, *scope["args"]])
+    return subprocess.call([real, *scope["args"]], stdout=sys.stderr)
+
+def read_count():
+    line = sys.stdin.buffer.readline()
+    return int(line) if line else None
+
+if sys.argv[1:] == ["--serve"]:
+    answers = os.fdopen(os.dup(1), "w")
+    os.dup2(2, 1)
+    while (count := read_count()) is not None:
+        args = [sys.stdin.buffer.read(read_count()).decode() for _ in range(count)]
+        status = render(args, True)
+        sys.stderr.flush()
+        print(status, file=answers, flush=True)
+else:
+    render(sys.argv[1:], False)
 """
 
 #: What the wrapper does when `target` is among the arguments.
@@ -79,6 +111,6 @@ def write_wrapper(folder: Path, behaviour: str, target: str) -> Path:
     """An executable script in `folder` that does `behaviour` (a key of BEHAVIOURS) on the renders
     whose arguments contain `target`, and runs the real renderer otherwise."""
     path = folder / f"render_{behaviour}.py"
-    path.write_text(_HEADER.format(target=target) + BEHAVIOURS[behaviour] + "os.execv(real, [real, *args])\n")
+    path.write_text(_HEADER + f"BEHAVIOUR = {BEHAVIOURS[behaviour]!r}\n" + _MAIN.format(target=target))
     path.chmod(path.stat().st_mode | stat.S_IXUSR)
     return path
