@@ -36,8 +36,8 @@ from dataclasses import dataclass, field
 from functools import cache
 
 import numpy as np
-from scipy import stats as sps
 
+from harness.statistics.distributions import nct_cdf, nct_sf
 from harness.statistics.family_level import channel_correlation, channel_union, family_level
 from harness.comparison.finite import FiniteCheck, damage_of_summary
 from harness.comparison.metrics import image_metrics
@@ -214,7 +214,7 @@ def _half_power_bias(reference: BatchStats, se: np.ndarray, dof: np.ndarray, lev
         mid = 0.5 * (lo + hi)
         nc = mid * scale
         with np.errstate(all="ignore"):  # scipy's nct returns NaN for some far tails: 0 below, a step above
-            upper, lower = sps.nct.sf(crit, dof, nc), sps.nct.cdf(-crit, dof, nc)
+            upper, lower = nct_sf(crit, dof, nc), nct_cdf(-crit, dof, nc)
         power = np.where(np.isnan(upper), (nc > crit).astype(float), upper) + np.nan_to_num(lower, nan=0.0)
         with np.errstate(divide="ignore"):
             missed = np.exp(share * np.sum(np.log1p(-np.minimum(power, 1.0)), axis=-1, keepdims=True))

@@ -18,8 +18,9 @@ test that almost never fires:
 from __future__ import annotations
 
 import numpy as np
-from scipy import stats as sps
 from scipy.optimize import brentq
+
+from harness.statistics.distributions import norm_cdf, norm_isf, norm_pdf, norm_sf, t_isf, t_sf
 
 #: Channel correlations below 1 are clipped here: near 1 the integrand's inner normal has no width.
 MAX_CORRELATION = 0.999
@@ -62,21 +63,21 @@ def channel_union(level: float, channels: int, rho: float) -> float:
     if rho >= 1.0 - 1e-9:  # identical channels (a grey image): one test
         return 1.0
     rho = min(rho, MAX_CORRELATION)
-    c = sps.norm.isf(level / 2.0)
+    c = norm_isf(level / 2.0)
     root, width = np.sqrt(rho), np.sqrt(1.0 - rho)
-    tail = sps.norm.sf((c - root * _GRID) / width) + sps.norm.cdf((-c - root * _GRID) / width)
+    tail = norm_sf((c - root * _GRID) / width) + norm_cdf((-c - root * _GRID) / width)
     with np.errstate(divide="ignore"):  # a tail of 1 (far out on the grid) is log1p(-1) = -inf: union 1
         union = -np.expm1(channels * np.log1p(-np.minimum(tail, 1.0)))
-    any_channel = float(np.trapezoid(sps.norm.pdf(_GRID) * union, _GRID))
+    any_channel = float(np.trapezoid(norm_pdf(_GRID) * union, _GRID))
     return float(np.clip(any_channel / level, 1.0, channels))
 
 
 def element_rates(level: float, dof: np.ndarray, inflation: np.ndarray) -> np.ndarray:
     """Null rejection probability of each test at p-value `level`: its statistic is t(dof) shrunk by
     `inflation` = se / noise-only se >= 1 (the rounding floor); inf inflation (no noise) gives 0."""
-    crit = sps.t.isf(level / 2.0, dof)
+    crit = t_isf(level / 2.0, dof)
     with np.errstate(invalid="ignore", over="ignore"):
-        rate = 2.0 * sps.t.sf(crit * inflation, dof)
+        rate = 2.0 * t_sf(crit * inflation, dof)
     return np.where(np.isfinite(inflation), rate, 0.0)
 
 

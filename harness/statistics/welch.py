@@ -5,11 +5,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import stats as sps
 from scipy.ndimage import uniform_filter
 from scipy.optimize import brentq
 from scipy.special import polygamma
 
+from harness.statistics.distributions import t_isf, t_sf
 from harness.statistics.constants import MISSED_CONTRIBUTION, MODERATION_WINDOW, ROUNDING_TOLERANCE
 
 
@@ -160,11 +160,11 @@ def welch_p_values(a: BatchStats, b: BatchStats, scale: float = 0.0,
         se = np.sqrt(va + vb + floor**2)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         t = np.where(finite, np.where(se > 0, (a.mean - b.mean) / se, 0.0), np.nan)
-    p = 2.0 * sps.t.sf(np.abs(t), welch_dof(a, b))
+    p = 2.0 * t_sf(np.abs(t), welch_dof(a, b))
     return p, t, se
 
 
 def critical_t(level: float, dof: float | np.ndarray) -> float | np.ndarray:
     """|t| beyond which a two-sided test at `level` rejects."""
-    out = sps.t.isf(level / 2.0, dof)
+    out = t_isf(level / 2.0, dof)
     return float(out) if np.ndim(out) == 0 else out
