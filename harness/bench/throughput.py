@@ -25,6 +25,10 @@ from harness.native import renderer_module
 
 #: The two engines timed side by side, in process, by name (the keys of the figures).
 OURS, MITSUBA = OurEngine.name, MitsubaEngine.name
+#: Ours as `images` and `validate` run it: in its `render --serve` worker, the call's wall clock less the scene
+#: load and BVH build the renderer reports (excluded for every engine), so with the request, the EXR written
+#: and read, and the thread pool's wake-up.
+WORKER = f"{OURS} worker"
 
 #: Seconds to wait before an engine's renders, so that the other engine's threads have stopped spinning.
 QUIET_SECONDS = 0.25
@@ -52,12 +56,13 @@ class Throughput:
     def median(self, engine: str) -> float:
         return float(np.median(self.seconds[engine]))
 
-    def ratio(self) -> float:
-        """Mitsuba's render time over ours, per sample (the same as per render unless Mitsuba's sampler rounded
-        the count), taken run by run (each round renders ours, then Mitsuba) and the median of those: the
-        machine's drift between rounds cancels within a round. Above 1, ours is faster per sample."""
+    def ratio(self, ours: str = OURS) -> float:
+        """Mitsuba's render time over ours (`ours`: OURS in process, or WORKER), per sample (the same as per
+        render unless Mitsuba's sampler rounded the count), taken run by run (each round renders ours, then
+        Mitsuba) and the median of those: the machine's drift between rounds cancels within a round. Above
+        1, ours is faster per sample."""
         per_round = [(m / self.rendered_spp(MITSUBA)) / (o / self.spp)
-                     for o, m in zip(self.seconds[OURS], self.seconds[MITSUBA])]
+                     for o, m in zip(self.seconds[ours], self.seconds[MITSUBA])]
         return float(np.median(per_round))
 
     def to_json(self) -> dict:
@@ -70,7 +75,8 @@ class Throughput:
                 "median_seconds": {e: self.median(e) for e in self.seconds},
                 "samples_per_second": {e: samples[e] / self.median(e) for e in self.seconds},
                 "rays_per_second": {e: rays[e] / self.median(e) for e in self.seconds}, "ray_count": "ours",
-                "mitsuba_over_ours": self.ratio()}
+                "mitsuba_over_ours": self.ratio(),
+                **({"mitsuba_over_ours_worker": self.ratio(WORKER)} if WORKER in self.seconds else {})}
 
 
 def _ours(scene: str, integrator: str, res: int, spp: int, sampler: str, seed: int) -> tuple[float, int]:
@@ -83,7 +89,8 @@ def _ours(scene: str, integrator: str, res: int, spp: int, sampler: str, seed: i
 def measure(scene_name: str, integrator: str, res: int, spp: int, runs: int = 3, sampler: str = "independent",
             variant: str = "llvm_ad_rgb") -> Throughput:
     """Both engines on one case with `sampler` (ours; Mitsuba gets its plugin of that name or the closest,
-    MITSUBA_SAMPLER): `runs` rounds, each an untimed then a timed render of ours, then of Mitsuba."""
+    MITSUBA_SAMPLER): `runs` rounds, each an untimed then a timed render of ours in process, then in its worker
+    (WORKER), then of Mitsuba."""
     import drjit as dr
     mi = load_mitsuba(variant)  # finds LLVM 19 for an llvm variant
     scene = str(SCENES_DIR / f"{scene_name}.xml")
@@ -96,7 +103,13 @@ def measure(scene_name: str, integrator: str, res: int, spp: int, runs: int = 3,
         dr.sync_thread()
         return time.perf_counter() - start
 
-    seconds: dict[str, list[float]] = {OURS: [], MITSUBA: []}
+    worker = OurEngine(sampler=sampler)
+
+    def in_worker(seed: int) -> float:
+        out = worker.render(scene, integrator, spp, 1, seed, {"res": str(res)})
+        return out.seconds["total"] - out.seconds["load"] - out.seconds["build"]
+
+    seconds: dict[str, list[float]] = {OURS: [], WORKER: [], MITSUBA: []}
     rays = 0
     for run in range(1, runs + 1):
         # Each engine's timed render follows a pause longer than either engine keeps its threads spinning
@@ -107,6 +120,9 @@ def measure(scene_name: str, integrator: str, res: int, spp: int, runs: int = 3,
         _ours(scene, integrator, res, spp, sampler, 1000 + run)
         t, rays = _ours(scene, integrator, res, spp, sampler, run)
         seconds[OURS].append(t)
+        time.sleep(QUIET_SECONDS)
+        in_worker(1000 + run)
+        seconds[WORKER].append(in_worker(run))
         time.sleep(QUIET_SECONDS)
         mitsuba(1000 + run)
         seconds[MITSUBA].append(mitsuba(run))

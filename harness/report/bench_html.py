@@ -7,7 +7,7 @@ import html
 from harness.bench.run import SAME_SAMPLER, CaseBench
 from harness.report.bench_plots import convergence_png, equal_time_png
 from harness.report.style import CSS
-from harness.bench.throughput import MITSUBA, OURS
+from harness.bench.throughput import MITSUBA, OURS, WORKER
 
 
 def _img(png: bytes, alt: str) -> str:
@@ -40,14 +40,20 @@ def _throughput_html(throughput: list[dict] | None) -> str:
            if t.get("spp_rendered", {}).get(MITSUBA, t["spp"]) != t["spp"] else "") + "</td>"
         f"<td>{t['median_seconds'][OURS]:.3f}</td><td>{t['median_seconds'][MITSUBA]:.3f}</td>"
         f"<td class='{'pass' if t['mitsuba_over_ours'] >= 1 else 'fail'}'>{t['mitsuba_over_ours']:.2f}</td>"
+        + (f"<td>{t['median_seconds'][WORKER]:.3f}</td><td class='{'pass' if t['mitsuba_over_ours_worker'] >= 1 else 'fail'}'>"
+           f"{t['mitsuba_over_ours_worker']:.2f}</td>" if "mitsuba_over_ours_worker" in t else "<td>–</td><td>–</td>") +
         f"<td>{t['samples_per_second'][OURS] / 1e6:.1f}</td><td>{t['samples_per_second'][MITSUBA] / 1e6:.1f}</td>"
         f"<td>{t['rays_per_second'][OURS] / 1e6:.1f}</td><td>{t['rays_per_second'][MITSUBA] / 1e6:.1f}</td></tr>"
         for t in throughput)
     return ("<p>Both engines in one process, the same scene file and sampler, render time only, each timed "
             "render after a pause and an untimed one of the same engine (so neither meets the other's threads still "
-            "spinning, nor its own asleep); medians of the runs. Rays/s divide the rays ours traced, for both engines (Mitsuba's "
+            "spinning, nor its own asleep); medians of the runs, and Mitsuba over ours the median of the ratios "
+            "round by round (each round renders ours, ours in its worker, then Mitsuba). <em>In its worker</em> is ours as "
+            "<code>images</code> and <code>validate</code> run it: the <code>render --serve</code> call's wall clock "
+            "(the request, the EXR written and read) less the scene load and BVH build. Rays/s divide the rays ours traced, for both engines (Mitsuba's "
             "direct traces about as many for simple; for ao it adds a BSDF-sampled ray per hit, its MIS).</p><table><tr><th>case</th><th>setting</th><th>ours s</th>"
-            "<th>Mitsuba s</th><th>Mitsuba/ours per sample</th><th>ours Msamples/s</th><th>Mitsuba Msamples/s</th>"
+            "<th>Mitsuba s</th><th>Mitsuba/ours per sample</th><th>ours in its worker s</th><th>Mitsuba/worker</th>"
+            "<th>ours Msamples/s</th><th>Mitsuba Msamples/s</th>"
             f"<th>ours Mrays/s</th><th>Mitsuba Mrays/s</th></tr>{rows}</table>")
 
 

@@ -39,7 +39,8 @@ def bench_lines(payload: dict) -> list[str]:
     for t in payload["throughput"] or []:
         lines.append(f"throughput {t['scene']}:{t['integrator']} {t['resolution']}² {t['spp']} spp "
                      f"({t['sampler']}): ours {t['median_seconds'][OURS]:.3f} s, Mitsuba "
-                     f"{t['median_seconds'][MITSUBA]:.3f} s, Mitsuba/ours {t['mitsuba_over_ours']:.2f}")
+                     f"{t['median_seconds'][MITSUBA]:.3f} s, Mitsuba/ours {t['mitsuba_over_ours']:.2f}"
+                     + (f", in its worker {t['mitsuba_over_ours_worker']:.2f}" if "mitsuba_over_ours_worker" in t else ""))
     for integrator, by_sampler in (payload["sampler_slopes"] or {}).get("slopes", {}).items():
         lines.append(f"MSE slope on cornell {integrator}: " + ", ".join(f"{k} {v:.2f}" for k, v in by_sampler.items()))
     for name, v in (payload["seed_comparison"] or {}).items():

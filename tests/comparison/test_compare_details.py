@@ -291,3 +291,18 @@ def test_a_comparison_reports_what_its_scales_found():
         assert got == {"scale": scale.scale, "tests": scale.tests, "level": scale.level, "min_p": scale.min_p,
                        "failures": scale.failures, "worst": list(scale.worst), "pass": scale.failures == 0}
     assert isinstance(result.scales[0], ScaleTest) and isinstance(result, Comparison)
+
+
+def test_increasing_root_finds_each_elements_crossing_evaluating_each_until_it_is_found():
+    from harness.comparison.compare import _increasing_root
+    a = np.array([1e-6, 0.5, 3.0, 7.9, -1.0, 9.0])  # the last two cross nowhere in [0, 2]
+    evaluated = []
+
+    def f(x, index):
+        evaluated.append(index.size)
+        return x**3 - a[index]
+
+    got = _increasing_root(f, np.zeros(a.shape), np.full(a.shape, 2.0))
+    assert got[:4] == pytest.approx(np.cbrt(a[:4]), rel=1e-9)
+    assert evaluated[:2] == [6, 6] and max(evaluated[2:]) <= 4  # the ends once, then only those searched
+    assert sum(evaluated[2:]) < 4 * 34  # a bisection to the same precision: 34 steps each
