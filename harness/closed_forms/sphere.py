@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from harness.closed_forms.plane_scene import NotAnalytic, PlaneScene
+from harness.closed_forms.vectors import dot, norm
 
 #: The floor's half-size over the sphere's radius below which the finite floor could show.
 MIN_FLOOR_RATIO = 1e4
@@ -64,11 +65,11 @@ def segment_crosses_sphere(scene: PlaneScene, p: np.ndarray, light: np.ndarray) 
     """Whether the open segment from each point of p (..., 3) to `light` passes through the sphere."""
     s = scene.sphere
     d = light - p
-    length = np.linalg.norm(d, axis=-1)
+    length = norm(d)
     d = d / length[..., None]
     oc = p - s.center
-    b = np.sum(d * oc, axis=-1)
-    disc = b * b - (np.sum(oc * oc, axis=-1) - s.radius**2)
+    b = dot(d, oc)
+    disc = b * b - (dot(oc, oc) - s.radius**2)
     root = np.sqrt(np.maximum(disc, 0.0))
     # The chord [-b - root, -b + root] overlaps (0, length): the sphere lies between point and light.
     return (disc > 0) & (-b + root > 0) & (-b - root < length)
@@ -81,7 +82,7 @@ def ao_visible(scene: PlaneScene, p: np.ndarray, normal: np.ndarray) -> np.ndarr
     if scene.surface == "sphere":
         up = floor_frame(scene)[0]
         return (1 + np.broadcast_to(normal, p.shape) @ up)[..., None] / 2
-    d = np.linalg.norm(p - scene.sphere.center, axis=-1, keepdims=True)
+    d = norm(p - scene.sphere.center, keepdims=True)
     return 1 - (scene.sphere.radius / d) ** 3
 
 

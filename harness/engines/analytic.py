@@ -13,8 +13,12 @@ import numpy as np
 
 from harness.closed_forms.plane_scene import NotAnalytic, PlaneScene, load_plane_scene
 from harness.closed_forms.sphere import check_resting, hit_sphere
+from harness.closed_forms.vectors import norm
 from harness.engines.base import Engine, RenderResult
 from harness.integrators import entry
+
+#: Pixel samples traced per pass (a few MB per array).
+CHUNK_PIXELS = 1 << 17
 
 
 def load(scene: str, params: dict[str, str] | None = None, integrator: str | None = None) -> PlaneScene:
@@ -76,15 +80,20 @@ class AnalyticEngine(Engine):
         plane_point = s.plane[:3, 3]
         aspect = s.width / s.height
         ys, xs = np.mgrid[0 : s.height, 0 : s.width]
+        floor_view = dataclasses.replace(s, surface="floor")
+        sphere_view = dataclasses.replace(s, surface="sphere", reflectance=s.sphere.reflectance) if s.sphere else None
+        # Samples are traced CHUNK_PIXELS pixel-samples at a time: whole arrays keep numpy's per-call cost small.
+        chunk = max(1, CHUNK_PIXELS // (s.width * s.height))
         images = []
         for _ in range(batches):
             acc = np.zeros((s.height, s.width, 3))
-            for _ in range(spp):
-                fx = (xs + rng.random(xs.shape)) / s.width
-                fy = (ys + rng.random(ys.shape)) / s.height
+            for first in range(0, spp, chunk):
+                count = min(chunk, spp - first)
+                fx = (xs + rng.random((count, *xs.shape))) / s.width
+                fy = (ys + rng.random((count, *ys.shape))) / s.height
                 local = np.stack([(1 - 2 * fx) * s.tan_half_x, (1 - 2 * fy) * s.tan_half_x / aspect,
                                   np.ones_like(fx)], axis=-1)
-                local /= np.linalg.norm(local, axis=-1, keepdims=True)
+                local /= norm(local, keepdims=True)
                 d = local @ s.to_world.T
                 denom = d @ normal
                 with np.errstate(divide="ignore", invalid="ignore"):
@@ -94,16 +103,14 @@ class AnalyticEngine(Engine):
                 # Hit: between the clip planes, inside [-1,1]^2, seen from the front side.
                 hit = (_clipped(s, t, local) & (denom < 0) & np.all(np.abs(uv[..., :2]) <= 1, axis=-1))
                 if s.sphere is None:
-                    acc += np.where(hit[..., None], shade(s, p, normal), 0.0)
+                    acc += np.where(hit[..., None], shade(s, p, normal), 0.0).sum(axis=0)
                     continue
                 ts = hit_sphere(s, s.origin, d)
                 on_sphere = _clipped(s, ts, local) & (~hit | (ts < t))
                 q = s.origin + np.where(np.isfinite(ts), ts, 0.0)[..., None] * d
                 n = (q - s.sphere.center) / s.sphere.radius
-                floor_view = dataclasses.replace(s, surface="floor")
-                sphere_view = dataclasses.replace(s, surface="sphere", reflectance=s.sphere.reflectance)
                 acc += np.where(on_sphere[..., None], shade(sphere_view, q, n),
-                                np.where((hit & ~on_sphere)[..., None], shade(floor_view, p, normal), 0.0))
+                                np.where((hit & ~on_sphere)[..., None], shade(floor_view, p, normal), 0.0)).sum(axis=0)
             images.append((acc / spp).astype(np.float32))
         seconds["render"] = time.perf_counter() - start - seconds["load"]
         seconds["total"] = time.perf_counter() - start

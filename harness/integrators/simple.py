@@ -2,6 +2,7 @@
 import numpy as np
 
 from harness.closed_forms.sphere import lit
+from harness.closed_forms.vectors import dot
 from harness.integrators.entry import (UNUSED_EMITTERS, AnalyticForm, IntegratorEntry, MitsubaMapping,
                                        has_point_light)
 
@@ -11,8 +12,8 @@ def _point_lights(scene, p: np.ndarray, normal: np.ndarray) -> np.ndarray:
     out = np.zeros_like(p)
     for position, intensity in scene.lights:
         to_light = position - p
-        r2 = np.sum(to_light**2, axis=-1, keepdims=True)
-        cos = np.clip(np.sum(to_light * normal, axis=-1, keepdims=True) / np.sqrt(r2), 0.0, None)
+        r2 = dot(to_light, to_light, keepdims=True)
+        cos = np.clip(dot(to_light, np.broadcast_to(normal, to_light.shape), keepdims=True) / np.sqrt(r2), 0.0, None)
         out += scene.reflectance / np.pi * intensity * cos / r2 * lit(scene, p, position)
     return out
 
