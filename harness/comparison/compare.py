@@ -136,6 +136,8 @@ class Comparison:
     #: The same for one 8x8 tile alone (the tile's values scaled by 1 + b, relative to its own mean), detected
     #: half of the time by the tile scale: the median over tiles with a non-zero mean (inf if there are none).
     detectable_tile_bias: float = float("inf")
+    #: The FLIP map (H, W) the metrics were taken from, for the report's picture; None without metrics.
+    flip_map: np.ndarray | None = field(default=None, repr=False, compare=False)
 
     @property
     def passed(self) -> bool:
@@ -277,13 +279,14 @@ def _metric_names() -> tuple[str, ...]:
     return tuple(image_metrics(np.ones((8, 8, 3)), np.ones((8, 8, 3))))
 
 
-def _metrics(test: np.ndarray, reference: np.ndarray, signed: bool) -> dict[str, float]:
+def _metrics(test: np.ndarray, reference: np.ndarray, signed: bool,
+             maps: dict[str, np.ndarray] | None = None) -> dict[str, float]:
     """image_metrics, or NaN for every metric where they mean nothing or cannot be computed: a mean
     image with a non-finite pixel, or a radiance reference with no positive value (FLIP's HDR mode
     cannot place its exposures there and ends the process)."""
     if not (np.isfinite(test).all() and np.isfinite(reference).all()) or (not signed and not reference.max() > 0):
         return dict.fromkeys(_metric_names(), float("nan"))
-    return image_metrics(test, reference, signed=signed)
+    return image_metrics(test, reference, signed=signed, maps=maps)
 
 
 def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFICANCE, signed: bool = False,
@@ -320,9 +323,11 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     image, _ = _scale_test("image", test_image, ref_image, _noiseless(test.image, reference.image), per_scale,
                            (h, w), max(h, w), magnitude, rounding, rho)
     scales = [pixel, tile, image]
-    figures = _metrics(test.mean_image, reference.mean_image, signed) if metrics else {}
+    maps: dict[str, np.ndarray] = {}
+    figures = _metrics(test.mean_image, reference.mean_image, signed, maps) if metrics else {}
     if not power:
-        return Comparison(scales, figures, float("nan"), (test.image.k, reference.image.k), finite, float("nan"))
+        return Comparison(scales, figures, float("nan"), (test.image.k, reference.image.k), finite, float("nan"),
+                          maps.get("flip"))
     # The image-mean bias found half of the time, and the same for one tile (median over tiles).
     _, _, se = welch_p_values(test_image, ref_image, magnitude, rounding)
     detectable = float(_half_power_bias(ref_image, se, welch_dof(test_image, ref_image),
@@ -331,7 +336,8 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     per_tile = _half_power_bias(ref_tile, tile_se, welch_dof(test_tile, ref_tile), scales[1].level, rho)
     per_tile = per_tile[np.isfinite(per_tile)]
     detectable_tile = float(np.median(per_tile)) if per_tile.size else float("inf")
-    return Comparison(scales, figures, detectable, (test.image.k, reference.image.k), finite, detectable_tile)
+    return Comparison(scales, figures, detectable, (test.image.k, reference.image.k), finite, detectable_tile,
+                      maps.get("flip"))
 
 
 def compare_batches(test: np.ndarray, reference: np.ndarray, alpha: float = SIGNIFICANCE,

@@ -38,11 +38,12 @@ def flip_map(test: np.ndarray, reference: np.ndarray, signed: bool = False) -> t
     return np.asarray(error)[..., 0], float(mean)
 
 
-def image_metrics(test: np.ndarray, reference: np.ndarray, signed: bool = False) -> dict[str, float]:
+def image_metrics(test: np.ndarray, reference: np.ndarray, signed: bool = False,
+                  maps: dict[str, np.ndarray] | None = None) -> dict[str, float]:
     """MSE, RMSE, relMSE, SMAPE, PSNR, SSIM, FLIP mean and 95th percentile, CIEDE2000 mean, mean ratio.
 
     `signed` marks images with negative values (normals): FLIP and CIEDE2000 then
-    see (x + 1) / 2.
+    see (x + 1) / 2. `maps`, if given, receives the FLIP map as "flip" (FLIP costs more than the rest).
     """
     import colour
     from skimage.metrics import structural_similarity
@@ -57,6 +58,8 @@ def image_metrics(test: np.ndarray, reference: np.ndarray, signed: bool = False)
     data_range = float(r.max() - r.min()) or 1.0
     ssim = float(structural_similarity(t, r, channel_axis=-1, data_range=data_range))
     error, flip_mean = flip_map(test, reference, signed)
+    if maps is not None:
+        maps["flip"] = error
     lab = [colour.XYZ_to_Lab(colour.sRGB_to_XYZ(_tonemapped(x, signed), apply_cctf_decoding=False)) for x in (t, r)]
     ciede = float(np.mean(colour.delta_E(lab[0], lab[1], method="CIE 2000")))
     ref_mean = float(np.mean(r))

@@ -28,7 +28,9 @@ def comparison_png(ours: np.ndarray, reference: np.ndarray, comparison: Comparis
     `tested_name`."""
     diff = (ours - reference).mean(axis=-1)
     limit = float(np.percentile(np.abs(diff), 99.5)) or 1e-6
-    flip, _ = flip_map(ours, reference, signed)
+    flip = comparison.flip_map
+    if flip is None or flip.shape != ours.shape[:2]:  # a comparison made without its metrics
+        flip, _ = flip_map(ours, reference, signed)
     h, w = ours.shape[:2]
     fig, axes, bars = panel_row([False, False, True, True, True], panel=2.3 * min(w / h, 1.6), height=2.9,
                                 left=0.1, gap=0.15, bottom=0.1, top=0.35, bar_room=0.55)

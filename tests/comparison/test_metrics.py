@@ -18,3 +18,20 @@ def test_hdr_flip_does_not_depend_on_a_common_scale(scale):
 def test_hdr_flip_of_a_black_reference_is_nan_not_a_crash():
     error, mean = flip_map(np.ones((8, 8, 3)), np.zeros((8, 8, 3)))
     assert np.isnan(mean) and np.isnan(error).all()
+
+
+def test_a_comparison_keeps_its_flip_map_and_its_picture_uses_it(monkeypatch):
+    from harness.comparison.compare import compare_batches
+    from harness.report import image_plots
+    rng = np.random.default_rng(5)
+    test, ref = 0.5 + 0.05 * rng.standard_normal((2, 4, 16, 16, 3))
+    result = compare_batches(test, ref)
+    assert result.flip_map.shape == (16, 16)
+    assert np.array_equal(result.flip_map, flip_map(test.mean(axis=0, dtype=np.float64),
+                                                    ref.mean(axis=0, dtype=np.float64))[0])
+
+    def computed_again(*args, **kwargs):
+        raise AssertionError("FLIP computed again for the picture")
+
+    monkeypatch.setattr(image_plots, "flip_map", computed_again)
+    assert image_plots.comparison_png(test.mean(axis=0), ref.mean(axis=0), result, False)[:4] == b"\x89PNG"
