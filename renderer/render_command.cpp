@@ -49,7 +49,7 @@ std::string integratorHelp() {
 
 }  // namespace
 
-int runRenderCommand(const std::vector<std::string> &args) {
+int runRenderCommand(const std::vector<std::string> &args, int keepWarmMilliseconds) {
     CLI::App app{"Render a scene file (a subset of Mitsuba 3 XML) with one of the integrators below.\n"
                  "Writes OpenEXR: R,G,B (mean), variance.R/G/B, and batch<k>.R/G/B with --batches K.\n"
                  "Integrators:\n" + integratorHelp(), "render"};
@@ -104,6 +104,7 @@ int runRenderCommand(const std::vector<std::string> &args) {
         options.batches = batches;
         options.integrator = integrator;
         options.sampler = sampler;
+        options.keepWarmMilliseconds = keepWarmMilliseconds;
         ProgressBar bar;
         if (!quiet) options.progress = [&bar](double f) { bar.update(f); };
         const RenderOutput output = render(scene, options);
