@@ -72,10 +72,16 @@ def channel_union(level: float, channels: int, rho: float) -> float:
     return float(np.clip(any_channel / level, 1.0, channels))
 
 
-def element_rates(level: float, dof: np.ndarray, inflation: np.ndarray) -> np.ndarray:
+def element_rates(level: float, dof: np.ndarray, inflation: np.ndarray,
+                  distinct: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
     """Null rejection probability of each test at p-value `level`: its statistic is t(dof) shrunk by
-    `inflation` = se / noise-only se >= 1 (the rounding floor); inf inflation (no noise) gives 0."""
-    crit = t_isf(level / 2.0, dof)
+    `inflation` = se / noise-only se >= 1 (the rounding floor); inf inflation (no noise) gives 0.
+    `distinct`: np.unique(dof, return_inverse=True), for a caller that asks at many levels (the critical
+    values are then computed once per distinct dof: moderated tests share a few)."""
+    if distinct is None:
+        crit = t_isf(level / 2.0, dof)
+    else:
+        crit = t_isf(level / 2.0, distinct[0])[distinct[1]]
     with np.errstate(invalid="ignore", over="ignore"):
         rate = 2.0 * t_sf(crit * inflation, dof)
     return np.where(np.isfinite(inflation), rate, 0.0)
@@ -103,11 +109,12 @@ def family_level(level_family: float, dof: np.ndarray, inflation: np.ndarray, rh
     n_exact = int(np.count_nonzero(exact))
     if n_exact + order.size == 0:
         return level_family
+    distinct = np.unique(dof_s, return_inverse=True)
 
     def excess(log_level: float) -> float:
         level = float(np.exp(log_level))
         share = channel_union(level, channels, rho) / channels
-        rates = np.minimum(element_rates(level, dof_s, inflation_s) * share, 1.0)
+        rates = np.minimum(element_rates(level, dof_s, inflation_s, distinct) * share, 1.0)
         with np.errstate(divide="ignore"):
             log_keep = n_exact * np.log1p(-min(level * share, 1.0)) + weight * np.sum(np.log1p(-rates))
         return -np.expm1(log_keep) - level_family
