@@ -104,7 +104,8 @@ int runRenderCommand(const std::vector<std::string> &args, int keepWarmMilliseco
         options.batches = batches;
         options.integrator = integrator;
         options.sampler = sampler;
-        options.keepWarmMilliseconds = keepWarmMilliseconds;
+        // A render limited to some cores shares the machine (a cluster's worker): it leaves the rest idle.
+        options.keepWarmMilliseconds = threads > 0 ? 0 : keepWarmMilliseconds;
         ProgressBar bar;
         if (!quiet) options.progress = [&bar](double f) { bar.update(f); };
         const RenderOutput output = render(scene, options);

@@ -1,6 +1,8 @@
 #include "serve.h"
 
+#include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -15,14 +17,16 @@ namespace {
 /// Longest argument and most arguments a request may hold: far above any real command line.
 constexpr size_t kMaxArgumentBytes = 1 << 20;
 constexpr size_t kMaxArguments = 4096;
-/// How long a worker thread spins after a render: the caller reads the image and asks for the next one within
-/// tens of milliseconds, and waking a sleeping thread pool costs a small render a third of its time.
-constexpr int kKeepWarmMilliseconds = 100;
+/// How long a worker thread spins after a render that used every core: the caller reads a small image and asks
+/// for the next one within a few milliseconds, and waking a sleeping thread pool costs a small render a third
+/// of its time. Short, so that it hardly overlaps other work (the reference engine's render that follows).
+constexpr int kKeepWarmMilliseconds = 30;
 
 /// A decimal number on a line of its own; false at the end of the input or on anything else.
 bool readCount(size_t limit, size_t &value) {
     char line[32];
     if (!std::fgets(line, sizeof line, stdin)) return false;
+    if (!std::isdigit(static_cast<unsigned char>(line[0]))) return false;
     char *end = nullptr;
     const unsigned long long n = std::strtoull(line, &end, 10);
     if (end == line || *end != '\n' || n > limit) return false;
@@ -41,6 +45,13 @@ int serveRenderRequests() {
         return 3;
     }
     FILE *answers = fdopen(answerFd, "w");
+    if (!answers) {
+        std::perror("render --serve: cannot set up its output");
+        return 3;
+    }
+    // The greeting tells the caller that this binary speaks the framing (an older one would not).
+    std::fprintf(answers, "mcval-serve 1\n");
+    std::fflush(answers);
     size_t count = 0;
     while (readCount(kMaxArguments, count)) {
         std::vector<std::string> args(count);

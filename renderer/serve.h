@@ -4,7 +4,7 @@
 
 namespace mcval {
 
-/// Reads requests on stdin until it ends; each is a `render` command's arguments, framed as a line with
+/// Writes the greeting line "mcval-serve 1" on stdout, then reads requests on stdin until it ends; each is a `render` command's arguments, framed as a line with
 /// their count, then per argument a line with its length in bytes and those bytes. Runs each as
 /// runRenderCommand and answers on stdout with one line: the command's exit status. Anything else the
 /// commands print goes to stderr, so it cannot be taken for an answer. Returns 0 at the end of the

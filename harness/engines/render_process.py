@@ -20,7 +20,8 @@ from pathlib import Path
 import numpy as np
 
 from harness.engines.base import RenderFailed
-from harness.engines.render_worker import last_line, run_in_worker
+from harness.engines.child_process import run_child
+from harness.engines.render_worker import NoServe, last_line, run_in_worker
 
 ROOT = Path(__file__).resolve().parents[2]
 RENDER_ENV = "MCVAL_RENDER"
@@ -112,7 +113,12 @@ def run_render(scene: str, integrator: str, spp: int, batches: int, seed: int,
         if os.environ.get(THREADS_ENV):
             command += ["--threads", os.environ[THREADS_ENV]]
         command += ["-q", "--uncompressed", "-o", str(out)]
-        status, tail = run_in_worker(binary, command, timeout)
+        try:
+            status, tail = run_in_worker(binary, command, timeout)
+        except NoServe:
+            # A binary without --serve (an older build, a user's script): one process per render.
+            run_child([str(binary), *command], Path(tmp), Path(tmp) / "output.txt", timeout)
+            status, tail = 0, ""
         if status:
             raise RenderFailed(f"exited with status {status}: {last_line(tail)}", tail)
         if not out.exists():

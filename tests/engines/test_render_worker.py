@@ -90,7 +90,8 @@ def test_serve_answers_each_request_with_its_status_and_ends_with_its_input(tmp_
     good = [SCENE, "-q", "-D", "res=8", "--spp", "1", "-o", str(out)]
     done = serve(frame_request(good) + frame_request(["--no-such-option"]) + frame_request(["--help"]))
     assert done.returncode == 0 and out.exists()
-    statuses = done.stdout.decode().splitlines()
+    greeting, *statuses = done.stdout.decode().splitlines()
+    assert greeting == render_worker.GREETING.decode()
     assert statuses[0] == "0" and statuses[1] not in ("0", "1", "2") and statuses[2] == "0"
     assert "Usage: render" in done.stderr.decode()  # --help printed to the log, never among the answers
 
@@ -99,7 +100,55 @@ def test_serve_answers_each_request_with_its_status_and_ends_with_its_input(tmp_
     (b"two\n", "argument count"),
     (b"1\nfive\n", "argument's length"),
     (b"1\n100\nshort", "ended inside an argument"),
+    (b"+1\n", "argument count"),
+    (b"1\n-1\n", "argument's length"),
+    (b"1\n99999999999999999999\n", "argument's length"),
 ])
 def test_serve_refuses_a_malformed_request(data, message):
     done = serve(data)
-    assert done.returncode == 3 and message in done.stderr.decode() and done.stdout == b""
+    assert done.returncode == 3 and message in done.stderr.decode()
+    assert done.stdout == render_worker.GREETING + b"\n"  # and no answer
+
+
+def test_a_binary_without_serve_renders_one_process_per_render(tmp_path):
+    """An older build or a user's script that knows no --serve: the same bits, one process per render."""
+    import sys
+    script = tmp_path / "render_without_serve.py"
+    script.write_text(f"#!{sys.executable}\nimport os, sys\nif sys.argv[1:] == ['--serve']:\n"
+                      "    print('scene is required', file=sys.stderr); sys.exit(106)\n"
+                      f"os.execv({str(render_binary())!r}, [{str(render_binary())!r}, *sys.argv[1:]])\n")
+    script.chmod(0o755)
+    import mcval_renderer
+    for _ in range(2):
+        out = OurEngine(binary=script).render(SCENE, "ao", 2, 2, 9, PARAMS)
+        module = mcval_renderer.render(SCENE, spp=2, seed=9, batches=2, integrator="ao", params=PARAMS)
+        assert np.array_equal(out.batches, module["batches"])
+    assert "did not start as a render worker" in render_worker._no_serve[render_worker._key(script)]
+    assert idle_pids(script) == []
+
+
+def test_a_worker_killed_while_idle_is_replaced_without_failing_a_render():
+    import os
+    import signal
+    import time
+    engine = OurEngine()
+    engine.render(SCENE, "normals", 1, 2, 0, PARAMS)
+    (pid,) = idle_pids(render_binary())
+    os.kill(pid, signal.SIGKILL)
+    time.sleep(0.2)
+    assert engine.render(SCENE, "normals", 1, 2, 0, PARAMS).batches.shape == (2, 16, 16, 3)
+    assert idle_pids(render_binary()) not in ([], [pid])
+
+
+def test_a_real_worker_killed_mid_render_fails_that_render_and_the_next_gets_a_new_one():
+    import os
+    import signal
+    import threading
+    engine = OurEngine(timeout=120)
+    engine.render(SCENE, "normals", 1, 2, 0, PARAMS)
+    (pid,) = idle_pids(render_binary())
+    threading.Timer(0.5, os.kill, (pid, signal.SIGKILL)).start()
+    with pytest.raises(RenderFailed, match=r"^killed by signal SIGKILL \(9\)$"):
+        engine.render(SCENE, "ao", 100000, 1, 0, {"res": "64"})  # minutes of work, were it not killed
+    assert engine.render(SCENE, "normals", 1, 2, 0, PARAMS).batches.shape == (2, 16, 16, 3)
+    assert pid not in idle_pids(render_binary())

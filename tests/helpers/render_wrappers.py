@@ -40,6 +40,7 @@ def read_count():
 if sys.argv[1:] == ["--serve"]:
     answers = os.fdopen(os.dup(1), "w")
     os.dup2(2, 1)
+    print("mcval-serve 1", file=answers, flush=True)
     while (count := read_count()) is not None:
         args = [sys.stdin.buffer.read(read_count()).decode() for _ in range(count)]
         status = render(args, True)
