@@ -65,17 +65,21 @@ void writeExr(const std::string &path, const RenderOutput &output, const OutputI
     for (size_t k = 0; k < output.batches.size(); ++k)
         addLayer(header, fb, "batch" + std::to_string(k) + ".", output.batches[k], info.half, halves);
 
+    writeAtomically(path, [&](const std::string &tmp) {
+        Imf::OutputFile file(tmp.c_str(), header);
+        file.setFrameBuffer(fb);
+        file.writePixels(output.mean.height);
+    });
+}
+
+void writeAtomically(const std::string &path, const std::function<void(const std::string &)> &write) {
     requireWritableOutput(path);
     namespace fs = std::filesystem;
     const fs::path target(path);
     const fs::path tmp = target.parent_path() /
                          ("." + target.filename().string() + ".tmp" + std::to_string(std::random_device{}()));
     try {
-        {
-            Imf::OutputFile file(tmp.string().c_str(), header);
-            file.setFrameBuffer(fb);
-            file.writePixels(output.mean.height);
-        }
+        write(tmp.string());
         requireWritableOutput(path);  // still a regular file (or nothing) just before the rename
         std::error_code ec;
         fs::rename(tmp, target, ec);

@@ -1,6 +1,7 @@
 // OpenEXR output: linear float32 mean, variance and batch layers, timings in the header.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "render.h"
@@ -20,6 +21,10 @@ struct OutputInfo {
 /// the same folder, then renamed: a reader never sees half a file.
 /// Throws SceneError (and leaves no temporary file) if the path cannot take the image.
 void writeExr(const std::string &path, const RenderOutput &output, const OutputInfo &info);
+
+/// Calls write(tmp) with a temporary path beside `path`, then renames it to `path`: a reader never sees half a
+/// file. Throws SceneError (and leaves no temporary file) if the path cannot take it or `write` throws.
+void writeAtomically(const std::string &path, const std::function<void(const std::string &)> &write);
 
 /// Throws SceneError unless `path` names a regular file or nothing, in an existing folder: the
 /// output never replaces a folder, FIFO or device.

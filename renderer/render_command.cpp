@@ -11,6 +11,7 @@
 
 #include "error.h"
 #include "exr_output.h"
+#include "raw_output.h"
 #include "progress.h"
 #include "integrators/registry.h"
 #include "render.h"
@@ -57,7 +58,7 @@ int runRenderCommand(const std::vector<std::string> &args, int keepWarmMilliseco
     int spp = 0, threads = 0, batches = 1;
     uint64_t seed = 0;
     std::vector<std::string> defines;
-    bool quiet = false, uncompressed = false;
+    bool quiet = false, uncompressed = false, raw = false;
     app.add_option("scene", scenePath, "scene file (.xml)")->required()->check(CLI::ExistingFile);
     app.add_option("-o,--output", outPath, "output .exr (default: the scene's name, .exr, in the current folder)");
     app.add_option("--spp", spp, "samples per pixel (per batch; default: the scene's sample_count)")
@@ -76,6 +77,9 @@ int runRenderCommand(const std::vector<std::string> &args, int keepWarmMilliseco
     app.footer("render --serve (alone) reads renders' arguments on stdin, one after another, and answers each with\n"
                "its exit status on stdout: the harness's long-lived worker (see renderer/serve.h).");
     app.add_flag("--uncompressed", uncompressed, "write the EXR without compression (faster; for files read at once)");
+    app.add_flag("--raw", raw, "write raw float32 images after one header line instead of OpenEXR: the batches (or the "
+                               "mean for one batch), for a reader on this machine that reads the file at once "
+                               "(see renderer/raw_output.h)");
     try {
         std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
         app.parse(reversed);
@@ -110,7 +114,10 @@ int runRenderCommand(const std::vector<std::string> &args, int keepWarmMilliseco
         if (!quiet) options.progress = [&bar](double f) { bar.update(f); };
         const RenderOutput output = render(scene, options);
         bar.finish();
-        writeExr(outPath, output, info);
+        if (raw)
+            writeRaw(outPath, output, info);
+        else
+            writeExr(outPath, output, info);
         if (!quiet) {
             const RenderStats &s = output.stats;
             const double rays = double(s.cameraRays + s.shadowRays);

@@ -1,5 +1,5 @@
 """Our renderer in a child process: a long-lived `render --serve` worker (see render_worker) writes each
-render's EXR, uncompressed, into a temporary folder, and we read it back.
+render's images raw (`--raw`) into a temporary folder, and we read them back.
 
 A crash (SIGSEGV, an Embree abort), a kill or a hang of the renderer then ends only that render (and
 its worker, which the next render replaces), as a RenderFailed with a one-line reason, and never the
@@ -89,11 +89,34 @@ def read_render_exr(path: Path, batches: int) -> ChildRender:
     return ChildRender(images, seconds, sampler)
 
 
+def read_render_raw(path: Path, batches: int) -> ChildRender:
+    """The images and timings of a `render --raw` file (renderer/raw_output.h): K batches, or the mean of one."""
+    try:
+        with open(path, "rb") as f:
+            words = f.readline(4096).decode("ascii").split()
+            if len(words) != 9 or words[:2] != ["mcval-raw", "1"]:
+                raise ValueError(f"not a render --raw header: {' '.join(words)[:80]!r}")
+            width, height, images = (int(w) for w in words[2:5])
+            fields = dict(w.split("=", 1) for w in words[5:])
+            if images != batches:
+                raise ValueError(f"{images} images where {batches} batches were asked for")
+            count = images * height * width * 3
+            data = np.fromfile(f, dtype="<f4", count=count)
+            if data.size != count or f.read(1):
+                raise ValueError(f"{data.size * 4} bytes of pixels where {count * 4} were expected")
+        seconds = {key: float(fields[key]) for key in ("load", "bvh", "render")}
+        return ChildRender(data.reshape(images, height, width, 3),
+                           {"load": seconds["load"], "build": seconds["bvh"], "render": seconds["render"]},
+                           fields.get("sampler", ""))
+    except (OSError, ValueError, KeyError, UnicodeDecodeError) as e:
+        raise RenderFailed(f"wrote an unreadable image ({type(e).__name__}: {e})") from e
+
+
 def run_render(scene: str, integrator: str, spp: int, batches: int, seed: int,
                params: dict[str, str] | None = None, timeout: float | None = None,
                binary: str | Path | None = None, sampler: str | None = None) -> ChildRender:
-    """Render `SCENE --integrator I --spp N --batches K --seed S [--sampler X] -D name=value ... -q --uncompressed
-    -o TMP.exr` in a worker of `binary`, into a temporary folder (deleted afterwards), and read the EXR. `timeout` in seconds (default:
+    """Render `SCENE --integrator I --spp N --batches K --seed S [--sampler X] -D name=value ... -q --raw
+    -o TMP.raw` in a worker of `binary`, into a temporary folder (deleted afterwards), and read the images. `timeout` in seconds (default:
     `default_timeout`); `binary` defaults to `render_binary()`. Raises RenderFailed on a crash, a kill,
     a timeout, a non-zero exit or a missing image; RuntimeError if the binary does not exist."""
     # Absolute: the child runs in a temporary folder, where a relative path would not resolve.
@@ -103,7 +126,6 @@ def run_render(scene: str, integrator: str, spp: int, batches: int, seed: int,
                            f"or point {RENDER_ENV} at a `render` binary")
     timeout = default_timeout(spp, batches, params) if timeout is None else timeout
     with tempfile.TemporaryDirectory(prefix="mcval-render-") as tmp:
-        out = Path(tmp) / "render.exr"
         command = [str(Path(scene).resolve()), "--integrator", integrator, "--spp", str(spp),
                    "--batches", str(batches), "--seed", str(seed)]
         if sampler:
@@ -112,15 +134,17 @@ def run_render(scene: str, integrator: str, spp: int, batches: int, seed: int,
             command += ["-D", f"{name}={value}"]
         if os.environ.get(THREADS_ENV):
             command += ["--threads", os.environ[THREADS_ENV]]
-        command += ["-q", "--uncompressed", "-o", str(out)]
+        out = Path(tmp) / "render.raw"
         try:
-            status, tail = run_in_worker(binary, command, timeout)
+            status, tail = run_in_worker(binary, command + ["-q", "--raw", "-o", str(out)], timeout)
         except NoServe:
-            # A binary without --serve (an older build, a user's script): one process per render.
-            run_child([str(binary), *command], Path(tmp), Path(tmp) / "output.txt", timeout)
+            # A binary without --serve (an older build, a user's script): one process per render, and the
+            # options every `render` has.
+            out = Path(tmp) / "render.exr"
+            run_child([str(binary), *command, "-q", "-o", str(out)], Path(tmp), Path(tmp) / "output.txt", timeout)
             status, tail = 0, ""
         if status:
             raise RenderFailed(f"exited with status {status}: {last_line(tail)}", tail)
         if not out.exists():
             raise RenderFailed("wrote no image")
-        return read_render_exr(out, batches)
+        return read_render_raw(out, batches) if out.suffix == ".raw" else read_render_exr(out, batches)

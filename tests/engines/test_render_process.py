@@ -92,3 +92,35 @@ def test_a_relative_render_binary_works(monkeypatch):
     monkeypatch.setenv("MCVAL_RENDER", "build/render")
     mine = OurEngine().render(SCENE, "normals", 1, 2, 3, PARAMS)
     assert mine.batches.shape == (2, 24, 24, 3)
+
+
+def test_a_raw_image_holds_the_batches_and_the_timings(tmp_path):
+    import subprocess
+    from harness.engines.render_process import read_render_raw, render_binary
+    import mcval_renderer
+    out = tmp_path / "x.raw"
+    subprocess.run([str(render_binary()), SCENE, "--integrator", "ao", "--spp", "2", "--batches", "3", "--seed", "4",
+                    "-D", "res=24", "-q", "--raw", "-o", str(out)], check=True)
+    got = read_render_raw(out, 3)
+    module = mcval_renderer.render(SCENE, spp=2, seed=4, batches=3, integrator="ao", params=PARAMS)
+    assert np.array_equal(got.batches, module["batches"]) and got.sampler == "independent"
+    assert set(got.seconds) == {"load", "build", "render"} and got.seconds["render"] > 0
+
+
+@pytest.mark.parametrize("damage, message", [
+    (lambda b: b[:-4], "bytes of pixels"),                      # truncated
+    (lambda b: b + b"\0", "bytes of pixels"),                    # trailing bytes
+    (lambda b: b.replace(b"mcval-raw 1", b"mcval-raw 2"), "not a render --raw header"),
+    (lambda b: b.replace(b" 3 load=", b" 2 load="), "2 images where 3 batches"),
+    (lambda b: b"\xff" + b, "UnicodeDecodeError"),
+])
+def test_a_damaged_raw_image_is_refused_in_one_line(tmp_path, damage, message):
+    import subprocess
+    from harness.engines.render_process import read_render_raw, render_binary
+    out = tmp_path / "x.raw"
+    subprocess.run([str(render_binary()), SCENE, "--spp", "1", "--batches", "3", "-D", "res=8", "-q", "--raw",
+                    "-o", str(out)], check=True)
+    out.write_bytes(damage(out.read_bytes()))
+    with pytest.raises(RenderFailed, match="^wrote an unreadable image") as e:
+        read_render_raw(out, 3)
+    assert message in e.value.reason
