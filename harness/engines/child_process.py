@@ -7,7 +7,9 @@ import os
 import signal
 import subprocess
 import threading
+from contextlib import nullcontext
 from pathlib import Path
+from typing import BinaryIO
 
 from harness.engines.base import RenderFailed
 
@@ -34,9 +36,10 @@ def signal_name(number: int) -> str:
         return "an unknown signal"
 
 
-def output_tail(log: Path, lines: int = TAIL_LINES, start: int = 0) -> str:
-    """The last `lines` non-empty lines of a log after byte `start` (read from its end only)."""
-    with open(log, "rb") as f:
+def output_tail(log: Path | BinaryIO, lines: int = TAIL_LINES, start: int = 0) -> str:
+    """The last `lines` non-empty lines of a log (a path, or a binary file open for reading) after byte
+    `start` (read from its end only)."""
+    with open(log, "rb") if isinstance(log, (str, Path)) else nullcontext(log) as f:
         f.seek(max(start, f.seek(0, os.SEEK_END) - 256 * lines))
         text = f.read().decode(errors="replace")
     kept = [line.rstrip() for line in text.splitlines() if line.strip()]

@@ -11,10 +11,10 @@ script) raises NoServe, and the caller renders with it one process per render.
 from __future__ import annotations
 
 import atexit
+import fcntl
 import os
 import re
 import select
-import shutil
 import subprocess
 import tempfile
 import threading
@@ -53,20 +53,20 @@ def last_line(tail: str) -> str:
 
 
 class RenderWorker:
-    """One `BINARY --serve` child in a temporary folder of its own (its working folder and log)."""
+    """One `BINARY --serve` child. What it prints goes to a log file without a name (nothing is left behind,
+    however the harness ends), opened for appending: emptying it between renders leaves no hole."""
 
     def __init__(self, binary: Path) -> None:
-        self.folder = Path(tempfile.mkdtemp(prefix="mcval-worker-"))
-        self.log = self.folder / "output.txt"
+        self.log = tempfile.TemporaryFile(prefix="mcval-worker-")
+        fcntl.fcntl(self.log.fileno(), fcntl.F_SETFL, fcntl.fcntl(self.log.fileno(), fcntl.F_GETFL) | os.O_APPEND)
         self._pending = b""
         self.start = 0  # where the last render's output starts in the log
         try:
-            with open(self.log, "ab") as log:  # appended to: emptying it between renders leaves no hole
-                self.proc = subprocess.Popen([str(binary), "--serve"], stdin=subprocess.PIPE,
-                                             stdout=subprocess.PIPE, stderr=log, cwd=self.folder,
-                                             start_new_session=True)
+            # Its working folder is the system's temporary one: it writes only where its requests say.
+            self.proc = subprocess.Popen([str(binary), "--serve"], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                         stderr=self.log, cwd=tempfile.gettempdir(), start_new_session=True)
         except OSError as e:
-            shutil.rmtree(self.folder, ignore_errors=True)
+            self.log.close()
             raise RenderFailed(f"cannot start {binary}: {e}") from e
         try:
             greeting = self._read_line(START_SECONDS)
@@ -84,9 +84,9 @@ class RenderWorker:
         """Run one render and return its exit status. Raises RenderFailed (and ends the worker) when the worker
         dies, outlives `timeout` seconds, prints more than OUTPUT_LIMIT bytes, answers something else than a
         status, or `cancel` is set."""
-        if self.log.stat().st_size > _LOG_KEEP:
-            os.truncate(self.log, 0)
-        self.start = self.log.stat().st_size
+        if self._log_size() > _LOG_KEEP:
+            os.ftruncate(self.log.fileno(), 0)
+        self.start = self._log_size()
         try:
             self.proc.stdin.write(frame_request(args))
             self.proc.stdin.flush()
@@ -114,17 +114,20 @@ class RenderWorker:
                 raise self._ended("cancelled")
             if waited >= timeout:
                 raise self._ended(f"timed out after {timeout:g} s")
-            if self.log.stat().st_size - self.start > OUTPUT_LIMIT:
+            if self._log_size() - self.start > OUTPUT_LIMIT:
                 raise self._ended(f"printed more than {OUTPUT_LIMIT >> 20} MB and was ended")
         line, self._pending = self._pending.split(b"\n", 1)
         return line
+
+    def _log_size(self) -> int:
+        return os.fstat(self.log.fileno()).st_size
 
     def tail(self) -> str:
         """The last lines the worker printed since the current (or last) render began."""
         return output_tail(self.log, start=self.start)
 
     def close(self) -> None:
-        """End the worker (at once: an idle one has nothing to lose) and remove its folder."""
+        """End the worker (at once: an idle one has nothing to lose) and close its log."""
         if self.proc.returncode is None:  # once reaped, its process id may belong to another
             kill_group(self.proc)
         for stream in (self.proc.stdin, self.proc.stdout):
@@ -132,7 +135,7 @@ class RenderWorker:
                 stream.close()
             except OSError:
                 pass
-        shutil.rmtree(self.folder, ignore_errors=True)
+        self.log.close()
 
     def _ended(self, reason: str) -> RenderFailed:
         failure = RenderFailed(reason, self.tail())
