@@ -94,14 +94,14 @@ class AnalyticEngine(Engine):
                 local = np.stack([(1 - 2 * fx) * s.tan_half_x, (1 - 2 * fy) * s.tan_half_x / aspect,
                                   np.ones_like(fx)], axis=-1)
                 local /= norm(local, keepdims=True)
-                d = local @ s.to_world.T
+                d = _transform(local, s.to_world)
                 denom = d @ normal
                 with np.errstate(divide="ignore", invalid="ignore"):
                     t = ((plane_point - s.origin) @ normal) / denom
                 p = s.origin + t[..., None] * d
-                uv = p @ inv_plane[:3, :3].T + inv_plane[:3, 3]
+                uv = _transform(p, inv_plane[:3, :3]) + inv_plane[:3, 3]
                 # Hit: between the clip planes, inside [-1,1]^2, seen from the front side.
-                hit = (_clipped(s, t, local) & (denom < 0) & np.all(np.abs(uv[..., :2]) <= 1, axis=-1))
+                hit = (_clipped(s, t, local) & (denom < 0) & (np.abs(uv[..., 0]) <= 1) & (np.abs(uv[..., 1]) <= 1))
                 if s.sphere is None:
                     acc += np.where(hit[..., None], shade(s, p, normal), 0.0).sum(axis=0)
                     continue
@@ -115,6 +115,12 @@ class AnalyticEngine(Engine):
         seconds["render"] = time.perf_counter() - start - seconds["load"]
         seconds["total"] = time.perf_counter() - start
         return RenderResult(self.name, str(scene), integrator, spp, seed, np.stack(images), seconds)
+
+
+def _transform(v: np.ndarray, matrix: np.ndarray) -> np.ndarray:
+    """matrix @ each (..., 3) vector, as one matrix product over the rows (numpy's stacked product of
+    (..., 3) by (3, 3) takes four times as long)."""
+    return (v.reshape(-1, 3) @ matrix.T).reshape(v.shape)
 
 
 def _clipped(s: PlaneScene, t: np.ndarray, local: np.ndarray) -> np.ndarray:
