@@ -57,7 +57,7 @@ MUTATIONS = {
         "if np.any(z > MEAN_SIGMAS) and np.any(m1 != m1):",
         [f"{TWINS}::test_regression_flags_a_mean_moved_by_five_sigma_and_not_one"]),
     "detectable_bias x2": (
-        "comparison/compare.py", "return np.where(live, root, np.inf)", "return np.where(live, 2.0 * root, np.inf)",
+        "statistics/detectable_bias.py", "return np.where(live, root, np.inf)", "return np.where(live, 2.0 * root, np.inf)",
         [f"{TWINS}::test_detectable_bias_is_its_definition"]),
     "PSNR with 20 log10": (
         "comparison/metrics.py", "float(10 * np.log10(peak**2 / mse))", "float(20 * np.log10(peak**2 / mse))",
