@@ -45,7 +45,6 @@ void addLayer(Imf::Header &header, Imf::FrameBuffer &fb, const std::string &pref
 void writeExr(const std::string &path, const RenderOutput &output, const OutputInfo &info) {
     const RenderStats &s = output.stats;
     Imf::Header header(output.mean.width, output.mean.height);
-    if (!info.compressed) header.compression() = Imf::NO_COMPRESSION;
     header.insert("mcval.scene", Imf::StringAttribute(info.sceneFile));
     header.insert("mcval.integrator", Imf::StringAttribute(s.integrator));
     header.insert("mcval.sampler", Imf::StringAttribute(s.sampler));

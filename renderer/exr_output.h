@@ -13,7 +13,6 @@ struct OutputInfo {
     std::string sceneFile;
     double loadSeconds = 0.0;
     bool half = false;  ///< the film's component_format is float16: write HALF channels
-    bool compressed = true;  ///< ZIP (OpenEXR's default); false for a file that is read at once and deleted
 };
 
 /// Writes R, G, B (mean), variance.R/G/B and, for K > 1 batches, batch<k>.R/G/B. Header attributes

@@ -58,7 +58,7 @@ int runRenderCommand(const std::vector<std::string> &args, int keepWarmMilliseco
     int spp = 0, threads = 0, batches = 1;
     uint64_t seed = 0;
     std::vector<std::string> defines;
-    bool quiet = false, uncompressed = false, raw = false;
+    bool quiet = false, raw = false;
     app.add_option("scene", scenePath, "scene file (.xml)")->required()->check(CLI::ExistingFile);
     app.add_option("-o,--output", outPath, "output .exr (default: the scene's name, .exr, in the current folder)");
     app.add_option("--spp", spp, "samples per pixel (per batch; default: the scene's sample_count)")
@@ -76,7 +76,6 @@ int runRenderCommand(const std::vector<std::string> &args, int keepWarmMilliseco
     app.add_flag("-q,--quiet", quiet, "no progress bar or summary");
     app.footer("render --serve (alone) reads renders' arguments on stdin, one after another, and answers each with\n"
                "its exit status on stdout: the harness's long-lived worker (see renderer/serve.h).");
-    app.add_flag("--uncompressed", uncompressed, "write the EXR without compression (faster; for files read at once)");
     app.add_flag("--raw", raw, "write raw float32 images after one header line instead of OpenEXR: the batches (or the "
                                "mean for one batch), for a reader on this machine that reads the file at once "
                                "(see renderer/raw_output.h)");
@@ -99,7 +98,7 @@ int runRenderCommand(const std::vector<std::string> &args, int keepWarmMilliseco
         const auto start = std::chrono::steady_clock::now();
         const SceneDescription scene = loadScene(scenePath, params, integrator);
         OutputInfo info{scenePath, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                        scene.film.componentFormat == "float16", !uncompressed};
+                        scene.film.componentFormat == "float16"};
 
         RenderOptions options;
         options.spp = spp;

@@ -26,7 +26,7 @@ from harness.native import renderer_module
 #: The two engines timed side by side, in process, by name (the keys of the figures).
 OURS, MITSUBA = OurEngine.name, MitsubaEngine.name
 #: Ours as `images` and `validate` run it: in its `render --serve` worker, the call's wall clock less the scene
-#: load and BVH build the renderer reports (excluded for every engine), so with the request, the EXR written
+#: load and BVH build the renderer reports (excluded for every engine), so with the request, the images written
 #: and read, and the thread pool's wake-up.
 WORKER = f"{OURS} worker"
 

@@ -130,12 +130,16 @@ class RenderWorker:
         """End the worker (at once: an idle one has nothing to lose) and close its log."""
         if self.proc.returncode is None:  # once reaped, its process id may belong to another
             kill_group(self.proc)
+        self.close_pipes()
+        self.log.close()
+
+    def close_pipes(self) -> None:
+        """Close this process's ends of the worker's input and answers."""
         for stream in (self.proc.stdin, self.proc.stdout):
             try:
                 stream.close()
             except OSError:
                 pass
-        self.log.close()
 
     def _ended(self, reason: str) -> RenderFailed:
         failure = RenderFailed(reason, self.tail())
@@ -161,11 +165,7 @@ def _forget_in_child() -> None:
     global _lock
     _lock = threading.Lock()
     for worker in (w for ws in _idle.values() for w in ws):
-        for stream in (worker.proc.stdin, worker.proc.stdout):
-            try:
-                stream.close()
-            except OSError:
-                pass
+        worker.close_pipes()
     _idle.clear()
 
 

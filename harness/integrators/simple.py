@@ -13,7 +13,7 @@ def _point_lights(scene, p: np.ndarray, normal: np.ndarray) -> np.ndarray:
     for position, intensity in scene.lights:
         to_light = position - p
         r2 = dot(to_light, to_light, keepdims=True)
-        cos = np.clip(dot(to_light, np.broadcast_to(normal, to_light.shape), keepdims=True) / np.sqrt(r2), 0.0, None)
+        cos = np.clip(dot(to_light, normal, keepdims=True) / np.sqrt(r2), 0.0, None)
         out += scene.reflectance / np.pi * intensity * cos / r2 * lit(scene, p, position)
     return out
 

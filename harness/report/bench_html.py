@@ -50,7 +50,7 @@ def _throughput_html(throughput: list[dict] | None) -> str:
             "spinning, nor its own asleep); medians of the runs, and Mitsuba over ours the median of the ratios "
             "round by round (each round renders ours, ours in its worker, then Mitsuba). <em>In its worker</em> is ours as "
             "<code>images</code> and <code>validate</code> run it: the <code>render --serve</code> call's wall clock "
-            "(the request, the EXR written and read) less the scene load and BVH build. Rays/s divide the rays ours traced, for both engines (Mitsuba's "
+            "(the request, the images written and read) less the scene load and BVH build. Rays/s divide the rays ours traced, for both engines (Mitsuba's "
             "direct traces about as many for simple; for ao it adds a BSDF-sampled ray per hit, its MIS).</p><table><tr><th>case</th><th>setting</th><th>ours s</th>"
             "<th>Mitsuba s</th><th>Mitsuba/ours per sample</th><th>ours in its worker s</th><th>Mitsuba/worker</th>"
             "<th>ours Msamples/s</th><th>Mitsuba Msamples/s</th>"

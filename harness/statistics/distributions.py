@@ -13,8 +13,9 @@ _SQRT_2PI = np.sqrt(2.0 * np.pi)
 
 
 def _valid_dof(dof, out):
-    # scipy.stats' argument check: dof <= 0 is no distribution (NaN); ufuncs would answer something.
-    return np.where(np.asarray(dof) > 0, out, np.nan) if np.any(~(np.asarray(dof) > 0)) else out
+    # scipy.stats' argument check: dof <= 0 (or NaN) is no distribution (NaN); ufuncs would answer something.
+    valid = np.asarray(dof) > 0
+    return out if valid.all() else np.where(valid, out, np.nan)
 
 
 def t_sf(x, dof):
