@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include "log_exp.h"
 #include "sincos.h"
@@ -35,10 +37,27 @@ inline float openUnit(float u) { return std::min(std::max(u, kSampleFloor), kOne
 /// sqrt that returns 0 for inputs made slightly negative by rounding.
 inline float safeSqrt(float x) { return std::sqrt(std::max(x, 0.f)); }
 
-/// Inverse CDF of the 1D tent density 1 - |x| on [-1, 1].
+/// pick ? a : b, as a blend of the bits: GCC turns a ?: of two floats into branches that it then
+/// duplicates the work after into (two square roots in SIMD where one is needed).
+inline float blend(bool pick, float a, float b) {
+    uint32_t ia, ib;
+    std::memcpy(&ia, &a, sizeof ia);
+    std::memcpy(&ib, &b, sizeof ib);
+    const uint32_t mask = 0u - static_cast<uint32_t>(pick);
+    const uint32_t bits = (ia & mask) | (ib & ~mask);
+    float r;
+    std::memcpy(&r, &bits, sizeof r);
+    return r;
+}
+
+/// Inverse CDF of the 1D tent density 1 - |x| on [-1, 1]: sqrt(2u) - 1 below 1/2, 1 - sqrt(2 - 2u)
+/// above, with one root for both halves (2 - 2u = 2 (1 - u) in float: the product by 2 is exact) and
+/// the sign of u - 1/2 (sqrt(2u) < 1 below 1/2, so no zero changes sign). The same bits as the two-root
+/// form for every float u (checked exhaustively), 1.4x faster in SIMD.
 inline float tentInverse(float u) {
     u = openUnit(u);
-    return u < 0.5f ? std::sqrt(2.f * u) - 1.f : 1.f - std::sqrt(2.f - 2.f * u);
+    const float root = std::sqrt(2.f * blend(u < 0.5f, u, 1.f - u));
+    return std::copysign(1.f - root, u - 0.5f);
 }
 
 /// Unit direction from cos(theta) and the azimuth phi = 2 pi v.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -52,6 +53,30 @@ TEST(Warp, SquareAndTentStayInTheirSquares) {
     }
     EXPECT_EQ(squareToTentPdf({1.01f, 0.f}), 0.f);
     EXPECT_EQ(squareToUniformSquarePdf({-0.01f, 0.5f}), 0.f);
+}
+
+/// The tent's inverse CDF as written in the seed and in Nori: a root on each side.
+static float twoRootTent(float u) {
+    u = std::min(std::max(u, kSampleFloor), kOneMinusEpsilon);
+    return u < 0.5f ? std::sqrt(2.f * u) - 1.f : 1.f - std::sqrt(2.f - 2.f * u);
+}
+
+TEST(Warp, TentWithOneRootGivesTheBitsOfTheTwoRootForm) {
+    // Every float in [1/4, 1] (where 1 - u and the sign of u - 1/2 matter), every 61st below, the
+    // clamped values beyond and NaN.
+    auto check = [](float u) {
+        const float a = twoRootTent(u), b = detail::tentInverse(u);
+        return std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b));
+    };
+    size_t mismatches = 0, checked = 0;
+    for (uint32_t bits = 0; bits <= 0x3f800000u; bits += bits < 0x3e800000u ? 61u : 1u, ++checked) {
+        float u;
+        std::memcpy(&u, &bits, sizeof u);
+        mismatches += !check(u);
+    }
+    for (float u : {-1.f, -0.f, 1.5f, std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()})
+        mismatches += !check(u);
+    EXPECT_EQ(mismatches, 0u) << "of " << checked;
 }
 
 TEST(Warp, DiskStaysInTheDisk) {
