@@ -28,7 +28,11 @@ A render can be reduced to its `Summary` first (what references store).
 Before any statistics, both sides are checked for NaN, +Inf and -Inf, and for
 negative values unless the image is signed (normals): any such pixel fails the
 comparison through its own check (`Comparison.finite`), and the statistics treat
-a non-finite input as a certain rejection, never as agreement.
+a non-finite input as a certain rejection, never as agreement. Each side whose
+batches are at hand is also checked for batches that are not independent (all
+alike where the other side's vary, or a pair far more alike than chance:
+`Comparison.independence`), which would make the spread the tests divide by too
+small; that too fails the comparison through its own check.
 """
 from __future__ import annotations
 
@@ -40,8 +44,10 @@ import numpy as np
 from harness.statistics.detectable_bias import half_power_bias
 from harness.statistics.family_level import channel_correlation, family_level
 from harness.comparison.finite import FiniteCheck, damage_of_summary
+from harness.comparison.independence_check import IndependenceCheck
 from harness.comparison.metrics import image_metrics
 from harness.statistics.constants import ROUNDING_TOLERANCE, SIGNIFICANCE, TILE_SIZE, sidak_level
+from harness.statistics.independence import BatchDependence, batch_dependence
 from harness.statistics.welch import BatchStats, moderate, sample_floor, welch_dof, welch_p_values
 
 SCALES = ("pixel", "tile", "image")
@@ -60,6 +66,8 @@ class Summary:
     #: (H, W, 3) smallest batch value per pixel, for the finite check (a negative value in one batch);
     #: None for stored summaries, which keep only means and variances.
     minimum: np.ndarray | None = field(default=None, repr=False)
+    #: Whether the batches are independent (harness.statistics.independence); None for stored summaries.
+    dependence: BatchDependence | None = None
 
     @property
     def mean_image(self) -> np.ndarray:
@@ -89,7 +97,7 @@ def summarize(batches: np.ndarray, tile: int = TILE_SIZE) -> Summary:
         raise ValueError("at least 2 batches are needed to estimate a variance")
     with np.errstate(invalid="ignore", over="ignore"):  # NaN and Inf propagate; the finite check reports them
         return Summary(BatchStats.of(b), BatchStats.of(tile_means(b, tile)), BatchStats.of(b.mean(axis=(1, 2))),
-                       tile, b.min(axis=0))
+                       tile, b.min(axis=0), batch_dependence(b))
 
 
 @dataclass
@@ -133,10 +141,17 @@ class Comparison:
     detectable_tile_bias: float = float("inf")
     #: The FLIP map (H, W) the metrics were taken from, for the report's picture; None without metrics.
     flip_map: np.ndarray | None = field(default=None, repr=False, compare=False)
+    #: Whether each side's batches are independent, without which the scales' tests mean nothing.
+    independence: IndependenceCheck | None = None
 
     @property
     def passed(self) -> bool:
-        return self.finite.passed and all(s.passed for s in self.scales)
+        return self.trusted and all(s.passed for s in self.scales)
+
+    @property
+    def trusted(self) -> bool:
+        """The inputs the scales' tests assume: every pixel finite, and independent batches."""
+        return self.finite.passed and (self.independence is None or self.independence.passed)
 
     @property
     def failed_scales(self) -> list[str]:
@@ -144,11 +159,14 @@ class Comparison:
 
     @property
     def failed_checks(self) -> list[str]:
-        """"finite" (if it failed) then the failed scales."""
-        return ([] if self.finite.passed else ["finite"]) + self.failed_scales
+        """"finite" and "independent" (if they failed) then the failed scales."""
+        independent = self.independence is None or self.independence.passed
+        return ([] if self.finite.passed else ["finite"]) + ([] if independent else ["independent"]) + self.failed_scales
 
     def to_json(self) -> dict:
-        return {"pass": self.passed, "finite": self.finite.to_json(), "tests": [s.to_json() for s in self.scales],
+        return {"pass": self.passed, "finite": self.finite.to_json(),
+                "independence": self.independence.to_json() if self.independence else None,
+                "tests": [s.to_json() for s in self.scales],
                 "metrics": self.metrics, "detectable_bias": self.detectable_bias,
                 "detectable_tile_bias": self.detectable_tile_bias, "batches": list(self.batches)}
 
@@ -212,17 +230,20 @@ def _metrics(test: np.ndarray, reference: np.ndarray, signed: bool,
 def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFICANCE, signed: bool = False,
                       rounding: float = ROUNDING_TOLERANCE,
                       samples: tuple[int | None, int | None] = (None, None), metrics: bool = True,
-                      power: bool = True) -> Comparison:
+                      power: bool = True, same_estimator: bool = False) -> Comparison:
     """compare_batches on summaries (see there). The finite check looks at the summaries: a non-finite
     mean or variance, a negative variance, and unless `signed` a negative value in any batch (the
     summary's minimum; the mean for a stored summary, which keeps no minimum).
 
     The verdict needs neither the error metrics nor the detectable biases, which cost most of a comparison
     (FLIP; a noncentral t per tile): with `metrics` False the metrics are left empty, with `power` False
-    both detectable biases are NaN. Null and planted comparisons, which count rejections, skip them."""
+    both detectable biases are NaN. Null and planted comparisons, which count rejections, skip them.
+    `same_estimator`: the reference draws the test's estimator sample for sample, so that test batches all
+    alike where the reference's vary fail as not independent (`IndependenceCheck`)."""
     if test.pixel.mean.shape != reference.pixel.mean.shape or test.tile_size != reference.tile_size:
         raise ValueError(f"images differ in size: {test.pixel.mean.shape} and {reference.pixel.mean.shape}")
     finite = FiniteCheck(damage_of_summary(test, signed), damage_of_summary(reference, signed), signed)
+    independence = IndependenceCheck.of(test, reference, same_estimator)
     h, w = test.pixel.mean.shape[:2]
     per_scale = sidak_level(alpha, len(SCALES))
     ref = reference.pixel.mean[np.isfinite(reference.pixel.mean)]
@@ -247,7 +268,7 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     figures = _metrics(test.mean_image, reference.mean_image, signed, maps) if metrics else {}
     if not power:
         return Comparison(scales, figures, float("nan"), (test.image.k, reference.image.k), finite, float("nan"),
-                          maps.get("flip"))
+                          maps.get("flip"), independence)
     # The image-mean bias found half of the time, and the same for one tile (median over tiles).
     _, _, se = welch_p_values(test_image, ref_image, magnitude, rounding)
     detectable = float(half_power_bias(ref_image, se, welch_dof(test_image, ref_image),
@@ -257,12 +278,12 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     per_tile = per_tile[np.isfinite(per_tile)]
     detectable_tile = float(np.median(per_tile)) if per_tile.size else float("inf")
     return Comparison(scales, figures, detectable, (test.image.k, reference.image.k), finite, detectable_tile,
-                      maps.get("flip"))
+                      maps.get("flip"), independence)
 
 
 def compare_batches(test: np.ndarray, reference: np.ndarray, alpha: float = SIGNIFICANCE,
                     tile: int = TILE_SIZE, signed: bool = False, rounding: float = ROUNDING_TOLERANCE,
-                    samples: tuple[int | None, int | None] = (None, None)) -> Comparison:
+                    samples: tuple[int | None, int | None] = (None, None), same_estimator: bool = False) -> Comparison:
     """Compare (K1, H, W, 3) test batches against (K2, H, W, 3) reference batches.
 
     Fails if any scale rejects at the false-alarm rate `alpha`, or if either side holds
@@ -276,4 +297,5 @@ def compare_batches(test: np.ndarray, reference: np.ndarray, alpha: float = SIGN
     t, r = np.asarray(test), np.asarray(reference)
     if t.ndim != 4 or t.shape[1:] != r.shape[1:]:
         raise ValueError(f"expected two (K, H, W, 3) arrays of one image size, got {t.shape} and {r.shape}")
-    return compare_summaries(summarize(t, tile), summarize(r, tile), alpha, signed, rounding, samples)
+    return compare_summaries(summarize(t, tile), summarize(r, tile), alpha, signed, rounding, samples,
+                             same_estimator=same_estimator)

@@ -34,6 +34,9 @@ class CaseJob:
     #: A reference image (--reference-image) in place of the reference engine's render.
     reference_image: ReferenceImage | None = None
 
+#: The reference engines that render through the entries' Mitsuba mappings (same_estimator_in_mitsuba).
+MITSUBA_MAPPED = ("mitsuba", "mitsuba-scalar")
+
 
 def share_scene_bundles(executor, cases, engines: Sequence[Engine]) -> dict[str, object]:
     """Per scene of `cases`, a handle to its bundle on the executor's cluster, each sent once; nothing
@@ -140,7 +143,10 @@ def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: 
         references[analytic.name] = Reference(summarize(exact.batches), exact.spp, exact.seconds, CLOSED_FORM)
     summary = summarize(mine.batches)
     signed = entry(case.integrator).signed
-    comparisons = {name: compare_summaries(summary, ref.summary, alpha, signed=signed, samples=(mine.spp, ref.spp))
+    same = entry(case.integrator).same_estimator_in_mitsuba  # the reference engine's, not the closed form's
+    comparisons = {name: compare_summaries(summary, ref.summary, alpha, signed=signed, samples=(mine.spp, ref.spp),
+                                           same_estimator=same and name == reference_engine.name
+                                           and name in MITSUBA_MAPPED)
                    for name, ref in references.items()}
     finding = decide(comparisons, summary, {name: ref.summary for name, ref in references.items()}, alpha, signed,
                      {name: ref.spp for name, ref in references.items()}, reference_engine.name,

@@ -35,11 +35,13 @@ def _ratio(test: Summary, exact: Summary) -> list[float]:
 
 def _where(c: Comparison) -> str:
     failed = [s for s in c.scales if not s.passed]
+    untrusted = ("" if c.finite.passed else "; non-finite pixels") + (
+        "" if c.independence is None or c.independence.passed else "; batches not independent")
     if not failed:
-        return "passes"
+        return "passes" if not untrusted else "fails: " + untrusted[2:]
     worst = min(failed, key=lambda s: s.min_p)
     return (f"fails at {', '.join(s.scale for s in failed)} scale (worst at row {worst.worst[0]}, column "
-            f"{worst.worst[1]}, p = {worst.min_p:.2g})" + ("" if c.finite.passed else "; non-finite pixels"))
+            f"{worst.worst[1]}, p = {worst.min_p:.2g})" + untrusted)
 
 
 def _fmt(ratio: list[float]) -> str:

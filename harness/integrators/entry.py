@@ -90,6 +90,10 @@ class IntegratorEntry:
     rotates_with_scene: bool = False
     #: Lit by a constant environment of radiance 1 where the scene has none (ao), which no rewrite scales.
     default_environment: bool = False
+    #: Its Mitsuba mapping draws the same estimator, sample for sample (the same camera rays and the same
+    #: shading estimate of each): then all our batches alike where Mitsuba's vary are batches that ignore their
+    #: seed (harness.comparison.independence_check), not an estimator without noise.
+    same_estimator_in_mitsuba: bool = False
     #: Its speed against error is measured by `bench` (a noiseless image has no convergence to measure).
     benchmarked: bool = True
     source: str = field(default="", compare=False)  # the file it was read from (set by the registry)

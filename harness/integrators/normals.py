@@ -15,6 +15,7 @@ ENTRY = IntegratorEntry(
                           scenes=("plane", "sphere_floor")),
     signed=True,
     checks_geometry=True,
+    same_estimator_in_mitsuba=True,
     rotates_with_scene=True,
     benchmarked=False,
 )

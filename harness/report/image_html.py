@@ -89,6 +89,9 @@ def _entry(r: ImageResult, run: dict | None = None) -> str:
         finite = comparison.finite
         rows = (f"<tr><td>finite</td><td colspan='5'>{_esc(finite.summary)}</td>"
                 f"<td>{_verdict(finite.passed)}</td></tr>")
+        if comparison.independence is not None:
+            rows += (f"<tr><td>independent</td><td colspan='5'>{_esc(comparison.independence.summary)}</td>"
+                     f"<td>{_verdict(comparison.independence.passed)}</td></tr>")
         rows += "".join(f"<tr><td>{s.scale}</td><td>{s.tests}</td><td>{s.level:.2g}</td><td>{s.min_p:.2g}</td>"
                         f"<td>{s.failures}</td><td>{s.worst}</td><td>{_verdict(s.passed)}</td></tr>"
                         for s in comparison.scales)

@@ -30,6 +30,8 @@ def _cell(result: ImageResult) -> str:
     bad_pixels = _bad_pixels(result)
     if bad_pixels:
         return f"[bold red]FAIL[/] {escape(', '.join(bad_pixels))}"
+    if any(c.independence is not None and not c.independence.passed for c in result.comparisons.values()):
+        return "[bold red]FAIL[/] batches not independent"
     failed = sorted({s for c in result.comparisons.values() for s in c.failed_scales})
     return f"[bold red]FAIL[/] {','.join(failed)}"
 
@@ -62,6 +64,8 @@ def image_table(results: list[ImageResult], alpha: float) -> Table:
         for name, c in r.comparisons.items():
             if not c.finite.passed:
                 found.setdefault(c.finite.summary, []).append(name)
+            if c.independence is not None and not c.independence.passed:
+                found.setdefault(c.independence.summary, []).append(name)
         for summary, names in found.items():
             table.caption += f"\n{escape(r.case.key)} (against {', '.join(names)}): {escape(summary)}"
     return table

@@ -49,3 +49,9 @@ MISSED_CONTRIBUTION = 0.1
 MODERATION_WINDOW = 3
 #: Power figures of image comparisons: the bias detected in this fraction of runs.
 IMAGE_POWER_TARGET = 0.5
+#: Two batches are dependent (harness.statistics.independence) when their residual correlation is at least this
+#: large (independent batches: -1 / (K - 1), identical: 1) and significant at DEPENDENCE_LEVEL.
+DEPENDENCE_CORRELATION = 0.3
+DEPENDENCE_LEVEL = 1e-3
+#: Side in pixels of the blocks whose sums are the clusters of that test.
+DEPENDENCE_CLUSTER = 4

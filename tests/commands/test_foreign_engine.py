@@ -91,3 +91,25 @@ def test_an_engine_file_is_benchmarked_against_the_reference(tmp_path):
     (case,) = _results(out)["speed"]
     assert case["efficiency_ratio_same_sampler"]["ours"] == "wrapped/independent"
     assert case["efficiency_ratio_same_sampler"]["reference"] == "mitsuba/independent"
+
+
+def test_a_renderer_that_ignores_its_seed_fails_as_batches_not_independent(tmp_path, capsys):
+    engine = write_engine(tmp_path, "fixed_seed")
+    out = tmp_path / "results"
+    assert main(["images", "--engine", str(engine), "--only", "plane_point:simple", "--out", str(out)]) == 1
+    (case,) = _results(out)["images"]
+    independence = case["tests"]["mitsuba"]["independence"]
+    assert not case["pass"] and independence["test"]["alike"]
+    assert "all 8 test batches are the same image" in independence["summary"]
+    assert "batches not independent" in " ".join(capsys.readouterr().out.split())
+    failure = next(ET.parse(out / "latest" / "junit.xml").iter("failure"))
+    assert "batches not independent" in failure.get("message")
+
+
+def test_a_renderer_whose_seeds_repeat_fails_as_batches_not_independent(tmp_path):
+    engine = write_engine(tmp_path, "seed_mod_4")
+    out = tmp_path / "results"
+    assert main(["images", "--engine", str(engine), "--only", "plane_point:simple", "--out", str(out)]) == 1
+    (case,) = _results(out)["images"]
+    test = case["tests"]["mitsuba"]["independence"]["test"]
+    assert test["dependent"] and test["correlation"] > 0.99 and not test["alike"]

@@ -32,6 +32,10 @@ def shape(channels=3):
 #: What each renderer does.
 BEHAVIOURS = {
     "ours": "render()",
+    # Renders every call with one seed of its own, whatever it is given: K copies of one image.
+    "fixed_seed": "seed = '7'; render()",
+    # Uses the seed modulo 4: of a case's 8 calls, the last 4 repeat the first 4 (see call_seed).
+    "seed_mod_4": "seed = str(int(seed) % 4); render()",
     "y_half": "write(shape(1), ('Y',), 'half')",
     "layer": "write(shape(), ('beauty.R', 'beauty.G', 'beauty.B'))",
     "exit": "print('\\n'.join(f'progress {i}' for i in range(80))); print('error: cannot parse', file=sys.stderr); "

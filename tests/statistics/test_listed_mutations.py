@@ -62,6 +62,14 @@ MUTATIONS = {
     "PSNR with 20 log10": (
         "comparison/metrics.py", "float(10 * np.log10(peak**2 / mse))", "float(20 * np.log10(peak**2 / mse))",
         [f"{REF}::test_psnr_is_its_definition"]),
+    "independence: the null mean of a pair's products with the wrong sign": (
+        "statistics/independence.py", "centred = gram + per_tile[:, None, None] / (k * (k - 1))",
+        "centred = gram - per_tile[:, None, None] / (k * (k - 1))",
+        ["tests/statistics/test_independence.py::test_the_p_value_is_near_its_level_for_independent_gaussian_batches"]),
+    "a comparison's verdict without its independence check": (
+        "comparison/compare.py", "return self.trusted and all(s.passed for s in self.scales)",
+        "return self.finite.passed and all(s.passed for s in self.scales)",
+        ["tests/comparison/test_independence_check.py::test_repeating_batches_fail_where_the_scales_alone_pass"]),
     "efficiency ratio inverted": (
         "bench/run.py", "ratio = self.curves[a].efficiency(common) / self.curves[b].efficiency(common)",
         "ratio = self.curves[b].efficiency(common) / self.curves[a].efficiency(common)",
