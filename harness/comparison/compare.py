@@ -45,6 +45,7 @@ from harness.statistics.detectable_bias import half_power_bias
 from harness.statistics.family_level import channel_correlation, family_level
 from harness.comparison.finite import FiniteCheck, damage_of_summary
 from harness.comparison.independence_check import IndependenceCheck
+from harness.comparison.variance_check import VarianceCheck
 from harness.comparison.metrics import image_metrics
 from harness.statistics.constants import ROUNDING_TOLERANCE, SIGNIFICANCE, TILE_SIZE, sidak_level
 from harness.statistics.independence import BatchDependence, batch_dependence
@@ -143,10 +144,13 @@ class Comparison:
     flip_map: np.ndarray | None = field(default=None, repr=False, compare=False)
     #: Whether each side's batches are independent, without which the scales' tests mean nothing.
     independence: IndependenceCheck | None = None
+    #: The test's per-sample variance against the reference's; None where the sample counts are unknown.
+    variance: VarianceCheck | None = None
 
     @property
     def passed(self) -> bool:
-        return self.trusted and all(s.passed for s in self.scales)
+        return (self.trusted and all(s.passed for s in self.scales)
+                and (self.variance is None or self.variance.passed))
 
     @property
     def trusted(self) -> bool:
@@ -161,11 +165,14 @@ class Comparison:
     def failed_checks(self) -> list[str]:
         """"finite" and "independent" (if they failed) then the failed scales."""
         independent = self.independence is None or self.independence.passed
-        return ([] if self.finite.passed else ["finite"]) + ([] if independent else ["independent"]) + self.failed_scales
+        noise = self.variance is None or self.variance.passed
+        return (([] if self.finite.passed else ["finite"]) + ([] if independent else ["independent"])
+                + self.failed_scales + ([] if noise else ["variance"]))
 
     def to_json(self) -> dict:
         return {"pass": self.passed, "finite": self.finite.to_json(),
                 "independence": self.independence.to_json() if self.independence else None,
+                "variance": self.variance.to_json() if self.variance else None,
                 "tests": [s.to_json() for s in self.scales],
                 "metrics": self.metrics, "detectable_bias": self.detectable_bias,
                 "detectable_tile_bias": self.detectable_tile_bias, "batches": list(self.batches)}
@@ -244,6 +251,7 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
         raise ValueError(f"images differ in size: {test.pixel.mean.shape} and {reference.pixel.mean.shape}")
     finite = FiniteCheck(damage_of_summary(test, signed), damage_of_summary(reference, signed), signed)
     independence = IndependenceCheck.of(test, reference, same_estimator)
+    variance = VarianceCheck.of(test.pixel, reference.pixel, samples, alpha, same_estimator)
     h, w = test.pixel.mean.shape[:2]
     per_scale = sidak_level(alpha, len(SCALES))
     ref = reference.pixel.mean[np.isfinite(reference.pixel.mean)]
@@ -268,7 +276,7 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     figures = _metrics(test.mean_image, reference.mean_image, signed, maps) if metrics else {}
     if not power:
         return Comparison(scales, figures, float("nan"), (test.image.k, reference.image.k), finite, float("nan"),
-                          maps.get("flip"), independence)
+                          maps.get("flip"), independence, variance)
     # The image-mean bias found half of the time, and the same for one tile (median over tiles).
     _, _, se = welch_p_values(test_image, ref_image, magnitude, rounding)
     detectable = float(half_power_bias(ref_image, se, welch_dof(test_image, ref_image),
@@ -278,7 +286,7 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     per_tile = per_tile[np.isfinite(per_tile)]
     detectable_tile = float(np.median(per_tile)) if per_tile.size else float("inf")
     return Comparison(scales, figures, detectable, (test.image.k, reference.image.k), finite, detectable_tile,
-                      maps.get("flip"), independence)
+                      maps.get("flip"), independence, variance)
 
 
 def compare_batches(test: np.ndarray, reference: np.ndarray, alpha: float = SIGNIFICANCE,

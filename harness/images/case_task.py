@@ -142,11 +142,14 @@ def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: 
             return failed(f"closed form: {_reason(e)}", mine)
         references[analytic.name] = Reference(summarize(exact.batches), exact.spp, exact.seconds, CLOSED_FORM)
     summary = summarize(mine.batches)
+    analytic_name = analytic.name if analytic is not None else None
     signed = entry(case.integrator).signed
-    same = entry(case.integrator).same_estimator_in_mitsuba  # the reference engine's, not the closed form's
+    # The closed form draws our estimator (harness/engines/analytic.py: our camera rays, each shaded exactly or
+    # by the entry's `sample`); the reference engine does where the entry says so.
+    same = {name: name == analytic_name or (name in MITSUBA_MAPPED and entry(case.integrator).same_estimator(case.path))
+            for name in references}
     comparisons = {name: compare_summaries(summary, ref.summary, alpha, signed=signed, samples=(mine.spp, ref.spp),
-                                           same_estimator=same and name == reference_engine.name
-                                           and name in MITSUBA_MAPPED)
+                                           same_estimator=same[name])
                    for name, ref in references.items()}
     finding = decide(comparisons, summary, {name: ref.summary for name, ref in references.items()}, alpha, signed,
                      {name: ref.spp for name, ref in references.items()}, reference_engine.name,

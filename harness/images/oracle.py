@@ -35,8 +35,9 @@ def _ratio(test: Summary, exact: Summary) -> list[float]:
 
 def _where(c: Comparison) -> str:
     failed = [s for s in c.scales if not s.passed]
-    untrusted = ("" if c.finite.passed else "; non-finite pixels") + (
-        "" if c.independence is None or c.independence.passed else "; batches not independent")
+    untrusted = (("" if c.finite.passed else "; non-finite pixels")
+                 + ("" if c.independence is None or c.independence.passed else "; batches not independent")
+                 + ("" if c.variance is None or c.variance.passed else f"; {c.variance.summary}"))
     if not failed:
         return "passes" if not untrusted else "fails: " + untrusted[2:]
     worst = min(failed, key=lambda s: s.min_p)
@@ -57,8 +58,12 @@ def decide(comparisons: dict[str, Comparison], ours: Summary, references: dict[s
     exact, other = comparisons.get(closed_form), comparisons.get(reference)
     if exact is None or other is None or not exact.passed or other.passed:
         return None
+    noise = "variance" in other.failed_checks or (other.independence is not None and not other.independence.test.passed)
+    if noise and exact.variance is not None and not exact.variance.same_estimator:
+        return None  # a closed form that does not draw our estimator knows the mean, not our noise
     evidence = compare_summaries(references[reference], references[closed_form], alpha, signed=signed,
-                                 samples=(samples[reference], samples[closed_form]))
+                                 samples=(samples[reference], samples[closed_form]),
+                                 same_estimator=exact.variance is None or exact.variance.same_estimator)
     ratios = {reference: _ratio(references[reference], references[closed_form]),
               "ours": _ratio(ours, references[closed_form])}
     shown = reference.capitalize()

@@ -47,6 +47,8 @@ Shade = Callable[[object, np.ndarray, np.ndarray], np.ndarray]
 Sample = Callable[[object, np.ndarray, np.ndarray, np.ndarray], np.ndarray]
 #: requirement(scene root) -> None if the scene suits the integrator, else why not ("no point light").
 Requirement = Callable[[ET.Element], "str | None"]
+#: estimator_differs(scene root) -> why Mitsuba's mapping draws another estimator than ours on this scene, or None.
+EstimatorCheck = Callable[[ET.Element], "str | None"]
 
 
 @dataclass(frozen=True)
@@ -94,6 +96,8 @@ class IntegratorEntry:
     #: shading estimate of each): then all our batches alike where Mitsuba's vary are batches that ignore their
     #: seed (harness.comparison.independence_check), not an estimator without noise.
     same_estimator_in_mitsuba: bool = False
+    #: Scenes on which it does not, though it does in general (see `same_estimator`).
+    estimator_differs: EstimatorCheck | None = None
     #: Its speed against error is measured by `bench` (a noiseless image has no convergence to measure).
     benchmarked: bool = True
     source: str = field(default="", compare=False)  # the file it was read from (set by the registry)
@@ -101,6 +105,17 @@ class IntegratorEntry:
     def invariances(self) -> tuple[str, ...]:
         """The invariances that apply to it: the geometric ones always, plus the rewrites it is linear in."""
         return GEOMETRIC_INVARIANCES + self.linear_in
+
+    def same_estimator(self, scene: Path) -> bool:
+        """Whether Mitsuba's mapping draws our estimator, sample for sample, on `scene`."""
+        if not self.same_estimator_in_mitsuba:
+            return False
+        if self.estimator_differs is None:
+            return True
+        try:
+            return self.estimator_differs(ET.parse(scene).getroot()) is None
+        except ET.ParseError:
+            return False
 
     def not_applicable(self, scene: Path) -> str | None:
         """Why `scene` cannot be rendered with this integrator, or None if it can."""

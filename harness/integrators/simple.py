@@ -29,7 +29,9 @@ ENTRY = IntegratorEntry(
                           "sphere dark", _point_lights, scenes=("plane", "sphere_floor")),
     requirements=(("a point light", has_point_light),),
     linear_in=("light", "reflectance"),
-    # The same camera rays and a deterministic shading of each hit (with several lights Mitsuba picks one per
-    # sample where ours sums them; the pixel's jitter still makes ours vary wherever the image is not flat).
+    # The same camera rays and a deterministic shading of each hit; with several lights Mitsuba's one emitter
+    # sample picks one of them where ours sums them all.
     same_estimator_in_mitsuba=True,
+    estimator_differs=lambda root: ("several point lights" if sum(e.get("type") == "point" for e in root.iter("emitter")) > 1
+                                    else None),
 )

@@ -92,6 +92,9 @@ def _entry(r: ImageResult, run: dict | None = None) -> str:
         if comparison.independence is not None:
             rows += (f"<tr><td>independent</td><td colspan='5'>{_esc(comparison.independence.summary)}</td>"
                      f"<td>{_verdict(comparison.independence.passed)}</td></tr>")
+        if comparison.variance is not None:
+            rows += (f"<tr><td>variance</td><td colspan='5'>{_esc(comparison.variance.summary)}</td>"
+                     f"<td>{_verdict(comparison.variance.passed)}</td></tr>")
         rows += "".join(f"<tr><td>{s.scale}</td><td>{s.tests}</td><td>{s.level:.2g}</td><td>{s.min_p:.2g}</td>"
                         f"<td>{s.failures}</td><td>{s.worst}</td><td>{_verdict(s.passed)}</td></tr>"
                         for s in comparison.scales)

@@ -32,7 +32,7 @@ def _cell(result: ImageResult) -> str:
         return f"[bold red]FAIL[/] {escape(', '.join(bad_pixels))}"
     if any(c.independence is not None and not c.independence.passed for c in result.comparisons.values()):
         return "[bold red]FAIL[/] batches not independent"
-    failed = sorted({s for c in result.comparisons.values() for s in c.failed_scales})
+    failed = sorted({s for c in result.comparisons.values() for s in c.failed_checks})
     return f"[bold red]FAIL[/] {','.join(failed)}"
 
 

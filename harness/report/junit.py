@@ -14,6 +14,8 @@ def _failure(c: Comparison) -> str:
         parts.append(c.independence.summary)
     if c.failed_scales:
         parts.append(f"{', '.join(c.failed_scales)} scale(s) reject")
+    if c.variance is not None and not c.variance.passed:
+        parts.append(c.variance.summary)
     return "; ".join(parts)
 
 

@@ -22,16 +22,18 @@ real = {str(REAL_RENDER)!r}
 # the real renderer as a command of its own. Run otherwise, it is one render.
 _MAIN = """
 def render(args, serve):
-    scope = {{"args": args, "hit": {target!r} in args, "os": os, "signal": signal, "sys": sys, "time": time}}
+    scope = {{"args": args, "hit": {target!r} in args, "os": os, "signal": signal, "sys": sys, "time": time,
+             "real": real}}
     try:
         exec(BEHAVIOUR, scope)
     except SystemExit as e:
         if not serve:
             raise
         return e.code or 0
+    binary = scope.get("real", real)
     if not serve:
-        os.execv(real, [real, *scope["args"]])
-    return subprocess.call([real, *scope["args"]], stdout=sys.stderr)
+        os.execv(binary, [binary, *scope["args"]])
+    return subprocess.call([binary, *scope["args"]], stdout=sys.stderr)
 
 def read_count():
     line = sys.stdin.buffer.readline()
@@ -96,6 +98,12 @@ if hit:
     out = args[args.index("-o") + 1]
     OpenEXR.File({"type": OpenEXR.scanlineimage}, {"RGB": numpy.full((4, 4, 3), -1, numpy.float32)}).write(out)
     sys.exit(0)
+""",
+    # Render ao with the test build's ao_uniform (uniform hemisphere, weighted by 2 cos): ao's mean, more noise.
+    "ao_uniform": """
+if hit:
+    args[args.index("--integrator") + 1] = "ao_uniform"
+    real = os.path.join(os.path.dirname(real), "render_with_test_integrators")
 """,
     # Fail with a proper error line but leave a temporary output file behind.
     "leftover": """

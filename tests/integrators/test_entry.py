@@ -105,7 +105,7 @@ def test_the_integrators_command_lists_each_with_its_entry(capsys):
     assert main(["integrators"]) == 0
     out = capsys.readouterr().out
     for name, mitsuba in (("normals", "aov(aovs=nn:sh_normal)"), ("simple", "direct(emitter_samples=1,"),
-                          ("ao", "direct(hide_emitters=true)")):
+                          ("ao", "direct(hide_emitters=true, emitter_samples=0, bsdf_samples=1)")):
         row = next(line for line in out.splitlines() if line.strip().startswith(name + " "))
         assert f"harness/integrators/{name}.py" in row and mitsuba in row, out
     assert "no harness entry" not in out

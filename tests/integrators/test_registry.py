@@ -24,7 +24,7 @@ def test_product_cli_lists_the_product_integrators_only():
 def test_test_build_cli_lists_albedo_from_its_one_file():
     text = _help("render_with_test_integrators")
     assert "\n  albedo    diffuse reflectance at the first hit" in text
-    assert "albedo, ao, normals or simple" in text  # --integrator's choices
+    assert "albedo, ao, ao_uniform, normals or simple" in text  # --integrator's choices
 
 
 def test_product_module_registry():
@@ -39,4 +39,4 @@ def test_test_build_module_renders_albedo():
             "v = np.unique(out['mean']); print(m.integrators(), v.tolist())")
     env = dict(os.environ, PYTHONPATH=str(BUILD / "python-test"))
     res = subprocess.run([sys.executable, "-c", code], cwd=ROOT, env=env, capture_output=True, text=True, check=True)
-    assert res.stdout.strip() == "['albedo', 'ao', 'normals', 'simple'] [0.5]"
+    assert res.stdout.strip() == "['albedo', 'ao', 'ao_uniform', 'normals', 'simple'] [0.5]"
