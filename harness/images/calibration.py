@@ -59,16 +59,16 @@ class ImageCalibration:
         """Per kind and for all kinds together, per scale and for the whole comparison: the rates."""
         groups = [(kind, [r for r in self.results if r["kind"] == kind]) for kind in KINDS]
         groups.append(("all", self.results))
-        parts = (*SCALES, "whole")
+        parts = (*SCALES, "variance", "whole")
         intervals = len(groups) * len(parts) * len(CALIBRATION_LEVELS)
         each = 1.0 - (1.0 - CALIBRATION_CONFIDENCE) / intervals
         out = []
         for kind, rs in groups:
             for part in parts:
                 for level in CALIBRATION_LEVELS:
-                    # A scale runs at its Sidak share of the comparison's level.
-                    nominal = level if part == "whole" else sidak_level(level, len(SCALES))
-                    k = sum(r["rejected"][str(level)][part] for r in rs)
+                    # A scale, and the variance test, run at their Sidak share of the comparison's level.
+                    nominal = level if part == "whole" else sidak_level(level, len(SCALES) + 1)
+                    k = sum(r["rejected"][str(level)].get(part, False) for r in rs)
                     rate = Rate(nominal, len(rs), k, *clopper_pearson(k, len(rs), each))
                     out.append({"kind": kind, "scale": part, "comparison_level": level, **rate.to_json()})
         return out

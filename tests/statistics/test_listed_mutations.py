@@ -33,7 +33,7 @@ MUTATIONS = {
         "dof = np.where(dof_den > 0, da + db, da + db)",
         [f"{REF}::test_welch_p_values_match_scipy", f"{REF}::test_welch_uses_satterthwaite_dof_and_t_tails"]),
     "no sidak split over the three scales": (
-        "comparison/compare.py", "per_scale = sidak_level(alpha, len(SCALES))", "per_scale = alpha",
+        "comparison/compare.py", "per_scale = sidak_level(alpha, len(SCALES) + judged_noise)", "per_scale = alpha",
         [f"{REF}::test_compare_splits_alpha_over_scales_then_pixels_and_channels"]),
     "sidak counts pixels, not channels": (
         "statistics/family_level.py", "share = channel_union(level, channels, rho) / channels", "share = 1.0 / channels",
