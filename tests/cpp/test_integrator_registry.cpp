@@ -16,8 +16,8 @@ namespace fs = std::filesystem;
 TEST(IntegratorRegistry, ListsEveryLinkedIntegratorSorted) {
     // If the linker dropped an integrator's object file (a static library instead of the OBJECT
     // library), its name would be missing here.
-    EXPECT_EQ(integratorNames(), (std::vector<std::string>{"albedo", "ao", "normals", "simple"}));
-    EXPECT_EQ(integratorNameList(), "albedo, ao, normals or simple");
+    EXPECT_EQ(integratorNames(), (std::vector<std::string>{"albedo", "ao", "ao_uniform", "normals", "simple"}));
+    EXPECT_EQ(integratorNameList(), "albedo, ao, ao_uniform, normals or simple");
     ASSERT_NE(findIntegrator("ao"), nullptr);
     EXPECT_EQ(findIntegrator("path"), nullptr);
     EXPECT_TRUE(findIntegrator("simple")->use.needsPointLight);
@@ -50,7 +50,7 @@ TEST(IntegratorRegistry, UnknownNameListsTheChoices) {
         render(scene, options);
         FAIL() << "an unknown integrator rendered";
     } catch (const SceneError &e) {
-        EXPECT_NE(std::string(e.what()).find("unknown integrator \"path\": expected albedo, ao, normals or simple"),
+        EXPECT_NE(std::string(e.what()).find("unknown integrator \"path\": expected albedo, ao, ao_uniform, normals or simple"),
                   std::string::npos) << e.what();
     }
 }
