@@ -33,6 +33,29 @@ def _print_regression(payload: dict) -> None:
             console.print(f"[yellow]changed[/] {entry['scene']}:{entry['integrator']}: {'; '.join(entry['flags'])}")
 
 
+def _budgeted(cases, ours, reference, target: float, seed: int):
+    """The cases with the samples per pixel that find `target` 90 % of the time (harness/images/budget.py), and
+    the budgets; each printed, with the whole run's rendering time, before anything is rendered."""
+    import dataclasses
+
+    from harness.images.budget import plan_budget
+    from harness.images.run import case_seed, closed_forms, comparison_level
+
+    alpha = comparison_level(cases, closed_forms(cases))
+    budgets, planned = [], []
+    for case in cases:
+        if case.problem:
+            planned.append(case)
+            continue
+        budget = plan_budget(case, ours, reference, target, alpha, case_seed(case, seed) + 1)
+        err.print(escape(budget.line), soft_wrap=True)
+        budgets.append(budget)
+        planned.append(dataclasses.replace(case, spp=budget.spp) if budget.spp else case)
+    err.print(f"--detect-bias {target:.3g}: about {sum(b.seconds for b in budgets):.1f} s of rendering for "
+              f"{len(budgets)} case(s); where a target cannot be reached the case keeps its default budget")
+    return planned, budgets
+
+
 def engine_meta(role: str, engine) -> dict[str, str]:
     """An engine's provenance for a report's header and results.json: "engine" (its version line) and, for an
     engine file, "engine file" and "engine command"."""
@@ -60,6 +83,9 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     from harness.report.image_table import image_table
 
     ours, reference = make_engine(args.engine), make_engine(args.reference, variant=args.variant)
+    budgets = []
+    if getattr(args, "detect_bias", None) and reference_image(args) is None:
+        cases, budgets = _budgeted(cases, ours, reference, args.detect_bias, args.seed)
     start = time.perf_counter()
     with task_progress("images", executor) as show:
         results, alpha = run_images(cases, ours, reference, args.seed, on_status=show,
@@ -81,6 +107,8 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     run = invocation(args)
     meta = {**engine_meta("engine", ours), **engine_meta("reference", reference), "seed": args.seed,
             "image seconds": round(seconds, 1), "ran on": where}
+    if budgets:
+        meta["budgets (--detect-bias)"] = "; ".join(b.line for b in budgets)
     if phases:
         meta["phases before the images"] = " · ".join(f"{name} {s:.1f} s" for name, s in phases.items())
     payload = write_image_outputs(run_dir, results, alpha, warps, meta, baseline, invariance, run)

@@ -72,8 +72,21 @@ def add_image_options(q: argparse.ArgumentParser) -> None:
     add_engines(q)
     q.add_argument("--baseline", type=Path, metavar="RESULTS_JSON",
                    help="compare with this run's results.json (default: the previous run's)")
+    q.add_argument("--detect-bias", type=_bias, metavar="BIAS",
+                   help="choose each case's samples per pixel so that a relative bias of the image mean of BIAS "
+                        "(e.g. 0.5%%) is found 90 %% of the time, from a pilot render and the comparison's power "
+                        "model; prints each case's budget and its cost before rendering (default: the "
+                        "integrators' fixed budgets)")
     add_variant(q)
     add_executor_options(q)
+
+
+def _bias(text: str) -> float:
+    from harness.images.budget import parse_bias
+    try:
+        return parse_bias(text)
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
 
 
 def add_warp_library(q: argparse.ArgumentParser) -> None:

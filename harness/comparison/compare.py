@@ -47,7 +47,7 @@ from harness.comparison.finite import FiniteCheck, damage_of_summary
 from harness.comparison.independence_check import IndependenceCheck
 from harness.comparison.variance_check import VarianceCheck
 from harness.comparison.metrics import image_metrics
-from harness.statistics.constants import ROUNDING_TOLERANCE, SIGNIFICANCE, TILE_SIZE, sidak_level
+from harness.statistics.constants import POWER_TARGET, ROUNDING_TOLERANCE, SIGNIFICANCE, TILE_SIZE, sidak_level
 from harness.statistics.independence import BatchDependence, batch_dependence
 from harness.statistics.welch import BatchStats, moderate, sample_floor, welch_dof, welch_p_values
 
@@ -140,6 +140,8 @@ class Comparison:
     #: The same for one 8x8 tile alone (the tile's values scaled by 1 + b, relative to its own mean), detected
     #: half of the time by the tile scale: the median over tiles with a non-zero mean (inf if there are none).
     detectable_tile_bias: float = float("inf")
+    #: The same found POWER_TARGET (90 %) of the time: what `--detect-bias` budgets for.
+    detectable_bias_most: float = float("nan")
     #: The FLIP map (H, W) the metrics were taken from, for the report's picture; None without metrics.
     flip_map: np.ndarray | None = field(default=None, repr=False, compare=False)
     #: Whether each side's batches are independent, without which the scales' tests mean nothing.
@@ -175,6 +177,7 @@ class Comparison:
                 "variance": self.variance.to_json() if self.variance else None,
                 "tests": [s.to_json() for s in self.scales],
                 "metrics": self.metrics, "detectable_bias": self.detectable_bias,
+                "detectable_bias_90": self.detectable_bias_most,
                 "detectable_tile_bias": self.detectable_tile_bias, "batches": list(self.batches)}
 
 
@@ -278,17 +281,18 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     figures = _metrics(test.mean_image, reference.mean_image, signed, maps) if metrics else {}
     if not power:
         return Comparison(scales, figures, float("nan"), (test.image.k, reference.image.k), finite, float("nan"),
-                          maps.get("flip"), independence, variance)
+                          float("nan"), maps.get("flip"), independence, variance)
     # The image-mean bias found half of the time, and the same for one tile (median over tiles).
     _, _, se = welch_p_values(test_image, ref_image, magnitude, rounding)
-    detectable = float(half_power_bias(ref_image, se, welch_dof(test_image, ref_image),
-                                        scales[2].level, rho)[0])
+    image_dof = welch_dof(test_image, ref_image)
+    detectable = float(half_power_bias(ref_image, se, image_dof, scales[2].level, rho)[0])
+    detectable_most = float(half_power_bias(ref_image, se, image_dof, scales[2].level, rho, POWER_TARGET)[0])
     _, _, tile_se = welch_p_values(test_tile, ref_tile, magnitude, rounding)
     per_tile = half_power_bias(ref_tile, tile_se, welch_dof(test_tile, ref_tile), scales[1].level, rho)
     per_tile = per_tile[np.isfinite(per_tile)]
     detectable_tile = float(np.median(per_tile)) if per_tile.size else float("inf")
     return Comparison(scales, figures, detectable, (test.image.k, reference.image.k), finite, detectable_tile,
-                      maps.get("flip"), independence, variance)
+                      detectable_most, maps.get("flip"), independence, variance)
 
 
 def compare_batches(test: np.ndarray, reference: np.ndarray, alpha: float = SIGNIFICANCE,

@@ -17,7 +17,7 @@ from harness.images.reference_image import ReferenceImage, against_image, fit_ve
 from harness.images.references import (CLOSED_FORM, Reference, load_reference, reference_path, render_params,
                                        render_reference)
 from harness.images.result import ImageResult
-from harness.images.suite import OUR_SPP, ROOT, USER, ImageCase
+from harness.images.suite import ROOT, USER, ImageCase
 from harness.integrators import entry
 from harness.statistics.constants import IMAGE_BATCHES
 
@@ -130,13 +130,13 @@ def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: 
         return failed(f"{reference_engine.name.capitalize()} reference: {_reason(e)}", output=_output(e))
     references[reference_engine.name] = reference
     try:
-        mine = ours.render(str(case.path), case.integrator, OUR_SPP[case.integrator], IMAGE_BATCHES, s, params)
+        mine = ours.render(str(case.path), case.integrator, case.test_spp, IMAGE_BATCHES, s, params)
     except RenderFailed as e:
         return failed(f"{ours.name} render: {e.reason}", output=e.output)
     if analytic is not None:
         try:
             exact = analytic.render(str(case.path), case.integrator,
-                                    analytic.samples_for(case.integrator, OUR_SPP[case.integrator]), IMAGE_BATCHES,
+                                    analytic.samples_for(case.integrator, case.test_spp), IMAGE_BATCHES,
                                     s + 1, params)
         except Exception as e:
             return failed(f"closed form: {_reason(e)}", mine)
@@ -175,7 +175,7 @@ def run_image_case(case: ImageCase, ours: Engine, ref: ReferenceImage, s: int, a
     except ValueError as e:
         return failed(str(e))
     try:
-        mine = ours.render(str(case.path), case.integrator, OUR_SPP[case.integrator], IMAGE_BATCHES, s,
+        mine = ours.render(str(case.path), case.integrator, case.test_spp, IMAGE_BATCHES, s,
                            {"res": str(image.shape[1])})  # the image's width; the height keeps the film's aspect
     except RenderFailed as e:
         return failed(f"{ours.name} render: {e.reason}", output=e.output)

@@ -90,6 +90,13 @@ class ImageCase:
     problem: str = field(default="", compare=False)
     #: What the preparation of a user's scene left out, one line each (a Nori file's own integrator), or ().
     notes: tuple[str, ...] = field(default=(), compare=False)
+    #: Samples per pixel per batch of the tested engine's render where a budget chose them (--detect-bias);
+    #: None: the integrator's default (OUR_SPP).
+    spp: int | None = field(default=None, compare=False)
+
+    @property
+    def test_spp(self) -> int:
+        return self.spp or OUR_SPP[self.integrator]
 
     @property
     def key(self) -> str:

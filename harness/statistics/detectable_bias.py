@@ -19,9 +19,10 @@ _ROOT_STEPS = 100
 
 
 def half_power_bias(reference: BatchStats, se: np.ndarray, dof: np.ndarray, level: float,
-                     rho: float) -> np.ndarray:
+                     rho: float, power: float = IMAGE_POWER_TARGET) -> np.ndarray:
     """Per element of (..., C) statistics: the relative bias b (the test scaled by 1 + b) that makes the
-    test at `level` reject in at least one of the C channels with probability IMAGE_POWER_TARGET.
+    test at `level` reject in at least one of the C channels with probability `power` (IMAGE_POWER_TARGET,
+    a half, unless given).
 
     Channel c's t is noncentral with noncentrality b |mean_c| / se_c and the Welch degrees of freedom.
     Channels correlated by `rho` count as `channel_union` of them at the null does: P(any) is
@@ -43,10 +44,10 @@ def half_power_bias(reference: BatchStats, se: np.ndarray, dof: np.ndarray, leve
         nc = b[:, None] * row_scale
         with np.errstate(all="ignore"):  # scipy's nct returns NaN for some far tails: 0 below, a step above
             upper, lower = nct_sf(row_crit, row_dof, nc), nct_cdf(-row_crit, row_dof, nc)
-        power = np.where(np.isnan(upper), (nc > row_crit).astype(float), upper) + np.nan_to_num(lower, nan=0.0)
+        channel = np.where(np.isnan(upper), (nc > row_crit).astype(float), upper) + np.nan_to_num(lower, nan=0.0)
         with np.errstate(divide="ignore"):
-            missed = np.exp(share * np.sum(np.log1p(-np.minimum(power, 1.0)), axis=-1))
-        return (1.0 - missed) - IMAGE_POWER_TARGET
+            missed = np.exp(share * np.sum(np.log1p(-np.minimum(channel, 1.0)), axis=-1))
+        return (1.0 - missed) - power
 
     hi = np.where(best > 0, (2.0 * crit.max(axis=-1, keepdims=True) + 8.0) / np.where(best > 0, best, 1.0), 1.0)
     root = increasing_root(excess, np.zeros(hi.size), hi.reshape(-1)).reshape(live.shape)
