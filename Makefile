@@ -69,7 +69,7 @@ bench: build
 ## mutate: mutation testing (mutmut, not in CI) of the statistics, checks and reports against the fast tests;
 ## the kill rate per module and the survivors in results/mutation/ (MUTATE= narrows the modules)
 MUTATE ?= harness.statistics.welch* harness.statistics.chi2* harness.statistics.constants* \
-	harness.statistics.family_level* harness.comparison.compare* harness.images.regression* harness.comparison.metrics* \
+	harness.statistics.family_level* harness.comparison.compare* harness.comparison.summary* harness.images.regression* harness.comparison.metrics* \
 	harness.warps.checks* harness.bench.ladder*
 mutate: $(VENV)/.installed
 	@$(VENV)/bin/mutmut --version >/dev/null 2>&1 || $(PY) -m pip install --quiet "mutmut>=3.8,<4"

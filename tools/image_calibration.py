@@ -21,7 +21,8 @@ from pathlib import Path
 import numpy as np
 from scipy import stats as sps
 
-from harness.comparison.compare import SCALES, compare_summaries, summarize
+from harness.comparison.compare import SCALES, compare_summaries
+from harness.comparison.summary import summarize
 from harness.images.suite import OUR_SPP
 from harness.statistics.constants import TILE_SIZE
 

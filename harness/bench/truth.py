@@ -9,7 +9,7 @@ from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine
 from harness.images.references import (REFERENCE_BATCHES, REFERENCE_SEED, RESOLUTION, Reference, load_reference,
                                         render_reference)
-from harness.comparison.compare import summarize
+from harness.comparison.summary import summarize
 from harness.images.suite import ImageCase
 
 def bench_truth(case: ImageCase, reference_engine: Engine, spp: int) -> tuple[Reference, str]:

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
-    from harness.comparison.compare import Summary
+    from harness.comparison.summary import Summary
 
 #: How many (row, column) locations of bad pixels a check keeps, per kind and side (row-major order).
 MAX_LOCATIONS = 20

@@ -25,7 +25,7 @@ from harness.statistics.constants import ROUNDING_TOLERANCE
 from harness.statistics.independence import BatchDependence
 
 if TYPE_CHECKING:
-    from harness.comparison.compare import Summary
+    from harness.comparison.summary import Summary
 
 #: All batches alike on one side are dependent when the other side varies at this fraction of the elements
 #: (pixel and channel) or more, and at ALIKE_MIN_ELEMENTS at least.

@@ -17,7 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from harness.comparison.compare import Summary, compare_summaries, summarize
+from harness.comparison.compare import compare_summaries
+from harness.comparison.summary import Summary, summarize
 from harness.engines.base import Engine
 from harness.images.case_task import MITSUBA_MAPPED
 from harness.images.references import load_reference, render_params, render_reference

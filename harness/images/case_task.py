@@ -7,7 +7,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from typing import Callable
 
-from harness.comparison.compare import compare_summaries, summarize
+from harness.comparison.compare import compare_summaries
+from harness.comparison.summary import summarize
 from harness.comparison.mismatch import diagnose
 from harness.distributed.bundle import Bundle, bundle_files
 from harness.engines.analytic import AnalyticEngine

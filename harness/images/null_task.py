@@ -12,7 +12,8 @@ from harness.distributed.bundle import Bundle
 from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine
 from harness.images.case_task import on_files
-from harness.comparison.compare import SCALES, compare_summaries, summarize
+from harness.comparison.compare import SCALES, compare_summaries
+from harness.comparison.summary import summarize
 from harness.images.references import REFERENCE_BATCHES
 from harness.images.suite import OUR_SPP, ImageCase
 from harness.statistics.calibration_rates import CALIBRATION_LEVELS

@@ -11,7 +11,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from harness.comparison.compare import Comparison, Summary, compare_summaries
+from harness.comparison.compare import Comparison, compare_summaries
+from harness.comparison.summary import Summary
 
 
 @dataclass

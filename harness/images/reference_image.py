@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from harness.comparison.compare import Summary, tile_means
+from harness.comparison.summary import Summary, tile_means
 from harness.exr import ExrError, read_image
 from harness.statistics.constants import MISSED_CONTRIBUTION, ROUNDING_TOLERANCE
 from harness.statistics.noise_fit import VARIANCE_WINDOW, NoiseFit, fit_noise, local_variance

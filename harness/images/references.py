@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from harness.comparison.compare import SUMMARY_FORMAT, Summary, summarize
+from harness.comparison.summary import SUMMARY_FORMAT, Summary, summarize
 from harness.engines.base import Engine
 from harness.images.suite import REFERENCE_SPP, ROOT, USER, ImageCase
 from harness.results import write_atomic

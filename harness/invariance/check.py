@@ -20,7 +20,8 @@ from harness.distributed.bundle import Bundle
 from harness.distributed.executor import Executor, SerialExecutor, Status, Task
 from harness.engines.base import Engine, RenderFailed
 from harness.integrators import entry
-from harness.comparison.compare import Comparison, compare_summaries, summarize
+from harness.comparison.compare import Comparison, compare_summaries
+from harness.comparison.summary import summarize
 from harness.invariance.float32 import float32_limit
 from harness.invariance.rewrite import rewrite
 from harness.invariance.variants import Invariance, Variant

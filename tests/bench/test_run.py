@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from harness.bench.ladder import Curve, Step, relmse
-from harness.comparison.compare import summarize
+from harness.comparison.summary import summarize
 
 
 def test_relmse_removes_the_reference_noise():

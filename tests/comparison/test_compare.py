@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 from scipy import stats as sps
 
-from harness.comparison.compare import compare_batches, compare_summaries, summarize
+from harness.comparison.compare import compare_batches, compare_summaries
+from harness.comparison.summary import summarize
 from harness.engines.mitsuba_scene import mitsuba_xml
 
 SCENES = Path(__file__).resolve().parents[2] / "scenes"

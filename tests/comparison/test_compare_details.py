@@ -7,8 +7,9 @@ import pytest
 from scipy import stats as sps
 from scipy.optimize import brentq
 
-from harness.comparison.compare import (Comparison, ScaleTest, _noiseless, _scale_test, compare_batches, compare_summaries,
-                                        summarize, tile_means)
+from harness.comparison.compare import (Comparison, ScaleTest, _noiseless, _scale_test, compare_batches,
+                                        compare_summaries)
+from harness.comparison.summary import summarize, tile_means
 from harness.statistics.constants import sidak_level
 from harness.statistics.welch import BatchStats, welch_p_values
 

@@ -7,7 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from harness.comparison.compare import compare_batches, compare_summaries, summarize
+from harness.comparison.compare import compare_batches, compare_summaries
+from harness.comparison.summary import summarize
 from harness.statistics.welch import BatchStats, welch_p_values
 
 SCENES = Path(__file__).resolve().parents[2] / "scenes"

@@ -7,7 +7,8 @@ import pytest
 
 from harness.engines.mitsuba import MitsubaEngine
 from harness.engines.ours import OurEngine
-from harness.comparison.compare import compare_summaries, summarize
+from harness.comparison.compare import compare_summaries
+from harness.comparison.summary import summarize
 from harness.comparison.idiff import idiff
 from harness.images.references import load_reference
 from harness.images.run import case_seed, run_images

@@ -6,7 +6,8 @@ import time
 import numpy as np
 import pytest
 
-from harness.comparison.compare import compare_summaries, summarize
+from harness.comparison.compare import compare_summaries
+from harness.comparison.summary import summarize
 from harness.engines import child_process
 from harness.engines.base import RenderFailed
 from harness.engines.command import CommandEngine, call_seed

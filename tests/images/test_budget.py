@@ -3,7 +3,8 @@ stated, a target the reference's own noise hides is refused with that reason, an
 import pytest
 
 from harness.cli import main
-from harness.comparison.compare import compare_summaries, summarize
+from harness.comparison.compare import compare_summaries
+from harness.comparison.summary import summarize
 from harness.engines.registry import make_engine
 from harness.images.budget import parse_bias, plan_budget
 from harness.images.references import load_reference, render_params

@@ -8,7 +8,8 @@ import pytest
 import harness.engines.analytic as analytic_module
 from harness.engines.analytic import AnalyticEngine
 from harness.closed_forms.sphere import floor_frame
-from harness.comparison.compare import compare_summaries, summarize
+from harness.comparison.compare import compare_summaries
+from harness.comparison.summary import summarize
 from harness.images.run import run_images
 from harness.images.suite import SCENES_DIR, ImageCase
 from harness.integrators import entry
