@@ -106,9 +106,14 @@ class Comparison:
                 and (self.variance is None or self.variance.passed))
 
     @property
+    def independent(self) -> bool:
+        """No side's batches were found dependent (or none could be judged)."""
+        return self.independence is None or self.independence.passed
+
+    @property
     def trusted(self) -> bool:
         """The inputs the scales' tests assume: every pixel finite, and independent batches."""
-        return self.finite.passed and (self.independence is None or self.independence.passed)
+        return self.finite.passed and self.independent
 
     @property
     def failed_scales(self) -> list[str]:
@@ -116,10 +121,9 @@ class Comparison:
 
     @property
     def failed_checks(self) -> list[str]:
-        """"finite" and "independent" (if they failed) then the failed scales."""
-        independent = self.independence is None or self.independence.passed
+        """"finite" and "independent" (if they failed), the failed scales, then "variance" (if it failed)."""
         noise = self.variance is None or self.variance.passed
-        return (([] if self.finite.passed else ["finite"]) + ([] if independent else ["independent"])
+        return (([] if self.finite.passed else ["finite"]) + ([] if self.independent else ["independent"])
                 + self.failed_scales + ([] if noise else ["variance"]))
 
     def to_json(self) -> dict:
@@ -200,7 +204,8 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     (FLIP; a noncentral t per tile): with `metrics` False the metrics are left empty, with `power` False
     both detectable biases are NaN. Null and planted comparisons, which count rejections, skip them.
     `same_estimator`: the reference draws the test's estimator sample for sample, so that test batches all
-    alike where the reference's vary fail as not independent (`IndependenceCheck`)."""
+    alike where the reference's vary fail as not independent (`IndependenceCheck`), and a per-sample variance
+    beyond the noise fails (`VarianceCheck`, then a fourth member of the family beside the scales)."""
     if test.pixel.mean.shape != reference.pixel.mean.shape or test.tile_size != reference.tile_size:
         raise ValueError(f"images differ in size: {test.pixel.mean.shape} and {reference.pixel.mean.shape}")
     finite = FiniteCheck(damage_of_summary(test, signed), damage_of_summary(reference, signed), signed)

@@ -21,8 +21,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from harness.statistics.constants import ROUNDING_TOLERANCE
 from harness.statistics.independence import BatchDependence
+from harness.statistics.welch import beyond_rounding
 
 if TYPE_CHECKING:
     from harness.comparison.summary import Summary
@@ -34,14 +34,8 @@ ALIKE_MIN_ELEMENTS = 16
 
 
 def varying_elements(summary: Summary) -> int:
-    """Pixel elements whose batches differ beyond float rounding (the definition batch_dependence uses:
-    (K - 1) times the variance of the mean above the rounding floor squared)."""
-    mean, var = summary.pixel.mean, summary.pixel.var_of_mean
-    finite = np.abs(mean[np.isfinite(mean)])
-    magnitude = float(finite.mean()) if finite.size else 0.0
-    with np.errstate(invalid="ignore", over="ignore"):
-        floor = ROUNDING_TOLERANCE * (np.abs(mean) + magnitude)
-        return int(np.count_nonzero((summary.pixel.k - 1) * var > floor * floor))
+    """Pixel elements whose batches differ beyond float rounding (as batch_dependence counts them)."""
+    return int(np.count_nonzero(beyond_rounding(summary.pixel)))
 
 
 @dataclass(frozen=True)

@@ -20,7 +20,7 @@ import numpy as np
 from harness.comparison.compare import compare_summaries
 from harness.comparison.summary import Summary, summarize
 from harness.engines.base import Engine
-from harness.images.case_task import MITSUBA_MAPPED
+from harness.images.case_task import draws_our_estimator
 from harness.images.references import load_reference, render_params, render_reference
 from harness.images.suite import OUR_SPP, ImageCase
 from harness.integrators import entry
@@ -98,18 +98,18 @@ def plan_budget(case: ImageCase, ours: Engine, reference: Engine, target: float,
     pilot = pooled(summarize(result.batches))
     reference_summary = pooled(ref.summary)
     signed = entry(case.integrator).signed
-    same = reference.name in MITSUBA_MAPPED and entry(case.integrator).same_estimator(case.path)
+    same = draws_our_estimator(case, reference.name)
 
     def found(spp: int) -> float:
         c = compare_summaries(_at(pilot, pilot_spp, spp), reference_summary, alpha, signed=signed,
                               samples=(spp, ref.spp), metrics=False, same_estimator=same)
         return c.detectable_bias_most
 
-    pilot_bias = found(pilot_spp)
-    if not found(MAX_SPP) <= target:
-        return Budget(case.key, target, pilot_spp, pilot_bias, found(MAX_SPP), None, IMAGE_BATCHES, 0.0,
+    pilot_bias, best = found(pilot_spp), found(MAX_SPP)
+    if not best <= target:
+        return Budget(case.key, target, pilot_spp, pilot_bias, best, None, IMAGE_BATCHES, 0.0,
                       f"a bias of {target:.3g} cannot be found 90 % of the time against this reference: even "
-                      f"{MAX_SPP} spp finds only {found(MAX_SPP):.3g} (the reference's own noise; a reference with "
+                      f"{MAX_SPP} spp finds only {best:.3g} (the reference's own noise; a reference with "
                       "more samples would)")
     lo, hi = 0, MAX_SPP  # found(lo) > target (or lo = 0), found(hi) <= target
     while hi - lo > 1:

@@ -39,6 +39,12 @@ class CaseJob:
 MITSUBA_MAPPED = ("mitsuba", "mitsuba-scalar")
 
 
+def draws_our_estimator(case: ImageCase, reference: str) -> bool:
+    """Whether the reference engine named `reference` draws the case's estimator, sample for sample: a Mitsuba
+    engine where the integrator's entry says its mapping does on this scene."""
+    return reference in MITSUBA_MAPPED and entry(case.integrator).same_estimator(case.path)
+
+
 def share_scene_bundles(executor, cases, engines: Sequence[Engine]) -> dict[str, object]:
     """Per scene of `cases`, a handle to its bundle on the executor's cluster, each sent once; nothing
     for an executor that runs here (its tasks read the files in place). `engines`: those that will render
@@ -147,8 +153,7 @@ def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: 
     signed = entry(case.integrator).signed
     # The closed form draws our estimator (harness/engines/analytic.py: our camera rays, each shaded exactly or
     # by the entry's `sample`); the reference engine does where the entry says so.
-    same = {name: name == analytic_name or (name in MITSUBA_MAPPED and entry(case.integrator).same_estimator(case.path))
-            for name in references}
+    same = {name: name == analytic_name or draws_our_estimator(case, name) for name in references}
     comparisons = {name: compare_summaries(summary, ref.summary, alpha, signed=signed, samples=(mine.spp, ref.spp),
                                            same_estimator=same[name])
                    for name, ref in references.items()}

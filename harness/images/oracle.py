@@ -37,7 +37,7 @@ def _ratio(test: Summary, exact: Summary) -> list[float]:
 def _where(c: Comparison) -> str:
     failed = [s for s in c.scales if not s.passed]
     untrusted = (("" if c.finite.passed else "; non-finite pixels")
-                 + ("" if c.independence is None or c.independence.passed else "; batches not independent")
+                 + ("" if c.independent else "; batches not independent")
                  + ("" if c.variance is None or c.variance.passed else f"; {c.variance.summary}"))
     if not failed:
         return "passes" if not untrusted else "fails: " + untrusted[2:]

@@ -30,7 +30,7 @@ def _cell(result: ImageResult) -> str:
     bad_pixels = _bad_pixels(result)
     if bad_pixels:
         return f"[bold red]FAIL[/] {escape(', '.join(bad_pixels))}"
-    if any(c.independence is not None and not c.independence.passed for c in result.comparisons.values()):
+    if not all(c.independent for c in result.comparisons.values()):
         return "[bold red]FAIL[/] batches not independent"
     failed = sorted({s for c in result.comparisons.values() for s in c.failed_checks})
     return f"[bold red]FAIL[/] {','.join(failed)}"
@@ -64,7 +64,7 @@ def image_table(results: list[ImageResult], alpha: float) -> Table:
         for name, c in r.comparisons.items():
             if not c.finite.passed:
                 found.setdefault(c.finite.summary, []).append(name)
-            if c.independence is not None and not c.independence.passed:
+            if not c.independent:
                 found.setdefault(c.independence.summary, []).append(name)
         for summary, names in found.items():
             table.caption += f"\n{escape(r.case.key)} (against {', '.join(names)}): {escape(summary)}"

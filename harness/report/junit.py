@@ -10,7 +10,7 @@ from harness.images.result import ImageResult
 def _failure(c: Comparison) -> str:
     """Why a comparison failed: its bad pixels (NaN, Inf, negative), then the scales that reject."""
     parts = [] if c.finite.passed else [c.finite.summary]
-    if c.independence is not None and not c.independence.passed:
+    if not c.independent:
         parts.append(c.independence.summary)
     if c.failed_scales:
         parts.append(f"{', '.join(c.failed_scales)} scale(s) reject")

@@ -31,9 +31,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from harness.statistics.constants import (DEPENDENCE_CLUSTER, DEPENDENCE_CORRELATION, DEPENDENCE_LEVEL,
-                                          ROUNDING_TOLERANCE)
+from harness.statistics.constants import DEPENDENCE_CLUSTER, DEPENDENCE_CORRELATION, DEPENDENCE_LEVEL
 from harness.statistics.distributions import norm_sf
+from harness.statistics.tiles import tile_blocks
+from harness.statistics.welch import BatchStats, beyond_rounding
 
 
 @dataclass(frozen=True)
@@ -67,19 +68,6 @@ class BatchDependence:
                 "p_value": self.p_value, "dependent": self.dependent}
 
 
-def _tiled(x: np.ndarray, tile: int) -> np.ndarray:
-    """(..., H, W, C) -> (..., T, tile * tile * C) with zeros past the image's edge."""
-    *lead, h, w, c = x.shape
-    th, tw = -(-h // tile), -(-w // tile)
-    padded = x
-    if (th * tile, tw * tile) != (h, w):
-        padded = np.zeros((*lead, th * tile, tw * tile, c))
-        padded[..., :h, :w, :] = x
-    blocks = padded.reshape(*lead, th, tile, tw, tile, c)
-    blocks = np.moveaxis(blocks, -4, -3)  # (..., th, tw, tile, tile, c)
-    return blocks.reshape(*lead, th * tw, tile * tile * c)
-
-
 def batch_dependence(batches: np.ndarray, tile: int = DEPENDENCE_CLUSTER) -> BatchDependence | None:
     """The dependence evidence of (K, H, W, C) batches; None for fewer than 3 batches (two residuals are
     always opposite) or non-finite values (the finite check fails those)."""
@@ -90,15 +78,13 @@ def batch_dependence(batches: np.ndarray, tile: int = DEPENDENCE_CLUSTER) -> Bat
     mean = b.mean(axis=0)
     r = b - mean
     norm2 = (r * r).sum(axis=0)
-    # Spread within float32 rounding of the values is no noise (a flat normal summed in another order).
-    floor = ROUNDING_TOLERANCE * (np.abs(mean) + float(np.mean(np.abs(mean))))
-    varying = norm2 > k * floor * floor
+    varying = beyond_rounding(BatchStats(mean, norm2 / (k * (k - 1)), k))
     count = int(np.count_nonzero(varying))
     if count == 0:
         return BatchDependence(k, 0, 0, (0, 1), float("nan"), 1.0)
     z = np.where(varying, r / np.sqrt(np.where(varying, norm2, 1.0)), 0.0)
-    zt = np.moveaxis(_tiled(z, tile), 0, -1)                      # (T, n, K)
-    per_tile = _tiled(varying[None], tile)[0].sum(axis=-1)           # (T,) varying elements a block
+    zt = np.moveaxis(tile_blocks(z, tile), 0, -1)                 # (T, n, K)
+    per_tile = tile_blocks(varying[None], tile)[0].sum(axis=-1)    # (T,) varying elements a block
     live = per_tile > 0
     zt, per_tile = zt[live], per_tile[live]
     gram = np.matmul(np.swapaxes(zt, 1, 2), zt)                   # (T, K, K): each tile's sums of z_j z_k

@@ -23,9 +23,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from harness.statistics.constants import POWER_TARGET, ROUNDING_TOLERANCE, TILE_SIZE
+from harness.statistics.constants import POWER_TARGET, TILE_SIZE
 from harness.statistics.distributions import nct_sf, t_isf, t_sf
-from harness.statistics.welch import BatchStats
+from harness.statistics.tiles import tile_blocks
+from harness.statistics.welch import BatchStats, beyond_rounding
 
 #: Tiles needed for the t-test over tiles to mean anything.
 MIN_TILES = 8
@@ -55,23 +56,8 @@ class VarianceRatio:
 
 def per_sample_variance(stats: BatchStats, spp: int) -> np.ndarray:
     """n K var_of_mean: an unbiased estimate of the per-sample variance of each element; 0 where the batch
-    means spread no more than float rounding of the values does (ROUNDING_TOLERANCE, as the mean test's floor):
-    a noiseless estimator rounded one way in one engine and another way in the other has no variance."""
-    mean = np.asarray(stats.mean, np.float64)
-    var = np.asarray(stats.var_of_mean, np.float64)
-    finite = np.abs(mean[np.isfinite(mean)])
-    floor = ROUNDING_TOLERANCE * (np.abs(mean) + (float(finite.mean()) if finite.size else 0.0))
-    with np.errstate(invalid="ignore"):
-        return np.where((stats.k - 1) * var > floor * floor, spp * stats.k * var, 0.0)
-
-
-def _tile_sums(x: np.ndarray, tile: int) -> np.ndarray:
-    """(H, W, C) -> (T,) sums per tile (edge tiles sum what they hold)."""
-    h, w = x.shape[:2]
-    th, tw = -(-h // tile), -(-w // tile)
-    padded = np.zeros((th * tile, tw * tile) + x.shape[2:])
-    padded[:h, :w] = x
-    return padded.reshape(th, tile, tw, tile, -1).sum(axis=(1, 3, 4)).ravel()
+    means spread no more than float rounding of the values does (`beyond_rounding`)."""
+    return np.where(beyond_rounding(stats), spp * stats.k * np.asarray(stats.var_of_mean, np.float64), 0.0)
 
 
 def _ratio_found(power: float, base: float, se: float, dof: float, critical: float) -> float:
@@ -94,7 +80,7 @@ def variance_ratio(test: BatchStats, reference: BatchStats, spp: tuple[int, int]
     vt, vr = per_sample_variance(test, spp[0]), per_sample_variance(reference, spp[1])
     if vt.ndim != 3 or not (np.isfinite(vt).all() and np.isfinite(vr).all()):
         return None
-    dt, dr = _tile_sums(vt, tile), _tile_sums(vr, tile)
+    dt, dr = tile_blocks(vt, tile).sum(axis=-1), tile_blocks(vr, tile).sum(axis=-1)
     d = dt - dr
     tiles = d.size
     total_ref = float(dr.sum())
