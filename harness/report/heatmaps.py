@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from harness.report.figures import figure_png, panel_row
+from harness.report.panels import Bar, Panel, row_png
 from harness.warps.domains import get_domain
 
 #: Axis labels of each domain's parameter square.
@@ -19,31 +19,18 @@ def warp_heatmaps_png(observed: np.ndarray, expected: np.ndarray, reference: np.
     and the Pearson residual (O - E) / sqrt(E), which shows where a fit fails.
     """
     get_domain(domain)  # fail early on an unknown domain
-    panels = [("observed (ours)", observed), ("expected (pdf)", expected)]
+    counts = [("observed (ours)", observed), ("expected (pdf)", expected)]
     if reference is not None:
-        panels.append(("observed (Mitsuba)", reference))
-    vmax = max(float(np.max(p)) for _, p in panels) or 1.0
-    # The counts share one colour bar (after the last count panel); the residuals have their own.
-    bars = [False] * (len(panels) - 1) + [True, True]
-    fig, axes, (count_bar, resid_bar) = panel_row(bars, panel=2.45, height=3.2, left=0.55, gap=0.55,
-                                                  bottom=0.5, top=0.55, bar_room=0.95)
-    xlabel, ylabel = (f"{axis}, equal-prob. cells" for axis in _AXES[domain])
-    for ax, (name, data) in zip(axes, panels):
-        im = ax.imshow(data.T, origin="lower", extent=(0, 1, 0, 1), cmap="viridis", vmin=0, vmax=vmax,
-                       aspect="auto", interpolation="nearest")
-        ax.set_title(name, fontsize=9)
-    fig.colorbar(im, cax=count_bar, label="samples per cell")
+        counts.append(("observed (Mitsuba)", reference))
+    vmax = max(float(np.max(c)) for _, c in counts) or 1.0
     with np.errstate(divide="ignore", invalid="ignore"):
         resid = np.where(expected > 0, (observed - expected) / np.sqrt(expected), np.where(observed > 0, 10.0, 0.0))
-    rim = axes[-1].imshow(resid.T, origin="lower", extent=(0, 1, 0, 1), cmap="RdBu_r", vmin=-5, vmax=5,
-                          aspect="auto", interpolation="nearest")
-    axes[-1].set_title("(O−E)/√E", fontsize=9)
-    fig.colorbar(rim, cax=resid_bar)
-    for ax in axes:
-        ax.set_xlabel(xlabel, fontsize=8)
-        ax.set_ylabel(ylabel, fontsize=8)
-        ax.tick_params(labelsize=7)
-    for bar in (count_bar, resid_bar):
-        bar.tick_params(labelsize=7)
-    fig.suptitle(title, fontsize=10)
-    return figure_png(fig, dpi=80)
+    axes = tuple(f"{axis}, equal-prob. cells" for axis in _AXES[domain])
+    # The counts share one colour bar (after the last count panel); the residuals have their own.
+    count_bar, resid_bar = Bar("viridis", 0.0, vmax, "samples per cell"), Bar("RdBu_r", -5.0, 5.0)
+    bars = [None] * (len(counts) - 1) + [count_bar, resid_bar]
+    named = counts + [("(O−E)/√E", resid)]
+    # Cell (i, j) is x bin i, y bin j: shown with y upwards.
+    panels = [Panel(bar_of.colour(np.flipud(data.T)), name, bar, axes)
+              for (name, data), bar, bar_of in zip(named, bars, [count_bar] * len(counts) + [resid_bar])]
+    return row_png(panels, size=170, title=title)
