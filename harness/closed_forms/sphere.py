@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from harness.closed_forms.plane_scene import NotAnalytic, PlaneScene
-from harness.closed_forms.vectors import dot, norm
+from harness.closed_forms.vectors import dot, norm, sub
 
 #: The floor's half-size over the sphere's radius below which the finite floor could show.
 MIN_FLOOR_RATIO = 1e4
@@ -51,23 +51,31 @@ def check_resting(scene: PlaneScene) -> None:
 
 def hit_sphere(scene: PlaneScene, origin: np.ndarray, d: np.ndarray) -> np.ndarray:
     """Nearest positive distance along unit directions d (..., 3) to the sphere, inf on a miss."""
+    return nearest_hit(scene, d @ (origin - scene.sphere.center), origin)
+
+
+def nearest_hit(scene: PlaneScene, b: np.ndarray, origin: np.ndarray | None = None) -> np.ndarray:
+    """hit_sphere from the camera (or `origin`), given b = d . (origin - centre) per direction."""
     s = scene.sphere
-    oc = origin - s.center
-    b = d @ oc
-    disc = b * b - (oc @ oc - s.radius**2)
-    root = np.sqrt(np.maximum(disc, 0.0))
-    near, far = -b - root, -b + root
+    oc = (scene.origin if origin is None else origin) - s.center
+    disc = np.asarray(b * b - (oc @ oc - s.radius**2))
+    rows = np.flatnonzero(disc > 0)  # the rays' lines that meet the sphere (the rest of the work is on these)
+    b, root = -np.ravel(b)[rows], np.sqrt(disc.ravel()[rows])
+    near, far = b - root, b + root
     t = np.where(near > 0, near, far)
-    return np.where((disc > 0) & (t > 0), t, np.inf)
+    ahead = t > 0
+    out = np.full(disc.shape, np.inf)
+    out.reshape(-1)[rows[ahead]] = t[ahead]
+    return out
 
 
 def segment_crosses_sphere(scene: PlaneScene, p: np.ndarray, light: np.ndarray) -> np.ndarray:
     """Whether the open segment from each point of p (..., 3) to `light` passes through the sphere."""
     s = scene.sphere
-    d = light - p
+    d = sub(light, p)
     length = norm(d)
-    d = d / length[..., None]
-    oc = p - s.center
+    d = [x / length for x in d]
+    oc = sub(p, s.center)
     b = dot(d, oc)
     disc = b * b - (dot(oc, oc) - s.radius**2)
     root = np.sqrt(np.maximum(disc, 0.0))
@@ -82,7 +90,7 @@ def ao_visible(scene: PlaneScene, p: np.ndarray, normal: np.ndarray) -> np.ndarr
     if scene.surface == "sphere":
         up = floor_frame(scene)[0]
         return (1 + np.broadcast_to(normal, p.shape) @ up)[..., None] / 2
-    d = norm(p - scene.sphere.center, keepdims=True)
+    d = norm(sub(p, scene.sphere.center), keepdims=True)
     return 1 - (scene.sphere.radius / d) ** 3
 
 

@@ -1,5 +1,6 @@
 """ao: ambient occlusion under a constant environment (radiance 1 when the scene has none)."""
 from harness.closed_forms.sphere import ao_visible
+from harness.closed_forms.vectors import times
 from harness.integrators.entry import UNUSED_EMITTERS, AnalyticForm, IntegratorEntry, MitsubaMapping
 
 
@@ -22,11 +23,12 @@ ENTRY = IntegratorEntry(
                            drop_emitters=("point", *UNUSED_EMITTERS), drop_area_emitters=True, add_environment=True),
     analytic=AnalyticForm("rho * L_env * V: V = 1 on a lone plane; 1 - (R/D)^3 on the floor under a resting "
                           "sphere, (1 + n.up)/2 on the sphere",
-                          lambda scene, p, normal: scene.reflectance * scene.environment * ao_visible(scene, p, normal),
+                          lambda scene, p, normal: times(scene.reflectance * scene.environment,
+                                                         ao_visible(scene, p, normal)),
                           scenes=("plane", "sphere_floor"),
                           # One cosine-weighted occlusion ray per camera sample, as ours and Mitsuba's direct.
-                          sample=lambda scene, p, normal, u: (scene.reflectance * scene.environment
-                                                              * (u < ao_visible(scene, p, normal)))),
+                          sample=lambda scene, p, normal, u: times(scene.reflectance * scene.environment,
+                                                                   u < ao_visible(scene, p, normal))),
     linear_in=("light", "reflectance"),
     default_environment=True,
     same_estimator_in_mitsuba=True,

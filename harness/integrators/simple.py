@@ -2,7 +2,7 @@
 import numpy as np
 
 from harness.closed_forms.sphere import lit
-from harness.closed_forms.vectors import dot
+from harness.closed_forms.vectors import dot, sub
 from harness.integrators.entry import (UNUSED_EMITTERS, AnalyticForm, IntegratorEntry, MitsubaMapping,
                                        has_point_light)
 
@@ -11,10 +11,13 @@ def _point_lights(scene, p: np.ndarray, normal: np.ndarray) -> np.ndarray:
     """L = rho / pi * I * max(0, cos) / r^2 per point light; only a resting sphere can shadow (the floor)."""
     out = np.zeros_like(p)
     for position, intensity in scene.lights:
-        to_light = position - p
-        r2 = dot(to_light, to_light, keepdims=True)
-        cos = np.clip(dot(to_light, normal, keepdims=True) / np.sqrt(r2), 0.0, None)
-        out += scene.reflectance / np.pi * intensity * cos / r2 * lit(scene, p, position)
+        to_light = sub(position, p)
+        r2 = dot(to_light, to_light)
+        cos = np.clip(dot(to_light, normal) / np.sqrt(r2), 0.0, None)
+        shadow = lit(scene, p, position)[..., 0]
+        scale = scene.reflectance / np.pi * intensity
+        for c in range(3):  # a channel at a time (harness/closed_forms/vectors.py)
+            out[..., c] += scale[c] * cos / r2 * shadow
     return out
 
 
