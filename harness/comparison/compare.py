@@ -41,14 +41,15 @@ from functools import cache
 
 import numpy as np
 
-from harness.statistics.detectable_bias import half_power_bias
+from harness.statistics.detectable_bias import half_power_bias, median_half_power_bias
 from harness.statistics.family_level import channel_correlation, family_level
-from harness.comparison.finite import FiniteCheck, damage_of_summary
+from harness.comparison.finite import FiniteCheck, damage_of_summary, per_pixel
 from harness.comparison.independence_check import IndependenceCheck
 from harness.comparison.variance_check import VarianceCheck
 from harness.comparison.metrics import image_metrics
 from harness.comparison.summary import Summary, summarize
-from harness.statistics.constants import POWER_TARGET, ROUNDING_TOLERANCE, SIGNIFICANCE, TILE_SIZE, sidak_level
+from harness.statistics.constants import (IMAGE_POWER_TARGET, POWER_TARGET, ROUNDING_TOLERANCE, SIGNIFICANCE,
+                                          TILE_SIZE, sidak_level)
 from harness.statistics.welch import BatchStats, moderate, sample_floor, welch_dof, welch_p_values
 
 SCALES = ("pixel", "tile", "image")
@@ -138,11 +139,15 @@ class Comparison:
 
 def _scale_test(name: str, a: BatchStats, b: BatchStats, noiseless: np.ndarray, level_family: float,
                 shape: tuple[int, int], upsample: int, scale: float, rounding: float,
-                rho: float | None = None) -> tuple[ScaleTest, float]:
+                rho: float | None = None, keep: dict[str, np.ndarray] | None = None) -> tuple[ScaleTest, float]:
     """The Welch tests of one scale at the level that gives them `level_family` together (`family_level`:
     `noiseless` elements, without noise on either side, cannot reject; the channels are correlated by
-    `rho`, estimated from this scale's t statistics when None). Returns the test and that rho."""
+    `rho`, estimated from this scale's t statistics when None). Returns the test and that rho; `keep`, if
+    given, receives the tests' standard errors and degrees of freedom ("se", "dof": for the power figures)."""
     p, t, se = welch_p_values(a, b, scale, rounding)
+    dof = welch_dof(a, b)
+    if keep is not None:
+        keep.update(se=se, dof=dof)
     # A NaN p-value (a non-finite input) is no evidence of agreement: it counts as a certain rejection.
     p = np.where(np.isnan(p), 0.0, p)
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
@@ -150,11 +155,11 @@ def _scale_test(name: str, a: BatchStats, b: BatchStats, noiseless: np.ndarray, 
         inflation = np.where(noiseless | ~(noise > 0), np.inf, se / np.where(noise > 0, noise, 1.0))
     live = np.isfinite(inflation) & np.isfinite(t)
     if rho is None:
-        rho = channel_correlation(t, live.all(axis=-1)) if t.ndim >= 2 else 0.0
-    level = family_level(level_family, welch_dof(a, b), np.where(np.isnan(inflation), 1.0, inflation), rho)
-    pmin = p.min(axis=-1) if p.ndim == 3 else np.full((1, 1), p.min())
+        rho = channel_correlation(t, per_pixel(np.logical_and, live)) if t.ndim >= 2 else 0.0
+    level = family_level(level_family, dof, np.where(np.isnan(inflation), 1.0, inflation), rho)
+    pmin = per_pixel(np.minimum, p) if p.ndim == 3 else np.full((1, 1), p.min())
     idx = np.unravel_index(int(np.argmin(pmin)), pmin.shape)
-    full = np.kron(pmin, np.ones((upsample, upsample)))[: shape[0], : shape[1]]
+    full = np.repeat(np.repeat(pmin, upsample, axis=0), upsample, axis=1)[: shape[0], : shape[1]]
     if full.shape != shape:
         full = np.full(shape, float(p.min()))
     return ScaleTest(name, int(p.size), level, float(p.min()), int(np.count_nonzero(p < level)),
@@ -195,14 +200,15 @@ def _metrics(test: np.ndarray, reference: np.ndarray, signed: bool,
 def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFICANCE, signed: bool = False,
                       rounding: float = ROUNDING_TOLERANCE,
                       samples: tuple[int | None, int | None] = (None, None), metrics: bool = True,
-                      power: bool = True, same_estimator: bool = False) -> Comparison:
+                      power: bool = True, same_estimator: bool = False, tile_power: bool = True) -> Comparison:
     """compare_batches on summaries (see there). The finite check looks at the summaries: a non-finite
     mean or variance, a negative variance, and unless `signed` a negative value in any batch (the
     summary's minimum; the mean for a stored summary, which keeps no minimum).
 
     The verdict needs neither the error metrics nor the detectable biases, which cost most of a comparison
     (FLIP; a noncentral t per tile): with `metrics` False the metrics are left empty, with `power` False
-    both detectable biases are NaN. Null and planted comparisons, which count rejections, skip them.
+    both detectable biases are NaN. Null and planted comparisons, which count rejections, skip them; with
+    `tile_power` False only the tile's is (NaN), for callers that report the image's alone.
     `same_estimator`: the reference draws the test's estimator sample for sample, so that test batches all
     alike where the reference's vary fail as not independent (`IndependenceCheck`), and a per-sample variance
     beyond the noise fails (`VarianceCheck`, then a fourth member of the family beside the scales)."""
@@ -225,13 +231,15 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
                                          test.pixel, reference.pixel)
     test_tile, ref_tile = sample_floor(test.tile, reference.tile, *samples)
     test_image, ref_image = sample_floor(test.image, reference.image, *samples)
+    tile_tests: dict[str, np.ndarray] = {}
+    image_tests: dict[str, np.ndarray] = {}
     pixel, _ = _scale_test("pixel", test_pixel, ref_pixel, _noiseless(test.pixel, reference.pixel), per_scale,
                            (h, w), 1, magnitude, rounding)
     tile, rho = _scale_test("tile", test_tile, ref_tile, _noiseless(test.tile, reference.tile), per_scale, (h, w),
-                            test.tile_size, magnitude, rounding)
+                            test.tile_size, magnitude, rounding, keep=tile_tests)
     # One image mean gives no correlation to estimate: its channels are taken to be as correlated as the tiles'.
     image, _ = _scale_test("image", test_image, ref_image, _noiseless(test.image, reference.image), per_scale,
-                           (h, w), max(h, w), magnitude, rounding, rho)
+                           (h, w), max(h, w), magnitude, rounding, rho, image_tests)
     scales = [pixel, tile, image]
     maps: dict[str, np.ndarray] = {}
     figures = _metrics(test.mean_image, reference.mean_image, signed, maps) if metrics else {}
@@ -239,14 +247,11 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
         return Comparison(scales, figures, float("nan"), (test.image.k, reference.image.k), finite, float("nan"),
                           float("nan"), maps.get("flip"), independence, variance)
     # The image-mean bias found half of the time, and the same for one tile (median over tiles).
-    _, _, se = welch_p_values(test_image, ref_image, magnitude, rounding)
-    image_dof = welch_dof(test_image, ref_image)
-    detectable = float(half_power_bias(ref_image, se, image_dof, scales[2].level, rho)[0])
-    detectable_most = float(half_power_bias(ref_image, se, image_dof, scales[2].level, rho, POWER_TARGET)[0])
-    _, _, tile_se = welch_p_values(test_tile, ref_tile, magnitude, rounding)
-    per_tile = half_power_bias(ref_tile, tile_se, welch_dof(test_tile, ref_tile), scales[1].level, rho)
-    per_tile = per_tile[np.isfinite(per_tile)]
-    detectable_tile = float(np.median(per_tile)) if per_tile.size else float("inf")
+    image_biases = half_power_bias(ref_image, image_tests["se"], image_tests["dof"], scales[2].level, rho,
+                                   (IMAGE_POWER_TARGET, POWER_TARGET))
+    detectable, detectable_most = map(float, image_biases[0])
+    detectable_tile = (median_half_power_bias(ref_tile, tile_tests["se"], tile_tests["dof"], scales[1].level, rho)
+                       if tile_power else float("nan"))
     return Comparison(scales, figures, detectable, (test.image.k, reference.image.k), finite, detectable_tile,
                       detectable_most, maps.get("flip"), independence, variance)
 

@@ -13,6 +13,7 @@ Public API::
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import reduce
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -49,6 +50,12 @@ class Damage:
         return sorted(set(self.nonfinite_at) | set(self.negative_at))[:MAX_LOCATIONS]
 
 
+def per_pixel(op: np.ufunc, x: np.ndarray) -> np.ndarray:
+    """op.reduce(x, axis=-1), over the few channels of (..., C) values: numpy reduces a short last axis about ten
+    times slower than it combines the channels' slices."""
+    return reduce(op, (x[..., c] for c in range(x.shape[-1])))
+
+
 def _locations(mask: np.ndarray) -> list[tuple[int, int]]:
     rows, cols = np.nonzero(mask)
     return [(int(r), int(c)) for r, c in zip(rows[:MAX_LOCATIONS], cols[:MAX_LOCATIONS])]
@@ -66,10 +73,11 @@ def damage_of_summary(summary: Summary, signed: bool = False) -> Damage:
     stored summary) marks the tile's top-left pixel, or pixel (0, 0) for the image."""
     mean, var = summary.pixel.mean, summary.pixel.var_of_mean
     finite = np.isfinite(mean) & np.isfinite(var)
-    nonfinite = ~finite.all(axis=-1)
-    bad_var = (np.where(finite, var, 0.0) < 0).any(axis=-1)
+    nonfinite = ~per_pixel(np.logical_and, finite)
+    bad_var = per_pixel(np.logical_or, np.where(finite, var, 0.0) < 0)
     low = mean if summary.minimum is None else summary.minimum
-    negative = bad_var if signed else bad_var | (np.where(finite & np.isfinite(low), low, 0.0) < 0).any(axis=-1)
+    below = np.where(finite & np.isfinite(low), low, 0.0) < 0
+    negative = bad_var if signed else bad_var | per_pixel(np.logical_or, below)
     if not nonfinite.any():
         t = summary.tile
         tiles = ~(np.isfinite(t.mean) & np.isfinite(t.var_of_mean)).all(axis=-1)

@@ -22,6 +22,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.optimize import brentq
 
 from harness.statistics.constants import POWER_TARGET, TILE_SIZE
 from harness.statistics.distributions import nct_sf, t_isf, t_sf
@@ -61,16 +62,24 @@ def per_sample_variance(stats: BatchStats, spp: int) -> np.ndarray:
 
 
 def _ratio_found(power: float, base: float, se: float, dof: float, critical: float) -> float:
-    """The smallest ratio r >= 1 that the test finds with probability `power` (bisection on the noncentral t)."""
+    """The smallest ratio r >= 1 that the test finds with probability `power` (a root of the noncentral t's
+    power, bracketed by doubling; hi where the power is not reached below 1e6)."""
     if not (base > 0 and se > 0):
         return float("inf")
+
+    def excess(r: float) -> float:
+        return float(nct_sf(critical, dof, (r - 1.0) * base / se)) - power
+
     lo, hi = 1.0, 2.0
-    while nct_sf(critical, dof, (hi - 1.0) * base / se) < power and hi < 1e6:
+    above = excess(hi)
+    while above < 0.0 and hi < 1e6:
         lo, hi = hi, 2.0 * hi
-    for _ in range(40):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if nct_sf(critical, dof, (mid - 1.0) * base / se) < power else (lo, mid)
-    return hi
+        above = excess(hi)
+    if not above >= 0.0:
+        return hi
+    # At r = 1 the test rejects at its level, below any power asked for. As close as 40 halvings of [lo, hi]
+    # would come, in a few steps.
+    return float(brentq(excess, lo, hi, xtol=(hi - lo) * 2.0 ** -42, rtol=1e-15))
 
 
 def variance_ratio(test: BatchStats, reference: BatchStats, spp: tuple[int, int], level: float,

@@ -65,6 +65,18 @@ def prior_dof(log_ratio: np.ndarray, dof: float, cap: float) -> float:
     return float(brentq(lambda d0: _trigamma(d0 / 2.0) - excess, 1e-6, cap))
 
 
+def _neighbours(masks: np.ndarray, window: int) -> np.ndarray:
+    """For (M, H, W, C) boolean masks, how many of each element's `window` x `window` neighbours (same channel,
+    itself excluded, the edges repeated as uniform_filter's mode "nearest" does) are set: exact integer sums,
+    in small integers (a box filter of floats per mask costs several times as much)."""
+    before, after = window // 2, (window - 1) // 2
+    small = np.uint8 if window * window < 256 else np.int32
+    padded = np.pad(masks.astype(small), ((0, 0), (before, after), (before, after), (0, 0)), mode="edge")
+    h, w = masks.shape[1:3]
+    rows = sum(padded[:, k:k + h] for k in range(window))
+    return (sum(rows[:, :, k:k + w] for k in range(window)) - masks).astype(np.float64)
+
+
 def moderate(stats: BatchStats, window: int = MODERATION_WINDOW) -> BatchStats:
     """Variances of (H, W, C) statistics moderated towards their neighbours' (Smyth 2004, limma).
 
@@ -91,17 +103,15 @@ def moderate(stats: BatchStats, window: int = MODERATION_WINDOW) -> BatchStats:
     n = window * window
     with np.errstate(invalid="ignore", over="ignore"):
         total = uniform_filter(clean, size=size, mode="nearest") * n - clean
-        count = uniform_filter(finite.astype(np.float64), size=size, mode="nearest") * n - finite
-        # Neighbours with a variance at all: the box filter's rounding leaves ~1e-19 where none has one.
+        # Neighbours that are finite, that have a variance at all, and that have none (`silent`).
         positive = clean > 0
-        varied = uniform_filter(positive.astype(np.float64), size=size, mode="nearest") * n - positive
+        silent = finite & ~positive
+        count, varied, quiet = _neighbours(np.stack([finite, positive, silent]), window)
         prior = np.where((count > 0.5) & (varied > 0.5), total / np.maximum(count, 1.0), 0.0)
         # A neighbour without noise (the background beside an edge, a lit patch with no variance) marks
         # where the variance field is not exchangeable: there the neighbours' mean says nothing of the
         # element's own, and granting it their degrees of freedom made a binomial edge pixel, whose 8
         # batches happened to agree, reject at p = 2e-10 (far_from_origin, ao).
-        silent = finite & ~positive
-        quiet = uniform_filter(silent.astype(np.float64), size=size, mode="nearest") * n - silent
     usable = finite & (prior > 0) & np.isfinite(prior) & (quiet < 0.5)
     observed = usable & (v > 0)
     d0 = prior_dof(np.log(v[observed] / prior[observed]), d, (n - 1) * d)
