@@ -6,10 +6,10 @@ import argparse
 
 from harness.distributed.executor import Executor, SerialExecutor
 
-# Without --workers or --scheduler, jobs run serially. Measured on a 2-core machine (README, "Running on
-# Dask"), two embedded workers gained 2-4 % on `validate` and 16 % on `calibrate --images`: each render
-# already uses every core, and a cluster adds its start-up, per-worker caches and data transfer. A
-# cluster is for more machines (or more cores than one render keeps busy).
+# Without --workers or --scheduler, jobs run serially. On a 2-core machine two embedded workers make
+# `validate` slower (docs/performance.md, "Where validate's time goes"): each render already uses every
+# core, and a cluster adds its start-up, per-worker caches and data transfer. A cluster is for more
+# machines (or more cores than one render keeps busy).
 
 
 def add_executor_options(q: argparse.ArgumentParser) -> None:
