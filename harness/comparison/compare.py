@@ -41,7 +41,7 @@ from functools import cache
 
 import numpy as np
 
-from harness.statistics.detectable_bias import half_power_bias, median_half_power_bias
+from harness.statistics.detectable_bias import half_power_bias
 from harness.statistics.family_level import channel_correlation, family_level
 from harness.comparison.finite import FiniteCheck, damage_of_summary, per_pixel
 from harness.comparison.independence_check import IndependenceCheck
@@ -250,8 +250,11 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     image_biases = half_power_bias(ref_image, image_tests["se"], image_tests["dof"], scales[2].level, rho,
                                    (IMAGE_POWER_TARGET, POWER_TARGET))
     detectable, detectable_most = map(float, image_biases[0])
-    detectable_tile = (median_half_power_bias(ref_tile, tile_tests["se"], tile_tests["dof"], scales[1].level, rho)
-                       if tile_power else float("nan"))
+    detectable_tile = float("nan")
+    if tile_power:
+        per_tile = half_power_bias(ref_tile, tile_tests["se"], tile_tests["dof"], scales[1].level, rho)
+        per_tile = per_tile[np.isfinite(per_tile)]
+        detectable_tile = float(np.median(per_tile)) if per_tile.size else float("inf")
     return Comparison(scales, figures, detectable, (test.image.k, reference.image.k), finite, detectable_tile,
                       detectable_most, maps.get("flip"), independence, variance)
 

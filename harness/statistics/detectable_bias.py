@@ -6,10 +6,9 @@ from __future__ import annotations
 from typing import Callable
 
 import numpy as np
-from scipy.special import ndtr, ndtri
 
 from harness.statistics.constants import IMAGE_POWER_TARGET
-from harness.statistics.distributions import nct_cdf, nct_sf, norm_pdf
+from harness.statistics.distributions import nct_cdf, nct_sf, norm_cdf, norm_pdf, norm_ppf
 from harness.statistics.family_level import channel_union
 from harness.statistics.welch import BatchStats, critical_t
 
@@ -25,11 +24,7 @@ _PROBES = 4
 #: Newton steps on the normal approximation.
 _MODEL_STEPS = 5
 
-#: The band around the approximate median within which the median search probes each element fully.
-_BAND = 0.03
-
 Excess = Callable[[np.ndarray, np.ndarray], np.ndarray]
-Needed = Callable[[np.ndarray, np.ndarray], np.ndarray]
 
 
 def half_power_bias(reference: BatchStats, se: np.ndarray, dof: np.ndarray, level: float,
@@ -42,7 +37,7 @@ def half_power_bias(reference: BatchStats, se: np.ndarray, dof: np.ndarray, leve
     Channels correlated by `rho` count as `channel_union` of them at the null does: P(any) is
     1 - prod_c (1 - power_c)^(union / C), exact for independent (rho = 0) and for identical (rho = 1)
     channels. Infinite where no channel has a non-zero mean."""
-    live, root = _search(reference, se, dof, level, rho, np.atleast_1d(power), median=False)
+    live, root = _search(reference, se, dof, level, rho, np.atleast_1d(power))
     if np.ndim(power):
         live = live[..., None]
     else:
@@ -50,20 +45,9 @@ def half_power_bias(reference: BatchStats, se: np.ndarray, dof: np.ndarray, leve
     return np.where(live, root, np.inf)
 
 
-def median_half_power_bias(reference: BatchStats, se: np.ndarray, dof: np.ndarray, level: float, rho: float,
-                           power: float = IMAGE_POWER_TARGET) -> float:
-    """np.median of `half_power_bias`'s finite values (inf if none), searching each element only until it is
-    clear that it lies below or above the middle: only the middle one or two are found to full precision."""
-    live, root = _search(reference, se, dof, level, rho, np.atleast_1d(power), median=True)
-    root = root[..., 0][live]
-    root = root[np.isfinite(root)]
-    return float(np.median(root)) if root.size else float("inf")
-
-
 def _search(reference: BatchStats, se: np.ndarray, dof: np.ndarray, level: float, rho: float,
-            powers: np.ndarray, median: bool) -> tuple[np.ndarray, np.ndarray]:
-    """The elements with a non-zero mean in some channel, and the roots (per element and power; when `median`,
-    of one power, those away from the middle only bracketed)."""
+            powers: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The elements with a non-zero mean in some channel, and the roots (per element and power)."""
     scale = np.where(np.isfinite(reference.mean) & (se > 0), np.abs(reference.mean) / np.where(se > 0, se, 1.0), 0.0)
     scale = np.atleast_2d(scale)
     dof = np.broadcast_to(np.atleast_2d(dof), scale.shape)
@@ -89,7 +73,7 @@ def _search(reference: BatchStats, se: np.ndarray, dof: np.ndarray, level: float
     # Each row once per power.
     rows = tuple(np.repeat(r, powers.size, axis=0) for r in rows)
     power = np.tile(powers, first.size)
-    target = ndtri(1.0 - power)
+    target = norm_ppf(1.0 - power)
 
     def excess(b: np.ndarray, at: np.ndarray) -> np.ndarray:
         """P(some channel rejects at bias b) - power for the rows `at`, on the probit scale (where the power
@@ -101,28 +85,16 @@ def _search(reference: BatchStats, se: np.ndarray, dof: np.ndarray, level: float
         channel = np.where(np.isnan(upper), (nc > row_crit).astype(float), upper) + np.nan_to_num(lower, nan=0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
             missed = np.exp(share * np.sum(np.log1p(-np.minimum(channel, 1.0)), axis=-1))
-            return np.clip(target[at] - ndtri(missed), -40.0, 40.0)
+            return np.clip(target[at] - norm_ppf(missed), -40.0, 40.0)
 
     # At b = 0 each channel rejects at the level itself.
     with np.errstate(divide="ignore"):
-        at_zero = np.clip(target - ndtri((1.0 - level) ** (share * scale.shape[-1])), -40.0, 40.0)
+        at_zero = np.clip(target - norm_ppf((1.0 - level) ** (share * scale.shape[-1])), -40.0, 40.0)
     top = np.repeat(hi[index][first], powers.size)
     guess, slope = _model_root(*rows, share, power, top)
-    every = np.arange(top.size)
-    needed = (lambda lo, hi: _middle(lo[copies], hi[copies])[first]) if median else None
     probes = _Probes(excess, guess, slope, top, at_zero)
-    if median:
-        # Elements whose approximate root lies well away from the approximate median are probed once, a little
-        # beyond it on the median's side: most are then seen to lie below or above the median's bracket, and
-        # are searched no further.
-        n = copies.size
-        low, high = np.partition(guess[copies], ((n - 1) // 2, n // 2))[[(n - 1) // 2, n // 2]]
-        below, above = guess < low * (1.0 - _BAND), guess > high * (1.0 + _BAND)
-        probes.x = guess * np.where(below, 1.0 + _PROBE, np.where(above, 1.0 - _PROBE, 1.0))
-        probes.run(every[below | above], 1)
-        probes.run(every[~(below | above)], _PROBES)
-    probes.run(every, _PROBES, needed)
-    found = increasing_root(excess, *probes.brackets(needed), needed=needed)
+    probes.run(np.arange(top.size), _PROBES)
+    found = increasing_root(excess, *probes.brackets())
     root[index] = found.reshape(-1, powers.size)[copies]
     return live, root.reshape(*live.shape, powers.size)
 
@@ -135,21 +107,21 @@ def _model_root(scale: np.ndarray, crit: np.ndarray, dof: np.ndarray, share: flo
     shift = crit * (1.0 - 1.0 / (4.0 * dof))
     width = np.sqrt(1.0 + crit * crit / (2.0 * dof))
     best = np.argmax(scale, axis=-1)[:, None]
-    b = (np.take_along_axis(shift + width * ndtri(1.0 - (1.0 - power) ** (1.0 / share))[:, None], best, -1)
+    b = (np.take_along_axis(shift + width * norm_ppf(1.0 - (1.0 - power) ** (1.0 / share))[:, None], best, -1)
          / np.take_along_axis(scale, best, -1))[:, 0]
     aim = np.log1p(-power)
     with np.errstate(all="ignore"):
         for _ in range(_MODEL_STEPS):
             up, down = (b[:, None] * scale - shift) / width, (-b[:, None] * scale - shift) / width
-            kept = np.maximum(ndtr(-up) - ndtr(down), 1e-300)
+            kept = np.maximum(norm_cdf(-up) - norm_cdf(down), 1e-300)
             gap = share * np.sum(np.log(kept), axis=-1) - aim
             slope = -share * np.sum(scale / width * (norm_pdf(up) - norm_pdf(down)) / kept, axis=-1)
             step = np.where(np.isfinite(gap / slope), gap / slope, 0.0)
             b = np.clip(b - step, 0.0, b)
             if not np.any(np.abs(step) > 1e-4 * b):  # far closer than the approximation itself
                 break
-        # d/db of ndtri(1 - power) - ndtri(P(no channel rejects)), at P = 1 - power.
-        probit_slope = -(1.0 - power) * slope / norm_pdf(ndtri(1.0 - power))
+        # d/db of norm_ppf(1 - power) - norm_ppf(P(no channel rejects)), at P = 1 - power.
+        probit_slope = -(1.0 - power) * slope / norm_pdf(norm_ppf(1.0 - power))
     return np.where(np.isfinite(b) & (b > 0), np.minimum(b, hi), 0.5 * hi), probit_slope
 
 
@@ -167,12 +139,10 @@ class _Probes:
         self.x, self.step, self.count = start.copy(), np.full(n, _PROBE), np.zeros(n, dtype=np.int64)
         self.open = at_zero < 0.0  # to be probed until both ends of its bracket are probes
 
-    def run(self, rows: np.ndarray, rounds: int, needed: Needed | None = None) -> None:
-        """Up to `rounds` probes of each of `rows` still open (and `needed`, see `increasing_root`)."""
+    def run(self, rows: np.ndarray, rounds: int) -> None:
+        """Up to `rounds` probes of each of `rows` still open."""
         for _ in range(rounds):
             rows = rows[self.open[rows]]
-            if needed is not None:
-                rows = rows[needed(self.lo, self.top)[rows]]
             if not rows.size:
                 return
             x = self.x[rows]
@@ -194,12 +164,10 @@ class _Probes:
             upward = np.isnan(self.f_top[rows])
             self.x[rows] = np.where(upward, np.minimum(x + offset, self.hi[rows]), np.maximum(x - offset, 0.1 * x))
 
-    def brackets(self, needed: Needed | None = None) -> tuple[np.ndarray, ...]:
+    def brackets(self) -> tuple[np.ndarray, ...]:
         """lo, top, f(lo), f(top); where f does not cross 0 in [0, hi], lo = top = hi (`increasing_root` then
-        ends there). Elements never probed above their root (and `needed`) are settled by f(hi)."""
+        ends there). Elements never probed above their root are settled by f(hi)."""
         left = np.flatnonzero(self.open & np.isnan(self.f_top) & (self.lo < self.hi))
-        if needed is not None:
-            left = left[needed(self.lo, self.top)[left]]
         if left.size:
             self.f_top[left] = self.f(self.hi[left], left)
         none = ~(self.f_top >= 0.0) | ~(self.f_lo < 0.0)
@@ -207,23 +175,11 @@ class _Probes:
         return self.lo, self.top, self.f_lo, self.f_top
 
 
-def _middle(lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    """Elements whose bracket meets the range the middle one or two of all the elements' roots lie in: the
-    k-th smallest root lies between the k-th smallest lo and the k-th smallest hi."""
-    n = lo.size
-    first, second = (n - 1) // 2, n // 2
-    bottom, top = np.partition(lo, first)[first], np.partition(hi, second)[second]
-    return (hi >= bottom) & (lo <= top)
-
-
 def increasing_root(f: Excess, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray | None = None,
-                    f_hi: np.ndarray | None = None, tolerance: np.ndarray | None = None,
-                    needed: Needed | None = None) -> np.ndarray:
+                    f_hi: np.ndarray | None = None) -> np.ndarray:
     """Per element of the 1-D brackets [lo, hi], where the increasing `f` crosses 0 (f(lo) < 0 <= f(hi)): the
-    estimate once it moves by no more than `tolerance` (default _ROOT_TOLERANCE of hi - lo). `f(x, index)`
-    evaluates the elements `index` (an integer array) at x; `f_lo`, `f_hi`, if given, are f at the ends.
-    `needed(lo, hi)`, if given, tells which elements are still wanted, from the brackets (a settled element's
-    is its estimate): the others stop where they are, inside their bracket.
+    estimate once it moves by no more than _ROOT_TOLERANCE of hi - lo. `f(x, index)` evaluates the elements
+    `index` (an integer array) at x; `f_lo`, `f_hi`, if given, are f at the ends.
 
     Regula falsi with the Anderson-Bjorck step (1973; never less than the Illinois step of Dowell & Jarratt
     1971), which converges superlinearly and never leaves the bracket; each element is evaluated only until it
@@ -234,15 +190,11 @@ def increasing_root(f: Excess, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray 
     lo, hi = lo.astype(np.float64), hi.astype(np.float64)
     f_lo = f(lo, everything) if f_lo is None else np.array(f_lo, np.float64)
     f_hi = f(hi, everything) if f_hi is None else np.array(f_hi, np.float64)
-    tolerance = _ROOT_TOLERANCE * (hi - lo) if tolerance is None else tolerance
+    tolerance = _ROOT_TOLERANCE * (hi - lo)
     side = np.zeros(lo.shape, dtype=np.int8)  # which end moved last: -1 lo, +1 hi
     x = hi.copy()
-    searched = (f_lo < 0.0) & (f_hi >= 0.0)  # one of sign, or NaN: not searched
-    active = everything[searched]
-    lo[~searched] = x[~searched]
+    active = everything[(f_lo < 0.0) & (f_hi >= 0.0)]  # one of sign, or NaN: not searched
     for _ in range(_ROOT_STEPS):
-        if needed is not None:
-            active = active[needed(lo, hi)[active]]
         if not active.size:
             break
         a_lo, a_hi, a_flo, a_fhi = lo[active], hi[active], f_lo[active], f_hi[active]
@@ -251,8 +203,6 @@ def increasing_root(f: Excess, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray 
         new = np.where(np.isfinite(secant) & (secant >= a_lo) & (secant <= a_hi), secant, 0.5 * (a_lo + a_hi))
         moving = np.abs(new - x[active]) > tolerance[active]
         x[active] = new
-        settled = active[~moving]
-        lo[settled] = hi[settled] = x[settled]
         active, new = active[moving], new[moving]
         if not active.size:
             break

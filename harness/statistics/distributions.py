@@ -41,6 +41,10 @@ def norm_isf(q):
     return -sc.ndtri(q)
 
 
+def norm_ppf(p):
+    return sc.ndtri(p)
+
+
 def norm_pdf(x):
     with np.errstate(over="ignore"):
         return np.exp(-np.asarray(x, np.float64) ** 2 / 2.0) / _SQRT_2PI
