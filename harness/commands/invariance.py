@@ -4,7 +4,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from harness.commands.options import add_common, add_engines, add_scene_files, add_variant
+from harness.commands.options import add_common, add_reference_live, add_engines, add_scene_files, add_variant
 from harness.commands.output import console
 from harness.commands.run_folder import RunFolder
 from harness.distributed.cluster import add_executor_options
@@ -24,7 +24,10 @@ image suite's Welch tests (pixel, tile, image). No reference image is involved. 
   light        every emitter x 2: image x 2 (simple, ao)
   reflectance  every diffuse reflectance x 1/2: image x 1/2 (simple, ao)
 Our renderer breaking an invariance fails the run (exit 1); Mitsuba breaking one is a finding,
-printed and stored in results.json (invariance.findings). A break on a rewritten scene that
+printed and stored in results.json (invariance.findings). Mitsuba's cells do not depend on the
+renderer under test: rendered at the references' seed, they are read from references/mitsuba/
+where `make references` stored them for the same scenes, Mitsuba and check code (and rendered,
+with the reason, where not; --reference-live renders them all). A break on a rewritten scene that
 float32 cannot represent (a small sphere moved far from the origin, judged from the file, not from
 the engine's answer) is FLOAT32: reported with the numbers, not a failure. Default cases: every
 scene of scenes/ and scenes/real/ with each of simple, ao and normals that applies, at 64x64;
@@ -41,6 +44,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                         "(a kind not named means all of it)")
     p.add_argument("--json", type=Path, metavar="PATH", help="also write the results as JSON to PATH")
     p.add_argument("--no-mitsuba", action="store_true", help="check the engine under test alone")
+    add_reference_live(p)
     add_scene_files(p)
     add_variant(p)
     add_executor_options(p)

@@ -14,7 +14,10 @@ from harness.results import write_atomic
 def run_invariance_section(args, only, run_dir: Path, executor, engines=None) -> tuple[bool, dict]:
     """Returns (the tested engine breaks none, the results.json block); writes invariance.html."""
     from harness.engines.registry import make_engine
-    from harness.invariance.check import run_invariances
+    from harness.images.references import REFERENCE_SEED
+    from harness.invariance.check import family_alpha, run_invariances
+    from harness.invariance.stored import stored_cells
+    from harness.statistics.constants import IMAGE_BATCHES
     from harness.invariance.findings import failure_lines, invariance_payload
     from harness.invariance.suite import select
     from harness.report.invariance_html import invariance_html
@@ -32,12 +35,21 @@ def run_invariance_section(args, only, run_dir: Path, executor, engines=None) ->
             engines.append(make_engine(args.reference, variant=args.variant))
     gating = engines[0].name
     start = time.perf_counter()
+    # A reference engine's cells do not depend on the renderer under test: rendered at the references' seed,
+    # and read from references/ where stored for exactly this check (harness/invariance/stored.py).
+    references = engines[1:]
+    known, misses = ({}, []) if getattr(args, "reference_live", False) else stored_cells(
+        references, cases, invariances, family_alpha(cases, invariances), IMAGE_BATCHES)
     with task_progress("invariances", executor) as show:
-        cells, alpha = run_invariances(engines, cases, invariances, args.seed, on_status=show, executor=executor)
+        cells, alpha = run_invariances(engines, cases, invariances, args.seed, on_status=show, executor=executor,
+                                       seeds={e.name: REFERENCE_SEED for e in references}, known=known)
     seconds = time.perf_counter() - start
     for table in invariance_tables(cells, alpha, gating):
         console.print(table)
-    meta = {"engines": [e.version() for e in engines], "seed": args.seed, "seconds": round(seconds, 1)}
+    meta = {"engines": [e.version() for e in engines], "seed": args.seed, "seconds": round(seconds, 1),
+            "reference_seed": REFERENCE_SEED, "reference_cells": reference_sources(references, cases, known, misses)}
+    for line in meta["reference_cells"]["lines"]:
+        console.print(escape(line), soft_wrap=True)
     payload = invariance_payload(cells, alpha, gating, meta)
     write_atomic(run_dir / "invariance.html", invariance_html(payload))
     for line in payload["findings"]:
@@ -59,3 +71,18 @@ def run_invariance_section(args, only, run_dir: Path, executor, engines=None) ->
                       soft_wrap=True)
     console.print(f"Page: {run_dir / 'invariance.html'}")
     return payload["pass"], payload
+
+
+def reference_sources(references, cases, known: dict, misses: list[str]) -> dict:
+    """Where each reference engine's cells came from: how many stored, how many rendered now and why."""
+    lines = []
+    for engine in references:
+        stored = sum((engine.name, c.key) in known for c in cases)
+        line = (f"{engine.name}: {stored} of {len(cases)} cases' cells read from references/{engine.name} "
+                f"(stored with their provenance by `make references`)")
+        lines.append(line if stored else f"{engine.name}: every case rendered now")
+    if misses:
+        shown = misses[:3] + ([f"and {len(misses) - 3} more"] if len(misses) > 3 else [])
+        lines.append("rendered now: " + "; ".join(shown))
+    return {"stored": len(known), "rendered": len(references) * len(cases) - len(known), "misses": misses,
+            "lines": lines}

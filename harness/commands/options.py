@@ -62,6 +62,13 @@ def _case_selection(args: argparse.Namespace) -> dict:
             "with_suite": getattr(args, "with_suite", False)}
 
 
+def add_reference_live(q: argparse.ArgumentParser) -> None:
+    q.add_argument("--reference-live", action="store_true",
+                   help="render the reference engine's invariance cells now, at the references' seed, instead of "
+                        "reading those stored in references/ for the same scenes, code and Mitsuba (`make "
+                        "references` stores them)")
+
+
 def add_variant(q: argparse.ArgumentParser) -> None:
     q.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant (default: llvm_ad_rgb)")
 

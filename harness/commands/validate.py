@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import argparse
 
-from harness.commands.options import add_common, add_image_options, add_warp_library
+from harness.commands.options import add_common, add_reference_live, add_image_options, add_warp_library
 from harness.commands.run_folder import RunFolder
 
 NAME = "validate"
@@ -21,6 +21,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--invariance-only", nargs="+", metavar="NAME",
                    help="narrow the Invariances section as `invariance --only` does (default: its default cases)")
     p.add_argument("--no-invariance", action="store_true", help="skip the Invariances section")
+    add_reference_live(p)
     add_warp_library(p)
 
 

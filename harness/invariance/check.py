@@ -172,34 +172,54 @@ def comparisons_of(cases: list[InvarianceCase], invariances: list[Invariance]) -
     return sum(len(inv.variants) for c in cases for inv in invariances if inv.applies_to(entry(c.integrator)))
 
 
+def family_alpha(cases: list[InvarianceCase], invariances: list[Invariance]) -> float:
+    """The per-comparison level: one engine's comparisons share a family-wise rate of SIGNIFICANCE (Sidak)."""
+    return sidak_level(SIGNIFICANCE, comparisons_of(cases, invariances))
+
+
 def run_invariances(engines: list[Engine], cases: list[InvarianceCase], invariances: list[Invariance],
                     seed: int = 0, on_status: Callable[[Status], None] | None = None,
-                    batches: int = IMAGE_BATCHES, executor: Executor | None = None) -> tuple[list[Cell], float]:
+                    batches: int = IMAGE_BATCHES, executor: Executor | None = None,
+                    seeds: dict[str, int] | None = None, known: dict[tuple[str, str], list[Cell]] | None = None,
+                    alpha: float | None = None) -> tuple[list[Cell], float]:
     """Every engine x case x invariance that applies to the case's integrator, one task per engine and case
     on `executor` (default: here, one after another). Each engine's comparisons share a family-wise
-    false-alarm rate of SIGNIFICANCE (Sidak); returns the cells, in a fixed order, and the per-comparison level."""
+    false-alarm rate of SIGNIFICANCE (Sidak); returns the cells, in a fixed order, and the per-comparison level.
+    `seeds`: an engine's seed by name (default `seed`); `known`: the cells of (engine name, case key) already
+    known (a reference engine's stored ones), which are not rendered again; `alpha`: the per-comparison level
+    (default: family_alpha of these cases, a narrower family than the suite's for a subset)."""
     from harness.distributed.bundle import bundle_files
 
     executor = executor or SerialExecutor()
-    alpha = sidak_level(SIGNIFICANCE, comparisons_of(cases, invariances))
+    seeds, known = seeds or {}, known or {}
+    alpha = family_alpha(cases, invariances) if alpha is None else alpha
+    pairs = [(engine, case) for engine in engines for case in cases]
+    todo = [(engine, case) for engine, case in pairs if (engine.name, case.key) not in known]
     bundles = {}
     if executor.ships_files:
-        for case in cases:
+        for _, case in todo:
             if case.scene not in bundles:
                 bundles[case.scene] = executor.share(bundle_files(case.scene.resolve().parent, [case.scene.resolve()]))
     tasks = [Task(f"{engine.name} {case.key}", cell_group_task,
-                  (engine, case, [inv for inv in invariances if inv.applies_to(entry(case.integrator))], alpha, seed,
-                   batches, bundles.get(case.scene)))
-             for engine in engines for case in cases]
-    cells: list[Cell] = []
+                  (engine, case, applicable(invariances, case), alpha, seeds.get(engine.name, seed), batches,
+                   bundles.get(case.scene)))
+             for engine, case in todo]
+    rendered: dict[tuple[str, str], list[Cell]] = {}
     for task, outcome in zip(tasks, executor.run(tasks, on_status)):
         engine, case, chosen = task.args[:3]
-        if outcome.ok:
-            cells += outcome.value
-            continue
-        for inv in chosen:  # the task itself failed (its worker died): its cells fail with the reason
-            cells.append(Cell(engine.name, inv.name, case, base_error=f"task failed: {outcome.error}"))
+        # A task that failed (its worker died): its cells fail with the reason.
+        rendered[(engine.name, case.key)] = outcome.value if outcome.ok else [
+            Cell(engine.name, inv.name, case, base_error=f"task failed: {outcome.error}") for inv in chosen]
+    cells: list[Cell] = []
+    for engine, case in pairs:
+        key = (engine.name, case.key)
+        cells += known[key] if key in known else rendered.get(key, [])
     return cells, alpha
+
+
+def applicable(invariances: list[Invariance], case: InvarianceCase) -> list[Invariance]:
+    """The invariances that can change the image of the case's integrator."""
+    return [inv for inv in invariances if inv.applies_to(entry(case.integrator))]
 
 
 def cell_group_task(engine: Engine, case: InvarianceCase, chosen: list[Invariance], alpha: float, seed: int,

@@ -47,6 +47,11 @@ def invariance_section(payload: dict, heading: str = "h2") -> str:
            f'{payload["meta"].get("seed")}; {payload["meta"].get("seconds")} s</p>', "<ul>"]
     out += [f"<li><b>{escape(name)}</b>: {escape(inv['summary'])}</li>" for name, inv in payload["invariances"].items()]
     out.append("</ul>")
+    # Where the reference engine's cells came from: references/ (stored with their provenance) or rendered now.
+    sources = payload["meta"].get("reference_cells", {}).get("lines", [])
+    if sources:
+        out.append(f'<p class="meta">Reference cells, rendered at seed {payload["meta"].get("reference_seed")}: '
+                   + "; ".join(escape(line) for line in sources) + "</p>")
     for engine in dict.fromkeys(c["engine"] for c in cells):
         mine = {(c["invariance"], f'{c["scene"]}:{c["integrator"]}'): c for c in cells if c["engine"] == engine}
         columns = list(dict.fromkeys(inv for inv, _ in mine))

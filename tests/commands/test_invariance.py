@@ -39,3 +39,17 @@ def test_the_image_report_carries_the_invariance_matrix_only_when_there_is_one(t
     assert "mcval validation report: <span class=\"fail\"" in report_html([], 0.01, None, {}, None, None,
                                                                           invariance=failed)
     assert "invariance" not in report_html([], 0.01, None, {}, None, None)
+
+
+def test_a_narrowed_run_renders_the_reference_and_says_why(tmp_path, mitsuba):
+    """Stored cells belong to the whole suite's family level: a narrower run renders Mitsuba's cells at the
+    references' seed, and results.json and the page say so."""
+    out = tmp_path / "results"
+    assert main(["invariance", "--only", "plane_point:normals", "--out", str(out)]) == 0
+    block = json.loads((out / "latest" / "results.json").read_text())["invariance"]
+    sources = block["meta"]["reference_cells"]
+    assert (sources["stored"], sources["rendered"]) == (0, 1)
+    assert sources["misses"] == ["references/mitsuba/plane_point/invariance-normals.json: stale (alpha changed)"]
+    assert block["meta"]["reference_seed"] == 1000
+    assert [c["engine"] for c in block["cells"]] == ["mcval"] * 3 + ["mitsuba"] * 3
+    assert "mitsuba: every case rendered now" in (out / "latest" / "invariance.html").read_text()
