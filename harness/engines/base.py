@@ -105,6 +105,9 @@ class Engine(ABC):
     warps_optional: bool = False
     #: The integrators (mcval's names) it renders; None: every integrator the harness has an entry for.
     integrators: tuple[str, ...] | None = None
+    #: Whether its renders run in another process: then the harness prepares and compares beside a render (an
+    #: in-process render would compete with it for the interpreter).
+    renders_elsewhere: bool = False
 
     def scene_file(self, path: Path) -> Path:
         """The scene file this engine renders for `path`: the same file, unless the engine needs another one

@@ -46,6 +46,7 @@ class CommandEngine(Engine):
     renderSeconds where it carries one, else the call's wall time) and "total" (wall clock)."""
 
     render_timing = "each call's renderSeconds attribute if its EXR has one, else the call's wall time"
+    renders_elsewhere = True
     has_warps = False
 
     def __init__(self, file: EngineFile, sampler: str | None = None) -> None:

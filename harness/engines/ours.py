@@ -34,6 +34,7 @@ class OurEngine(Engine):
         # In process (the bench): renders through the Python module, as Mitsuba's do, so that both engines
         # time warm thread pools; a crash then ends the process, which the child process would contain.
         self.in_process = in_process
+        self.renders_elsewhere = not in_process
 
     def __reduce__(self):
         # To a worker as its arguments: the module and the default binary are the worker's own.

@@ -10,6 +10,7 @@ from __future__ import annotations
 import tempfile
 import xml.etree.ElementTree as ET
 import zlib
+from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Callable
@@ -125,9 +126,27 @@ def case_seed(engine: str, case: InvarianceCase, label: str, seed: int) -> int:
     return (zlib.crc32(f"{engine}|{case.key}|{label}".encode()) + 7919 * seed) % 2**31
 
 
+def _reason(e: Exception, folder: Path) -> str:
+    """One line saying why a render failed, naming a rewritten file by its name, not its scratch folder."""
+    reason = e.reason if isinstance(e, RenderFailed) else f"{type(e).__name__}: {str(e).strip()[:200]}"
+    return reason.replace(f"{folder}/", "")
+
+
+@dataclass
+class _Render:
+    """One render of a cell group: the base scene or a variant's rewritten file, and its outcome."""
+
+    path: Path
+    label: str
+    limit: str | None = None
+    error: str | None = None
+    future: Future | None = None
+
+
 def run_cell_group(engine: Engine, case: InvarianceCase, invariances: list[Invariance], alpha: float, seed: int,
                    folder: Path, batches: int = IMAGE_BATCHES) -> list[Cell]:
-    """One base render of `case` by `engine`, then every variant of every invariance against it."""
+    """One base render of `case` by `engine`, then every variant of every invariance against it. An engine
+    that renders in another process renders the next image while this thread compares the last."""
     params = {"res": str(case.res)}
     the = entry(case.integrator)
     signed = the.signed
@@ -136,34 +155,54 @@ def run_cell_group(engine: Engine, case: InvarianceCase, invariances: list[Invar
         for cell in cells:
             cell.base_error = case.problem
         return cells
-    try:
-        base = engine.render(str(case.scene), case.integrator, case.spp, batches,
-                             case_seed(engine.name, case, "base", seed), params).batches
-    except Exception as e:  # no base image: every cell of the case fails with the reason
-        reason = e.reason if isinstance(e, RenderFailed) else f"{type(e).__name__}: {str(e).strip()[:200]}"
-        for cell in cells:
-            cell.base_error = reason
-        return cells
-    base_summary = summarize(base)
-    has_environment = any(e.get("type") == "constant" for e in ET.parse(case.scene).getroot().iter("emitter"))
-    for inv, cell in zip(invariances, cells):
-        for v in inv.variants:
-            path = folder / f"{case.scene.stem}.{inv.name}.{len(cell.variants)}.xml"
-            limit = None
-            try:
-                rewrite(case.scene, path, v.kind, v.value)
-                limit = float32_limit(path)
-                out = engine.render(str(path), case.integrator, case.spp, batches,
-                                    case_seed(engine.name, case, f"{inv.name}{v.label}", seed), params).batches
-            except Exception as e:
-                reason = e.reason if isinstance(e, RenderFailed) else f"{type(e).__name__}: {str(e).strip()[:200]}"
-                reason = reason.replace(f"{folder}/", "")  # the rewritten file's name, not its scratch folder
-                cell.variants.append(VariantResult(v, None, float("nan"), reason, limit))
+    jobs = [(inv, cell, k, v) for inv, cell in zip(invariances, cells) for k, v in enumerate(inv.variants)]
+    renders = [_Render(case.scene, "base")]
+    for inv, cell, k, v in jobs:
+        r = _Render(folder / f"{case.scene.stem}.{inv.name}.{k}.xml", f"{inv.name}{v.label}")
+        try:
+            rewrite(case.scene, r.path, v.kind, v.value)
+            r.limit = float32_limit(r.path)
+        except Exception as e:
+            r.error = _reason(e, folder)
+        renders.append(r)
+
+    def render(r: _Render) -> np.ndarray:
+        return engine.render(str(r.path), case.integrator, case.spp, batches,
+                             case_seed(engine.name, case, r.label, seed), params).batches
+
+    def result(i: int) -> np.ndarray | None:
+        """Render i's batches (None with its error set); a variant's render starts the next variant's first
+        where the engine renders elsewhere (the base's does not: without a base no variant is rendered)."""
+        for r in renders[i : i + 1 + (1 if engine.renders_elsewhere and i > 0 else 0)]:
+            if r.future is None and r.error is None:
+                r.future = pool.submit(render, r)
+        r = renders[i]
+        if r.error is not None:
+            return None
+        try:
+            return r.future.result()
+        except Exception as e:
+            r.error = _reason(e, folder)
+            return None
+
+    with ThreadPoolExecutor(1) as pool:
+        base = result(0)
+        if base is None:  # no base image: every cell of the case fails with the reason
+            for cell in cells:
+                cell.base_error = renders[0].error
+            return cells
+        base_summary = summarize(base)
+        has_environment = any(e.get("type") == "constant" for e in ET.parse(case.scene).getroot().iter("emitter"))
+        for i, (inv, cell, _, v) in enumerate(jobs, start=1):
+            out = result(i)
+            if out is None:
+                cell.variants.append(VariantResult(v, None, float("nan"), renders[i].error, renders[i].limit))
                 continue
             mapped = v.expected(the, out.astype(np.float64), has_environment)
             comparison = compare_summaries(summarize(mapped), base_summary, alpha, signed=signed,
                                            samples=(case.spp, case.spp), metrics=False, tile_power=False)
-            cell.variants.append(VariantResult(v, comparison, image_ratio(mapped, base, signed), None, limit))
+            cell.variants.append(VariantResult(v, comparison, image_ratio(mapped, base, signed), None,
+                                               renders[i].limit))
     return cells
 
 
