@@ -138,3 +138,47 @@ def test_a_scene_that_cannot_be_rendered_fails_its_cells_with_why(tmp_path):
     cells, _ = run_invariances([NeverRenders()], cases, invariances, seed=0)
     assert [c.base_error for c in cells] == [cases[0].problem]
     assert _cases("plane_point:normals")[0].problem == ""
+
+
+class Elsewhere(Engine):
+    """Ours, said to render in another process (renders overlap the comparisons), failing where told: the
+    base when `fail_base`, a variant whose file name holds `fail`. It counts its renders. Named as ours, so
+    that it draws ours' seeds."""
+
+    name = "mcval"
+    renders_elsewhere = True
+
+    def __init__(self, fail_base: bool = False, fail: str = "") -> None:
+        from harness.engines.ours import OurEngine
+        self._ours, self.fail_base, self.fail, self.rendered = OurEngine(), fail_base, fail, []
+
+    def version(self) -> str:
+        return "elsewhere"
+
+    def render(self, scene, integrator, spp, batches, seed, params=None) -> RenderResult:
+        from harness.engines.base import RenderFailed
+        self.rendered.append(Path(scene).name)
+        if (self.fail_base and "." not in Path(scene).stem) or (self.fail and self.fail in Path(scene).name):
+            raise RenderFailed(f"told to fail on {Path(scene).name}")
+        return self._ours.render(scene, integrator, spp, batches, seed, params)
+
+
+def test_overlapped_renders_give_the_serial_cells_and_keep_failures_apart():
+    from harness.engines.ours import OurEngine
+
+    cases, invariances = _cases("plane_point:simple"), [invariance("scale"), invariance("light")]
+    serial, _ = run_invariances([OurEngine(in_process=True)], cases, invariances, seed=2)
+    elsewhere = Elsewhere(fail="scale.1")
+    overlapped, _ = run_invariances([elsewhere], cases, invariances, seed=2)
+    assert elsewhere.rendered == ["plane_point.xml", "plane_point.scale.0.xml", "plane_point.scale.1.xml",
+                                  "plane_point.light.0.xml"]
+    failed = overlapped[0].variants[1]
+    assert failed.error == "told to fail on plane_point.scale.1.xml" and failed.status == "fail"
+    for mine, theirs in zip(overlapped, serial):
+        kept = [v.to_json() for v in mine.variants if v.error is None]
+        assert kept == [v.to_json() for v in theirs.variants if v.variant.label != "x1000"]
+    # Without a base no variant is rendered, and every cell says why.
+    no_base = Elsewhere(fail_base=True)
+    cells, _ = run_invariances([no_base], cases, invariances, seed=2)
+    assert no_base.rendered == ["plane_point.xml"]
+    assert [c.base_error for c in cells] == ["told to fail on plane_point.xml"] * 2
