@@ -7,7 +7,7 @@ import os
 import signal
 import subprocess
 import threading
-from contextlib import nullcontext
+from contextlib import contextmanager, nullcontext
 from pathlib import Path
 from typing import BinaryIO
 
@@ -18,6 +18,30 @@ OUTPUT_LIMIT = 64 << 20
 #: Lines of a failed call's output kept for the report.
 TAIL_LINES = 50
 _POLL_SECONDS = 0.2
+_thread = threading.local()
+
+
+@contextmanager
+def cancelled_by(event: threading.Event | None):
+    """Children this thread runs within the block end (RenderFailed "cancelled") once `event` is set: how a
+    thread rendering for another one (harness/engines/render_thread.py) is stopped when that one is
+    interrupted."""
+    _thread.cancel = event
+    try:
+        yield
+    finally:
+        _thread.cancel = None
+
+
+def current_cancel() -> threading.Event | None:
+    """The event this thread's renders are cancelled by (cancelled_by), if any."""
+    return getattr(_thread, "cancel", None)
+
+
+def cancelled(cancel: threading.Event | None = None) -> bool:
+    """Whether `cancel`, or the event this thread's renders are cancelled by (cancelled_by), is set."""
+    outer = current_cancel()
+    return (cancel is not None and cancel.is_set()) or (outer is not None and outer.is_set())
 
 
 def kill_group(proc: subprocess.Popen) -> None:
@@ -49,8 +73,9 @@ def output_tail(log: Path | BinaryIO, lines: int = TAIL_LINES, start: int = 0) -
 def run_child(command: list[str], cwd: Path, log: Path, timeout: float, cancel: threading.Event | None = None) -> None:
     """Run `command` in `cwd`, its stdout and stderr into `log`. Returns when it exits with status 0; raises
     RenderFailed when it exits otherwise, is killed, outlives `timeout` seconds, prints more than
-    OUTPUT_LIMIT bytes (`output` holding its last lines) or `cancel` is set (another thread was interrupted:
-    the child, in its own session, would not see the Ctrl-C); OSError if it cannot be started."""
+    OUTPUT_LIMIT bytes (`output` holding its last lines) or `cancel` (or this thread's cancelled_by event) is
+    set (another thread was interrupted: the child, in its own session, would not see the Ctrl-C); OSError if
+    it cannot be started."""
     with open(log, "wb") as log_file:
         proc = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log_file, stderr=subprocess.STDOUT,
                                 cwd=cwd, start_new_session=True)
@@ -62,7 +87,7 @@ def run_child(command: list[str], cwd: Path, log: Path, timeout: float, cancel: 
                     break
                 except subprocess.TimeoutExpired:
                     waited += _POLL_SECONDS
-                    if cancel is not None and cancel.is_set():
+                    if cancelled(cancel):
                         kill_group(proc)
                         raise RenderFailed("cancelled", output_tail(log)) from None
                     if waited >= timeout:

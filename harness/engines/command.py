@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from harness.engines.base import Engine, RenderFailed, RenderResult
-from harness.engines.child_process import run_child
+from harness.engines.child_process import cancelled_by, current_cancel, run_child
 from harness.engines.engine_file import EngineFile, read_engine_file
 from harness.engines.render_process import THREADS_ENV, default_timeout
 from harness.engines.scene_writers import SCENE_WRITERS
@@ -141,11 +141,12 @@ class CommandEngine(Engine):
             values = {"spp": str(spp), "integrator": theirs, "width": str(width), "height": str(height),
                       "threads": str(self._threads())}
 
-            cancel = threading.Event()
+            cancel, outer = threading.Event(), current_cancel()
 
             def call(k: int) -> tuple[np.ndarray, float]:
-                return self._call(Path(tmp) / f"call{k}", scene_file, {**values, "seed": str(call_seed(seed, k))},
-                                  width, height, timeout, cancel)
+                with cancelled_by(outer):  # a render thread's cancel reaches the calls on threads of their own
+                    return self._call(Path(tmp) / f"call{k}", scene_file,
+                                      {**values, "seed": str(call_seed(seed, k))}, width, height, timeout, cancel)
 
             if self.file.jobs == 1:
                 outcomes = [call(k) for k in range(batches)]  # the first failure ends the case at once

@@ -21,7 +21,7 @@ import threading
 from pathlib import Path
 
 from harness.engines.base import RenderFailed
-from harness.engines.child_process import OUTPUT_LIMIT, kill_group, output_tail, signal_name
+from harness.engines.child_process import OUTPUT_LIMIT, cancelled, kill_group, output_tail, signal_name
 
 #: The first line `render --serve` writes: it speaks this framing.
 GREETING = b"mcval-serve 1"
@@ -110,7 +110,7 @@ class RenderWorker:
                 self._pending += data
                 continue
             waited += _POLL_MS / 1000
-            if cancel is not None and cancel.is_set():
+            if cancelled(cancel):
                 raise self._ended("cancelled")
             if waited >= timeout:
                 raise self._ended(f"timed out after {timeout:g} s")

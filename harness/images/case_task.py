@@ -4,6 +4,7 @@ report needs only their means), and the messages the case printed."""
 from __future__ import annotations
 
 from collections.abc import Sequence
+from concurrent.futures import Future
 from dataclasses import dataclass, replace
 from typing import Callable
 
@@ -15,6 +16,7 @@ from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine, RenderFailed, RenderResult
 from harness.images.oracle import decide
 from harness.images.reference_image import ReferenceImage, against_image, fit_verdict
+from harness.images.render_ahead import RenderAhead, render_args
 from harness.images.references import (CLOSED_FORM, Reference, load_reference, reference_path, render_params,
                                        render_reference)
 from harness.images.result import ImageResult
@@ -34,6 +36,9 @@ class CaseJob:
     reference: Engine
     #: A reference image (--reference-image) in place of the reference engine's render.
     reference_image: ReferenceImage | None = None
+    #: Our renders started ahead (a serial run, harness/images/render_ahead.py), and this case's place in them.
+    ahead: RenderAhead | None = None
+    index: int = 0
 
 #: The reference engines that render through the entries' Mitsuba mappings (same_estimator_in_mitsuba).
 MITSUBA_MAPPED = ("mitsuba", "mitsuba-scalar")
@@ -83,7 +88,8 @@ def run_case_job(job: CaseJob, bundle: Bundle | None = None):
         result = run_image_case(case, job.test, job.reference_image, job.seed, job.alpha, job.run_seed)
     else:
         result = run_case(case, job.test, job.reference, AnalyticEngine() if job.closed_form else None,
-                          render_params(case), job.seed, job.alpha, job.run_seed, messages.append)
+                          render_params(case), job.seed, job.alpha, job.run_seed, messages.append,
+                          None if job.ahead is None or case.problem else job.ahead.render(job.index))
     result.case = job.case
     if result.ours is not None and (result.passed or result.error is not None):
         result.ours = result.ours.light()  # a failed comparison keeps its batches for results/<run>/images/
@@ -111,9 +117,10 @@ def _output(e: Exception) -> str:
 
 def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: AnalyticEngine | None,
               params: dict[str, str], s: int, alpha: float, run_seed: int,
-              on_message: Callable[[str], None] | None) -> ImageResult:
-    """One case: the reference engine's reference, the tested engine's batches, the closed form if there is
-    one (`analytic`), and the comparisons; a failed render gives a failed result carrying the reason."""
+              on_message: Callable[[str], None] | None, mine_ahead: Future | None = None) -> ImageResult:
+    """One case: the reference engine's reference, the tested engine's batches (`mine_ahead`: that render,
+    started earlier with render_args), the closed form if there is one (`analytic`), and the comparisons; a
+    failed render gives a failed result carrying the reason."""
     source = "none"
     references: dict[str, Reference] = {}
 
@@ -137,7 +144,7 @@ def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: 
         return failed(f"{reference_engine.name.capitalize()} reference: {_reason(e)}", output=_output(e))
     references[reference_engine.name] = reference
     try:
-        mine = ours.render(str(case.path), case.integrator, case.test_spp, IMAGE_BATCHES, s, params)
+        mine = mine_ahead.result() if mine_ahead is not None else ours.render(*render_args(case, s, params))
     except RenderFailed as e:
         return failed(f"{ours.name} render: {e.reason}", output=e.output)
     if analytic is not None:

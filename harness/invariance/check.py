@@ -10,7 +10,7 @@ from __future__ import annotations
 import tempfile
 import xml.etree.ElementTree as ET
 import zlib
-from concurrent.futures import Future, ThreadPoolExecutor
+from concurrent.futures import Future
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Callable
@@ -20,6 +20,7 @@ import numpy as np
 from harness.distributed.bundle import Bundle
 from harness.distributed.executor import Executor, SerialExecutor, Status, Task
 from harness.engines.base import Engine, RenderFailed
+from harness.engines.render_thread import RenderThread
 from harness.integrators import entry
 from harness.comparison.compare import Comparison, compare_summaries
 from harness.comparison.summary import summarize
@@ -185,7 +186,7 @@ def run_cell_group(engine: Engine, case: InvarianceCase, invariances: list[Invar
             r.error = _reason(e, folder)
             return None
 
-    with ThreadPoolExecutor(1) as pool:
+    with RenderThread() as pool:
         base = result(0)
         if base is None:  # no base image: every cell of the case fails with the reason
             for cell in cells:
