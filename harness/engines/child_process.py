@@ -44,6 +44,13 @@ def cancelled(cancel: threading.Event | None = None) -> bool:
     return (cancel is not None and cancel.is_set()) or (outer is not None and outer.is_set())
 
 
+def child_env() -> dict[str, str]:
+    """A copy of this process's environment for a child. Started from a thread, a child given none reads the
+    live environment between vfork and exec, where another thread setting a variable (an import's
+    os.environ.setdefault) makes exec fail with EFAULT ("Bad address")."""
+    return dict(os.environ)
+
+
 def kill_group(proc: subprocess.Popen) -> None:
     """SIGKILL the child and everything it started (its own session), then reap it."""
     try:
@@ -78,7 +85,7 @@ def run_child(command: list[str], cwd: Path, log: Path, timeout: float, cancel: 
     it cannot be started."""
     with open(log, "wb") as log_file:
         proc = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log_file, stderr=subprocess.STDOUT,
-                                cwd=cwd, start_new_session=True)
+                                cwd=cwd, start_new_session=True, env=child_env())
         waited = 0.0
         try:
             while True:

@@ -21,7 +21,8 @@ import threading
 from pathlib import Path
 
 from harness.engines.base import RenderFailed
-from harness.engines.child_process import OUTPUT_LIMIT, cancelled, kill_group, output_tail, signal_name
+from harness.engines.child_process import (OUTPUT_LIMIT, cancelled, child_env, kill_group, output_tail,
+                                           signal_name)
 
 #: The first line `render --serve` writes: it speaks this framing.
 GREETING = b"mcval-serve 1"
@@ -64,7 +65,8 @@ class RenderWorker:
         try:
             # Its working folder is the system's temporary one: it writes only where its requests say.
             self.proc = subprocess.Popen([str(binary), "--serve"], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                         stderr=self.log, cwd=tempfile.gettempdir(), start_new_session=True)
+                                         stderr=self.log, cwd=tempfile.gettempdir(), start_new_session=True,
+                                         env=child_env())
         except OSError as e:
             self.log.close()
             raise RenderFailed(f"cannot start {binary}: {e}") from e

@@ -16,7 +16,7 @@ from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine, RenderFailed, RenderResult
 from harness.images.oracle import decide
 from harness.images.reference_image import ReferenceImage, against_image, fit_verdict
-from harness.images.render_ahead import RenderAhead, render_args
+from harness.images.render_ahead import RenderAhead, closed_form_args, render_args
 from harness.images.references import (CLOSED_FORM, Reference, load_reference, reference_path, render_params,
                                        render_reference)
 from harness.images.result import ImageResult
@@ -36,8 +36,10 @@ class CaseJob:
     reference: Engine
     #: A reference image (--reference-image) in place of the reference engine's render.
     reference_image: ReferenceImage | None = None
-    #: Our renders started ahead (a serial run, harness/images/render_ahead.py), and this case's place in them.
+    #: Our renders and the closed forms started ahead (a serial run, harness/images/render_ahead.py), and this
+    #: case's place in them.
     ahead: RenderAhead | None = None
+    closed_forms_ahead: RenderAhead | None = None
     index: int = 0
 
 #: The reference engines that render through the entries' Mitsuba mappings (same_estimator_in_mitsuba).
@@ -87,9 +89,12 @@ def run_case_job(job: CaseJob, bundle: Bundle | None = None):
     if job.reference_image is not None:
         result = run_image_case(case, job.test, job.reference_image, job.seed, job.alpha, job.run_seed)
     else:
+        started = not case.problem  # a case that cannot be rendered asks for no render
         result = run_case(case, job.test, job.reference, AnalyticEngine() if job.closed_form else None,
                           render_params(case), job.seed, job.alpha, job.run_seed, messages.append,
-                          None if job.ahead is None or case.problem else job.ahead.render(job.index))
+                          job.ahead.render(job.index) if job.ahead and started else None,
+                          job.closed_forms_ahead.render(job.index) if job.closed_forms_ahead and started
+                          and job.closed_form else None)
     result.case = job.case
     if result.ours is not None and (result.passed or result.error is not None):
         result.ours = result.ours.light()  # a failed comparison keeps its batches for results/<run>/images/
@@ -117,10 +122,12 @@ def _output(e: Exception) -> str:
 
 def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: AnalyticEngine | None,
               params: dict[str, str], s: int, alpha: float, run_seed: int,
-              on_message: Callable[[str], None] | None, mine_ahead: Future | None = None) -> ImageResult:
+              on_message: Callable[[str], None] | None, mine_ahead: Future | None = None,
+              exact_ahead: Future | None = None) -> ImageResult:
     """One case: the reference engine's reference, the tested engine's batches (`mine_ahead`: that render,
-    started earlier with render_args), the closed form if there is one (`analytic`), and the comparisons; a
-    failed render gives a failed result carrying the reason."""
+    started earlier with render_args), the closed form if there is one (`analytic`; `exact_ahead`: its render,
+    started earlier with closed_form_args), and the comparisons; a failed render gives a failed result
+    carrying the reason."""
     source = "none"
     references: dict[str, Reference] = {}
 
@@ -149,9 +156,8 @@ def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: 
         return failed(f"{ours.name} render: {e.reason}", output=e.output)
     if analytic is not None:
         try:
-            exact = analytic.render(str(case.path), case.integrator,
-                                    analytic.samples_for(case.integrator, case.test_spp), IMAGE_BATCHES,
-                                    s + 1, params)
+            exact = exact_ahead.result() if exact_ahead is not None else analytic.render(
+                *closed_form_args(case, s, params))
         except Exception as e:
             return failed(f"closed form: {_reason(e)}", mine)
         references[analytic.name] = Reference(summarize(exact.batches), exact.spp, exact.seconds, CLOSED_FORM)

@@ -10,7 +10,7 @@ from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine
 from harness.images.case_task import CaseJob, run_case_job, share_scene_bundles
 from harness.images.references import RESOLUTION, render_params
-from harness.images.render_ahead import RenderAhead, render_args
+from harness.images.render_ahead import RenderAhead, closed_form_args, render_args
 from harness.images.reference_image import ReferenceImage
 from harness.images.result import GEOMETRY_NOTE, ImageResult
 from harness.images.suite import ImageCase
@@ -47,19 +47,24 @@ def run_images(cases: list[ImageCase], ours: Engine, reference: Engine, seed: in
     has_closed_form = closed_forms(cases) if reference_image is None else dict.fromkeys(cases, False)
     alpha = comparison_level(cases, has_closed_form)
     bundles = share_scene_bundles(executor, cases, (ours, reference))
-    # Run here, one case after another, our render of the next case overlaps the comparisons of this one.
-    ahead = RenderAhead(ours, [render_args(c, case_seed(c, seed), render_params(c)) for c in cases]) \
-        if isinstance(executor, SerialExecutor) and ours.renders_elsewhere and reference_image is None else None
+    # Run here, one case after another, our render of the next case and the closed forms overlap the
+    # comparisons of this one (harness/images/render_ahead.py).
+    ahead = closed = None
+    if isinstance(executor, SerialExecutor) and ours.renders_elsewhere and reference_image is None:
+        ahead = RenderAhead(ours, [render_args(c, case_seed(c, seed), render_params(c)) for c in cases])
+        closed = RenderAhead(AnalyticEngine(), [closed_form_args(c, case_seed(c, seed), render_params(c))
+                                                if has_closed_form[c] else None for c in cases], depth=None)
     tasks = [Task(case.key, run_case_job,
                   (CaseJob(case, case_seed(case, seed), alpha, seed, has_closed_form[case], ours, reference,
-                           reference_image, ahead, k),
+                           reference_image, ahead, closed, k),
                    bundles.get(case.scene)))
              for k, case in enumerate(cases)]
     try:
         outcomes = executor.run(tasks, on_status)
     finally:
-        if ahead is not None:
-            ahead.close()
+        for started in (ahead, closed):
+            if started is not None:
+                started.close()
     geometry_failed: set[str] = set()
     results = []
     for case, outcome in zip(cases, outcomes):

@@ -30,3 +30,38 @@ def test_a_render_run_to_its_end_is_its_result():
     with RenderThread() as thread:
         out = thread.submit(OurEngine().render, str(SCENE), "normals", 1, 2, 0, {"res": "8"}).result()
     assert out.batches.shape == (2, 8, 8, 3)
+
+
+def test_workers_start_from_a_thread_while_another_sets_variables(tmp_path):
+    """exec reading the live environment while another thread changes it fails with EFAULT: each child gets
+    a copy. 40 worker starts from a render thread beside a thread setting and deleting variables."""
+    import os
+    import threading
+
+    from harness.engines.render_worker import close_workers
+
+    stop, errors = threading.Event(), []
+
+    def churn():
+        i = 0
+        while not stop.is_set():
+            os.environ[f"MCVAL_TEST_CHURN_{i % 40}"] = "x" * (i % 200)
+            if i % 40 == 39:
+                for k in [k for k in os.environ if k.startswith("MCVAL_TEST_CHURN_")]:
+                    os.environ.pop(k, None)
+            i += 1
+
+    setter = threading.Thread(target=churn)
+    setter.start()
+    try:
+        with RenderThread() as thread:
+            for _ in range(40):
+                try:
+                    thread.submit(OurEngine().render, str(SCENE), "normals", 1, 1, 0, {"res": "4"}).result()
+                except RenderFailed as e:
+                    errors.append(e.reason)
+                close_workers()  # the next render starts a worker again
+    finally:
+        stop.set()
+        setter.join()
+    assert errors == []

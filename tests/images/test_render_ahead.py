@@ -63,3 +63,13 @@ def test_a_run_that_stops_early_leaves_no_render_running():
     ahead.render(0).result()
     ahead.close()
     assert engine.order == ["a", "b"] and engine.running == 0
+
+
+def test_every_render_at_once_skips_the_cases_without_one():
+    engine = Slow()
+    ahead = RenderAhead(engine, [_args("a"), None, _args("c")], depth=None)
+    try:
+        assert ahead.render(2).result().scene == "c" and ahead.render(0).result().scene == "a"
+    finally:
+        ahead.close()
+    assert engine.order == ["a", "c"]
