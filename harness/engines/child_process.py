@@ -25,12 +25,13 @@ _thread = threading.local()
 def cancelled_by(event: threading.Event | None):
     """Children this thread runs within the block end (RenderFailed "cancelled") once `event` is set: how a
     thread rendering for another one (harness/engines/render_thread.py) is stopped when that one is
-    interrupted."""
+    interrupted. Nested, the outer block's event holds again after the inner one."""
+    previous = current_cancel()
     _thread.cancel = event
     try:
         yield
     finally:
-        _thread.cancel = None
+        _thread.cancel = previous
 
 
 def current_cancel() -> threading.Event | None:

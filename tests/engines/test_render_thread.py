@@ -65,3 +65,19 @@ def test_workers_start_from_a_thread_while_another_sets_variables(tmp_path):
         stop.set()
         setter.join()
     assert errors == []
+
+
+def test_a_nested_cancel_gives_the_outer_one_back():
+    """A command engine's calls set the render thread's event again around each call: after one, the
+    render's later calls must still be cancelled by it."""
+    import threading
+
+    from harness.engines.child_process import cancelled, cancelled_by
+
+    outer = threading.Event()
+    with cancelled_by(outer):
+        with cancelled_by(outer):
+            pass
+        outer.set()
+        assert cancelled()
+    assert not cancelled()
