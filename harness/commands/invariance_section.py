@@ -37,12 +37,15 @@ def run_invariance_section(args, only, run_dir: Path, executor, engines=None) ->
     start = time.perf_counter()
     # A reference engine's cells do not depend on the renderer under test: rendered at the references' seed,
     # and read from references/ where stored for exactly this check (harness/invariance/stored.py).
-    references = engines[1:]
-    known, misses = ({}, ["asked for by --reference-live"]) if getattr(args, "reference_live", False) else \
-        stored_cells(references, cases, invariances, family_alpha(cases, invariances), IMAGE_BATCHES)
+    references, alpha = engines[1:], family_alpha(cases, invariances)
+    known, misses = {}, []
+    if references and getattr(args, "reference_live", False):
+        misses = ["asked for by --reference-live"]
+    elif references:
+        known, misses = stored_cells(references, cases, invariances, alpha, IMAGE_BATCHES)
     with task_progress("invariances", executor) as show:
-        cells, alpha = run_invariances(engines, cases, invariances, args.seed, on_status=show, executor=executor,
-                                       seeds={e.name: REFERENCE_SEED for e in references}, known=known)
+        cells, _ = run_invariances(engines, cases, invariances, args.seed, on_status=show, executor=executor,
+                                   seeds={e.name: REFERENCE_SEED for e in references}, known=known, alpha=alpha)
     seconds = time.perf_counter() - start
     for table in invariance_tables(cells, alpha, gating):
         console.print(table)
@@ -75,8 +78,6 @@ def run_invariance_section(args, only, run_dir: Path, executor, engines=None) ->
 
 def reference_sources(references, cases, known: dict, misses: list[str]) -> dict:
     """Where each reference engine's cells came from: how many stored, how many rendered now and why."""
-    if not references:
-        misses = []
     lines = []
     for engine in references:
         stored = sum((engine.name, c.key) in known for c in cases)

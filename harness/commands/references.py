@@ -55,7 +55,7 @@ def store_invariance_cells(engine, keys: set[str], executor) -> int:
     """Render and store the engine's invariance cells of the suite's cases among `keys`, at the level of the
     whole suite (what validate's family uses); returns how many cases failed to render."""
     from harness.images.references import REFERENCE_SEED
-    from harness.invariance.check import applicable, family_alpha, run_invariances
+    from harness.invariance.check import TASK_FAILED, applicable, family_alpha, run_invariances
     from harness.invariance.stored import write_cells
     from harness.invariance.suite import select
     from harness.statistics.constants import IMAGE_BATCHES
@@ -68,7 +68,7 @@ def store_invariance_cells(engine, keys: set[str], executor) -> int:
     failed = 0
     for case in cases:
         mine = [c for c in cells if c.case.key == case.key]
-        broken = [c for c in mine if c.base_error and c.base_error.startswith("task failed")]
+        broken = [c for c in mine if c.base_error and c.base_error.startswith(TASK_FAILED)]
         if broken:
             failed += 1
             console.print(f"[red]failed[/] invariance cells of {case.key}: {broken[0].base_error}")

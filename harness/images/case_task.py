@@ -22,7 +22,6 @@ from harness.images.references import (CLOSED_FORM, Reference, load_reference, r
 from harness.images.result import ImageResult
 from harness.images.suite import ROOT, USER, ImageCase
 from harness.integrators import entry
-from harness.statistics.constants import IMAGE_BATCHES
 
 
 @dataclass
@@ -194,8 +193,8 @@ def run_image_case(case: ImageCase, ours: Engine, ref: ReferenceImage, s: int, a
     except ValueError as e:
         return failed(str(e))
     try:
-        mine = ours.render(str(case.path), case.integrator, case.test_spp, IMAGE_BATCHES, s,
-                           {"res": str(image.shape[1])})  # the image's width; the height keeps the film's aspect
+        # The image's width; the height keeps the film's aspect.
+        mine = ours.render(*render_args(case, s, {"res": str(image.shape[1])}))
     except RenderFailed as e:
         return failed(f"{ours.name} render: {e.reason}", output=e.output)
     try:

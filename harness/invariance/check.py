@@ -30,6 +30,10 @@ from harness.invariance.variants import Invariance, Variant
 from harness.statistics.constants import IMAGE_BATCHES, SIGNIFICANCE, sidak_level
 
 
+#: How a cell whose task gave no value (its worker died) begins its base_error.
+TASK_FAILED = "task failed"
+
+
 @dataclass(frozen=True)
 class InvarianceCase:
     """One scene with one integrator, at the check's resolution and samples."""
@@ -209,7 +213,7 @@ def run_cell_group(engine: Engine, case: InvarianceCase, invariances: list[Invar
 
 def comparisons_of(cases: list[InvarianceCase], invariances: list[Invariance]) -> int:
     """How many variant comparisons one engine makes (the family its level is split over)."""
-    return sum(len(inv.variants) for c in cases for inv in invariances if inv.applies_to(entry(c.integrator)))
+    return sum(len(inv.variants) for c in cases for inv in applicable(invariances, c))
 
 
 def family_alpha(cases: list[InvarianceCase], invariances: list[Invariance]) -> float:
@@ -249,7 +253,7 @@ def run_invariances(engines: list[Engine], cases: list[InvarianceCase], invarian
         engine, case, chosen = task.args[:3]
         # A task that failed (its worker died): its cells fail with the reason.
         rendered[(engine.name, case.key)] = outcome.value if outcome.ok else [
-            Cell(engine.name, inv.name, case, base_error=f"task failed: {outcome.error}") for inv in chosen]
+            Cell(engine.name, inv.name, case, base_error=f"{TASK_FAILED}: {outcome.error}") for inv in chosen]
     cells: list[Cell] = []
     for engine, case in pairs:
         key = (engine.name, case.key)

@@ -57,9 +57,9 @@ def stored_path(engine: Engine, case: InvarianceCase, folder: Path = REFERENCES_
 def provenance(engine: Engine, case: InvarianceCase, chosen: list[Invariance], alpha: float, batches: int,
                check: str) -> dict:
     """What the cells of `case` by `engine` are rendered from; stored cells are reused only when it matches."""
-    scene = engine.scene_file(case.scene)
-    return {"format": STORE_FORMAT, "scene": case.scene.name, "scene_sha256": scene_hash(case.scene),
-            "engine_scene_sha256": scene_hash(scene), "integrator": case.integrator, "engine": engine.version(),
+    scene, digest = engine.scene_file(case.scene), scene_hash(case.scene)
+    return {"format": STORE_FORMAT, "scene": case.scene.name, "scene_sha256": digest,
+            "engine_scene_sha256": digest if scene == case.scene else scene_hash(scene), "integrator": case.integrator, "engine": engine.version(),
             "sampler": engine.sampler, "spp": case.spp, "res": case.res, "batches": batches, "seed": REFERENCE_SEED,
             "alpha": alpha, "variants": {inv.name: [v.label for v in inv.variants] for inv in chosen},
             "check_sha256": check}
