@@ -57,19 +57,20 @@ inline float logPositive(float x) {
     e -= low ? 1 : 0;
     m = (low ? m + m : m) - 1.f;
     const float z = m * m;
+    // Fused multiply-adds (see sincos.h): the same bits in every clone, half the operations with FMA.
     float y = 7.0376836292e-2f;
-    y = y * m - 1.1514610310e-1f;
-    y = y * m + 1.1676998740e-1f;
-    y = y * m - 1.2420140846e-1f;
-    y = y * m + 1.4249322787e-1f;
-    y = y * m - 1.6668057665e-1f;
-    y = y * m + 2.0000714765e-1f;
-    y = y * m - 2.4999993993e-1f;
-    y = y * m + 3.3333331174e-1f;
+    y = std::fma(y, m, -1.1514610310e-1f);
+    y = std::fma(y, m, 1.1676998740e-1f);
+    y = std::fma(y, m, -1.2420140846e-1f);
+    y = std::fma(y, m, 1.4249322787e-1f);
+    y = std::fma(y, m, -1.6668057665e-1f);
+    y = std::fma(y, m, 2.0000714765e-1f);
+    y = std::fma(y, m, -2.4999993993e-1f);
+    y = std::fma(y, m, 3.3333331174e-1f);
     y = y * m * z;
     const float fe = static_cast<float>(e);
-    y += -2.12194440e-4f * fe;
-    y += -0.5f * z;
+    y = std::fma(-2.12194440e-4f, fe, y);
+    y = std::fma(-0.5f, z, y);
     return (m + y) + 0.693359375f * fe;
 }
 

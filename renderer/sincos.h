@@ -1,7 +1,9 @@
 // sin and cos of 2 pi v in float, without branches or library calls, so that a packet's lanes compute
 // them in SIMD (glibc's sincosf is a scalar call); the same operations, hence the same bits, in every
 // ISA clone. Cephes' minimax polynomials on [-pi/4, pi/4] after a reduction in quarter turns; within a
-// few float ulps of the exact values.
+// few float ulps of the exact values. The polynomials are written with fused multiply-adds: one rounding
+// each, so every clone gets the same bits (a call to fmaf where the CPU has no FMA), and half the
+// operations where it has (the warps are bound by their arithmetic).
 #pragma once
 
 #include <cmath>
@@ -14,8 +16,10 @@ inline void sinCos2Pi(float v, float &s, float &c) {
     const float r = v - 0.25f * k;
     const float a = r * 6.28318530717958647692f;
     const float a2 = a * a;
-    const float sa = a + a * a2 * (-1.6666654611e-1f + a2 * (8.3321608736e-3f + a2 * -1.9515295891e-4f));
-    const float ca = 1.f - 0.5f * a2 + a2 * a2 * (4.166664568298827e-2f + a2 * (-1.388731625493765e-3f + a2 * 2.443315711809948e-5f));
+    const float ps = std::fma(a2, std::fma(a2, -1.9515295891e-4f, 8.3321608736e-3f), -1.6666654611e-1f);
+    const float sa = std::fma(a * a2, ps, a);
+    const float pc = std::fma(a2, std::fma(a2, 2.443315711809948e-5f, -1.388731625493765e-3f), 4.166664568298827e-2f);
+    const float ca = std::fma(a2 * a2, pc, std::fma(-0.5f, a2, 1.f));
     // Rotate by k quarter turns: (sin, cos) -> (cos, -sin) per quarter.
     const int q = static_cast<int>(k) & 3;
     const float sq = (q & 1) ? ca : sa, cq = (q & 1) ? sa : ca;
