@@ -13,7 +13,7 @@ namespace mcval::detail {
 inline void sinCos2Pi(float v, float &s, float &c) {
     // v = k/4 + r with |r| <= 1/8: the angle 2 pi r lies in [-pi/4, pi/4].
     const float k = std::nearbyint(4.f * v);
-    const float r = v - 0.25f * k;
+    const float r = std::fma(-0.25f, k, v);  // k / 4 is exact: the bits of v - 0.25 k, in one operation
     const float a = r * 6.28318530717958647692f;
     const float a2 = a * a;
     const float ps = std::fma(a2, std::fma(a2, -1.9515295891e-4f, 8.3321608736e-3f), -1.6666654611e-1f);

@@ -99,7 +99,7 @@ inline float squareToUniformDiskPdf(const Vec2f &p) {
 
 /// Uniform on the unit sphere: z = 1 - 2 u.x, azimuth 2 pi u.y.
 inline Vec3f squareToUniformSphere(const Vec2f &u) {
-    const float z = 1.f - 2.f * u.x;
+    const float z = std::fma(-2.f, u.x, 1.f);  // 2 u.x is exact: the bits of 1 - 2 u.x, in one operation
     // 1 - z^2 = 4 u (1 - u), exact near the poles where 1 - z*z cancels.
     const float sinTheta = 2.f * detail::safeSqrt(u.x * (1.f - u.x));
     return detail::sphericalDirection(z, sinTheta, u.y);
