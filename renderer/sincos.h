@@ -7,8 +7,19 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace mcval::detail {
+
+/// x with its sign bit exclusive-ored with `signBit` (0 or 0x80000000).
+inline float flipSign(float x, uint32_t signBit) {
+    uint32_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    bits ^= signBit;
+    std::memcpy(&x, &bits, sizeof x);
+    return x;
+}
 
 inline void sinCos2Pi(float v, float &s, float &c) {
     // v = k/4 + r with |r| <= 1/8: the angle 2 pi r lies in [-pi/4, pi/4].
@@ -20,11 +31,13 @@ inline void sinCos2Pi(float v, float &s, float &c) {
     const float sa = std::fma(a * a2, ps, a);
     const float pc = std::fma(a2, std::fma(a2, 2.443315711809948e-5f, -1.388731625493765e-3f), 4.166664568298827e-2f);
     const float ca = std::fma(a2 * a2, pc, std::fma(-0.5f, a2, 1.f));
-    // Rotate by k quarter turns: (sin, cos) -> (cos, -sin) per quarter.
-    const int q = static_cast<int>(k) & 3;
-    const float sq = (q & 1) ? ca : sa, cq = (q & 1) ? sa : ca;
-    s = (q & 2) ? -sq : sq;
-    c = ((q + 1) & 2) ? -cq : cq;
+    // Rotate by k quarter turns: (sin, cos) -> (cos, -sin) per quarter. The signs flip as bit 1 of k
+    // (for sin) and of k + 1 (for cos) says: that bit moved to the sign bit, an exclusive or.
+    const uint32_t q = static_cast<uint32_t>(static_cast<int32_t>(k));
+    const bool odd = (q & 1u) != 0;
+    const float sq = odd ? ca : sa, cq = odd ? sa : ca;
+    s = flipSign(sq, (q & 2u) << 30);
+    c = flipSign(cq, ((q + 1u) & 2u) << 30);
 }
 
 }  // namespace mcval::detail
