@@ -7,7 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
+
+#include "float_bits.h"
 
 namespace mcval {
 
@@ -27,25 +28,12 @@ inline float expNonPositive(float x) {
     p = p * r + 5.0000001201e-1f;
     p = p * (r * r) + r + 1.f;
     const int32_t bits = (static_cast<int32_t>(n) + 127) << 23;
-    float scale;
-    std::memcpy(&scale, &bits, sizeof scale);
-    return p * scale;
+    return p * detail::bitsToFloat(static_cast<uint32_t>(bits));
 }
 
 }  // namespace mcval
 
 namespace mcval::detail {
-
-inline float bitsToFloat(uint32_t b) {
-    float f;
-    std::memcpy(&f, &b, sizeof f);
-    return f;
-}
-inline uint32_t floatToBits(float f) {
-    uint32_t b;
-    std::memcpy(&b, &f, sizeof b);
-    return b;
-}
 
 /// log(x) for finite x > 0 (normal floats).
 inline float logPositive(float x) {

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 
+#include "float_bits.h"
 #include "vector.h"
 
 namespace mcval {
@@ -46,13 +46,9 @@ inline float offsetCoordinate(float x, float nx, float floor) {
     // Stepping the bits of 0 or a denormal could cross zero into a NaN; there the floor rules anyway.
     // Written without branches, so that a packet's lanes compute it in SIMD.
     // Unsigned arithmetic: the step of a discarded lane (-0 or a denormal) may wrap, harmlessly.
-    uint32_t bits;
-    std::memcpy(&bits, &x, 4);
     const auto step = static_cast<uint32_t>(static_cast<int32_t>(kIntScale * nx));
-    const uint32_t stepped = bits + ((x < 0.f) ? 0u - step : step);
-    float moved;
-    std::memcpy(&moved, &stepped, 4);
-    moved = std::abs(x) >= std::numeric_limits<float>::min() ? moved : x;
+    const float stepped = detail::bitsToFloat(detail::floatToBits(x) + ((x < 0.f) ? 0u - step : step));
+    const float moved = std::abs(x) >= std::numeric_limits<float>::min() ? stepped : x;
     const float floored = x + floor * nx;
     return nx >= 0.f ? std::max(moved, floored) : std::min(moved, floored);
 }

@@ -8,18 +8,10 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstring>
+
+#include "float_bits.h"
 
 namespace mcval::detail {
-
-/// x with its sign bit exclusive-ored with `signBit` (0 or 0x80000000).
-inline float flipSign(float x, uint32_t signBit) {
-    uint32_t bits;
-    std::memcpy(&bits, &x, sizeof bits);
-    bits ^= signBit;
-    std::memcpy(&x, &bits, sizeof x);
-    return x;
-}
 
 inline void sinCos2Pi(float v, float &s, float &c) {
     // v = k/4 + r with |r| <= 1/8: the angle 2 pi r lies in [-pi/4, pi/4].
@@ -36,8 +28,8 @@ inline void sinCos2Pi(float v, float &s, float &c) {
     const uint32_t q = static_cast<uint32_t>(static_cast<int32_t>(k));
     const bool odd = (q & 1u) != 0;
     const float sq = odd ? ca : sa, cq = odd ? sa : ca;
-    s = flipSign(sq, (q & 2u) << 30);
-    c = flipSign(cq, ((q + 1u) & 2u) << 30);
+    s = bitsToFloat(floatToBits(sq) ^ ((q & 2u) << 30));
+    c = bitsToFloat(floatToBits(cq) ^ (((q + 1u) & 2u) << 30));
 }
 
 }  // namespace mcval::detail

@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 
+#include "float_bits.h"
 #include "log_exp.h"
 #include "sincos.h"
 #include "vector.h"
@@ -40,14 +40,8 @@ inline float safeSqrt(float x) { return std::sqrt(std::max(x, 0.f)); }
 /// pick ? a : b, as a blend of the bits: GCC turns a ?: of two floats into branches that it then
 /// duplicates the work after into (two square roots in SIMD where one is needed).
 inline float blend(bool pick, float a, float b) {
-    uint32_t ia, ib;
-    std::memcpy(&ia, &a, sizeof ia);
-    std::memcpy(&ib, &b, sizeof ib);
     const uint32_t mask = 0u - static_cast<uint32_t>(pick);
-    const uint32_t bits = (ia & mask) | (ib & ~mask);
-    float r;
-    std::memcpy(&r, &bits, sizeof r);
-    return r;
+    return bitsToFloat((floatToBits(a) & mask) | (floatToBits(b) & ~mask));
 }
 
 /// Inverse CDF of the 1D tent density 1 - |x| on [-1, 1]: sqrt(2u) - 1 below 1/2, 1 - sqrt(2 - 2u)
