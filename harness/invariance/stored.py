@@ -59,10 +59,10 @@ def provenance(engine: Engine, case: InvarianceCase, chosen: list[Invariance], a
     """What the cells of `case` by `engine` are rendered from; stored cells are reused only when it matches."""
     scene, digest = engine.scene_file(case.scene), scene_hash(case.scene)
     return {"format": STORE_FORMAT, "scene": case.scene.name, "scene_sha256": digest,
-            "engine_scene_sha256": digest if scene == case.scene else scene_hash(scene), "integrator": case.integrator, "engine": engine.version(),
-            "sampler": engine.sampler, "spp": case.spp, "res": case.res, "batches": batches, "seed": REFERENCE_SEED,
-            "alpha": alpha, "variants": {inv.name: [v.label for v in inv.variants] for inv in chosen},
-            "check_sha256": check}
+            "engine_scene_sha256": digest if scene == case.scene else scene_hash(scene),
+            "integrator": case.integrator, "engine": engine.version(), "sampler": engine.sampler, "spp": case.spp,
+            "res": case.res, "batches": batches, "seed": REFERENCE_SEED, "alpha": alpha,
+            "variants": {inv.name: [v.label for v in inv.variants] for inv in chosen}, "check_sha256": check}
 
 
 def _content_sha256(cells: list) -> str:
