@@ -115,11 +115,18 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     if real or not_applicable:
         payload["real_scenes"] = real_scenes_json(results, not_applicable)
     _print_regression(payload)
-    failed = [r for r in results if not r.passed]
-    console.print(f"{len(results) - len(failed)} of {len(results)} image comparisons pass, in {seconds:.1f} s. "
+    failed = [r for r in results if r.failed]
+    inconclusive = [r for r in results if r.verdict == "INCONCLUSIVE"]
+    console.print(f"{sum(r.passed for r in results)} of {len(results)} image comparisons pass"
+                  f"{f', {len(inconclusive)} inconclusive' if inconclusive else ''}, in {seconds:.1f} s. "
                   f"Report: {run_dir / 'report.html'}")
+    for r in inconclusive:
+        console.print(f"[yellow]INCONCLUSIVE[/] {r.case.key} — {escape(r.inconclusive)}", soft_wrap=True)
     for r in failed:
         why = "; ".join(x for x in (r.error, r.reference_problem, r.note) if x)
         console.print(f"[red]FAIL[/] {r.case.key}{' — ' + escape(why) if why else ''}: "
                       f"{escape(reproduce_command(r, run))}", soft_wrap=True)
-    return not failed, payload
+    if results and not failed and not any(r.passed for r in results):
+        console.print(f"[red]Nothing judged[/]: every one of the {len(results)} image cases is inconclusive, and an "
+                      "inconclusive case is not a pass")
+    return not failed and any(r.passed for r in results), payload

@@ -44,12 +44,13 @@ import numpy as np
 from harness.statistics.detectable_bias import half_power_bias
 from harness.statistics.family_level import channel_correlation, family_level
 from harness.comparison.finite import FiniteCheck, damage_of_summary, per_pixel
-from harness.comparison.independence_check import IndependenceCheck
+from harness.comparison.independence_check import IndependenceCheck, constant_image
 from harness.comparison.variance_check import VarianceCheck
 from harness.comparison.metrics import image_metrics
+from harness.comparison.outlier_check import OutlierCheck
 from harness.comparison.summary import Summary, summarize
-from harness.statistics.constants import (IMAGE_POWER_TARGET, POWER_TARGET, ROUNDING_TOLERANCE, SIGNIFICANCE,
-                                          TILE_SIZE, sidak_level)
+from harness.statistics.constants import (IMAGE_POWER_TARGET, INCONCLUSIVE_BIAS, POWER_TARGET, ROUNDING_TOLERANCE,
+                                          SIGNIFICANCE, TILE_SIZE, sidak_level)
 from harness.statistics.welch import BatchStats, moderate, sample_floor, welch_dof, welch_p_values
 
 SCALES = ("pixel", "tile", "image")
@@ -100,6 +101,17 @@ class Comparison:
     independence: IndependenceCheck | None = None
     #: The test's per-sample variance against the reference's; None where the sample counts are unknown.
     variance: VarianceCheck | None = None
+    #: Whether a batch of either side stands apart from the others (a firefly); None where not made.
+    outliers: OutlierCheck | None = None
+    #: Why nothing failed and yet nothing was shown (one line; "" when the comparison decides): both images one
+    #: value everywhere, or a detectable bias of the image mean above INCONCLUSIVE_BIAS.
+    inconclusive: str = ""
+
+    @property
+    def verdict(self) -> str:
+        """"FAIL" when a check fails, else "INCONCLUSIVE" when the comparison could not have shown a defect,
+        else "PASS"."""
+        return "FAIL" if not self.passed else "INCONCLUSIVE" if self.inconclusive else "PASS"
 
     @property
     def passed(self) -> bool:
@@ -112,9 +124,14 @@ class Comparison:
         return self.independence is None or self.independence.passed
 
     @property
+    def no_outlier(self) -> bool:
+        """No side has a batch that stands apart from its others (or none could be judged)."""
+        return self.outliers is None or self.outliers.passed
+
+    @property
     def trusted(self) -> bool:
-        """The inputs the scales' tests assume: every pixel finite, and independent batches."""
-        return self.finite.passed and self.independent
+        """The inputs the scales' tests assume: every pixel finite, independent batches, none standing apart."""
+        return self.finite.passed and self.independent and self.no_outlier
 
     @property
     def failed_scales(self) -> list[str]:
@@ -122,15 +139,18 @@ class Comparison:
 
     @property
     def failed_checks(self) -> list[str]:
-        """"finite" and "independent" (if they failed), the failed scales, then "variance" (if it failed)."""
+        """"finite", "independent" and "outlier" (if they failed), the failed scales, then "variance" (if it
+        failed)."""
         noise = self.variance is None or self.variance.passed
         return (([] if self.finite.passed else ["finite"]) + ([] if self.independent else ["independent"])
-                + self.failed_scales + ([] if noise else ["variance"]))
+                + ([] if self.no_outlier else ["outlier"]) + self.failed_scales + ([] if noise else ["variance"]))
 
     def to_json(self) -> dict:
-        return {"pass": self.passed, "finite": self.finite.to_json(),
+        return {"pass": self.passed, "verdict": self.verdict, "inconclusive": self.inconclusive or None,
+                "finite": self.finite.to_json(),
                 "independence": self.independence.to_json() if self.independence else None,
                 "variance": self.variance.to_json() if self.variance else None,
+                "outliers": self.outliers.to_json() if self.outliers else None,
                 "tests": [s.to_json() for s in self.scales],
                 "metrics": self.metrics, "detectable_bias": self.detectable_bias,
                 "detectable_bias_90": self.detectable_bias_most,
@@ -182,6 +202,17 @@ def _noiseless(a: BatchStats, b: BatchStats) -> np.ndarray:
     return (a.var_of_mean == 0) & (b.var_of_mean == 0)
 
 
+def _no_signal(test: Summary, reference: Summary) -> str:
+    """Why there is nothing to compare ("" when there is): both images one value everywhere in every batch."""
+    if not (constant_image(test) and constant_image(reference)):
+        return ""
+    t, r = float(test.pixel.mean.flat[0]), float(reference.pixel.mean.flat[0])
+    if t != r:
+        return ""  # two different constants: the scales reject them, noiseless
+    return (f"no signal: both images are {t:g} everywhere in every batch (nothing in view is shaded: a camera "
+            "facing away, a one-sided surface seen from behind?)")
+
+
 @cache
 def _metric_names() -> tuple[str, ...]:
     return tuple(image_metrics(np.ones((8, 8, 3)), np.ones((8, 8, 3))))
@@ -216,11 +247,12 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
         raise ValueError(f"images differ in size: {test.pixel.mean.shape} and {reference.pixel.mean.shape}")
     finite = FiniteCheck(damage_of_summary(test, signed), damage_of_summary(reference, signed), signed)
     independence = IndependenceCheck.of(test, reference, same_estimator)
+    outliers = OutlierCheck.of(test, reference)
     h, w = test.pixel.mean.shape[:2]
     # Against the same estimator the variance test is a verdict: a fourth member of the family, at a scale's share.
     judged_noise = same_estimator and None not in samples
     per_scale = sidak_level(alpha, len(SCALES) + judged_noise)
-    variance = VarianceCheck.of(test.pixel, reference.pixel, samples, per_scale, same_estimator)
+    variance = VarianceCheck.of(test, reference, samples, per_scale, same_estimator)
     ref = reference.pixel.mean[np.isfinite(reference.pixel.mean)]
     magnitude = float(np.mean(np.abs(ref))) if ref.size else 0.0
     # Moderation is for the pixel scale, where the variances of K batches of a few samples scatter widely; a
@@ -243,9 +275,10 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     scales = [pixel, tile, image]
     maps: dict[str, np.ndarray] = {}
     figures = _metrics(test.mean_image, reference.mean_image, signed, maps) if metrics else {}
+    no_signal = _no_signal(test, reference)
     if not power:
         return Comparison(scales, figures, float("nan"), (test.image.k, reference.image.k), finite, float("nan"),
-                          float("nan"), maps.get("flip"), independence, variance)
+                          float("nan"), maps.get("flip"), independence, variance, outliers, no_signal)
     # The image-mean bias found half of the time, and the same for one tile (median over tiles).
     image_biases = half_power_bias(ref_image, image_tests["se"], image_tests["dof"], scales[2].level, rho,
                                    (IMAGE_POWER_TARGET, POWER_TARGET))
@@ -255,8 +288,11 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
         per_tile = half_power_bias(ref_tile, tile_tests["se"], tile_tests["dof"], scales[1].level, rho)
         per_tile = per_tile[np.isfinite(per_tile)]
         detectable_tile = float(np.median(per_tile)) if per_tile.size else float("inf")
+    inconclusive = no_signal or (f"the comparison finds a bias of the image mean only from {detectable:.3g} on (half of "
+                                 f"the time), above the {INCONCLUSIVE_BIAS:.0%} it must resolve"
+                                 if not detectable <= INCONCLUSIVE_BIAS else "")
     return Comparison(scales, figures, detectable, (test.image.k, reference.image.k), finite, detectable_tile,
-                      detectable_most, maps.get("flip"), independence, variance)
+                      detectable_most, maps.get("flip"), independence, variance, outliers, inconclusive)
 
 
 def compare_batches(test: np.ndarray, reference: np.ndarray, alpha: float = SIGNIFICANCE,

@@ -1,5 +1,5 @@
 """What a comparison needs of K batch renders: per-scale means and variances (pixel, 8x8 tile, image), the
-smallest value of each pixel, and the evidence on the batches' independence. Stored references keep the means
+smallest value of each pixel, and the evidence on the batches' independence and on a batch that stands apart. Stored references keep the means
 and variances only (harness/images/references.py).
 
 Public API::
@@ -15,6 +15,7 @@ import numpy as np
 
 from harness.statistics.constants import TILE_SIZE
 from harness.statistics.independence import BatchDependence, batch_dependence
+from harness.statistics.outlier_batch import BatchOutlier, batch_outlier
 from harness.statistics.welch import BatchStats
 
 #: Bumped whenever `summarize` changes what it stores, so stored references are made again.
@@ -34,6 +35,9 @@ class Summary:
     minimum: np.ndarray | None = field(default=None, repr=False)
     #: Whether the batches are independent (harness.statistics.independence); None for stored summaries.
     dependence: BatchDependence | None = None
+    #: The batch whose image mean stands furthest from the others' (harness.statistics.outlier_batch); None for
+    #: stored summaries and where no batch can be judged.
+    outlier: BatchOutlier | None = None
 
     @property
     def mean_image(self) -> np.ndarray:
@@ -62,5 +66,6 @@ def summarize(batches: np.ndarray, tile: int = TILE_SIZE) -> Summary:
     if b.shape[0] < 2:
         raise ValueError("at least 2 batches are needed to estimate a variance")
     with np.errstate(invalid="ignore", over="ignore"):  # NaN and Inf propagate; the finite check reports them
-        return Summary(BatchStats.of(b), BatchStats.of(tile_means(b, tile)), BatchStats.of(b.mean(axis=(1, 2))),
-                       tile, b.min(axis=0), batch_dependence(b))
+        image = b.mean(axis=(1, 2))
+        return Summary(BatchStats.of(b), BatchStats.of(tile_means(b, tile)), BatchStats.of(image),
+                       tile, b.min(axis=0), batch_dependence(b), batch_outlier(image))

@@ -15,21 +15,14 @@ import dataclasses
 import time
 from dataclasses import dataclass
 
-import numpy as np
-
-from harness.comparison.compare import compare_summaries
-from harness.comparison.summary import Summary, summarize
+from harness.comparison.summary import summarize
 from harness.engines.base import Engine
 from harness.images.case_task import draws_our_estimator
 from harness.images.references import load_reference, render_params, render_reference
 from harness.images.suite import OUR_SPP, ImageCase
 from harness.integrators import entry
+from harness.images.spp_search import MAX_SPP, pooled, smallest_spp
 from harness.statistics.constants import IMAGE_BATCHES
-from harness.statistics.welch import BatchStats
-
-#: The most samples per pixel per batch a budget asks for.
-MAX_SPP = 1 << 16
-
 
 @dataclass(frozen=True)
 class Budget:
@@ -59,32 +52,6 @@ class Budget:
         return dataclasses.asdict(self)
 
 
-def _scaled(stats: BatchStats, factor: float) -> BatchStats:
-    return BatchStats(stats.mean, np.asarray(stats.var_of_mean) * factor, stats.k, stats.dof)
-
-
-def pooled(summary: Summary) -> Summary:
-    """The summary with its image mean's variance taken from its tiles': the image mean is the tiles' means
-    weighted by their pixels, and tiles are nearly independent, so sum_t (n_t / N)^2 var_t estimates it with
-    hundreds of times the K - 1 degrees of freedom of the image's own K batch means. The power model needs
-    the noise itself, not one draw of it: planned from the image's own variance, a 0.5 % target was found
-    99 % of the time instead of 90 %."""
-    h, w = summary.pixel.mean.shape[:2]
-    size = summary.tile_size
-    rows = np.minimum(size, h - size * np.arange(summary.tile.mean.shape[0]))
-    cols = np.minimum(size, w - size * np.arange(summary.tile.mean.shape[1]))
-    weight = (rows[:, None] * cols[None, :] / float(h * w))[..., None]
-    var = np.sum(weight**2 * np.asarray(summary.tile.var_of_mean, np.float64), axis=(0, 1))
-    return dataclasses.replace(summary, image=BatchStats(summary.image.mean, var, summary.image.k, summary.image.dof))
-
-
-def _at(pilot: Summary, pilot_spp: int, spp: int) -> Summary:
-    """The pilot's summary as a render of `spp` samples per batch would give it: every variance times pilot/spp."""
-    factor = pilot_spp / spp
-    return dataclasses.replace(pilot, pixel=_scaled(pilot.pixel, factor), tile=_scaled(pilot.tile, factor),
-                               image=_scaled(pilot.image, factor), minimum=None, dependence=None)
-
-
 def plan_budget(case: ImageCase, ours: Engine, reference: Engine, target: float, alpha: float,
                 seed: int) -> Budget:
     """The budget of `case` for a bias `target` (relative, e.g. 0.005) at the run's per-comparison `alpha`."""
@@ -99,24 +66,14 @@ def plan_budget(case: ImageCase, ours: Engine, reference: Engine, target: float,
     reference_summary = pooled(ref.summary)
     signed = entry(case.integrator).signed
     same = draws_our_estimator(case, reference.name)
-
-    def found(spp: int) -> float:
-        c = compare_summaries(_at(pilot, pilot_spp, spp), reference_summary, alpha, signed=signed,
-                              samples=(spp, ref.spp), metrics=False, same_estimator=same)
-        return c.detectable_bias_most
-
-    pilot_bias, best = found(pilot_spp), found(MAX_SPP)
-    if not best <= target:
-        return Budget(case.key, target, pilot_spp, pilot_bias, best, None, IMAGE_BATCHES, 0.0,
+    found = smallest_spp(pilot, pilot_spp, reference_summary, ref.spp, target, alpha, signed, same)
+    if found.spp is None:
+        return Budget(case.key, target, pilot_spp, found.pilot_bias, found.planned_bias, None, IMAGE_BATCHES, 0.0,
                       f"a bias of {target:.3g} cannot be found 90 % of the time against this reference: even "
-                      f"{MAX_SPP} spp finds only {best:.3g} (the reference's own noise; a reference with "
-                      "more samples would)")
-    lo, hi = 0, MAX_SPP  # found(lo) > target (or lo = 0), found(hi) <= target
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        lo, hi = (lo, mid) if found(mid) <= target else (mid, hi)
-    return Budget(case.key, target, pilot_spp, pilot_bias, found(hi), hi, IMAGE_BATCHES,
-                  render_seconds * hi / pilot_spp)
+                      f"{MAX_SPP} spp finds only {found.planned_bias:.3g} (the reference's own noise; a reference "
+                      "with more samples would)")
+    return Budget(case.key, target, pilot_spp, found.pilot_bias, found.planned_bias, found.spp, IMAGE_BATCHES,
+                  render_seconds * found.spp / pilot_spp)
 
 
 def parse_bias(text: str) -> float:

@@ -20,6 +20,7 @@ from harness.images.render_ahead import RenderAhead, closed_form_args, render_ar
 from harness.images.references import (CLOSED_FORM, Reference, load_reference, reference_path, render_params,
                                        render_reference)
 from harness.images.result import ImageResult
+from harness.images.spp_search import decisive_budget
 from harness.images.suite import ROOT, USER, ImageCase
 from harness.integrators import entry
 
@@ -95,7 +96,7 @@ def run_case_job(job: CaseJob, bundle: Bundle | None = None):
                           job.closed_forms_ahead.render(job.index) if job.closed_forms_ahead and started
                           and job.closed_form else None)
     result.case = job.case
-    if result.ours is not None and (result.passed or result.error is not None):
+    if result.ours is not None and (not result.failed or result.error is not None):
         result.ours = result.ours.light()  # a failed comparison keeps its batches for results/<run>/images/
     return result, messages
 
@@ -172,8 +173,13 @@ def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: 
     finding = decide(comparisons, summary, {name: ref.summary for name, ref in references.items()}, alpha, signed,
                      {name: ref.spp for name, ref in references.items()}, reference_engine.name,
                      analytic.name if analytic is not None else "")
-    return ImageResult(case, mine, references, comparisons, source, s, None, alpha, run_seed, finding=finding,
-                       tested=ours.name)
+    result = ImageResult(case, mine, references, comparisons, source, s, None, alpha, run_seed, finding=finding,
+                         tested=ours.name)
+    if result.verdict == "INCONCLUSIVE":
+        ref = references[reference_engine.name]
+        result.decisive_budget = decisive_budget(summary, mine.spp, ref.summary, ref.spp, alpha, signed,
+                                                 same[reference_engine.name])
+    return result
 
 
 def run_image_case(case: ImageCase, ours: Engine, ref: ReferenceImage, s: int, alpha: float,

@@ -16,8 +16,8 @@ def real_scenes_json(results: list[ImageResult], not_applicable: list[tuple[Imag
     not-applicable cases with their reasons."""
     real = [r for r in results if r.case.group == "real"]
     skipped = [(c, why) for c, why in not_applicable if c.group == "real"]
-    return {"pass": all(r.passed for r in real),
+    return {"pass": not any(r.failed for r in real) and any(r.passed for r in real),
             "scenes": sorted({r.case.scene for r in real} | {c.scene for c, _ in skipped}),
-            "cases": [{"scene": r.case.scene, "integrator": r.case.integrator, "pass": r.passed,
+            "cases": [{"scene": r.case.scene, "integrator": r.case.integrator, "pass": r.passed, "verdict": r.verdict,
                        "reference": r.reference_source} for r in real],
             "not_applicable": [{"scene": c.scene, "integrator": c.integrator, "reason": why} for c, why in skipped]}

@@ -49,18 +49,45 @@ class ImageResult:
     #: compared under that model (one line; the case then fails whatever the comparison says).
     reference_fit: NoiseFit | None = None
     reference_problem: str | None = None
+    #: For an INCONCLUSIVE case: the samples per pixel that would decide it, or why none would (one line).
+    decisive_budget: str = ""
+
+    @property
+    def _deciding(self) -> list[Comparison]:
+        overruled = self.finding.overruled if self.finding else None
+        return [c for name, c in self.comparisons.items() if name != overruled]
+
+    @property
+    def verdict(self) -> str:
+        """"FAIL" when a render or a deciding comparison failed; "PASS" when none failed and one could have
+        shown a defect; else "INCONCLUSIVE" (no signal, or a detectable bias above INCONCLUSIVE_BIAS)."""
+        deciding = self._deciding
+        if self.error is not None or self.reference_problem is not None or not deciding \
+                or any(not c.passed for c in deciding):
+            return "FAIL"
+        return "PASS" if any(c.verdict == "PASS" for c in deciding) else "INCONCLUSIVE"
 
     @property
     def passed(self) -> bool:
-        overruled = self.finding.overruled if self.finding else None
-        return self.error is None and self.reference_problem is None and \
-            all(c.passed for name, c in self.comparisons.items() if name != overruled)
+        return self.verdict == "PASS"
+
+    @property
+    def failed(self) -> bool:
+        return self.verdict == "FAIL"
+
+    @property
+    def inconclusive(self) -> str:
+        """Why the case is INCONCLUSIVE, with what would decide it ("" when it is not)."""
+        if self.verdict != "INCONCLUSIVE":
+            return ""
+        why = next(c.inconclusive for c in self._deciding if c.inconclusive)
+        return why + (f"; {self.decisive_budget}" if self.decisive_budget else "")
 
     def to_json(self) -> dict:
         if self.error is not None or self.ours is None:
             seconds = {k: r.seconds for k, r in self.references.items()}
             return {"integrator": self.case.integrator, "scene": self.case.scene, "engine": self.engine,
-                    "pass": False, "error": self.error, "tests": {}, "metrics": {},
+                    "pass": False, "verdict": "FAIL", "error": self.error, "tests": {}, "metrics": {},
                     "seconds": {**({self.engine: self.ours.seconds} if self.ours else {}), **seconds},
                     "reference": self.reference_source, "note": self.note, "seed": self.seed, "alpha": self.alpha,
                     "idiff": self.idiff, "error_output": self.error_output, **self._source()}
@@ -69,6 +96,7 @@ class ImageResult:
         tested = self.engine
         return {
             "integrator": self.case.integrator, "scene": self.case.scene, "engine": tested, "pass": self.passed,
+            "verdict": self.verdict, "inconclusive": self.inconclusive or None,
             "tests": {name: c.to_json() for name, c in self.comparisons.items()},
             "metrics": first.metrics,
             "seconds": {tested: self.ours.seconds, **{k: r.seconds for k, r in self.references.items()}},

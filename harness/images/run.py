@@ -78,7 +78,7 @@ def run_images(cases: list[ImageCase], ours: Engine, reference: Engine, seed: in
                 on_message(m)
         if case.scene in geometry_failed:
             result.note = GEOMETRY_NOTE
-        if entry(case.integrator).checks_geometry and result.error is None and not result.passed:
+        if entry(case.integrator).checks_geometry and result.error is None and result.failed:
             geometry_failed.add(case.scene)
             result.note = GEOMETRY_NOTE
         if result.error is not None and on_message:

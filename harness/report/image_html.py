@@ -22,8 +22,11 @@ def _esc(x) -> str:
     return html.escape(str(x))
 
 
-def _verdict(ok: bool) -> str:
-    return f'<span class="{"pass" if ok else "fail"}">{"PASS" if ok else "FAIL"}</span>'
+def _verdict(ok: bool | str) -> str:
+    """PASS or FAIL for a bool; a verdict word ("INCONCLUSIVE" in the warning colour) as it is."""
+    word = ("PASS" if ok else "FAIL") if isinstance(ok, bool) else ok
+    kind = {"PASS": "pass", "FAIL": "fail"}.get(word, "warn")
+    return f'<span class="{kind}">{word}</span>'
 
 
 def _seconds(timings: dict, key: str) -> str:
@@ -65,7 +68,9 @@ def _picture(r: ImageResult, name: str, comparison: Comparison) -> str:
 
 
 def _entry(r: ImageResult, run: dict | None = None) -> str:
-    parts = [f'<h3 id="{_esc(r.case.key)}">{_esc(r.case.scene)} — {_esc(r.case.integrator)}: {_verdict(r.passed)}</h3>']
+    parts = [f'<h3 id="{_esc(r.case.key)}">{_esc(r.case.scene)} — {_esc(r.case.integrator)}: {_verdict(r.verdict)}</h3>']
+    if r.inconclusive:
+        parts.append(f'<p class="warn">{_esc(r.inconclusive)}</p>')
     if r.note:
         parts.append(f'<p class="fail">{_esc(r.note)}</p>')
     if r.reference_problem:
@@ -129,6 +134,11 @@ def _regression_html(regression: list[dict] | None, baseline: str | None) -> str
             f"<table><tr><th>scene</th><th>integrator</th><th>change</th></tr>{rows}</table>")
 
 
+def _inconclusive_count(results: list[ImageResult]) -> str:
+    n = sum(r.verdict == "INCONCLUSIVE" for r in results)
+    return f", {n} inconclusive" if n else ""
+
+
 def report_html(results: list[ImageResult], alpha: float, warps: dict | None, meta: dict,
                 regression: list[dict] | None, baseline: str | None, bench_href: str | None = None,
                 invariance: dict | None = None, calibration_href: str | None = None, run: dict | None = None) -> str:
@@ -137,7 +147,8 @@ def report_html(results: list[ImageResult], alpha: float, warps: dict | None, me
     matrix ends the page (its own page, invariance.html, is linked); `calibration_href` links the latest
     `calibrate` page, if there is one; `run`: the run's invocation, repeated by each reproduce line."""
     failed = sum(not r.passed for r in results)
-    summary = [f"<li>Images: {len(results) - failed} of {len(results)} comparisons pass "
+    summary = [f"<li>Images: {len(results) - failed} of {len(results)} comparisons pass"
+               f"{_inconclusive_count(results)} "
                f"(per-comparison α {alpha:.2g}, family-wise 0.01 over the run)</li>"]
     if warps is not None:
         n_pass = sum(w["pass"] for w in warps["warps"])
@@ -158,7 +169,7 @@ def report_html(results: list[ImageResult], alpha: float, warps: dict | None, me
         if not mine:
             continue
         n_ok = sum(r.passed for r in mine)
-        links = " ".join(f'<a href="#{_esc(r.case.key)}">{_esc(r.case.scene)}</a> {_verdict(r.passed)}' for r in mine)
+        links = " ".join(f'<a href="#{_esc(r.case.key)}">{_esc(r.case.scene)}</a> {_verdict(r.verdict)}' for r in mine)
         sections.append(f"<h2>{_esc(integrator)}: {n_ok} of {len(mine)} scenes pass</h2><p>{links}</p>"
                         + "".join(_entry(r, run) for r in mine))
     return f"""<!DOCTYPE html>

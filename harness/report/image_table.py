@@ -27,11 +27,15 @@ def _cell(result: ImageResult) -> str:
     meaningless; their locations are in the report) if any, else the failing scales."""
     if result.passed:
         return "[green]PASS[/]"
+    if result.verdict == "INCONCLUSIVE":
+        return "[yellow]INCONCLUSIVE[/]"
     bad_pixels = _bad_pixels(result)
     if bad_pixels:
         return f"[bold red]FAIL[/] {escape(', '.join(bad_pixels))}"
     if not all(c.independent for c in result.comparisons.values()):
         return "[bold red]FAIL[/] batches not independent"
+    if not all(c.no_outlier for c in result.comparisons.values()):
+        return "[bold red]FAIL[/] a batch stands apart"
     failed = sorted({s for c in result.comparisons.values() for s in c.failed_checks})
     return f"[bold red]FAIL[/] {','.join(failed)}"
 

@@ -8,14 +8,17 @@ from harness.images.result import ImageResult
 
 
 def _failure(c: Comparison) -> str:
-    """Why a comparison failed: its bad pixels (NaN, Inf, negative), then the scales that reject."""
+    """Why a comparison failed: its bad pixels (NaN, Inf, negative), dependent or outlying batches, a noise
+    beyond the reference's (a firefly), then the scales that reject."""
     parts = [] if c.finite.passed else [c.finite.summary]
     if not c.independent:
         parts.append(c.independence.summary)
-    if c.failed_scales:
-        parts.append(f"{', '.join(c.failed_scales)} scale(s) reject")
+    if not c.no_outlier:
+        parts.append(c.outliers.summary)
     if c.variance is not None and not c.variance.passed:
         parts.append(c.variance.summary)
+    if c.failed_scales:
+        parts.append(f"{', '.join(c.failed_scales)} scale(s) reject")
     return "; ".join(parts)
 
 
@@ -34,17 +37,21 @@ def junit_xml(images: list[ImageResult], warps: list[dict] | None, meta: dict | 
     `meta` (the engines' names, versions, files and commands) as its <properties>."""
     root = ET.Element("testsuites", name="mcval")
 
-    def suite(name: str, cases: list[tuple[str, bool, str, float]], notes: dict[str, str] | None = None) -> None:
-        """One <testsuite>; `notes` (by case name) become a passing case's <system-out>, e.g. its warnings."""
+    def suite(name: str, cases: list[tuple[str, bool | None, str, float]], notes: dict[str, str] | None = None) -> None:
+        """One <testsuite>; `notes` (by case name) become a passing case's <system-out>, e.g. its warnings. A
+        case whose `ok` is None was not judged (INCONCLUSIVE): a <skipped> with the reason."""
         el = ET.SubElement(root, "testsuite", name=name, tests=str(len(cases)),
-                           failures=str(sum(not ok for _, ok, _, _ in cases)))
+                           failures=str(sum(ok is False for _, ok, _, _ in cases)),
+                           skipped=str(sum(ok is None for _, ok, _, _ in cases)))
         if meta:
             properties = ET.SubElement(el, "properties")
             for key, value in meta.items():
                 ET.SubElement(properties, "property", name=key, value=str(value))
         for case_name, ok, message, seconds in cases:
             tc = ET.SubElement(el, "testcase", classname=f"mcval.{name}", name=case_name, time=f"{seconds:.3f}")
-            if not ok:
+            if ok is None:
+                ET.SubElement(tc, "skipped", message=message.split("\n", 1)[0]).text = message
+            elif not ok:
                 # The attribute holds the first line (a failed render's reason); the text all of it.
                 ET.SubElement(tc, "failure", message=message.split("\n", 1)[0]).text = message
             elif (notes or {}).get(case_name):
@@ -61,7 +68,10 @@ def junit_xml(images: list[ImageResult], warps: list[dict] | None, meta: dict | 
             message = "; ".join(f"against {n}: {_failure(c)}" for n, c in r.comparisons.items() if not c.passed)
             if r.error is not None:
                 message = r.error + (f"\n{r.error_output}" if r.error_output else "")
-            cases.append((r.case.scene, r.passed, (r.note + "; " if r.note else "") + message,
+            if r.verdict == "INCONCLUSIVE":
+                message = f"INCONCLUSIVE: {r.inconclusive}"
+            ok = None if r.verdict == "INCONCLUSIVE" else r.passed
+            cases.append((r.case.scene, ok, (r.note + "; " if r.note else "") + message,
                           r.ours.seconds.get("total", 0.0) if r.ours else 0.0))
         suite(integrator, cases)
     return ET.tostring(root, encoding="unicode", xml_declaration=True)

@@ -55,3 +55,12 @@ DEPENDENCE_CORRELATION = 0.3
 DEPENDENCE_LEVEL = 1e-3
 #: Side in pixels of the blocks whose sums are the clusters of that test.
 DEPENDENCE_CLUSTER = 4
+#: Side in pixels of the neighbourhood whose largest reference variance an element's test variance is held
+#: against (harness.statistics.excess_spread).
+SPREAD_WINDOW = 5
+#: A batch whose image mean stands apart from the others' (harness.statistics.outlier_batch) at this level fails
+#: the comparison: fixed, as DEPENDENCE_LEVEL is, far below every comparison's share of the run's level.
+OUTLIER_LEVEL = 1e-6
+#: A comparison that cannot find a relative bias of the image mean this large half of the time (at its noise
+#: and level) is INCONCLUSIVE, never a PASS: it says the samples per pixel that would decide it.
+INCONCLUSIVE_BIAS = 0.05
