@@ -48,17 +48,25 @@ BEHAVIOURS = {
     "negative": "im = shape(); im[1, 1] = -0.5; write(im)",
     "hang": "time.sleep(600)",
     "spam": "while True: print('x' * 4096, flush=True)",
+    # Renders, then writes a firefly (FACTOR times the value; a value itself past 1e3) into pixel (64, 64) of
+    # BATCHES of a case's 8 calls: their seeds are distinct modulo 8 (see harness.engines.command.call_seed).
+    "firefly": "render()\nif int(seed) % 8 < BATCHES:\n    import numpy as np, OpenImageIO as oiio\n"
+               "    im = oiio.ImageInput.open(output); px = im.read_image('float'); im.close()\n"
+               "    px = np.array(px[..., :3], np.float64); px[64, 64] = FACTOR if FACTOR > 1e3 else px[64, 64] * FACTOR\n"
+               "    write(np.minimum(px, 3.4e38))",
 }
 
 ARGUMENTS = ["{scene}", "{output}", "{spp}", "{seed}", "{integrator}", "{width}", "{height}"]
 INTEGRATORS = '[integrators]\nnormals = "normals"\nsimple = "simple"\nao = "ao"\n'
 
 
-def write_engine(folder: Path, behaviour: str, name: str | None = None, extra: str = "") -> Path:
+def write_engine(folder: Path, behaviour: str, name: str | None = None, extra: str = "",
+                 constants: dict[str, float] | None = None) -> Path:
     """An engine file in `folder` whose renderer does `behaviour` (a key of BEHAVIOURS); `extra`: more TOML
-    lines before its [integrators]."""
+    lines before its [integrators]; `constants`: names the behaviour reads (FACTOR, BATCHES of "firefly")."""
     script = folder / f"{behaviour}.py"
-    script.write_text(_HEADER + BEHAVIOURS[behaviour] + "\n")
+    preamble = "".join(f"{k} = {v!r}\n" for k, v in (constants or {}).items())
+    script.write_text(_HEADER + preamble + BEHAVIOURS[behaviour] + "\n")
     script.chmod(script.stat().st_mode | stat.S_IXUSR)
     command = ", ".join(f'"{w}"' for w in ["{here}/" + script.name, *ARGUMENTS])
     path = folder / f"{behaviour}.toml"
