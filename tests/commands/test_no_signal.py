@@ -38,8 +38,7 @@ def test_images_without_signal_are_inconclusive_and_a_run_of_them_fails(tmp_path
     assert "above the 5% it must resolve" in cases["speck"]["inconclusive"]
     assert "spp" in cases["speck"]["inconclusive"]  # what would decide it, or why no budget of ours would
     for case in cases.values():
-        (test,) = case["tests"].values()
-        assert test["independence"]["pass"]
+        assert all(test["independence"]["pass"] for test in case["tests"].values())
     skipped = list(ET.parse(out / "latest" / "junit.xml").iter("skipped"))
     assert len(skipped) == 2 and all(s.get("message").startswith("INCONCLUSIVE: ") for s in skipped)
     printed = " ".join(capsys.readouterr().out.split())
