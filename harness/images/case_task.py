@@ -10,6 +10,7 @@ from typing import Callable
 
 from harness.comparison.compare import compare_summaries
 from harness.comparison.summary import summarize
+from harness.comparison.cause import named_cause
 from harness.comparison.mismatch import diagnose
 from harness.distributed.bundle import Bundle, bundle_files
 from harness.engines.analytic import AnalyticEngine
@@ -20,6 +21,7 @@ from harness.images.render_ahead import RenderAhead, closed_form_args, render_ar
 from harness.images.references import (CLOSED_FORM, Reference, load_reference, reference_path, render_params,
                                        render_reference)
 from harness.images.result import ImageResult
+from harness.images.scene_constants import scene_constants
 from harness.images.spp_search import decisive_budget
 from harness.images.suite import ROOT, USER, ImageCase
 from harness.integrators import entry
@@ -175,6 +177,9 @@ def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: 
                      analytic.name if analytic is not None else "")
     result = ImageResult(case, mine, references, comparisons, source, s, None, alpha, run_seed, finding=finding,
                          tested=ours.name)
+    if result.failed:
+        failed = next(name for name, c in comparisons.items() if not c.passed)
+        result.note = named_cause(summary, references[failed].summary, signed, scene_constants(case.path))
     if result.verdict == "INCONCLUSIVE":
         ref = references[reference_engine.name]
         result.decisive_budget = decisive_budget(summary, mine.spp, ref.summary, ref.spp, alpha, signed,
@@ -203,6 +208,9 @@ def run_image_case(case: ImageCase, ours: Engine, ref: ReferenceImage, s: int, a
         mine = ours.render(*render_args(case, s, {"res": str(image.shape[1])}))
     except RenderFailed as e:
         return failed(f"{ours.name} render: {e.reason}", output=e.output)
+    convention = entry(case.integrator).nori_image if case.dialect == "nori" else None
+    if convention is not None:  # the image is Nori's: ours as Nori's integrator of that name writes it
+        mine = replace(mine, batches=convention.apply(mine.batches))
     try:
         inputs = against_image(ref, image, summarize(mine.batches), mine.batches, mine.spp)
     except ValueError as e:
@@ -212,7 +220,11 @@ def run_image_case(case: ImageCase, ours: Engine, ref: ReferenceImage, s: int, a
     comparison = compare_summaries(inputs.test, inputs.reference, alpha, signed=signed,
                                    samples=(mine.spp, max(1, ref.spp // inputs.reference.image.k)))
     reference = Reference(inputs.reference, ref.spp, {}, source)
-    # What a failed comparison looks like (a zoom, a shift, a factor, a background): the user's next step.
-    note = None if comparison.passed else diagnose(mine.mean, image)
+    # What a failed comparison looks like (|n| for n, a named factor; else a zoom, a shift, a factor, a
+    # background): the user's next step.
+    note = None if comparison.passed else (
+        named_cause(inputs.test, inputs.reference, signed, scene_constants(case.path)) or diagnose(mine.mean, image))
+    if convention is not None:
+        note = "; ".join(n for n in (f"compared as {convention.what} (the scene is in Nori's dialect)", note) if n)
     return ImageResult(case, mine, {"image": reference}, {"image": comparison}, source, s, note, alpha, run_seed,
                        tested=ours.name, reference_fit=inputs.fit, reference_problem=fit_verdict(ref, inputs.fit))

@@ -76,11 +76,12 @@ def run_images(cases: list[ImageCase], ours: Engine, reference: Engine, seed: in
         for m in messages:
             if on_message:
                 on_message(m)
+        # A case's own cause (a named factor, |n|) comes first; the scene's geometry note after it.
         if case.scene in geometry_failed:
-            result.note = GEOMETRY_NOTE
+            result.note = "; ".join(n for n in (result.note, GEOMETRY_NOTE) if n)
         if entry(case.integrator).checks_geometry and result.error is None and result.failed:
             geometry_failed.add(case.scene)
-            result.note = GEOMETRY_NOTE
+            result.note = result.note or GEOMETRY_NOTE
         if result.error is not None and on_message:
             on_message(f"{case.key}: {result.error}")
         if result.finding is not None and on_message:

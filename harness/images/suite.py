@@ -93,6 +93,8 @@ class ImageCase:
     #: Samples per pixel per batch of the tested engine's render where a budget chose them (--detect-bias);
     #: None: the integrator's default (OUR_SPP).
     spp: int | None = field(default=None, compare=False)
+    #: The dialect of the user's scene file as given: "mitsuba", or "nori" (a reference image of it is Nori's).
+    dialect: str = field(default="mitsuba", compare=False)
 
     @property
     def test_spp(self) -> int:
@@ -125,7 +127,8 @@ def scene_cases(user: Sequence[UserScene] | None = None, with_suite: bool = Fals
         if u.name in taken:
             raise ValueError(f"--scene {u.source}: the suite has a scene called {u.name} too; rename the file "
                              "or run it without --with-suite")
-    return suite + [ImageCase(u.name, "", USER, u.prepared.parent, str(u.source), u.problem, u.notes)
+    return suite + [ImageCase(u.name, "", USER, u.prepared.parent, str(u.source), u.problem, u.notes,
+                              dialect=u.dialect)
                    for u in user or ()]
 
 

@@ -28,6 +28,7 @@ class UserScene:
     prepared: Path   # the copy that is rendered
     problem: str = ""  # why the file cannot be rendered at all (a Nori file without a translation), or ""
     notes: tuple[str, ...] = ()  # what its translation left out (only the file's own integrator would use it)
+    dialect: str = "mitsuba"  # "nori" for a file in Nori's dialect
 
 
 def scene_files(paths: list[Path]) -> list[Path]:
@@ -105,11 +106,19 @@ def _prepared_text(path: Path, resolution: int, notes: list[str] | None = None) 
     return _written(root)
 
 
+def _is_nori_file(path: Path) -> bool:
+    try:
+        return is_nori(ET.parse(path).getroot())
+    except (ET.ParseError, OSError):
+        return False
+
+
 def prepare_scenes(paths: list[Path], cache: Path, resolution: int) -> list[UserScene]:
     """The scenes `paths` name, each prepared into cache/<digest>/<name>.xml (written once per content)."""
     scenes = []
     for path in scene_files(paths):
         problem, notes = "", []
+        dialect = "nori" if _is_nori_file(path) else "mitsuba"
         try:
             text = _prepared_text(path, resolution, notes)
         except OSError as e:
@@ -123,5 +132,5 @@ def prepare_scenes(paths: list[Path], cache: Path, resolution: int) -> list[User
             tmp = prepared.with_suffix(".tmp")
             tmp.write_text(text)
             tmp.replace(prepared)
-        scenes.append(UserScene(path.stem, path, prepared, problem, tuple(notes)))
+        scenes.append(UserScene(path.stem, path, prepared, problem, tuple(notes), dialect))
     return scenes

@@ -71,6 +71,14 @@ GEOMETRIC_INVARIANCES = ("scale", "rotate", "translate")
 
 
 @dataclass(frozen=True)
+class ImageConvention:
+    """Another renderer's way of writing an integrator's image, from ours."""
+
+    what: str  # e.g. "|n|, each component's absolute value"
+    apply: Callable[[np.ndarray], np.ndarray]
+
+
+@dataclass(frozen=True)
 class IntegratorEntry:
     """One integrator as the harness sees it."""
 
@@ -100,6 +108,9 @@ class IntegratorEntry:
     estimator_differs: EstimatorCheck | None = None
     #: Its speed against error is measured by `bench` (a noiseless image has no convergence to measure).
     benchmarked: bool = True
+    #: How Nori's integrator of this name writes the image, from ours (normals: |n|); None: as ours. A reference
+    #: image of a scene in Nori's dialect is compared with ours so written.
+    nori_image: ImageConvention | None = None
     source: str = field(default="", compare=False)  # the file it was read from (set by the registry)
 
     def invariances(self) -> tuple[str, ...]:

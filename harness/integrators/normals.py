@@ -1,7 +1,7 @@
 """normals: the shading normal of the first hit, signed, 0 on a miss."""
 import numpy as np
 
-from harness.integrators.entry import UNUSED_EMITTERS, AnalyticForm, IntegratorEntry, MitsubaMapping
+from harness.integrators.entry import UNUSED_EMITTERS, AnalyticForm, ImageConvention, IntegratorEntry, MitsubaMapping
 
 ENTRY = IntegratorEntry(
     name="normals",
@@ -18,4 +18,6 @@ ENTRY = IntegratorEntry(
     same_estimator_in_mitsuba=True,
     rotates_with_scene=True,
     benchmarked=False,
+    # Nori's normals integrator returns the normal's absolute value, component by component.
+    nori_image=ImageConvention("|n|, each component's absolute value", np.abs),
 )

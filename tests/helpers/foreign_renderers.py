@@ -50,6 +50,10 @@ BEHAVIOURS = {
     "spam": "while True: print('x' * 4096, flush=True)",
     # Renders, then writes a firefly (FACTOR times the value; a value itself past 1e3) into pixel (64, 64) of
     # BATCHES of a case's 8 calls: their seeds are distinct modulo 8 (see harness.engines.command.call_seed).
+    # Renders, then writes every value FACTOR times (a 1/pi or a reflectance left out, a pdf off by pi^2).
+    "scaled": "render()\nimport numpy as np, OpenImageIO as oiio\n"
+              "im = oiio.ImageInput.open(output); px = im.read_image('float'); im.close()\n"
+              "write(np.array(px[..., :3], np.float64) * FACTOR)",
     "firefly": "render()\nif int(seed) % 8 < BATCHES:\n    import numpy as np, OpenImageIO as oiio\n"
                "    im = oiio.ImageInput.open(output); px = im.read_image('float'); im.close()\n"
                "    px = np.array(px[..., :3], np.float64); px[64, 64] = FACTOR if FACTOR > 1e3 else px[64, 64] * FACTOR\n"
