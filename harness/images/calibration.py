@@ -22,17 +22,23 @@ from harness.images.references import RESOLUTION
 from harness.images.run import closed_forms, comparison_level
 from harness.images.suite import ImageCase, select_cases
 from harness.statistics.calibration_rates import CALIBRATION_CONFIDENCE, CALIBRATION_LEVELS, Rate, clopper_pearson
-from harness.statistics.constants import sidak_level
+from harness.statistics.constants import OUTLIER_LEVEL, sidak_level
 
 #: The cases each kind cycles over (test-closed-form: those with a closed form). None is noiseless on both
 #: sides (normals, or ao, on a lone plane: both engines exact, nothing could reject, which would only
 #: dilute the rate); cornell:normals is noisy along its edges and gives the normals' power.
 CASES = {
     "test-test": ("cornell:normals", "cornell:simple", "cornell:ao", "sphere_floor_unit:simple", "crevice:ao",
-                  "plane_point:simple"),
+                  "plane_point:simple", "grazing_light:simple", "close_light:simple"),
     "reference-reference": ("plane_point:simple", "cornell:ao", "sphere_floor_unit:simple"),
     "test-closed-form": ("plane_point:simple", "sphere_floor_unit:simple", "sphere_floor_unit:ao"),
 }
+#: Heavy-tailed estimators among CASES: a point light at grazing angles, one close to a surface (1/r^2 within a
+#: pixel's footprint).
+HEAVY_TAILED = ("grazing_light:simple", "close_light:simple")
+#: The parts of a comparison whose rejections are counted: the scales, the image-wide variance test, the
+#: per-pixel and per-tile excess of noise (fireflies), a batch standing apart, and the whole comparison.
+PARTS = (*SCALES, "variance", "firefly", "outlier", "whole")
 #: Detected in this fraction of comparisons: the power figures' bias.
 POWER = 0.9
 
@@ -41,6 +47,18 @@ def validation_alpha() -> float:
     """The per-comparison level of a default `validate`."""
     cases = select_cases(None)
     return comparison_level(cases, closed_forms(cases))
+
+
+def _nominal(part: str, level: float) -> float:
+    """The level a part of a comparison runs at, for a comparison at `level`: a scale and the noise check take
+    their Sidak share of it, and the noise check's two tests (image-wide, per element) half of that each; a
+    batch standing apart is judged at the fixed OUTLIER_LEVEL."""
+    if part == "whole":
+        return level
+    if part == "outlier":
+        return OUTLIER_LEVEL
+    share = sidak_level(level, len(SCALES) + 1)
+    return sidak_level(share, 2) if part in ("variance", "firefly") else share
 
 
 def _case(key: str) -> ImageCase:
@@ -59,15 +77,16 @@ class ImageCalibration:
         """Per kind and for all kinds together, per scale and for the whole comparison: the rates."""
         groups = [(kind, [r for r in self.results if r["kind"] == kind]) for kind in KINDS]
         groups.append(("all", self.results))
-        parts = (*SCALES, "variance", "whole")
-        intervals = len(groups) * len(parts) * len(CALIBRATION_LEVELS)
+        heavy = [r for r in self.results if r["case"] in HEAVY_TAILED]
+        if heavy:
+            groups.append(("heavy-tailed", heavy))
+        intervals = len(groups) * len(PARTS) * len(CALIBRATION_LEVELS)
         each = 1.0 - (1.0 - CALIBRATION_CONFIDENCE) / intervals
         out = []
         for kind, rs in groups:
-            for part in parts:
+            for part in PARTS:
                 for level in CALIBRATION_LEVELS:
-                    # A scale, and the variance test, run at their Sidak share of the comparison's level.
-                    nominal = level if part == "whole" else sidak_level(level, len(SCALES) + 1)
+                    nominal = _nominal(part, level)
                     k = sum(r["rejected"][str(level)].get(part, False) for r in rs)
                     rate = Rate(nominal, len(rs), k, *clopper_pearson(k, len(rs), each))
                     out.append({"kind": kind, "scale": part, "comparison_level": level, **rate.to_json()})

@@ -63,7 +63,11 @@ def null_comparison(job: NullJob, bundle: Bundle | None = None) -> dict:
         c = compare_summaries(summary, reference, level, signed, samples=samples, metrics=False, power=False,
                               same_estimator=True)
         rejected[str(level)] = {**{s.scale: not s.passed for s in c.scales},
-                                "variance": c.variance is not None and not c.variance.passed, "whole": not c.passed}
+                                "variance": c.variance is not None and c.variance.result is not None
+                                and c.variance.result.rejects,
+                                "firefly": c.variance is not None and c.variance.excess is not None
+                                and c.variance.excess.rejects,
+                                "outlier": not c.no_outlier, "whole": not c.passed}
     out = {"kind": job.kind, "case": case.key, "integrator": case.integrator, "rejected": rejected,
            "image_min_p": c.scales[SCALES.index("image")].min_p}
     if job.kind == "test-test":
