@@ -68,6 +68,8 @@ def test_a_reference_of_absolute_normals_is_named_and_nori_scenes_are_compared_s
     result, message = _first_lines(out)
     assert result["note"].startswith("the reference holds |n|")
     assert message.startswith("the reference holds |n|")
+    printed = " ".join(capsys.readouterr().out.split())
+    assert "FAIL tilted:normals — the reference holds |n|" in printed
     out = tmp_path / "results_nori"
     assert main(["images", "--scene", str(nori / "tilted.xml"), *reference, "--out", str(out)]) == 0
     (result,) = json.loads((out / "latest" / "results.json").read_text())["images"]
