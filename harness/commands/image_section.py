@@ -123,7 +123,7 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     for r in inconclusive:
         console.print(f"[yellow]INCONCLUSIVE[/] {r.case.key} — {escape(r.inconclusive)}", soft_wrap=True)
     for r in failed:
-        why = "; ".join(x for x in (r.error, r.note, r.reference_problem) if x)  # a named cause before its symptoms
+        why = r.why
         console.print(f"[red]FAIL[/] {r.case.key}{' — ' + escape(why) if why else ''}: "
                       f"{escape(reproduce_command(r, run))}", soft_wrap=True)
     if results and not failed and not any(r.passed for r in results):

@@ -145,6 +145,21 @@ class Comparison:
         return (([] if self.finite.passed else ["finite"]) + ([] if self.independent else ["independent"])
                 + ([] if self.no_outlier else ["outlier"]) + self.failed_scales + ([] if noise else ["variance"]))
 
+    @property
+    def reason(self) -> str:
+        """Why it failed, one line: bad pixels (NaN, Inf, negative), dependent or outlying batches, a noise
+        beyond the reference's (a firefly), then the scales that reject; "" when it passed."""
+        parts = [] if self.finite.passed else [self.finite.summary]
+        if not self.independent:
+            parts.append(self.independence.summary)
+        if not self.no_outlier:
+            parts.append(self.outliers.summary)
+        if self.variance is not None and not self.variance.passed:
+            parts.append(self.variance.summary)
+        if self.failed_scales:
+            parts.append(f"{', '.join(self.failed_scales)} scale(s) reject")
+        return "; ".join(parts)
+
     def to_json(self) -> dict:
         return {"pass": self.passed, "verdict": self.verdict, "inconclusive": self.inconclusive or None,
                 "finite": self.finite.to_json(),

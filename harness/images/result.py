@@ -76,6 +76,20 @@ class ImageResult:
         return self.verdict == "FAIL"
 
     @property
+    def failures(self) -> str:
+        """Each failed comparison's reason, one line ("against mitsuba: ...; against analytic: ...")."""
+        return "; ".join(f"against {n}: {c.reason}" for n, c in self.comparisons.items() if not c.passed)
+
+    @property
+    def why(self) -> str:
+        """Why the case failed, cause first: the render's error, the named cause (a factor, |n|), the reference
+        image's misfit, then the failed comparisons; "" when it did not fail."""
+        if not self.failed:
+            return ""
+        return "; ".join(x for x in (self.error, self.note, self.reference_problem,
+                                     None if self.error else self.failures) if x)
+
+    @property
     def inconclusive(self) -> str:
         """Why the case is INCONCLUSIVE, with what would decide it ("" when it is not)."""
         if self.verdict != "INCONCLUSIVE":

@@ -3,23 +3,7 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 
-from harness.comparison.compare import Comparison
 from harness.images.result import ImageResult
-
-
-def _failure(c: Comparison) -> str:
-    """Why a comparison failed: its bad pixels (NaN, Inf, negative), dependent or outlying batches, a noise
-    beyond the reference's (a firefly), then the scales that reject."""
-    parts = [] if c.finite.passed else [c.finite.summary]
-    if not c.independent:
-        parts.append(c.independence.summary)
-    if not c.no_outlier:
-        parts.append(c.outliers.summary)
-    if c.variance is not None and not c.variance.passed:
-        parts.append(c.variance.summary)
-    if c.failed_scales:
-        parts.append(f"{', '.join(c.failed_scales)} scale(s) reject")
-    return "; ".join(parts)
 
 
 def _warp_case(w: dict) -> str:
@@ -65,7 +49,7 @@ def junit_xml(images: list[ImageResult], warps: list[dict] | None, meta: dict | 
     for integrator in sorted({r.case.integrator for r in images}):
         cases = []
         for r in (r for r in images if r.case.integrator == integrator):
-            message = "; ".join(f"against {n}: {_failure(c)}" for n, c in r.comparisons.items() if not c.passed)
+            message = r.failures
             if r.error is not None:
                 message = r.error + (f"\n{r.error_output}" if r.error_output else "")
             if r.verdict == "INCONCLUSIVE":

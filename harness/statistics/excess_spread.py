@@ -31,7 +31,14 @@ from scipy.ndimage import maximum_filter
 from scipy.special import fdtri
 
 from harness.statistics.constants import ROUNDING_TOLERANCE, SPREAD_WINDOW, TILE_SIZE
+from harness.statistics.tiles import tile_blocks
 from harness.statistics.welch import BatchStats
+
+#: The rate (times 1 / N) below which a contribution none of N reference samples met is taken to lie: N samples
+#: miss one of rate 10 / N with probability e^-10 = 4.5e-5. A test batch that met it h times then shows a
+#: variance ratio of about h^2 / 6; it takes six hits (while the reference, with 16 times the samples, met none)
+#: to reach a pixel's critical ratio, which happens below 1e-8 per pixel at any rate.
+MISSED_RATE = 10.0
 
 
 @dataclass(frozen=True)
@@ -71,19 +78,33 @@ class ExcessSpread:
         return {"level": self.level, "rejects": self.rejects, "scales": [s.to_json() for s in self.scales]}
 
 
-def _ratios(test: BatchStats, reference: BatchStats, spp: tuple[int, int], window: int) -> np.ndarray:
+def _ratios(test: BatchStats, reference: BatchStats, spp: tuple[int, int], window: int, largest: np.ndarray,
+            pixels: int) -> np.ndarray:
     """Per element: the test's per-sample variance over the largest of the reference's in the neighbourhood,
-    floored at the variance that float rounding of the values would show."""
+    floored at what a contribution that the reference's samples all missed may add (`largest`: the largest
+    reference pixel value the element's samples may take; `pixels` of them in the element), and at the
+    variance that float rounding of the values would show."""
     mean = np.asarray(test.mean, np.float64)
     finite = np.abs(mean[np.isfinite(mean)])
     rounding = ROUNDING_TOLERANCE * (np.abs(mean) + (float(finite.mean()) if finite.size else 0.0))
     vt = spp[0] * test.k * np.asarray(test.var_of_mean, np.float64)
     vr = spp[1] * reference.k * np.asarray(reference.var_of_mean, np.float64)
     vr = maximum_filter(np.where(np.isfinite(vr), vr, 0.0), size=(window, window, 1), mode="nearest")
+    # A contribution of value up to `largest` that none of the reference's N samples met has a rate below
+    # MISSED_RATE / N, so a per-sample variance below MISSED_RATE largest^2 / N at a pixel (over the pixels of a
+    # tile) is no excess: an occluder one test batch met once, 0.58 among batches of 0.6, where the reference's
+    # neighbourhood met none.
+    missed = MISSED_RATE * np.square(largest) / (spp[1] * reference.k * pixels)
     # Noise at the level of rounding (a batch mean's spread within ROUNDING_TOLERANCE of its value) is no excess.
-    floor = spp[0] * rounding * rounding
+    floor = np.maximum(spp[0] * rounding * rounding, missed)
     with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
         return vt / np.maximum(vr, np.maximum(floor, np.finfo(np.float64).tiny))
+
+
+def _largest(values: np.ndarray, window: int) -> np.ndarray:
+    """The largest finite |value| of each element's window x window neighbourhood (per channel)."""
+    v = np.abs(np.asarray(values, np.float64))
+    return maximum_filter(np.where(np.isfinite(v), v, 0.0), size=(window, window, 1), mode="nearest")
 
 
 def _scale(name: str, ratios: np.ndarray, upsample: int, critical: float) -> ScaleSpread:
@@ -102,10 +123,17 @@ def excess_spread(test_pixel: BatchStats, reference_pixel: BatchStats, test_tile
     if np.ndim(test_pixel.mean) != 3 or test_pixel.k < 2 or reference_pixel.k < 2:
         return None
     half = level / 2.0
+    pixel_largest = _largest(reference_pixel.mean, window)
+    # A tile's: the largest reference pixel in it, then over its 3 x 3 tiles.
+    in_tile = tile_blocks(np.abs(np.nan_to_num(np.asarray(reference_pixel.mean, np.float64))), tile)
+    th, tw = np.shape(reference_tile.mean)[:2]
+    channels = np.shape(reference_pixel.mean)[2]
+    tile_largest = _largest(in_tile.reshape(th * tw, -1, channels).max(axis=1).reshape(th, tw, channels), 3)
     scales = []
-    for name, t, r, upsample, win in (("pixel", test_pixel, reference_pixel, 1, window),
-                                      ("tile", test_tile, reference_tile, tile, 3)):
-        ratios = _ratios(t, r, spp, win)
+    for name, t, r, upsample, win, largest, pixels in (
+            ("pixel", test_pixel, reference_pixel, 1, window, pixel_largest, 1),
+            ("tile", test_tile, reference_tile, tile, 3, tile_largest, tile * tile)):
+        ratios = _ratios(t, r, spp, win, largest, pixels)
         critical = float(fdtri(t.k - 1, r.k - 1, 1.0 - half / max(ratios.size, 1)))
         scales.append(_scale(name, ratios, upsample, critical))
     return ExcessSpread(tuple(scales), level)
