@@ -34,8 +34,9 @@ def compare_runs(current: list[dict], baseline: dict) -> list[dict]:
         if old is None:
             flags.append("new case")
         else:
-            if old["pass"] != e["pass"]:
-                flags.append(f"verdict {'PASS' if old['pass'] else 'FAIL'} -> {'PASS' if e['pass'] else 'FAIL'}")
+            before, now = _verdict(old), _verdict(e)
+            if before != now:
+                flags.append(f"verdict {before} -> {now}")
             if e.get("error") and e["error"] != old.get("error"):
                 flags.append(f"render failed: {e['error']}")
             if "image_mean" not in old or "image_mean" not in e:  # a render failed: nothing to measure
@@ -61,3 +62,8 @@ def _entry(e: dict, old: dict | None, flags: list[str]) -> dict:
     return {"integrator": e["integrator"], "scene": e["scene"], "flags": flags,
             "relmse_before": None if old is None else old["metrics"].get("relmse"),
             "relmse_now": e["metrics"].get("relmse")}
+
+
+def _verdict(entry: dict) -> str:
+    """PASS, FAIL or INCONCLUSIVE (results.json of runs that gave no verdict word: from `pass`)."""
+    return entry.get("verdict") or ("PASS" if entry["pass"] else "FAIL")
