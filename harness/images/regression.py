@@ -34,9 +34,9 @@ def compare_runs(current: list[dict], baseline: dict) -> list[dict]:
         if old is None:
             flags.append("new case")
         else:
-            before, now = _verdict(old), _verdict(e)
-            if before != now:
-                flags.append(f"verdict {before} -> {now}")
+            was, now = _verdict(old), _verdict(e)
+            if was != now:
+                flags.append(f"verdict {was} -> {now}")
             if e.get("error") and e["error"] != old.get("error"):
                 flags.append(f"render failed: {e['error']}")
             if "image_mean" not in old or "image_mean" not in e:  # a render failed: nothing to measure
