@@ -81,7 +81,7 @@ def decisive_budget(summary: Summary, spp: int, reference: Summary, reference_sp
     """One line on the samples per pixel at which the comparison would resolve INCONCLUSIVE_BIAS, or why no
     budget would (no signal; the reference's own noise)."""
     if constant_image(summary) and constant_image(reference):
-        return "no budget decides an image without signal: show the scene something to shade"
+        return "no budget decides an image without signal: show the camera something to shade"
     found = smallest_spp(pooled(summary), spp, pooled(reference), reference_spp, INCONCLUSIVE_BIAS, alpha, signed,
                          same_estimator, most=False)
     if found.spp is None:

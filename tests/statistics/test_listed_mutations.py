@@ -67,11 +67,11 @@ MUTATIONS = {
         "centred = gram - per_tile[:, None, None] / (k * (k - 1))",
         ["tests/statistics/test_independence.py::test_the_p_value_is_near_its_level_for_independent_gaussian_batches"]),
     "a comparison's verdict without its independence check": (
-        "comparison/compare.py", "return (self.trusted and all(s.passed for s in self.scales)",
+        "comparison/outcome.py", "return (self.trusted and all(s.passed for s in self.scales)",
         "return (self.finite.passed and all(s.passed for s in self.scales)",
         ["tests/comparison/test_independence_check.py::test_repeating_batches_fail_where_the_scales_alone_pass"]),
     "a comparison's verdict without its variance check": (
-        "comparison/compare.py", "and (self.variance is None or self.variance.passed))", "and True)",
+        "comparison/outcome.py", "and (self.variance is None or self.variance.passed))", "and True)",
         ["tests/comparison/test_variance_check.py::test_a_variance_beyond_the_noise_fails_against_the_same_estimator"]),
     "efficiency ratio inverted": (
         "bench/run.py", "ratio = self.curves[a].efficiency(common) / self.curves[b].efficiency(common)",
