@@ -8,6 +8,7 @@ from pathlib import Path
 from rich.markup import escape
 
 from harness.commands.output import console, err, task_progress
+from harness.verdict import Tally
 
 
 def _print_real_scenes(real, not_applicable, alpha: float) -> None:
@@ -69,11 +70,12 @@ def engine_meta(role: str, engine) -> dict[str, str]:
 
 def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: Path | None,
                       not_applicable=(), invariance: dict | None = None, executor=None,
-                      phases: dict[str, float] | None = None) -> tuple[bool, dict]:
-    """Every case against its references; returns (all pass, the results.json fields). `phases`: the run's
-    phases so far (name -> seconds), shown in the report's header."""
+                      phases: dict[str, float] | None = None) -> tuple[Tally, dict]:
+    """Every case against its references; returns (what was judged, the results.json fields). `phases`: the
+    run's phases so far (name -> seconds), shown in the report's header."""
     from harness.commands.reference_image_options import reference_image
     from harness.engines.registry import make_engine
+    from harness.images.judged import case_status, image_tally
     from harness.images.real_scenes import real_scenes_json, split
     from harness.images.run import run_images
     from harness.integrators import match
@@ -115,11 +117,12 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     if real or not_applicable:
         payload["real_scenes"] = real_scenes_json(results, not_applicable)
     _print_regression(payload)
-    failed = [r for r in results if not r.passed]
-    console.print(f"{len(results) - len(failed)} of {len(results)} image comparisons pass, in {seconds:.1f} s. "
-                  f"Report: {run_dir / 'report.html'}")
-    for r in failed:
+    tally = image_tally(results, not_applicable)
+    console.print(f"{tally.passed} of {len(results)} image comparisons pass"
+                  + (f", {len(results) - tally.judged} not judged" if tally.judged < len(results) else "")
+                  + f", in {seconds:.1f} s. Report: {run_dir / 'report.html'}")
+    for r in (r for r in results if case_status(r) == "fail"):
         why = "; ".join(x for x in (r.error, r.reference_problem, r.note) if x)
         console.print(f"[red]FAIL[/] {r.case.key}{' — ' + escape(why) if why else ''}: "
                       f"{escape(reproduce_command(r, run))}", soft_wrap=True)
-    return not failed, payload
+    return tally, payload
