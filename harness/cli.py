@@ -13,9 +13,14 @@ from rich.markup import escape
 from harness.commands import COMMANDS
 from harness.commands.output import err
 from harness.commands.run_folder import RunFolder
+from harness.verdict import Verdict
+
+#: The exit status of each verdict a command returns: the one place a run's outcome becomes a number.
+EXIT_STATUS = {Verdict.PASS: 0, Verdict.FAIL: 1, Verdict.NOTHING_JUDGED: 3}
 
 EPILOG = ("Each command but `references` writes results/<run>/ (results.json, HTML pages, junit.xml); "
-          "results/latest moves to it once the run is complete. Exit status: 1 if any check fails, 2 on "
+          "results/latest moves to it once the run is complete. Exit status: 1 if any check fails, 3 if "
+          "nothing was judged (no case ran, or every one was skipped or inconclusive: the run says why), 2 on "
           "bad input or an error, 130 if interrupted. Our renderer runs as a child process, one per "
           "render: a crash, kill or hang fails that case only. Environment: MCVAL_RENDER, the `render` "
           "binary (default: build/render); MCVAL_RENDER_TIMEOUT, seconds per render (default: 600 plus "
@@ -37,8 +42,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Exit status: 0 all pass, 1 a check failed, 2 bad input or an error, 130 interrupted (Ctrl-C).
-    An unfinished run leaves its partial folder and does not move results/latest."""
+    """Exit status: 0 all pass, 1 a check failed, 3 nothing was judged (EXIT_STATUS), 2 bad input or an error,
+    130 interrupted (Ctrl-C). An unfinished run leaves its partial folder and does not move results/latest."""
     args = build_parser().parse_args(argv)
     run = RunFolder(getattr(args, "out", Path("results")))
     # SIGTERM (a CI time-out, `kill`) ends the run as Ctrl-C does: the render child is stopped and
@@ -46,7 +51,8 @@ def main(argv: list[str] | None = None) -> int:
     in_main_thread = threading.current_thread() is threading.main_thread()
     old_term = signal.signal(signal.SIGTERM, _raise_interrupt) if in_main_thread else None
     try:
-        return args.run(args, run)
+        outcome = args.run(args, run)
+        return EXIT_STATUS[outcome] if isinstance(outcome, Verdict) else outcome
     except (KeyboardInterrupt, Exception) as e:
         if _interrupted(e):
             err.print(escape(run.unfinished("interrupted")), soft_wrap=True)

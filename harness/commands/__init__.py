@@ -1,5 +1,5 @@
 """The verbs of `python -m harness`, one module each: NAME, HELP, `add_arguments(parser)` and
-`run(args, run_folder) -> exit status`. The only package that prints."""
+`run(args, run_folder) -> Verdict` (harness/cli.py maps it to the exit status). The only package that prints."""
 from harness.commands import bench, calibrate, images, integrators, invariance, references, validate, warps
 
 #: In the order `--help` lists them.

@@ -6,10 +6,11 @@ import time
 from pathlib import Path
 
 from harness.commands.options import add_common, add_engines, add_scene_files
-from harness.commands.output import console, progress_bar
+from harness.commands.output import console, print_verdict, progress_bar
 from harness.commands.run_folder import RunFolder
 from harness.distributed.cluster import add_executor_options
 from harness.results import write_atomic
+from harness.verdict import Verdict
 
 NAME = "bench"
 HELP = "speed against error: convergence curves and efficiency ratios"
@@ -89,7 +90,22 @@ def _measure(args, cases, engines, reference, ladder):
     return benches, seed, throughput, slopes
 
 
-def run(args: argparse.Namespace, run: RunFolder) -> int:
+def _why_nothing(args, selected) -> str:
+    """Why bench has no case to measure: none selected (why_no_cases), or none of them is benchmarked."""
+    from harness.commands.options import case_selection
+    from harness.images.judged import why_no_cases
+    from harness.images.suite import not_applicable_cases
+    from harness.integrators import entries
+
+    selection = case_selection(args)
+    if not selected:
+        return why_no_cases(args.engines[0], selection["integrators"], not_applicable_cases(args.scenes, **selection))
+    measured = ", ".join(e.name for e in entries().values() if e.benchmarked)
+    return (f"none of the {len(selected)} cases is benchmarked: bench measures {measured} on the scenes of "
+            "scenes/ (name a case with --scenes to measure it)")
+
+
+def run(args: argparse.Namespace, run: RunFolder) -> Verdict:
     from harness.bench.run import ray_rates
     from harness.engines.registry import make_engine
     from harness.images.suite import select_cases
@@ -101,8 +117,14 @@ def run(args: argparse.Namespace, run: RunFolder) -> int:
     # By default the simple and ao cases of our own scenes (the real scenes are validated, not benchmarked).
     from harness.commands.options import case_selection
 
-    cases = [c for c in select_cases(args.scenes, **case_selection(args))
-             if args.scenes or (entry(c.integrator).benchmarked and c.group != "real")]
+    selected = select_cases(args.scenes, **case_selection(args))
+    cases = [c for c in selected if args.scenes or (entry(c.integrator).benchmarked and c.group != "real")]
+    if not cases:  # nothing to measure: the run says why, and is no success
+        reason = f"nothing was measured: {_why_nothing(args, selected)}"
+        run.finish({"run": run_dir.name, "pass": False, "verdict": Verdict.NOTHING_JUDGED.value,
+                    "verdict_reason": reason}, links=())
+        print_verdict(run_dir / "results.json", Verdict.NOTHING_JUDGED, reason)
+        return Verdict.NOTHING_JUDGED
     unreadable = next((c for c in cases if c.problem), None)
     if unreadable is not None:  # a --scene file no engine can be given: there is nothing to time
         raise ValueError(unreadable.problem)
@@ -129,4 +151,4 @@ def run(args: argparse.Namespace, run: RunFolder) -> int:
     console.print(f"Page: {run_dir / 'bench.html'}")
     run.finish({"run": run_dir.name, "pass": True, **payload}, links=("bench-latest", "latest"),
                index=("bench.html", "Speed against error"))
-    return 0
+    return Verdict.PASS

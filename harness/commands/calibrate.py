@@ -5,12 +5,15 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from rich.markup import escape
+
 from harness.commands.options import add_common, add_engines, add_warp_library
 from harness.commands.output import console, task_progress
 from harness.commands.run_folder import RunFolder
 from harness.distributed.cluster import add_executor_options
 from harness.results import write_atomic
 from harness.statistics.constants import WARP_SAMPLES
+from harness.verdict import Tally, Verdict, run_verdict
 
 NAME = "calibrate"
 HELP = "measure the false-alarm rate of every statistical check"
@@ -25,8 +28,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "90 %% of the time. Each rate with an exact interval beside the nominal level. Writes calibration.html "
         "and calibration.json (blocks with `comparisons` and `false_alarm_rate`); results/calibration-latest "
         "points at the newest. Exits 1 if a rate lies above its nominal level beyond its interval (the check "
-        "raises more false alarms than it says) or a comparison failed; a rate below its interval "
-        "(conservative: it costs power, not false FAILs) is shown in yellow.")
+        "raises more false alarms than it says) or a comparison failed, 3 if no null run was made; a rate below "
+        "its interval (conservative: it costs power, not false FAILs) is shown in yellow.")
     add_common(p)
     add_engines(p)
     p.add_argument("--warps", action="store_true", help="calibrate the warp checks (with --images: both; the default)")
@@ -43,20 +46,31 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_executor_options(p)
 
 
-def run(args: argparse.Namespace, run: RunFolder) -> int:
+def run(args: argparse.Namespace, run: RunFolder) -> Verdict:
     """Both calibrations unless --warps or --images, on one executor."""
     from harness.distributed.cluster import open_executor
 
     run_dir = run.start()
     with open_executor(args) as executor:
-        ok, payload, page = _calibrate(args, run_dir, executor)
+        tallies, payload, page = _calibrate(args, run_dir, executor)
+    verdict, reason = run_verdict(tallies)
+    payload.update({"pass": verdict is Verdict.PASS, "verdict": verdict.value, "verdict_reason": reason})
     write_atomic(run_dir / "calibration.html", page)
     run.finish(payload, links=("calibration-latest",), json_copy=args.json, name="calibration.json")
     console.print(f"Page: {run_dir / 'calibration.html'}")
-    return 0 if ok else 1
+    if reason:
+        console.print(f"[red]FAIL[/] {escape(reason)}", soft_wrap=True)
+    return verdict
 
 
-def _calibrate(args, run_dir: Path, executor) -> tuple[bool, dict, str]:
+def calibration_tally(what: str, runs: int, sound: bool, why_none: str) -> Tally:
+    """One calibration as a verdict: judged when it ran null runs (`runs`), passed when its rates are sound."""
+    if runs == 0:
+        return Tally(what, failed=0 if sound else 1, not_judged=(why_none,))
+    return Tally(what, passed=int(sound), failed=int(not sound))
+
+
+def _calibrate(args, run_dir: Path, executor) -> tuple[list[Tally], dict, str]:
     from harness.engines.registry import make_engine
     from harness.report.calibration_html import calibration_page, warp_calibration_html
     from harness.report.image_calibration_html import image_calibration_sections
@@ -74,7 +88,7 @@ def _calibrate(args, run_dir: Path, executor) -> tuple[bool, dict, str]:
     reference = None if args.no_mitsuba else make_engine(args.reference)
     payload: dict = {"run": run_dir.name}
     meta: dict = {"engine": ours.version(), "reference": reference.version() if reference else "none"}
-    ok, sections = True, []
+    tallies, sections = [], []
     if images:
         if reference is None:
             raise ValueError("--images needs Mitsuba (its null comparisons include Mitsuba against itself): "
@@ -84,19 +98,22 @@ def _calibrate(args, run_dir: Path, executor) -> tuple[bool, dict, str]:
         sections = image_calibration_sections(cal_images)
         meta.update({"image comparisons": cal_images["comparisons"], "image seconds": round(cal_images["seconds"], 1),
                      "image comparisons ran on": cal_images["ran_on"]})
-        ok &= cal_images["pass"]
+        tallies.append(calibration_tally("null image comparisons", cal_images["comparisons"], cal_images["pass"],
+                                         f"--comparisons {args.comparisons} gave none"))
     if warps:
         cal = _calibrate_warps(args, warp_source, reference, executor)
         payload["warps"] = cal.to_json()
         meta.update({"seeds per warp": args.seeds, "samples": args.samples, "warp seconds": round(cal.seconds, 1),
                      "warps ran on": executor.description})
-        ok &= cal.sound
+        runs = args.seeds * len(cal.entries)
+        tallies.append(calibration_tally("null warp runs", runs, cal.sound,
+                                         f"--seeds {args.seeds} over {len(cal.entries)} warp checks gave none"))
         page = warp_calibration_html(cal, meta, sections)
     else:
         page = calibration_page("Calibration of the image comparisons", "Each rejection of a null comparison "
                                 "is a false alarm.", sections, meta)
-    payload.update({"pass": ok, "meta": meta})
-    return ok, payload, page
+    payload["meta"] = meta
+    return tallies, payload, page
 
 
 def _calibrate_warps(args, ours, reference, executor):

@@ -8,6 +8,7 @@ from pathlib import Path
 from rich.markup import escape
 
 from harness.commands.output import console, err, task_progress
+from harness.verdict import Tally
 
 
 def _print_real_scenes(real, not_applicable, alpha: float) -> None:
@@ -69,11 +70,12 @@ def engine_meta(role: str, engine) -> dict[str, str]:
 
 def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: Path | None,
                       not_applicable=(), invariance: dict | None = None, executor=None,
-                      phases: dict[str, float] | None = None) -> tuple[bool, dict]:
-    """Every case against its references; returns (all pass, the results.json fields). `phases`: the run's
-    phases so far (name -> seconds), shown in the report's header."""
+                      phases: dict[str, float] | None = None) -> tuple[Tally, dict]:
+    """Every case against its references; returns (what was judged, the results.json fields). `phases`: the
+    run's phases so far (name -> seconds), shown in the report's header."""
     from harness.commands.reference_image_options import reference_image
     from harness.engines.registry import make_engine
+    from harness.images.judged import image_tally
     from harness.images.real_scenes import real_scenes_json, split
     from harness.images.run import run_images
     from harness.integrators import match
@@ -115,18 +117,15 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     if real or not_applicable:
         payload["real_scenes"] = real_scenes_json(results, not_applicable)
     _print_regression(payload)
-    failed = [r for r in results if r.failed]
+    tally = image_tally(results, not_applicable)
     inconclusive = [r for r in results if r.verdict == "INCONCLUSIVE"]
-    console.print(f"{sum(r.passed for r in results)} of {len(results)} image comparisons pass"
-                  f"{f', {len(inconclusive)} inconclusive' if inconclusive else ''}, in {seconds:.1f} s. "
-                  f"Report: {run_dir / 'report.html'}")
+    console.print(f"{tally.passed} of {len(results)} image comparisons pass"
+                  + (f", {len(inconclusive)} inconclusive" if inconclusive else "")
+                  + f", in {seconds:.1f} s. Report: {run_dir / 'report.html'}")
     for r in inconclusive:
         console.print(f"[yellow]INCONCLUSIVE[/] {r.case.key} — {escape(r.inconclusive)}", soft_wrap=True)
-    for r in failed:
+    for r in (r for r in results if r.failed):
         why = r.why
         console.print(f"[red]FAIL[/] {r.case.key}{' — ' + escape(why) if why else ''}: "
                       f"{escape(reproduce_command(r, run))}", soft_wrap=True)
-    if results and not failed and not any(r.passed for r in results):
-        console.print(f"[red]Nothing judged[/]: every one of the {len(results)} image cases is inconclusive, and an "
-                      "inconclusive case is not a pass")
-    return not failed and any(r.passed for r in results), payload
+    return tally, payload

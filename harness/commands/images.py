@@ -6,6 +6,7 @@ import argparse
 from harness.commands.options import add_common, add_image_options
 from harness.commands.reference_image_options import add_reference_image_options, chosen_image_case
 from harness.commands.run_folder import RunFolder
+from harness.verdict import Verdict
 
 NAME = "images"
 HELP = "every scene with every integrator against Mitsuba 3"
@@ -20,7 +21,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_reference_image_options(p)
 
 
-def run(args: argparse.Namespace, run: RunFolder) -> int:
+def run(args: argparse.Namespace, run: RunFolder) -> Verdict:
     from harness.commands.options import case_selection
     from harness.commands.sections import run_sections
     from harness.distributed.cluster import open_executor

@@ -5,6 +5,7 @@ import argparse
 
 from harness.commands.output import console
 from harness.commands.run_folder import RunFolder
+from harness.verdict import Verdict
 
 NAME = "integrators"
 HELP = "the renderer's integrators and what the harness knows of each"
@@ -20,9 +21,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "is an error (exit status 2).")
 
 
-def run(args: argparse.Namespace, run: RunFolder) -> int:
+def run(args: argparse.Namespace, run: RunFolder) -> Verdict:
     from harness.integrators import match
     from harness.report.integrator_table import integrators_table
 
     console.print(integrators_table(match()))
-    return 0
+    return Verdict.PASS  # a listing, not a judgement

@@ -5,9 +5,10 @@ import argparse
 from pathlib import Path
 
 from harness.commands.options import add_common, add_reference_live, add_engines, add_scene_files, add_variant
-from harness.commands.output import console
+from harness.commands.output import print_verdict
 from harness.commands.run_folder import RunFolder
 from harness.distributed.cluster import add_executor_options
+from harness.verdict import Verdict, run_verdict
 
 NAME = "invariance"
 HELP = "metamorphic checks: each engine against itself under physical transformations"
@@ -29,7 +30,9 @@ renderer under test: rendered at the references' seed, they are read from refere
 where `make references` stored them for the same scenes, Mitsuba and check code (and rendered,
 with the reason, where not; --reference-live renders them all). A break on a rewritten scene that
 float32 cannot represent (a small sphere moved far from the origin, judged from the file, not from
-the engine's answer) is FLOAT32: reported with the numbers, not a failure. Default cases: every
+the engine's answer) is FLOAT32: reported with the numbers, not a failure. A base render that is
+all 0 leaves its cells not judged (no signal); base batches that are one image where the estimator
+has noise fail them (is the seed used?); a run that judged no cell exits 3. Default cases: every
 scene of scenes/ and scenes/real/ with each of simple, ao and normals that applies, at 64x64;
 `validate` runs the same section."""
 
@@ -50,7 +53,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_executor_options(p)
 
 
-def run(args: argparse.Namespace, run: RunFolder) -> int:
+def run(args: argparse.Namespace, run: RunFolder) -> Verdict:
     from harness.commands.invariance_section import run_invariance_section
     from harness.distributed.cluster import open_executor
     from harness.commands.options import case_selection
@@ -59,8 +62,10 @@ def run(args: argparse.Namespace, run: RunFolder) -> int:
     with open_executor(args) as executor:
         select(args.only, **case_selection(args))  # bad names: no run
         run_dir = run.start()
-        ok, invariance = run_invariance_section(args, args.only, run_dir, executor)
-        run.finish({"run": run_dir.name, "pass": ok, "invariance": invariance}, index=("invariance.html", "Invariances"),
+        tally, invariance = run_invariance_section(args, args.only, run_dir, executor)
+        verdict, reason = run_verdict([tally])
+        run.finish({"run": run_dir.name, "pass": verdict is Verdict.PASS, "verdict": verdict.value,
+                    "verdict_reason": reason, "invariance": invariance}, index=("invariance.html", "Invariances"),
                    json_copy=args.json)
-    console.print(f"Results: {run_dir / 'results.json'} — {'PASS' if ok else 'FAIL'}")
-    return 0 if ok else 1
+    print_verdict(run_dir / "results.json", verdict, reason)
+    return verdict

@@ -9,16 +9,19 @@ from rich.markup import escape
 
 from harness.commands.output import console, task_progress
 from harness.results import write_atomic
+from harness.verdict import Tally
 
 
-def run_invariance_section(args, only, run_dir: Path, executor, engines=None) -> tuple[bool, dict]:
-    """Returns (the tested engine breaks none, the results.json block); writes invariance.html."""
+def run_invariance_section(args, only, run_dir: Path, executor, engines=None) -> tuple[Tally, dict]:
+    """Returns (what was judged of the tested engine's cells, the results.json block); writes invariance.html."""
     from harness.engines.registry import make_engine
     from harness.images.references import REFERENCE_SEED
     from harness.invariance.check import family_alpha, run_invariances
     from harness.invariance.stored import stored_cells
     from harness.statistics.constants import IMAGE_BATCHES
-    from harness.invariance.findings import failure_lines, invariance_payload
+    from harness.images.judged import why_no_cases
+    from harness.images.suite import not_applicable_cases
+    from harness.invariance.findings import failure_lines, invariance_payload, invariance_tally, not_judged_lines
     from harness.invariance.suite import select
     from harness.report.invariance_html import invariance_html
     from harness.report.invariance_table import invariance_tables
@@ -53,27 +56,31 @@ def run_invariance_section(args, only, run_dir: Path, executor, engines=None) ->
             "reference_seed": REFERENCE_SEED, "reference_cells": reference_sources(references, cases, known, misses)}
     for line in meta["reference_cells"]["lines"]:
         console.print(escape(line), soft_wrap=True)
-    payload = invariance_payload(cells, alpha, gating, meta)
+    none = "" if cells else why_no_cases(gating, selection["integrators"], not_applicable_cases(None, **selection))
+    payload = invariance_payload(cells, alpha, gating, meta, none)
+    tally = invariance_tally(cells, gating, none)
     write_atomic(run_dir / "invariance.html", invariance_html(payload))
     for line in payload["findings"]:
         console.print(f"[yellow]finding[/] {escape(line)}", soft_wrap=True)
     for line in payload["float32_limits"]:
         console.print(f"[cyan]float32[/] {escape(line)}", soft_wrap=True)
     ours = [c for c in cells if c.engine == gating]
-    failed = failure_lines(cells, gating)
     beyond = sum(c.status == "float32" for c in ours)
-    console.print(f"{len(ours) - len(failed) - beyond} of {len(ours)} invariance checks of {gating} pass"
+    unjudged = len(ours) - tally.judged
+    console.print(f"{tally.passed - beyond} of {len(ours)} invariance checks of {gating} pass"
                   + (f", {beyond} broke only where float32 cannot represent the scene" if beyond else "")
-                  + f", in {seconds:.1f} s.")
-    for line in failed:
+                  + (f", {unjudged} not judged" if unjudged else "") + f", in {seconds:.1f} s.")
+    for line in failure_lines(cells, gating):
         console.print(f"[red]FAIL[/] invariance {escape(line)}", soft_wrap=True)
+    for line in not_judged_lines(cells, gating):
+        console.print(f"[yellow]not judged[/] {escape(line)}", soft_wrap=True)
     run = invocation(args)
-    for c in (c for c in ours if not c.passed):
+    for c in (c for c in ours if c.status == "fail"):
         console.print("  reproduce: " + escape(reproduce_line("invariance", ["--only", c.case.key, c.invariance],
                                                               args.seed, run, sources.get(c.case.scene, ""))),
                       soft_wrap=True)
     console.print(f"Page: {run_dir / 'invariance.html'}")
-    return payload["pass"], payload
+    return tally, payload
 
 
 def reference_sources(references, cases, known: dict, misses: list[str]) -> dict:

@@ -6,9 +6,11 @@ import sys
 from contextlib import contextmanager
 
 from rich.console import Console
+from rich.markup import escape
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
 from harness.commands.plain_progress import PlainProgress
+from harness.verdict import Verdict
 
 #: Width of tables in a log (CI, a pipe) when $COLUMNS does not say: wide enough that none is cut.
 LOG_WIDTH = 200
@@ -54,3 +56,11 @@ def task_progress(label: str, executor):
             progress.update(task, completed=status.done, state=state)
 
         yield show
+
+
+def print_verdict(results, verdict: Verdict, reason: str = "") -> None:
+    """A run's last line, `Results: <results.json> — PASS`, after the line that says why nothing was judged."""
+    if reason:
+        console.print(f"[red]FAIL[/] {escape(reason)}", soft_wrap=True)
+    shown = "FAIL (nothing was judged)" if verdict is Verdict.NOTHING_JUDGED else verdict.value
+    console.print(f"Results: {results} — {shown}")

@@ -7,6 +7,7 @@ from harness.commands.options import add_engines, add_variant
 from harness.commands.output import console, task_progress
 from harness.commands.run_folder import RunFolder
 from harness.distributed.cluster import add_executor_options
+from harness.verdict import Verdict
 
 NAME = "references"
 HELP = "render and store Mitsuba references under references/"
@@ -24,7 +25,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_executor_options(p)
 
 
-def run(args: argparse.Namespace, run: RunFolder) -> int:
+def run(args: argparse.Namespace, run: RunFolder) -> Verdict:
     from harness.distributed.cluster import open_executor
     from harness.distributed.executor import Task
     from harness.engines.registry import make_engine
@@ -33,6 +34,9 @@ def run(args: argparse.Namespace, run: RunFolder) -> int:
     from harness.images.suite import select_cases
 
     cases = select_cases(args.scenes)
+    if not cases:
+        console.print("[red]FAIL[/] nothing was stored: no case of the suite was selected")
+        return Verdict.NOTHING_JUDGED
     mitsuba = make_engine(args.reference, variant=args.variant)
     failed = 0
     with open_executor(args) as executor:
@@ -48,7 +52,7 @@ def run(args: argparse.Namespace, run: RunFolder) -> int:
                     failed += 1
                     console.print(f"[red]failed[/] {case.key}: {outcome.error}")
         failed += store_invariance_cells(mitsuba, {c.key for c in cases}, executor)
-    return 1 if failed else 0
+    return Verdict.FAIL if failed else Verdict.PASS
 
 
 def store_invariance_cells(engine, keys: set[str], executor) -> int:

@@ -4,25 +4,28 @@ from __future__ import annotations
 
 from harness.commands.image_section import run_image_section
 from harness.commands.invariance_section import run_invariance_section
-from harness.commands.output import console
+from harness.commands.output import console, print_verdict
 from harness.commands.phases import Phases, seconds_since_process_start
 from harness.commands.run_folder import RunFolder
+from harness.verdict import Tally, Verdict, run_verdict
 
 
 def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=None, invariances: bool = False,
-                 json_copy=None) -> int:
-    """Run the warps of `specs`, the invariances (if `invariances`, narrowed by `invariance_only`) and the
-    image `cases`; `latest` moves to the run once it is whole, `images-latest` too if it has images."""
+                 json_copy=None, images: bool = True) -> Verdict:
+    """Run the warps of `specs`, the invariances (if `invariances`, narrowed by `invariance_only`) and, if
+    `images`, the image `cases`; `latest` moves to the run once it is whole, `images-latest` too if it has
+    images. The run PASSes only if nothing failed and each suite that ran judged something (harness/verdict.py)."""
     from harness.commands.options import case_selection
     from harness.commands.warp_section import run_warp_section, warp_engine
     from harness.images.suite import not_applicable_cases
 
     phases = Phases()
-    not_applicable = not_applicable_cases(args.scenes, **case_selection(args)) if cases else []
+    not_applicable = not_applicable_cases(args.scenes, **case_selection(args)) if images else []
     # The regression baseline is the newest complete run with images (a warps-only run has none).
     baseline = getattr(args, "baseline", None) or ((run.out / "images-latest").resolve() / "results.json")
     run_dir = run.start()
     payload: dict = {"run": run_dir.name}
+    tallies: list[Tally] = []
     ok = True
     warps = None
     if specs and not warp_engine(args).has_warps:
@@ -32,7 +35,8 @@ def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=N
     if specs:
         with phases.timed("warps"):
             warps_ok, warps = run_warp_section(args, specs, run_dir)
-        ok &= warps_ok
+        ok &= warps_ok or not warps["warps"]  # a matrix with no warp judged nothing: its tally says so
+        tallies.append(warp_tally(warps))
         payload.update(warps=warps["warps"], warp_level=warps["level"])
         if warps["problems"]:
             payload["warp_problems"] = warps["problems"]
@@ -40,15 +44,19 @@ def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=N
         # Before the images, so report.html (written with them) carries the matrix.
         console.rule("[bold]Invariances[/] (each engine against itself)")
         with phases.timed("invariances"):
-            invariance_ok, payload["invariance"] = run_invariance_section(args, invariance_only, run_dir, executor)
-        ok &= invariance_ok
-    if cases:
+            tally, payload["invariance"] = run_invariance_section(args, invariance_only, run_dir, executor)
+        tallies.append(tally)
+    if images and cases:
         with phases.timed("images"):
-            images_ok, images = run_image_section(args, cases, run_dir, warps, baseline, not_applicable,
-                                                  payload.get("invariance"), executor, phases=phases.seconds)
-        ok &= images_ok
-        payload.update(images)
-    payload["pass"] = ok
+            tally, found = run_image_section(args, cases, run_dir, warps, baseline, not_applicable,
+                                             payload.get("invariance"), executor, phases=phases.seconds)
+        tallies.append(tally)
+        payload.update(found)
+    elif images:
+        tallies.append(_no_image_cases(args, not_applicable))
+    verdict, reason = run_verdict(tallies, ok)
+    payload.update({"pass": verdict is Verdict.PASS, "verdict": verdict.value, "verdict_reason": reason,
+                    "judged": [t.to_json() for t in tallies]})
     index = ("warps.html", "Warp conformance") if not cases and warps is not None else None
     # The phases up to the results; writing them is timed on the terminal's line only.
     payload["phase_seconds"] = dict(phases.seconds)
@@ -57,5 +65,23 @@ def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=N
         run.finish(payload, links=("latest", "images-latest") if cases else ("latest",), index=index,
                    json_copy=json_copy)
     console.print(f"Phases: {phases.line()}")
-    console.print(f"Results: {run_dir / 'results.json'} — {'PASS' if ok else 'FAIL'}")
-    return 0 if ok else 1
+    print_verdict(run_dir / "results.json", verdict, reason)
+    return verdict
+
+
+def warp_tally(warps: dict) -> Tally:
+    """The warp matrix's part of the verdict: each warp checked passes or fails; a warp the library lacks is a
+    failure (`problems`)."""
+    passed = sum(bool(w["pass"]) for w in warps["warps"])
+    return Tally("warps", passed, len(warps["warps"]) - passed + len(warps["problems"]),
+                 () if warps["warps"] else ("the engine has none of the warps asked for",))
+
+
+def _no_image_cases(args, not_applicable) -> Tally:
+    """The image suite's tally when no case was selected, with why."""
+    from harness.commands.options import case_selection
+    from harness.engines.registry import make_engine
+    from harness.images.judged import image_tally, why_no_cases
+
+    reason = why_no_cases(make_engine(args.engine).name, case_selection(args)["integrators"], not_applicable)
+    return image_tally([], not_applicable, reason)

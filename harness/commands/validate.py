@@ -5,6 +5,7 @@ import argparse
 
 from harness.commands.options import add_common, add_reference_live, add_image_options, add_warp_library
 from harness.commands.run_folder import RunFolder
+from harness.verdict import Verdict
 
 NAME = "validate"
 HELP = "everything: what `make validate` runs"
@@ -25,7 +26,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_warp_library(p)
 
 
-def run(args: argparse.Namespace, run: RunFolder) -> int:
+def run(args: argparse.Namespace, run: RunFolder) -> Verdict:
     from harness.commands.options import case_selection
     from harness.commands.sections import run_sections
     from harness.distributed.cluster import open_executor

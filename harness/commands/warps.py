@@ -7,6 +7,7 @@ from pathlib import Path
 from harness.commands.options import add_common, add_engines, add_warp_library
 from harness.commands.run_folder import RunFolder
 from harness.statistics.constants import WARP_SAMPLES
+from harness.verdict import Verdict
 
 NAME = "warps"
 HELP = "the warp conformance matrix alone"
@@ -26,7 +27,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_warp_library(p)
 
 
-def run(args: argparse.Namespace, run: RunFolder) -> int:
+def run(args: argparse.Namespace, run: RunFolder) -> Verdict:
     from harness.commands.sections import run_sections
     from harness.commands.warp_section import warp_engine
     from harness.warps.suite import select
@@ -34,4 +35,4 @@ def run(args: argparse.Namespace, run: RunFolder) -> int:
     if not warp_engine(args).has_warps:
         raise ValueError(f"{warp_engine(args).name} has no warps: give them with --warp-library LIB.so "
                          "(docs/engines.md)")
-    return run_sections(args, run, None, select(args.only), [], json_copy=args.json)
+    return run_sections(args, run, None, select(args.only), [], json_copy=args.json, images=False)

@@ -22,8 +22,8 @@ import numpy as np
 from harness.engines.base import RenderFailed
 from harness.engines.child_process import run_child
 from harness.engines.render_worker import NoServe, last_line, run_in_worker
+from harness.project import PROJECT_ROOT as ROOT
 
-ROOT = Path(__file__).resolve().parents[2]
 RENDER_ENV = "MCVAL_RENDER"
 TIMEOUT_ENV = "MCVAL_RENDER_TIMEOUT"
 #: Threads per render of ours (default: every core; the image does not depend on it); set for the workers

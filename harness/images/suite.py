@@ -12,8 +12,10 @@ from pathlib import Path
 
 from harness.images.user_scenes import UserScene
 from harness.integrators import match
+from harness.project import PROJECT_ROOT, missing_reason
 
-ROOT = Path(__file__).resolve().parents[2]
+#: The clone of mcval whose scenes/ and references/ the suite uses (harness/project.py).
+ROOT = PROJECT_ROOT
 SCENES_DIR = ROOT / "scenes"
 REAL_SCENES_DIR = SCENES_DIR / "real"
 GROUP_DIRS = {"synthetic": SCENES_DIR, "real": REAL_SCENES_DIR}
@@ -119,7 +121,10 @@ def scene_names(group: str = "synthetic") -> list[str]:
 
 def scene_cases(user: Sequence[UserScene] | None = None, with_suite: bool = False) -> list[ImageCase]:
     """One case per scene (its integrator left empty): the suite's, unless user scenes replace it, then the
-    user's. ValueError for a user scene named as one of the suite's it runs beside."""
+    user's. ValueError for a user scene named as one of the suite's it runs beside, or when the suite's scenes
+    are wanted and not found (an installed harness away from its clone: harness/project.py)."""
+    if (not user or with_suite) and missing_reason(ROOT):
+        raise ValueError(missing_reason(ROOT))
     suite = [ImageCase(s, "", group) for group in GROUP_DIRS for s in scene_names(group)] \
         if not user or with_suite else []
     taken = {c.scene for c in suite}

@@ -106,6 +106,11 @@ class IntegratorEntry:
     same_estimator_in_mitsuba: bool = False
     #: Scenes on which it does not, though it does in general (see `same_estimator`).
     estimator_differs: EstimatorCheck | None = None
+    #: Its estimate of a pixel changes with the seed wherever its image varies (random occlusion or light
+    #: samples, or shading that changes within a pixel's footprint): an engine whose K batches are one image
+    #: that varies across pixels did not use its seeds (harness/invariance/signal.py). False where a varying
+    #: image can be noiseless (normals: constant over each flat surface, noisy only along its edges).
+    noisy_where_varying: bool = True
     #: Its speed against error is measured by `bench` (a noiseless image has no convergence to measure).
     benchmarked: bool = True
     #: How Nori's integrator of this name writes the image, from ours (normals: |n|); None: as ours. A reference

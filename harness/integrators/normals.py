@@ -16,6 +16,7 @@ ENTRY = IntegratorEntry(
     signed=True,
     checks_geometry=True,
     same_estimator_in_mitsuba=True,
+    noisy_where_varying=False,
     rotates_with_scene=True,
     benchmarked=False,
     # Nori's normals integrator returns the normal's absolute value, component by component.

@@ -1,6 +1,8 @@
 """The metamorphic check: each engine renders a scene and its rewritten variants as independent batches, and
 each variant's batches, mapped back (divided by the expected factor, normals rotated back), must pass the
-image suite's Welch tests against the base. No reference engine is needed: physics is the oracle.
+image suite's Welch tests against the base. No reference engine is needed: physics is the oracle. A base
+without signal leaves its cells inconclusive, and batches that are one image where noise is expected fail
+them (harness/invariance/signal.py).
 
 Our renderer breaking an invariance fails the suite; a reference engine breaking one is a finding, reported
 and stored, never a failure of ours.
@@ -11,7 +13,7 @@ import tempfile
 import xml.etree.ElementTree as ET
 import zlib
 from concurrent.futures import Future
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable
 
@@ -22,9 +24,13 @@ from harness.distributed.executor import Executor, SerialExecutor, Status, Task
 from harness.engines.base import Engine, RenderFailed
 from harness.engines.render_thread import RenderThread
 from harness.integrators import entry
-from harness.comparison.compare import Comparison, compare_summaries
-from harness.comparison.summary import summarize
+from harness.comparison.compare import compare_summaries
+from harness.comparison.independence_check import SideIndependence, varying_elements
+from harness.comparison.summary import Summary, summarize
+from harness.invariance.cell import Cell, InvarianceCase, VariantResult
 from harness.invariance.float32 import float32_limit
+from harness.invariance.reference_noise import judge_against_references
+from harness.invariance.signal import BaseSignal, structure, widely
 from harness.invariance.rewrite import rewrite
 from harness.invariance.variants import Invariance, Variant
 from harness.statistics.constants import IMAGE_BATCHES, SIGNIFICANCE, sidak_level
@@ -32,91 +38,6 @@ from harness.statistics.constants import IMAGE_BATCHES, SIGNIFICANCE, sidak_leve
 
 #: How a cell whose task gave no value (its worker died) begins its base_error.
 TASK_FAILED = "task failed"
-
-
-@dataclass(frozen=True)
-class InvarianceCase:
-    """One scene with one integrator, at the check's resolution and samples."""
-
-    scene: Path
-    integrator: str
-    spp: int
-    res: int
-    #: Why the scene cannot be rendered at all (a --scene Nori file without a translation), or "".
-    problem: str = ""
-
-    @property
-    def key(self) -> str:
-        return f"{self.scene.stem}:{self.integrator}"
-
-
-@dataclass
-class VariantResult:
-    """One variant against the base: the comparison, the image-mean ratio (mapped back over base), and why
-    float32 cannot represent the variant's scene, if it cannot."""
-
-    variant: Variant
-    comparison: Comparison | None
-    ratio: float
-    error: str | None = None
-    float32_limit: str | None = None
-
-    @property
-    def passed(self) -> bool:
-        return self.error is None and self.comparison is not None and self.comparison.passed
-
-    @property
-    def status(self) -> str:
-        """"pass"; "float32" (it broke, on a scene float32 cannot represent: a limit, not a failure); "fail"."""
-        return "pass" if self.passed else "float32" if self.float32_limit else "fail"
-
-    def to_json(self) -> dict:
-        c = self.comparison
-        return {"variant": self.variant.label, "pass": self.passed, "status": self.status, "ratio": self.ratio,
-                "error": self.error, "float32_limit": self.float32_limit,
-                "failed_checks": c.failed_checks if c else [], "min_p": {s.scale: s.min_p for s in c.scales} if c
-                else {}, "detectable_bias": c.detectable_bias if c else None}
-
-
-@dataclass
-class Cell:
-    """One engine x invariance x case: every variant of the invariance."""
-
-    engine: str
-    invariance: str
-    case: InvarianceCase
-    variants: list[VariantResult] = field(default_factory=list)
-    base_error: str | None = None
-
-    @property
-    def passed(self) -> bool:
-        """No base error and no failing variant (a variant beyond float32 is not a failure)."""
-        return self.base_error is None and not self.failing
-
-    @property
-    def failing(self) -> list[VariantResult]:
-        return [v for v in self.variants if v.status == "fail"]
-
-    @property
-    def beyond_float32(self) -> list[VariantResult]:
-        return [v for v in self.variants if v.status == "float32"]
-
-    @property
-    def status(self) -> str:
-        return "fail" if not self.passed else "float32" if self.beyond_float32 else "pass"
-
-    @property
-    def worst_ratio(self) -> float:
-        """The ratio furthest from 1 (NaN if none was measured)."""
-        ratios = [v.ratio for v in self.variants if np.isfinite(v.ratio)]
-        return max(ratios, key=lambda r: abs(r - 1.0)) if ratios else float("nan")
-
-    def to_json(self) -> dict:
-        return {"engine": self.engine, "invariance": self.invariance, "scene": self.case.scene.stem,
-                "integrator": self.case.integrator, "pass": self.passed, "status": self.status,
-                "ratio": self.worst_ratio, "failing": [v.variant.label for v in self.failing],
-                "beyond_float32": [v.variant.label for v in self.beyond_float32], "base_error": self.base_error,
-                "variants": [v.to_json() for v in self.variants], "spp": self.case.spp, "res": self.case.res}
 
 
 def image_ratio(variant: np.ndarray, base: np.ndarray, signed: bool) -> float:
@@ -197,6 +118,9 @@ def run_cell_group(engine: Engine, case: InvarianceCase, invariances: list[Invar
                 cell.base_error = renders[0].error
             return cells
         base_summary = summarize(base)
+        signal = BaseSignal.of(base, base_summary)
+        for cell in cells:
+            cell.base, cell.dependence = signal, signal.unused_seed(the)
         has_environment = any(e.get("type") == "constant" for e in ET.parse(case.scene).getroot().iter("emitter"))
         for i, (inv, cell, _, v) in enumerate(jobs, start=1):
             out = result(i)
@@ -204,11 +128,21 @@ def run_cell_group(engine: Engine, case: InvarianceCase, invariances: list[Invar
                 cell.variants.append(VariantResult(v, None, float("nan"), renders[i].error, renders[i].limit))
                 continue
             mapped = v.expected(the, out.astype(np.float64), has_environment)
-            comparison = compare_summaries(summarize(mapped), base_summary, alpha, signed=signed,
+            summary = summarize(mapped)
+            comparison = compare_summaries(summary, base_summary, alpha, signed=signed,
                                            samples=(case.spp, case.spp), metrics=False, tile_power=False)
             cell.variants.append(VariantResult(v, comparison, image_ratio(mapped, base, signed), None,
-                                               renders[i].limit))
+                                               renders[i].limit, variant_alike(summary, base_summary)))
     return cells
+
+
+def variant_alike(variant: Summary, base: Summary) -> str | None:
+    """Why a variant's batches are not independent, or None: all one image where the base's, of the same engine
+    and estimator, vary widely, while the variant's image varies (a black variant is the comparison's to fail)."""
+    side = SideIndependence(variant.dependence, varying_elements(base), int(base.pixel.mean.size), judge_alike=True)
+    if not (side.alike and widely(structure(variant.pixel.mean), side.elements)):
+        return None
+    return side.reason("variant", "base")
 
 
 def comparisons_of(cases: list[InvarianceCase], invariances: list[Invariance]) -> int:
@@ -231,7 +165,8 @@ def run_invariances(engines: list[Engine], cases: list[InvarianceCase], invarian
     false-alarm rate of SIGNIFICANCE (Sidak); returns the cells, in a fixed order, and the per-comparison level.
     `seeds`: an engine's seed by name (default `seed`); `known`: the cells of (engine name, case key) already
     known (a reference engine's stored ones), which are not rendered again; `alpha`: the per-comparison level
-    (default: family_alpha of these cases, a narrower family than the suite's for a subset)."""
+    (default: family_alpha of these cases, a narrower family than the suite's for a subset). Base batches
+    that are one image are judged against a Mitsuba-mapped engine's among them (judge_against_references)."""
     from harness.distributed.bundle import bundle_files
 
     executor = executor or SerialExecutor()
@@ -258,6 +193,7 @@ def run_invariances(engines: list[Engine], cases: list[InvarianceCase], invarian
     for engine, case in pairs:
         key = (engine.name, case.key)
         cells += known[key] if key in known else rendered.get(key, [])
+    judge_against_references(cells)
     return cells, alpha
 
 

@@ -18,23 +18,28 @@ from pathlib import Path
 from harness.engines.base import Engine
 from harness.images.references import REFERENCE_SEED, REFERENCES_DIR, scene_hash
 from harness.images.suite import ROOT
-from harness.invariance.check import Cell, InvarianceCase, VariantResult, applicable
+from harness.invariance.cell import Cell, InvarianceCase, VariantResult
+from harness.invariance.check import applicable
+from harness.invariance.signal import BaseSignal
 from harness.invariance.variants import Invariance
+from harness.project import SOURCE_ROOT
 from harness.results import write_atomic
 
-STORE_FORMAT = 1
+STORE_FORMAT = 2
 #: The code a reference's cells depend on: the rewrites and what each must do, the comparisons and their
 #: statistics, the integrators' mappings onto Mitsuba and the Mitsuba engine. A change to any of it makes
 #: the stored cells stale.
-CHECK_SOURCES = ("harness/invariance/check.py", "harness/invariance/rewrite.py", "harness/invariance/variants.py",
-                 "harness/invariance/float32.py", "harness/comparison", "harness/statistics", "harness/integrators",
+CHECK_SOURCES = ("harness/invariance/check.py", "harness/invariance/cell.py", "harness/invariance/signal.py",
+                 "harness/invariance/rewrite.py", "harness/invariance/variants.py", "harness/invariance/float32.py",
+                 "harness/comparison", "harness/statistics", "harness/integrators",
                  "harness/engines/base.py", "harness/engines/mitsuba.py", "harness/engines/mitsuba_scene.py",
                  "harness/engines/mitsuba_direct.py", "harness/engines/scene_paths.py",
                  "harness/engines/written_scene.py")
 
 
-def check_sha256(root: Path = ROOT) -> str:
-    """SHA-256 of the sources of CHECK_SOURCES (each file's path and bytes, in path order)."""
+def check_sha256(root: Path = SOURCE_ROOT) -> str:
+    """SHA-256 of the sources of CHECK_SOURCES (each file's path and bytes, in path order), as the running
+    harness has them."""
     files = []
     for source in CHECK_SOURCES:
         path = root / source
@@ -115,8 +120,9 @@ def _cell(d: dict, case: InvarianceCase, engine: str, chosen: dict[str, Invarian
                                           tuple(StoredScale(str(s), float(p)) for s, p in v["min_p"].items()),
                                           v["detectable_bias"])
         variants.append(VariantResult(by_label[v["variant"]], comparison, float(v["ratio"]), v["error"],
-                                      v["float32_limit"]))
-    return Cell(engine, inv.name, case, variants, d["base_error"])
+                                      v["float32_limit"], v["dependence"]))
+    base = BaseSignal.from_json(d["base"]) if d["base"] is not None else None
+    return Cell(engine, inv.name, case, variants, d["base_error"], base, d["dependence"])
 
 
 def read_cells(engine: Engine, case: InvarianceCase, chosen: list[Invariance], alpha: float, batches: int,

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from harness.images.suite import scene_cases, suite_integrators
 from harness.integrators import IntegratorEntry, entry
-from harness.invariance.check import InvarianceCase
+from harness.invariance.cell import InvarianceCase
 from harness.invariance.variants import INVARIANCES, Invariance
 
 RESOLUTION = 64

@@ -15,9 +15,12 @@ def _cell(cell: dict | None, gating: bool) -> str:
     if cell["pass"]:
         return f'<td class="pass">PASS {cell["ratio"]:.4f}</td>' if isinstance(cell["ratio"], float) \
             else '<td class="pass">PASS</td>'
+    if cell.get("status") == "inconclusive":
+        return '<td class="na">INCONCLUSIVE: no signal</td>'
     word = "FAIL" if gating else "BREAKS"
-    if cell["base_error"]:
-        return f'<td class="fail">{word}: {escape(cell["base_error"])}</td>'
+    base = cell["base_error"] or cell.get("dependence")
+    if base:
+        return f'<td class="{"fail" if gating else "na"}">{word}: {escape(base)}</td>'
     parts = [f'{escape(v["variant"])}: {v["ratio"]:.4f}' if isinstance(v["ratio"], float) and v["ratio"] == v["ratio"]
              else f'{escape(v["variant"])}: {escape(v["error"] or "no image")}' for v in cell["variants"]
              if v.get("status", "pass" if v["pass"] else "fail") == "fail"]
@@ -30,8 +33,9 @@ def invariance_summary(payload: dict) -> str:
     ours = [c for c in payload["cells"] if c["engine"] == payload["gating_engine"]]
     passing = sum(c.get("status", "pass" if c["pass"] else "fail") == "pass" for c in ours)
     beyond = sum(c.get("status") == "float32" for c in ours)
+    unjudged = sum(c.get("status") == "inconclusive" for c in ours)
     return (f'{passing} of {len(ours)} checks of {escape(payload["gating_engine"])} pass'
-            + (f", {beyond} beyond float32" if beyond else "")
+            + (f", {beyond} beyond float32" if beyond else "") + (f", {unjudged} not judged" if unjudged else "")
             + f'; {len(payload["findings"])} findings about the reference')
 
 
@@ -64,9 +68,13 @@ def invariance_section(payload: dict, heading: str = "h2") -> str:
         out.append("</table>")
     out.append("<p>ratio: the transformed image's mean, mapped back by the expected factor, over the base's "
                "(furthest from 1 over the variants; mean |n| for normals). FLOAT32: the listed variants broke on a "
-               "scene float32 cannot represent (below, why).</p>")
+               "scene float32 cannot represent (below, why). INCONCLUSIVE: the base render is all 0, which no "
+               "rewrite can change: not judged.</p>")
     out.append(f"<p><b>How far a translation reaches.</b> {escape(payload.get('translation_reach', ''))}</p>")
+    if payload.get("verdict_reason"):
+        out.append(f'<p class="fail">{escape(payload["verdict_reason"])}</p>')
     for title, lines in (("Failures of the renderer under test", payload["failures"]),
+                         ("Not judged", payload.get("not_judged", [])),
                          ("Findings about the reference", payload["findings"]),
                          ("Breaks float32 explains (not failures)", payload.get("float32_limits", []))):
         if lines:

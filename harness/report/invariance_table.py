@@ -5,7 +5,7 @@ from rich import box
 from rich.markup import escape
 from rich.table import Table
 
-from harness.invariance.check import Cell
+from harness.invariance.cell import Cell
 from harness.invariance.findings import REFERENCE_NOTE
 
 
@@ -15,6 +15,10 @@ def _cell_text(cell: Cell | None, gating: bool) -> str:
         return "[dim]—[/]"
     if cell.base_error:
         return "[bold red]ERR[/]" if gating else "[yellow]ERR[/]"
+    if cell.dependence:
+        return "[bold red]FAIL[/] batches" if gating else "[yellow]BREAKS[/] batches"
+    if cell.status == "inconclusive":
+        return "[yellow]INCONCLUSIVE[/]"
     if cell.status == "float32":
         return "[cyan]FLOAT32[/] " + " ".join(escape(v.variant.label) for v in cell.beyond_float32)
     if cell.passed:
@@ -26,7 +30,9 @@ def _cell_text(cell: Cell | None, gating: bool) -> str:
 
 
 def invariance_tables(cells: list[Cell], alpha: float, gating_engine: str) -> list[Table]:
-    """One table per engine (ours first): rows scene:integrator, a column per invariance."""
+    """One table per engine (ours first): rows scene:integrator, a column per invariance; none without cells."""
+    if not cells:
+        return []
     engines = list(dict.fromkeys(c.engine for c in cells))
     rows = list(dict.fromkeys(c.case.key for c in cells))
     found = {(c.engine, c.invariance, c.case.key): c for c in cells}
@@ -47,5 +53,7 @@ def invariance_tables(cells: list[Cell], alpha: float, gating_engine: str) -> li
                           "base's (furthest from 1 over the variants; mean |n| for normals); after FAIL or "
                           "BREAKS each failing variant with its ratio (no image: the render failed, the reason is below); "
                           "FLOAT32: those variants broke on a scene float32 cannot represent (why, in numbers, below); "
+                          "batches: the base's batches are one image where the estimator has noise (below); "
+                          "INCONCLUSIVE: the base render is all 0, which no rewrite changes: not judged; "
                           f"—: not applicable. {REFERENCE_NOTE}")
     return tables

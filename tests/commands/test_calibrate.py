@@ -68,3 +68,12 @@ def test_the_command_writes_its_figures_and_page(tmp_path):
     # The next report links it.
     assert main(["images", "--only", "plane_point:normals", "--out", str(out)]) == 0
     assert "../calibration-latest/calibration.html" in (out / "latest" / "report.html").read_text()
+
+
+def test_a_calibration_with_no_null_run_exits_3(tmp_path, capsys):
+    out = tmp_path / "results"
+    assert main(["calibrate", "--warps", "--only", "tent", "--seeds", "0", "--no-mitsuba", "--out", str(out)]) == 3
+    payload = json.loads((out / "calibration-latest" / "calibration.json").read_text())
+    assert payload["verdict_reason"] == ("nothing was judged: null warp runs: --seeds 0 over 1 warp checks gave "
+                                         "none")
+    assert not payload["pass"] and f"FAIL {payload['verdict_reason']}" in capsys.readouterr().out

@@ -64,3 +64,10 @@ def test_an_interrupt_is_130_even_when_a_library_wraps_it(tmp_path, monkeypatch,
     monkeypatch.setattr(warps_command, "run", interrupted)
     assert main(["warps", "--only", "tent", "--out", str(tmp_path)]) == 130
     assert "interrupted: partial output in" in capsys.readouterr().err
+
+
+def test_every_verdict_has_its_exit_status():
+    from harness.cli import EXIT_STATUS
+    from harness.verdict import Verdict
+
+    assert EXIT_STATUS == {Verdict.PASS: 0, Verdict.FAIL: 1, Verdict.NOTHING_JUDGED: 3}

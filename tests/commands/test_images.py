@@ -119,3 +119,20 @@ def test_a_failing_comparison_leaves_its_data(tmp_path, ours, mitsuba, monkeypat
     assert {"ours_mean", "mitsuba_mean", "mitsuba_p_pixel", "analytic_p_image"} <= set(arrays.files)
     suites = ET.parse(run / "junit.xml").getroot()
     assert any(s.get("failures") == "1" for s in suites)
+
+
+def test_a_run_with_no_case_to_judge_exits_3_and_says_why(tmp_path, capsys):
+    """An engine that renders simple alone, given a scene without a point light: no case runs, and the run is no
+    PASS (it once printed `Results: … — PASS` and exited 0)."""
+    from tests.helpers.foreign_renderers import write_engine
+    from harness.images.suite import REAL_SCENES_DIR
+
+    engine = write_engine(tmp_path, "ours", integrators=("simple",))
+    out = tmp_path / "results"
+    assert main(["images", "--engine", str(engine), "--scene", str(REAL_SCENES_DIR / "cornell_box.xml"),
+                 "--out", str(out)]) == 3
+    payload = json.loads((out / "latest" / "results.json").read_text())
+    assert not payload["pass"] and payload["verdict"] == "NOTHING JUDGED"
+    assert payload["verdict_reason"] == ("nothing was judged: image cases: no case of the engine ours (it renders "
+                                         "simple) applies to the scenes: cornell_box:simple: no point light")
+    assert f"FAIL {payload['verdict_reason']}" in capsys.readouterr().out

@@ -4,6 +4,7 @@ from __future__ import annotations
 import json
 
 from harness.cli import main
+from tests.helpers.foreign_renderers import write_engine
 
 
 def test_invariance_command_writes_its_block(tmp_path):
@@ -53,3 +54,33 @@ def test_a_narrowed_run_renders_the_reference_and_says_why(tmp_path, mitsuba):
     assert block["meta"]["reference_seed"] == 1000
     assert [c["engine"] for c in block["cells"]] == ["mcval"] * 3 + ["mitsuba"] * 3
     assert "mitsuba: every case rendered now" in (out / "latest" / "invariance.html").read_text()
+
+
+def test_an_all_black_renderer_is_not_judged_and_the_run_says_why(tmp_path, capsys):
+    """Black maps to black under every rewrite: no cell is a PASS, and a run that judged none fails (exit 3)."""
+    engine = write_engine(tmp_path, "black")
+    out = tmp_path / "results"
+    assert main(["invariance", "--engine", str(engine), "--only", "plane_point", "simple", "light", "--no-mitsuba",
+                 "--out", str(out)]) == 3
+    payload = json.loads((out / "latest" / "results.json").read_text())
+    (cell,) = payload["invariance"]["cells"]
+    assert cell["status"] == "inconclusive" and not cell["pass"] and not payload["pass"]
+    assert payload["verdict"] == "NOTHING JUDGED"
+    assert payload["verdict_reason"].startswith("nothing was judged: invariance cells of black: 1 cell "
+                                                "(plane_point:simple light): the base render is constant (all 0)")
+    printed = capsys.readouterr().out
+    assert f"FAIL {payload['verdict_reason']}" in " ".join(printed.split())
+    assert printed.rstrip().endswith("FAIL (nothing was judged)")
+
+
+def test_a_renderer_that_ignores_its_seed_fails_with_the_cause_first(tmp_path, capsys):
+    engine = write_engine(tmp_path, "fixed_seed")
+    out = tmp_path / "results"
+    assert main(["invariance", "--engine", str(engine), "--only", "plane_point", "simple", "light", "--no-mitsuba",
+                 "--out", str(out)]) == 1
+    block = json.loads((out / "latest" / "results.json").read_text())["invariance"]
+    first = block["failures"][0]
+    assert first.startswith("plane_point:simple (light): batches not independent: all 8 batches of the base render "
+                            "are the same image") and first.endswith("is the seed it is given used?")
+    printed = [line for line in capsys.readouterr().out.splitlines() if line.startswith("FAIL")]
+    assert printed[0] == f"FAIL invariance {first}"

@@ -1,6 +1,6 @@
 """Images without signal are INCONCLUSIVE, never PASS and never "not independent": a camera that sees a
 one-sided floor from behind (both images 0) and a speck of a sphere at 32 pixels (a bias of 5 % cannot be
-found); each says what would decide it, and a run of nothing but such cases fails."""
+found); each says what would decide it, and a run of nothing but such cases judged nothing (exit status 3)."""
 import json
 import xml.etree.ElementTree as ET
 
@@ -30,7 +30,7 @@ def test_images_without_signal_are_inconclusive_and_a_run_of_them_fails(tmp_path
     (folder / "from_behind.xml").write_text(source.replace(CAMERA, CAMERA.replace("0, 3, 3", "0, -3, 3")))
     (folder / "speck.xml").write_text(source.replace(FLOOR, SPECK))
     out = tmp_path / "results"
-    assert main(["images", "--scene", str(folder), "--only", "ao", "--resolution", "32", "--out", str(out)]) == 1
+    assert main(["images", "--scene", str(folder), "--only", "ao", "--resolution", "32", "--out", str(out)]) == 3
     cases = {c["scene"]: c for c in json.loads((out / "latest" / "results.json").read_text())["images"]}
     assert {c["verdict"] for c in cases.values()} == {"INCONCLUSIVE"}
     assert not any(c["pass"] for c in cases.values())
@@ -42,4 +42,4 @@ def test_images_without_signal_are_inconclusive_and_a_run_of_them_fails(tmp_path
     skipped = list(ET.parse(out / "latest" / "junit.xml").iter("skipped"))
     assert len(skipped) == 2 and all(s.get("message").startswith("INCONCLUSIVE: ") for s in skipped)
     printed = " ".join(capsys.readouterr().out.split())
-    assert "Nothing judged: every one of the 2 image cases is inconclusive" in printed
+    assert "FAIL nothing was judged: image cases: 2 inconclusive (from_behind:ao, speck:ao)" in printed

@@ -36,6 +36,8 @@ BEHAVIOURS = {
     "fixed_seed": "seed = '7'; render()",
     # Uses the seed modulo 4: of a case's 8 calls, the last 4 repeat the first 4 (see call_seed).
     "seed_mod_4": "seed = str(int(seed) % 4); render()",
+    # Writes black, whatever the scene: an image without signal.
+    "black": "import numpy as np; write(np.zeros((int(height), int(width), 3), np.float32))",
     "y_half": "write(shape(1), ('Y',), 'half')",
     "layer": "write(shape(), ('beauty.R', 'beauty.G', 'beauty.B'))",
     "exit": "print('\\n'.join(f'progress {i}' for i in range(80))); print('error: cannot parse', file=sys.stderr); "
@@ -61,18 +63,20 @@ BEHAVIOURS = {
 }
 
 ARGUMENTS = ["{scene}", "{output}", "{spp}", "{seed}", "{integrator}", "{width}", "{height}"]
-INTEGRATORS = '[integrators]\nnormals = "normals"\nsimple = "simple"\nao = "ao"\n'
+INTEGRATORS = ("normals", "simple", "ao")
 
 
 def write_engine(folder: Path, behaviour: str, name: str | None = None, extra: str = "",
-                 constants: dict[str, float] | None = None) -> Path:
-    """An engine file in `folder` whose renderer does `behaviour` (a key of BEHAVIOURS); `extra`: more TOML
-    lines before its [integrators]; `constants`: names the behaviour reads (FACTOR, BATCHES of "firefly")."""
+                 integrators: tuple[str, ...] = INTEGRATORS, constants: dict[str, float] | None = None) -> Path:
+    """An engine file in `folder` whose renderer does `behaviour` (a key of BEHAVIOURS) with `integrators`;
+    `extra`: more TOML lines before its [integrators]; `constants`: names the behaviour reads (FACTOR, BATCHES
+    of "firefly", "scaled")."""
     script = folder / f"{behaviour}.py"
     preamble = "".join(f"{k} = {v!r}\n" for k, v in (constants or {}).items())
     script.write_text(_HEADER + preamble + BEHAVIOURS[behaviour] + "\n")
     script.chmod(script.stat().st_mode | stat.S_IXUSR)
     command = ", ".join(f'"{w}"' for w in ["{here}/" + script.name, *ARGUMENTS])
     path = folder / f"{behaviour}.toml"
-    path.write_text(f'name = "{name or behaviour.replace("_", "-")}"\ncommand = [{command}]\n{extra}{INTEGRATORS}')
+    table = "[integrators]\n" + "".join(f'{i} = "{i}"\n' for i in integrators)
+    path.write_text(f'name = "{name or behaviour.replace("_", "-")}"\ncommand = [{command}]\n{extra}{table}')
     return path

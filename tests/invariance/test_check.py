@@ -182,3 +182,19 @@ def test_overlapped_renders_give_the_serial_cells_and_keep_failures_apart():
     cells, _ = run_invariances([no_base], cases, invariances, seed=2)
     assert no_base.rendered == ["plane_point.xml"]
     assert [c.base_error for c in cells] == ["told to fail on plane_point.xml"] * 2
+
+
+def test_a_variant_of_one_image_where_the_base_varies_is_not_independent():
+    """Base and variant are one engine's one estimator: a variant whose batches are one image, where the base's
+    vary, did not use its seed; a black variant is left to the comparison, and two noiseless sides pass."""
+    from harness.comparison.summary import summarize
+    from harness.invariance.check import variant_alike
+
+    rng = np.random.default_rng(7)
+    p = np.linspace(0.05, 0.95, RES)[None, :, None] * np.ones((RES, 1, 3))
+    noisy = summarize(rng.binomial(32, p, size=(8, RES, RES, 3)) / 32)
+    one = summarize(np.repeat(rng.binomial(32, p, size=(1, RES, RES, 3)) / 32, 8, axis=0))
+    assert variant_alike(one, noisy).startswith("batches not independent: all 8 variant batches are the same image, "
+                                                "where the base's vary")
+    assert variant_alike(noisy, noisy) is None and variant_alike(one, one) is None
+    assert variant_alike(summarize(np.zeros((8, RES, RES, 3))), noisy) is None

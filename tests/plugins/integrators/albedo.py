@@ -15,4 +15,5 @@ ENTRY = IntegratorEntry(
     analytic=AnalyticForm("the plane's reflectance",
                           lambda scene, p, normal: np.broadcast_to(scene.reflectance, p.shape)),
     linear_in=("reflectance",),  # no emitter changes it
+    noisy_where_varying=False,  # constant over each surface, as normals
 )
