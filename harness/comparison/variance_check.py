@@ -79,8 +79,8 @@ class VarianceCheck:
             where = "pixel" if s.scale == "pixel" else "8x8 tile at"
             return (f"firefly: the test's {where} (row {s.worst[0]}, column {s.worst[1]}, {_CHANNELS[s.worst[2]]}) "
                     f"has {s.ratio:.3g}x the per-sample variance of the reference's neighbourhood (at most "
-                    f"{s.critical:.3g}x without a defect; {s.failures} {s.scale}s beyond it): one batch far off, "
-                    "as a wrong pdf or MIS weight near a singularity writes it")
+                    f"{s.critical:.3g}x without a defect; {s.failures} {s.scale}s beyond it): a batch far off "
+                    "where the same estimator's samples never stray so far")
         r = self.result
         if r is None:
             return "no firefly: every pixel and tile within the reference's noise (the image-wide test not made)"

@@ -102,9 +102,12 @@ def _ratios(test: BatchStats, reference: BatchStats, spp: tuple[int, int], windo
 
 
 def _largest(values: np.ndarray, window: int) -> np.ndarray:
-    """The largest finite |value| of each element's window x window neighbourhood (per channel)."""
+    """The largest finite |value| of each element's window x window neighbourhood, over every channel: a
+    sample's channels share its scale (a normal whose G is 0 about a box's edge has R or B near 1, and the rare
+    sample on the box's top gives G a 1)."""
     v = np.abs(np.asarray(values, np.float64))
-    return maximum_filter(np.where(np.isfinite(v), v, 0.0), size=(window, window, 1), mode="nearest")
+    channels = v.shape[-1]
+    return maximum_filter(np.where(np.isfinite(v), v, 0.0), size=(window, window, channels), mode="nearest")
 
 
 def _scale(name: str, ratios: np.ndarray, upsample: int, critical: float) -> ScaleSpread:
@@ -128,7 +131,7 @@ def excess_spread(test_pixel: BatchStats, reference_pixel: BatchStats, test_tile
     in_tile = tile_blocks(np.abs(np.nan_to_num(np.asarray(reference_pixel.mean, np.float64))), tile)
     th, tw = np.shape(reference_tile.mean)[:2]
     channels = np.shape(reference_pixel.mean)[2]
-    tile_largest = _largest(in_tile.reshape(th * tw, -1, channels).max(axis=1).reshape(th, tw, channels), 3)
+    tile_largest = _largest(in_tile.max(axis=1).reshape(th, tw, 1).repeat(channels, axis=2), 3)
     scales = []
     for name, t, r, upsample, win, largest, pixels in (
             ("pixel", test_pixel, reference_pixel, 1, window, pixel_largest, 1),
