@@ -29,6 +29,8 @@ if TYPE_CHECKING:
     from harness.comparison.summary import Summary
 
 _CHANNELS = "RGB"
+#: Up to this many pixels beyond the critical ratio are called fireflies (single samples far off).
+FIREFLY_PIXELS = 16
 
 
 @dataclass(frozen=True)
@@ -77,7 +79,9 @@ class VarianceCheck:
         if self.excess is not None and self.excess.rejects:
             s = self.excess.worst_scale
             where = "pixel" if s.scale == "pixel" else "8x8 tile at"
-            return (f"firefly: the test's {where} (row {s.worst[0]}, column {s.worst[1]}, {_CHANNELS[s.worst[2]]}) "
+            # A few pixels: fireflies; more, or tiles alone: an estimator noisier than the one declared, in places.
+            what = "firefly" if s.scale == "pixel" and s.failures <= FIREFLY_PIXELS else "noise beyond the estimator's"
+            return (f"{what}: the test's {where} (row {s.worst[0]}, column {s.worst[1]}, {_CHANNELS[s.worst[2]]}) "
                     f"has {s.ratio:.3g}x the per-sample variance of the reference's neighbourhood (at most "
                     f"{s.critical:.3g}x without a defect; {s.failures} {s.scale}s beyond it): a batch far off "
                     "where the same estimator's samples never stray so far")
