@@ -5,7 +5,6 @@ tests in the run (and so the Sidak-corrected level) is known.
 """
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
@@ -286,45 +285,3 @@ def hard_inputs_check(domain: Domain, variants: dict[str, tuple[Sampler, Pdf]]) 
                "inputs": len(u) * len(variants), "variants": list(variants)}
     return CheckResult(ok, float(nonfinite), summarize(findings, f"NaN/Inf {nonfinite}"), details=details,
                        findings=findings)
-
-
-#: Seconds each engine warms up before a timed call: its thread pool and the cores reach their steady rate only
-#: after some milliseconds of work (one untimed call was not enough: ours read half its rate after a pause), and
-#: Mitsuba's pool spins for some 30 ms after a call, so a shorter warm-up would time ours on one core.
-WARM_SECONDS = 0.03
-
-
-def _warm_up(call: Callable[[], Any], seconds: float) -> None:
-    """Calls `call` at least once and until `seconds` have passed."""
-    end = time.perf_counter() + seconds
-    call()
-    while time.perf_counter() < end:
-        call()
-
-
-def measure_rates_interleaved(ours: Callable[[], Any], reference: Callable[[], Any], n: int,
-                              pairs: int = 5, warm: float = WARM_SECONDS) -> tuple[float, float, float]:
-    """Samples per second of two calls that warp n samples each, timed in alternation (ours, reference, ours,
-    ...), each timed call straight after `warm` seconds of untimed calls of its own (its threads awake and
-    the other's quiet, its arrays cached): the median rate of each, and the median over the pairs of ours'
-    rate over the reference's, in which the machine's drift between the two runs of a pair cancels."""
-    t_ours, t_ref = [], []
-    for _ in range(pairs):
-        for call, times in ((ours, t_ours), (reference, t_ref)):
-            _warm_up(call, warm)
-            start = time.perf_counter()
-            call()
-            times.append(time.perf_counter() - start)
-    ratios = np.array(t_ref) / np.array(t_ours)
-    return n / float(np.median(t_ours)), n / float(np.median(t_ref)), float(np.median(ratios))
-
-
-def measure_rate(sample: Callable[[], Any], n: int, repeats: int = 5) -> float:
-    """Samples per second of a call that warps n samples: the median of several runs after a warm-up."""
-    sample()
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        sample()
-        times.append(time.perf_counter() - start)
-    return n / float(np.median(times))

@@ -29,14 +29,11 @@ from harness.engines.base import WarpFunctions
 from harness.statistics.constants import HISTOGRAM_RES, SIGNIFICANCE, WARP_SAMPLES, sidak_level
 from harness.warps.adapters import NumpyPdf, NumpySampler
 from harness.warps.bins import Bins, equal_probability_bins, sample_quantum
+from harness.warps.throughput import throughput_check
 
 #: The checks, in the order reports show them.
 CHECK_NAMES = ("chi2", "normalisation", "domain", "pdf_vs_mitsuba", "samples_vs_mitsuba",
                "hard_inputs", "throughput")
-
-
-#: Below this many samples per second a warp cannot feed a renderer (a per-sample Python loop, a stuck rejection).
-THROUGHPUT_FLOOR = 1e6
 
 
 @dataclass
@@ -139,35 +136,6 @@ def equal_probability_cells(dom: Domain, pdf: wc.Pdf, samples: int,
     `point_sets` allows (see warp_bins), and the pdf's integral over each."""
     bins = equal_probability_bins(wc.parameter_density(dom, pdf), HISTOGRAM_RES, samples, sample_quantum(*point_sets))
     return bins, wc.expected_probabilities(dom, pdf, bins)
-
-
-def throughput_check(sample: wc.Sampler, native_run, reference: WarpFunctions | None,
-                     n: int = 1 << 20, judged: bool = True) -> wc.CheckResult:
-    """Samples per second of our warp, beside the reference's (each in its own containers).
-
-    Passes above THROUGHPUT_FLOOR if `judged` (else it always passes: a user's code is timed, not judged);
-    the comparison with the reference is reported, not judged (speed goals live in bench/).
-    """
-    if native_run is None:
-        u = np.random.default_rng(1).random((n, 2))
-        ours = lambda: sample(u)  # noqa: E731
-    else:
-        ours = native_run(n)
-    if reference is None:
-        rate = wc.measure_rate(ours, n)
-    else:
-        # Interleaved, ours then the reference's, the ratio taken per pair: on a shared machine back-to-back
-        # medians of one engine and then the other swing with the load.
-        rate, ref_rate, ratio = wc.measure_rates_interleaved(ours, reference.native_run(n), n)
-    details: dict[str, Any] = {"samples_per_second": rate}
-    summary = f"{rate / 1e6:.0f} M/s"
-    if reference is not None:
-        details.update(reference_samples_per_second=ref_rate, ratio=ratio, method="interleaved pairs, median ratio")
-        summary += f" ({ratio:.2f}x Mitsuba)"
-    details["floor"] = THROUGHPUT_FLOOR if judged else None
-    if not judged:
-        summary += " (reported, not judged)"
-    return wc.CheckResult(bool(rate >= THROUGHPUT_FLOOR or not judged), rate, summary, details=details)
 
 
 def decide(results: list[WarpResult], alpha: float = SIGNIFICANCE) -> float:

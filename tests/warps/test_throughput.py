@@ -1,6 +1,7 @@
-"""measure_rates_interleaved: the engines alternate, each timed call follows untimed ones of its own for the
-warm-up time, and the ratio is the median of the per-pair ratios (on a scripted clock, so nothing here depends on timing)."""
-import harness.warps.checks as wc
+"""The throughput check's timing, measure_rates_interleaved: the engines alternate, each timed call follows
+untimed ones of its own for the warm-up time, and the ratio is the median of the per-pair ratios (on a scripted
+clock, so nothing here depends on timing)."""
+import harness.warps.throughput as wc
 
 
 class ScriptedClock:
