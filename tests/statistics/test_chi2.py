@@ -97,8 +97,9 @@ def test_batch_tests_agree_with_single_ones_and_with_scipy():
             if low.any():
                 table = np.concatenate([table, [[a[i][low].sum()], [b[i][low].sum()]]], axis=1)
             table = table[:, table.sum(axis=0) > 0]
-            if table.shape[1] < 2:
-                assert batch.p_values[i] == 1.0 and batch.dofs[i] == 0
+            if table.shape[1] < 2:  # no test: not judged, never a p-value that passes
+                assert np.isnan(batch.p_values[i]) and batch.dofs[i] == 0
+                assert homogeneity(a[i], b[i]).not_judged
                 continue
             ref = sps.chi2_contingency(table, correction=False)
             assert batch.statistics[i] == pytest.approx(ref.statistic, rel=1e-9, abs=1e-12)
@@ -108,8 +109,9 @@ def test_batch_tests_agree_with_single_ones_and_with_scipy():
         gof = goodness_of_fit_batch(a, expected)
         for i in range(3):
             single = goodness_of_fit(a[i], expected)
-            assert gof.statistics[i] == pytest.approx(single.statistic, rel=1e-12) and gof.dofs[i] == single.dof
-            assert gof.p_values[i] == pytest.approx(single.p_value, rel=1e-9)
+            assert gof.statistics[i] == pytest.approx(single.statistic, rel=1e-12, nan_ok=True)
+            assert gof.dofs[i] == single.dof
+            assert gof.p_values[i] == pytest.approx(single.p_value, rel=1e-9, nan_ok=True)
 
 
 def test_cell_integrals_on_uneven_edges_and_thin_spikes():
@@ -128,3 +130,26 @@ def test_cell_integrals_on_uneven_edges_and_thin_spikes():
             return np.where(s > 0, 2 / (a2 * s**3) * np.exp(-(1 / s**2 - 1) / a2), 0.0)
     res = integrate_cells(density, np.array([0.0, top, 1.0]), np.array([0.0, 1.0]))
     assert res.values.ravel() == pytest.approx([1 / res_, 1 - 1 / res_], rel=1e-6)
+
+
+# --- Counts a test cannot judge: never a p-value that passes ------------------------------------------------
+
+@pytest.mark.parametrize("integral", [6e-6, 1e-5, 1e-3])
+def test_a_pdf_integrating_far_below_one_is_not_judged(integral):
+    # Expected counts N * integral / cells: every cell below 5, pooled into a single bin, which is no test.
+    observed = np.random.default_rng(3).multinomial(10**6, np.full(2601, 1 / 2601))
+    res = goodness_of_fit(observed, np.full(2601, 10**6 * integral / 2601))
+    assert res.not_judged and np.isnan(res.p_value) and "1000000 observed" in res.not_judged
+
+
+def test_counts_that_are_not_finite_or_negative_are_not_judged():
+    good = np.full(10, 100.0)
+    for observed, expected in [(good, np.where(np.arange(10) == 3, np.inf, 100.0)), (good * np.nan, good),
+                               (good, -good)]:
+        assert goodness_of_fit(observed, expected).not_judged
+        assert homogeneity(observed, expected).not_judged
+
+
+def test_homogeneity_with_every_count_in_one_bin_is_not_judged():
+    a, b = np.array([0, 500, 0]), np.array([0, 700, 0])
+    assert homogeneity(a, b).not_judged == "every count of both histograms in one bin"

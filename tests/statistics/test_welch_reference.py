@@ -309,12 +309,13 @@ def test_goodness_of_fit_of_two_and_of_too_few_cells():
     ref = sps.chisquare([10, 14], [12.0, 12.0])
     assert ours.dof == 1
     assert ours.p_value == pytest.approx(ref.pvalue, rel=1e-10)
-    # One regular cell, or every cell too small to test: no test (p = 1, dof 0).
+    # One regular cell, or every cell too small to test: not judged (p NaN, dof 0), never a p-value that passes.
     for observed, expected in [([7, 0], [7.0, 0.0]), ([1, 0, 1], [1.0, 1.0, 1.0])]:
         res = goodness_of_fit(np.array(observed), np.array(expected))
-        assert (res.dof, res.p_value, res.statistic) == (0, 1.0, 0.0)
+        assert res.dof == 0 and np.isnan(res.p_value) and np.isnan(res.statistic)
+        assert res.not_judged.startswith("fewer than two cells expect 5 samples or more")
         batch = goodness_of_fit_batch(np.array([observed, observed]), np.array(expected))
-        assert batch.dofs.dtype.kind == "i" and list(batch.dofs) == [0, 0]
+        assert batch.dofs.dtype.kind == "i" and list(batch.dofs) == [0, 0] and np.isnan(batch.p_values).all()
     # Integer inputs give the same answer as floats.
     a = goodness_of_fit(np.array([35, 6, 33, 4]), np.array([40, 2, 30, 2]))
     b = goodness_of_fit(np.array([35.0, 6.0, 33.0, 4.0]), np.array([40.0, 2.0, 30.0, 2.0]))
@@ -334,11 +335,11 @@ def test_homogeneity_pools_small_cells_by_hand():
     assert isinstance(ours.pooled_cells, int)
 
 
-def test_homogeneity_without_samples_on_one_side_is_no_test():
+def test_homogeneity_without_samples_on_one_side_is_not_judged():
     counts = np.array([50, 80, 20])
     for a, b in [(np.zeros(3, int), counts), (counts, np.zeros(3, int)), (np.zeros(3, int), np.zeros(3, int))]:
         res = homogeneity(a, b)
-        assert (res.statistic, res.dof, res.p_value) == (0.0, 0, 1.0)
+        assert res.dof == 0 and np.isnan(res.p_value) and res.not_judged.startswith("an empty histogram")
 
 
 # --- Sidak ------------------------------------------------------------------------------------------
