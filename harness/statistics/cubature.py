@@ -73,6 +73,12 @@ def integrate_regions(f: Callable[[np.ndarray, np.ndarray], np.ndarray], x0: np.
     changes is returned as the error estimate (pessimistic: the estimate of the
     split that changed more is kept). Returns (integrals, error).
     """
+    with np.errstate(invalid="ignore", over="ignore"):  # an infinite density gives inf and NaN estimates, not warnings
+        return _integrate_regions(f, x0, y0, h, k, atol, rtol)
+
+
+def _integrate_regions(f: Callable, x0: np.ndarray, y0: np.ndarray, h: np.ndarray, k: np.ndarray, atol: float,
+                       rtol: float) -> tuple[np.ndarray, float]:
     x0, y0, h, k = (np.asarray(a, dtype=np.float64).ravel() for a in (x0, y0, h, k))
     owner = np.arange(len(x0))
     coarse, _ = _rule(f, x0, y0, h, k)

@@ -10,10 +10,11 @@ never on the sample values, so the chi-square test stays valid.
 
 Quantiles are found hierarchically: integrate the density over 256 strips (the
 adaptive rule of harness.statistics.cubature), find the strip holding each quantile, then
-halve it 40 times, all quantiles at once (to about 1e-15; a float32 pdf's own
-noise limits it sooner). They are of the pdf's own mass, so
-a pdf off by a constant factor gets the same cells (the normalisation check and
-the chi-square's N * cell integral still catch it).
+halve it 40 times, all quantiles at once (to about 1e-15 in x; the strip masses
+are known to 1e-8 of the mass, and a float32 pdf's own noise limits it sooner).
+They are of the pdf's own mass, so a pdf off by a constant factor gets the same
+cells (the normalisation check and the chi-square's N * cell integral still
+catch it).
 
 Float32 samples sit up to FLOAT32_QUANTUM / 2 from where exact arithmetic
 would put them. Where the density is large, that moves measurable mass across a
@@ -44,7 +45,9 @@ _FIRST_STRIPS = 256
 _LEVELS = 40
 #: Relative and absolute accuracy of the strip integrals behind the quantiles (densities of mass about 1). A
 #: float32 pdf is noisy at about 1e-6 (its input rounded to float32): a tighter tolerance would refine forever.
-_RTOL, _ATOL = 1e-5, 1e-14
+#: 1e-8 of the mass moves a quantile by 0.01 of 10^6 samples; a pdf that jumps along a diagonal (a triangle on the
+#: tent's square) refines strips across the jump down to that: 2.8 s for its cells, 5.5 s at 1e-14.
+_RTOL, _ATOL = 1e-5, 1e-8
 #: An axis whose res equal strips hold equal masses to this relative accuracy gets exactly uniform edges.
 _UNIFORM_SNAP = 1e-6
 
@@ -71,6 +74,10 @@ class Bins:
         rows, cols = self.shape
         text = f"{rows}x{cols} {self.kind}"
         return text + (f" ({self.limited_by})" if self.limited_by else "")
+
+    def same_edges(self, other: "Bins") -> bool:
+        """Whether both have the same cells (then one histogram serves both)."""
+        return np.array_equal(self.s_edges, other.s_edges) and np.array_equal(self.t_edges, other.t_edges)
 
     def to_json(self) -> dict:
         out = {"cells": list(self.shape), "binning": self.kind}
@@ -155,11 +162,35 @@ def rounding_noncentrality(density: Density, edges: np.ndarray, axis: int, sampl
         return 0.0
     lo = np.clip(inner - quantum / 2, 0.0, 1.0)
     near = _strip_masses(density, axis, lo, np.clip(inner + quantum / 2, 0.0, 1.0) - lo, across)
-    cells = _strip_masses(density, axis, edges[:-1], np.diff(edges), across)
+    return _noncentrality(near, _strip_masses(density, axis, edges[:-1], np.diff(edges), across), samples)
+
+
+def _noncentrality(near: np.ndarray, cells: np.ndarray, samples: int) -> float:
+    """rounding_noncentrality from the masses within quantum / 2 of each inner edge and the masses of the cells."""
     total = cells.sum()
     var = np.concatenate([[0.0], (near / total) ** 2 / 12, [0.0]])
     cell = np.maximum(cells / total, 1e-300)
     return float(samples * np.sum((var[:-1] + var[1:]) / cell))
+
+
+def _most_cells(edges_for: Callable[[int], np.ndarray | None], noncentrality: Callable[[np.ndarray], float],
+                res: int) -> tuple[np.ndarray, bool] | None:
+    """edges_for(res), or edges_for(n) for the largest n < res whose rounding noncentrality is at most
+    ROUNDING_NONCENTRALITY (or one cell). Returns (edges, limited) or None if edges_for gives none."""
+    edges = edges_for(res)
+    if edges is None:
+        return None
+    if noncentrality(edges) <= ROUNDING_NONCENTRALITY:
+        return edges, False
+    lo, hi, best = 1, res, uniform_edges(1)  # the noncentrality grows with the number of cells: bisect on it
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        candidate = edges_for(mid)
+        if noncentrality(candidate) <= ROUNDING_NONCENTRALITY:
+            lo, best = mid, candidate
+        else:
+            hi = mid
+    return best, True
 
 
 def _axis_edges(density: Density, axis: int, res: int, samples: int, quantum: float,
@@ -179,23 +210,7 @@ def _axis_edges(density: Density, axis: int, res: int, samples: int, quantum: fl
         q = marginal_quantiles(density, np.arange(1, n) / n, axis, across)
         return None if q is None else _edges(q)
 
-    def fits(e: np.ndarray) -> bool:
-        return rounding_noncentrality(density, e, axis, samples, quantum, across) <= ROUNDING_NONCENTRALITY
-
-    edges = edges_for(res)
-    if edges is None:
-        return None
-    if fits(edges):
-        return edges, False
-    lo, hi, best = 1, res, uniform_edges(1)  # the noncentrality grows with the number of cells: bisect on it
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        candidate = edges_for(mid)
-        if fits(candidate):
-            lo, best = mid, candidate
-        else:
-            hi = mid
-    return best, True
+    return _most_cells(edges_for, lambda e: rounding_noncentrality(density, e, axis, samples, quantum, across), res)
 
 
 def _pieces(edges: np.ndarray) -> np.ndarray:
@@ -223,9 +238,35 @@ def equal_probability_bins(density: Density, res: int = HISTOGRAM_RES, samples: 
     t_axis = _axis_edges(density, 1, res, samples, quantum, across)
     if t_axis is None:
         return uniform_bins(res)
-    limited = [name for name, (_, lim) in zip(("s", "t"), (s_axis, t_axis)) if lim]
-    reason = f"{' and '.join(limited)} limited by float32 rounding of the samples" if limited else None
-    return Bins(s_axis[0], t_axis[0], "equal-probability", res, reason)
+    return Bins(s_axis[0], t_axis[0], "equal-probability", res, _limits([s_axis[1], t_axis[1]]))
+
+
+#: A marginal CDF on [0, 1] (from 0 to 1) and its inverse.
+Cdf = tuple[Callable[[np.ndarray], np.ndarray], Callable[[np.ndarray], np.ndarray]]
+
+
+def _limits(limited: list[bool]) -> str | None:
+    names = [name for name, lim in zip(("s", "t"), limited) if lim]
+    return f"{' and '.join(names)} limited by float32 rounding of the samples" if names else None
+
+
+def cdf_cells(s_axis: Cdf, t_axis: Cdf, res: int = HISTOGRAM_RES, samples: int = WARP_SAMPLES,
+              quantum: float = 0.0) -> tuple[Bins, np.ndarray]:
+    """The cells equal_probability_bins makes, for a density of independent s and t known by their marginal CDFs
+    (a closed form: edges at exact quantiles, as few where float32 rounding limits them), and the exact
+    probability of each cell."""
+    def axis(cdf: Callable, inverse: Callable) -> tuple[np.ndarray, bool]:
+        def noncentrality(e: np.ndarray) -> float:
+            inner = e[1:-1]
+            if not len(inner) or quantum <= 0:
+                return 0.0
+            near = cdf(np.clip(inner + quantum / 2, 0.0, 1.0)) - cdf(np.clip(inner - quantum / 2, 0.0, 1.0))
+            return _noncentrality(near, np.diff(cdf(e)), samples)
+        return _most_cells(lambda n: _edges(inverse(np.arange(1, n) / n)), noncentrality, res)
+
+    (s, s_limited), (t, t_limited) = axis(*s_axis), axis(*t_axis)
+    bins = Bins(s, t, "equal-probability", res, _limits([s_limited, t_limited]))
+    return bins, np.outer(np.diff(s_axis[0](s)), np.diff(t_axis[0](t)))
 
 
 def sample_quantum(*point_sets: np.ndarray) -> float:
