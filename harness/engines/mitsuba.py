@@ -127,11 +127,15 @@ class MitsubaEngine(Engine):
 
         def sample(u: np.ndarray) -> np.ndarray:
             self._activate()
+            if not len(u):  # Dr.Jit refuses arrays of size 0 (operands of incompatible sizes): one, then none
+                return sample(np.full((1, 2), 0.5))[:0]
             out = sample_fn(mi.Point2f(np.asarray(u, np.float32).T), *extra)
             return np.array(out, dtype=np.float64).T
 
         def pdf(p: np.ndarray) -> np.ndarray:
             self._activate()
+            if not len(p):
+                return np.zeros(0)
             p = np.asarray(p, np.float32).T
             arg = mi.Point2f(p) if p.shape[0] == 2 else mi.Vector3f(p)
             values = np.array(pdf_fn(arg, *extra), dtype=np.float64).reshape(-1)

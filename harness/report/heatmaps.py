@@ -22,9 +22,12 @@ def warp_heatmaps_png(observed: np.ndarray, expected: np.ndarray, reference: np.
     counts = [("observed (ours)", observed), ("expected (pdf)", expected)]
     if reference is not None:
         counts.append(("observed (Mitsuba)", reference))
-    vmax = max(float(np.max(c)) for _, c in counts) or 1.0
+    # A pdf that is not finite somewhere expects inf or NaN counts: drawn at the top of the colour bar (NaN at 0).
+    vmax = max(float(np.max(c, where=np.isfinite(c), initial=0.0)) for _, c in counts) or 1.0
+    counts = [(name, np.nan_to_num(c, nan=0.0, posinf=vmax, neginf=0.0)) for name, c in counts]
     with np.errstate(divide="ignore", invalid="ignore"):
         resid = np.where(expected > 0, (observed - expected) / np.sqrt(expected), np.where(observed > 0, 10.0, 0.0))
+    resid = np.nan_to_num(resid, nan=0.0, posinf=10.0, neginf=-10.0)
     axes = tuple(f"{axis}, equal-prob. cells" for axis in _AXES[domain])
     # The counts share one colour bar (after the last count panel); the residuals have their own.
     count_bar, resid_bar = Bar("viridis", 0.0, vmax, "samples per cell"), Bar("RdBu_r", -5.0, 5.0)

@@ -69,7 +69,8 @@ def _section(r: WarpResult, reproduce: str, data_file: str | None) -> str:
         extra += "</p>"
     anchor = html.escape(r.label.replace(" ", "_"))
     return (f'<h2 id="{anchor}">{html.escape(r.label)} — {_warp_word(r)}</h2>'
-            f'<p class="meta">domain {html.escape(r.domain)}, seed {r.seed}, {r.seconds:.2f} s</p>{extra}'
+            f'<p class="meta">domain {html.escape(r.domain)}, seed {r.seed}, {r.seconds:.2f} s; judged against '
+            f'{html.escape(r.judged_against)}</p>{extra}'
             f'{_findings(r)}'
             f'<img alt="histograms of {html.escape(r.label)}" src="data:image/png;base64,{img}">'
             f"<table><tr><th>check</th><th>verdict</th><th>power (90 %)</th><th>details</th></tr>{rows}</table>")

@@ -28,7 +28,8 @@ def write_warp_outputs(run_dir: Path, specs: list[WarpSpec], results: list[WarpR
         reproduce[r.label] = reproduce_line("warps", ["--only", spec.key], seed, run)
         if not r.passed:
             path = run_dir / "warps" / f"{spec.key.replace(':', '_')}.npz"
-            write_npz(path, observed=r.observed, expected=r.expected, reference_observed=r.reference_observed)
+            write_npz(path, observed=r.observed, expected=r.expected, reference_observed=r.reference_observed,
+                      target_observed=r.target_observed, target_expected=r.target_expected)
             write_json(path.with_suffix(".json"), {**r.to_json(), "reproduce": reproduce[r.label]})
             data_files[r.label] = str(path.relative_to(run_dir))
     html_path = write_atomic(run_dir / "warps.html", warp_report_html(results, level, meta, reproduce, data_files))

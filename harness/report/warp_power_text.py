@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import html
 
-from harness.warps.checks import CheckResult
+from harness.warps.check_result import CheckResult
 from harness.warps.evaluate import WarpResult
 
 #: What each defect is called after its figure.

@@ -23,6 +23,9 @@ POWER_REPLICATIONS = 200
 NORMALISATION_TOLERANCE = 1e-3
 #: Relative agreement required between two implementations of the same pdf (float32 both).
 PDF_RELATIVE_TOLERANCE = 1e-3
+#: Densities below this carry no mass a test can see (4 pi x 1e-30 on the whole sphere): two pdfs that differ by
+#: less agree, whatever their ratio. A float32 pdf underflows to 0 where a float64 closed form is still 1e-35.
+PDF_ABSOLUTE_FLOOR = 1e-30
 #: Slack on "unit length" and "inside the unit disk" for points rounded to float32.
 UNIT_TOLERANCE = 1e-5
 #: A sample this many float32 ulps of 1 (the scale of every warp domain) from the edge of its domain is on the

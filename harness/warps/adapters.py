@@ -68,6 +68,8 @@ class _Call:
 
     def _drjit_call(self, x: np.ndarray, extra: tuple) -> np.ndarray:
         mi = _mitsuba(self.fn)
+        if not len(x):  # Dr.Jit refuses arrays of size 0 (operands of incompatible sizes): one point, then none
+            return self._drjit_call(np.full((1, np.shape(x)[1]), 0.5), extra)[:0]
         a = np.ascontiguousarray(np.asarray(x, dtype=np.float32).T)
         arg = mi.Point2f(a) if a.shape[0] == 2 else mi.Vector3f(a)
         out = np.array(self.fn(arg, *self.args, *extra), dtype=np.float64)

@@ -1,9 +1,10 @@
 """The warp checks' false-alarm rates, measured: every correct warp at many seeds, p-values counted.
 
 For each warp of the matrix the seed-independent part of its statistical checks
-(the cells, the expected probabilities) is tabulated once, then each seed draws
-fresh samples from our warp and from Mitsuba's and runs the chi-square
-goodness-of-fit and homogeneity tests exactly as the matrix does. The warps are
+(the cells, the expected probabilities, of its pdf and of its name's closed form)
+is tabulated once, then each seed draws fresh samples from our warp and from
+Mitsuba's and runs the chi-square goodness-of-fit tests (against the pdf, against
+the closed form) and the homogeneity test exactly as the matrix does. The warps are
 correct, so every rejection is a false alarm; `rates` states how often that
 happens at each nominal level, with exact intervals. Each warp is one task on an
 executor (harness.distributed), so a cluster runs the warps side by side.
@@ -22,11 +23,12 @@ from harness.statistics.calibration_rates import CALIBRATION_LEVELS, Rate, rates
 from harness.warps.domains import get_domain
 from harness.engines.base import Engine
 from harness.statistics.constants import WARP_SAMPLES
+from harness.warps.bins import sample_quantum
 from harness.warps.suite import WarpSpec, spec_seed
-from harness.warps.evaluate import equal_probability_cells
+from harness.warps.targets import target_for
 
 #: The warp checks that carry a p-value (the others are deterministic).
-STATISTICAL_CHECKS = ("chi2", "samples_vs_mitsuba")
+STATISTICAL_CHECKS = ("chi2", "samples_vs_target", "samples_vs_mitsuba")
 
 
 @dataclass
@@ -92,15 +94,26 @@ def null_p_values(spec: WarpSpec, ours: Engine, reference: Engine | None, seeds:
     draws = lambda f, rng: wc.as_points(f.sample(rng.random((samples, 2))), samples, "sample")  # noqa: E731
     # The cells come from the pdf; the samples only say whether they are float32 (see warp_bins).
     pilot = [draws(f, np.random.default_rng([spec_seed(spec, 0), 1])) for f in (functions, ref) if f is not None]
-    bins, cells = equal_probability_cells(dom, functions.pdf, samples, *pilot)
+    quantum = sample_quantum(*pilot)
+    bins, cells = wc.equal_probability_cells(dom, functions.pdf, samples, quantum)
     probabilities = cells.values
-    out: dict[str, list[float]] = {"chi2": []} | ({"samples_vs_mitsuba": []} if ref is not None else {})
+    target = target_for(spec.name, spec.alpha)
+    if target is not None:
+        target_bins, target_probabilities = target.cells(samples, quantum)
+    out: dict[str, list[float]] = ({"chi2": []} | ({"samples_vs_target": []} if target is not None else {})
+                                   | ({"samples_vs_mitsuba": []} if ref is not None else {}))
     for seed in seeds:
         rng = np.random.default_rng(spec_seed(spec, seed))
         points = draws(functions, rng)
         inside = dom.inside(points)
-        observed = wc.histogram(dom, points[inside], bins)
-        out["chi2"].append(wc.chi2_check(observed, probabilities, int(np.count_nonzero(~inside))).p_value)
+        param = dom.to_param(points[inside])
+        observed = wc.histogram(dom, points[inside], bins, param)
+        outside = int(np.count_nonzero(~inside))
+        out["chi2"].append(wc.chi2_check(observed, probabilities, outside).p_value)
+        if target is not None:
+            in_target = observed if target_bins.same_edges(bins) else wc.histogram(dom, points[inside], target_bins,
+                                                                                   param)
+            out["samples_vs_target"].append(wc.chi2_check(in_target, target_probabilities, outside).p_value)
         if ref is not None:
             ref_points = draws(ref, rng)
             ref_observed = wc.histogram(dom, ref_points[dom.contains(ref_points)], bins)

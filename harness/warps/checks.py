@@ -5,77 +5,31 @@ tests in the run (and so the Sidak-corrected level) is known.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Any, Callable
 
 import numpy as np
 
 from harness.statistics.chi2 import goodness_of_fit, homogeneity
 from harness.statistics.cubature import CellIntegrals, integrate_cells
+from harness.statistics.factors import name_factor
 from harness.warps.domains import Domain
-from harness.statistics.constants import HISTOGRAM_RES, NORMALISATION_TOLERANCE, PDF_RELATIVE_TOLERANCE
-from harness.warps.bins import Bins, bin_indices, uniform_bins
-from harness.warps.findings import Finding, classify, count, describe, merge, off_domain, summarize
+from harness.statistics.constants import (HISTOGRAM_RES, NORMALISATION_TOLERANCE, PDF_ABSOLUTE_FLOOR,
+                                         PDF_RELATIVE_TOLERANCE)
+from harness.warps.bins import Bins, bin_indices, equal_probability_bins, uniform_bins
+from harness.warps.check_result import CheckResult, not_judged
+from harness.warps.findings import classify, count, describe, merge, off_domain, summarize
 
 Sampler = Callable[[np.ndarray], np.ndarray]
 Pdf = Callable[[np.ndarray], np.ndarray]
 
 
-@dataclass
-class CheckResult:
-    """One check's verdict, its headline figure and the numbers behind it.
-
-    passed is None for a check that was skipped, and for a statistical check
-    whose p-value has not been compared with the run's level yet. A check that
-    passed with WARN findings (see warp_findings) has the verdict WARN.
-    """
-
-    passed: bool | None
-    figure: float | None
-    summary: str
-    details: dict[str, Any] = field(default_factory=dict)
-    p_value: float | None = None
-    #: A failure that no significance level can excuse (samples outside the domain, NaN, ...).
-    hard_failure: str | None = None
-    skipped: bool = False
-    #: What the check found at individual samples, most serious first (failures, then warnings).
-    findings: list[Finding] = field(default_factory=list)
-
-    @property
-    def warnings(self) -> list[Finding]:
-        return [f for f in self.findings if f.severity == "WARN"]
-
-    @property
-    def verdict(self) -> str | None:
-        """"PASS", "WARN" (passed, with warnings), "FAIL", "SKIP", or None while undecided."""
-        if self.skipped:
-            return "SKIP"
-        if self.passed is None:
-            return None
-        return "FAIL" if not self.passed else "WARN" if self.warnings else "PASS"
-
-    def decide(self, level: float) -> None:
-        """Set `passed` for a statistical check from its p-value and the per-test level."""
-        if self.p_value is not None:
-            self.passed = self.hard_failure is None and self.p_value >= level
-            self.details["level"] = level
-
-    def to_json(self) -> dict[str, Any]:
-        out = {"pass": self.passed, "verdict": self.verdict, "figure": self.figure, "summary": self.summary}
-        if self.p_value is not None:
-            out["p_value"] = self.p_value
-        if self.hard_failure:
-            out["hard_failure"] = self.hard_failure
-        if self.skipped:
-            out["skipped"] = True
-        if self.findings:
-            out["findings"] = [f.to_json() for f in self.findings]
-        out.update(self.details)
-        return out
-
-
-def skipped(reason: str) -> CheckResult:
-    return CheckResult(None, None, f"skipped: {reason}", skipped=True)
+def factor_phrase(ratio: float, tolerance: float) -> str | None:
+    """"pi^2 too large" for a ratio of pi^2 (within `tolerance`, see statistics.factors), "pi^2 too small" for
+    1/pi^2; None when the ratio is no named factor."""
+    if not (np.isfinite(ratio) and ratio > 0):
+        return None
+    name = name_factor(ratio if ratio >= 1 else 1 / ratio, tolerance)
+    return None if name is None else f"{name} too {'large' if ratio >= 1 else 'small'}"
 
 
 def as_points(x: Any, n: int, name: str) -> np.ndarray:
@@ -103,15 +57,17 @@ def parameter_density(domain: Domain, pdf: Pdf) -> Callable[[np.ndarray, np.ndar
 _AZIMUTHAL = ("disk", "sphere", "hemisphere")
 
 
-def histogram(domain: Domain, points: np.ndarray, bins: Bins | int = HISTOGRAM_RES) -> np.ndarray:
+def histogram(domain: Domain, points: np.ndarray, bins: Bins | int = HISTOGRAM_RES,
+              param: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
     """Counts of points (assumed inside the domain) per cell: `bins`' cells, or a res x res uniform grid.
 
     A point where the azimuth is undefined (x = y = 0 on the disk, sphere, hemisphere: a float32 sampler
     rounds directions within about 2e-4 rad of the pole onto it) counts 1/cols in every cell of its row,
     as the directions it stands for are spread over all azimuths; binning it at t = 0 would pile them up.
+    `param`: domain.to_param(points), when the caller has it already (one set of points in two sets of cells).
     """
     bins = uniform_bins(bins) if isinstance(bins, (int, np.integer)) else bins
-    s, t = domain.to_param(points)
+    s, t = domain.to_param(points) if param is None else param
     i, j = bin_indices(bins.s_edges, np.asarray(s)), bin_indices(bins.t_edges, np.asarray(t))
     rows, cols = bins.shape
     pole = (points[:, 0] == 0) & (points[:, 1] == 0) if domain.name in _AZIMUTHAL else np.zeros(len(i), bool)
@@ -120,17 +76,43 @@ def histogram(domain: Domain, points: np.ndarray, bins: Bins | int = HISTOGRAM_R
     return counts
 
 
+def parameter_grid(domain: Domain, s_edges: np.ndarray | None = None, t_edges: np.ndarray | None = None) -> np.ndarray:
+    """Points of the domain at the centres of cells of its parameter square: a uniform HISTOGRAM_RES grid, or the
+    cells with these edges (equal-probability cells put their centres where the mass is)."""
+    uniform = np.arange(HISTOGRAM_RES + 1) / HISTOGRAM_RES
+    s_edges, t_edges = (uniform if e is None else np.asarray(e) for e in (s_edges, t_edges))
+    s, t = ((e[:-1] + e[1:]) / 2 for e in (s_edges, t_edges))
+    return domain.from_param(*[a.ravel() for a in np.meshgrid(s, t, indexing="ij")])
+
+
+def equal_probability_cells(domain: Domain, pdf: Pdf, samples: int, quantum: float) -> tuple[Bins, CellIntegrals]:
+    """The chi-square cells of `pdf` for `samples` samples, as fine as their rounding `quantum` allows (see
+    warp_bins.sample_quantum), and the pdf's integral over each."""
+    bins = equal_probability_bins(parameter_density(domain, pdf), HISTOGRAM_RES, samples, quantum)
+    return bins, expected_probabilities(domain, pdf, bins)
+
+
 def expected_probabilities(domain: Domain, pdf: Pdf, bins: Bins | int = HISTOGRAM_RES) -> CellIntegrals:
     """Probability of each cell under pdf (`bins`' cells, or a res x res uniform grid), integrated adaptively."""
     bins = uniform_bins(bins) if isinstance(bins, (int, np.integer)) else bins
     return integrate_cells(parameter_density(domain, pdf), bins.s_edges, bins.t_edges)
 
 
-def chi2_check(observed: np.ndarray, probabilities: np.ndarray, outside: int, bins: Bins | None = None) -> CheckResult:
-    """Goodness of fit of the histogram of samples against the pdf's cell probabilities.
+def lost_samples(outside: int, nonfinite: int) -> str:
+    """How many samples never reached a histogram: "12 NaN/Inf samples", "3 samples outside the domain"."""
+    parts = [f"{nonfinite} NaN/Inf samples"] if nonfinite else []
+    if outside > nonfinite:
+        parts.append(f"{outside - nonfinite} samples outside the domain")
+    return " and ".join(parts)
 
-    Expected counts are N * (cell integral of the pdf), N counting the samples outside the domain too;
-    `bins` (the cells, if given) are described in the details.
+
+def chi2_check(observed: np.ndarray, probabilities: np.ndarray, outside: int, bins: Bins | None = None,
+               nonfinite: int = 0, against: str = "") -> CheckResult:
+    """Goodness of fit of the histogram of samples against cell probabilities (of the pdf, or of a target).
+
+    Expected counts are N * (cell integral of the density), N counting the samples outside the domain too
+    (`outside`, of which `nonfinite` are NaN/Inf: a hard failure); `bins` (the cells, if given) are described in
+    the details; `against` ends the summary (e.g. "against the tent (1-|x|)(1-|y|)").
     """
     n = observed.sum() + outside
     expected = probabilities * n
@@ -140,25 +122,36 @@ def chi2_check(observed: np.ndarray, probabilities: np.ndarray, outside: int, bi
     elif np.any(probabilities < 0):
         hard = "pdf is negative somewhere in the domain"
     elif outside:
-        hard = f"{outside} samples outside the domain"
+        hard = lost_samples(outside, nonfinite)
     else:
         stray = int(observed[expected <= 0].sum())
         if stray:
             hard = f"{stray} samples in cells where the pdf is zero"
+    tail = f" {against}" if against else ""
     if hard:
-        return CheckResult(False, 0.0, hard, p_value=0.0, hard_failure=hard)
+        return CheckResult(False, 0.0, hard + (f" ({against})" if against else ""), p_value=0.0, hard_failure=hard)
     res = goodness_of_fit(observed, expected)
-    return CheckResult(None, res.p_value, f"p = {res.p_value:.3g}", p_value=res.p_value,
-                       details={"statistic": res.statistic, "dof": res.dof,
-                                "pooled_cells": res.pooled_cells, "samples": int(n),
-                                **(bins.to_json() if bins is not None else {})})
+    details = {"statistic": res.statistic, "dof": res.dof, "pooled_cells": res.pooled_cells, "samples": int(n),
+               **(bins.to_json() if bins is not None else {})}
+    if res.not_judged:
+        return not_judged(res.not_judged + tail, **details)
+    return CheckResult(None, res.p_value, f"p = {res.p_value:.3g}{tail}", p_value=res.p_value, details=details)
 
 
 def normalisation_check(integral: float, error: float) -> CheckResult:
-    """The pdf's integral over the domain is 1 within NORMALISATION_TOLERANCE."""
+    """The pdf's integral over the domain is 1 within NORMALISATION_TOLERANCE. A failure names the factor when
+    the integral is one (pi^2, 1/(4pi), 2, ...: statistics.factors), e.g. "pdf integrates to 9.8696 = pi^2: the
+    pdf is pi^2 too large"."""
     ok = bool(np.isfinite(integral) and abs(integral - 1.0) <= NORMALISATION_TOLERANCE)
-    return CheckResult(ok, float(integral), f"integral = {integral:.6f}",
-                       details={"tolerance": NORMALISATION_TOLERANCE, "integration_error": error})
+    details = {"tolerance": NORMALISATION_TOLERANCE, "integration_error": error}
+    if ok:
+        return CheckResult(ok, float(integral), f"integral = {integral:.6f}", details=details)
+    summary = f"pdf integrates to {integral:.5g}"
+    phrase = factor_phrase(integral, NORMALISATION_TOLERANCE)
+    if phrase:
+        details["factor"] = name_factor(integral, NORMALISATION_TOLERANCE)
+        summary += f" = {details['factor']}: the pdf is {phrase}"
+    return CheckResult(ok, float(integral), summary, details=details)
 
 
 def domain_check(domain: Domain, points: np.ndarray, pdf: Pdf, rng: np.random.Generator,
@@ -209,23 +202,51 @@ def _rounding_sensitivity(points: np.ndarray, pdf: Pdf) -> np.ndarray:
     return worst
 
 
-def pdf_agreement_check(points: np.ndarray, pdf: Pdf, reference_pdf: Pdf) -> CheckResult:
+#: A pdf is a constant times the reference when it is at this share of the probe points at least (a pdf that
+#: tests its support in float32 may differ at a point on the rim that the reference counts in).
+CONSTANT_SHARE = 0.99
+
+
+def _constant_factor(ours: np.ndarray, ref: np.ndarray, slack: np.ndarray) -> tuple[float, int, int] | None:
+    """(c, n, m): ours = c * ref at n of the m probe points where the reference is above PDF_ABSOLUTE_FLOOR (within
+    PDF_RELATIVE_TOLERANCE and c times the reference's rounding slack), n at least CONSTANT_SHARE of m; None if
+    the two differ by more than a constant."""
+    seen = ref > PDF_ABSOLUTE_FLOOR
+    ours, ref, slack = ours[seen], ref[seen], slack[seen]
+    if not len(ours):
+        return None
+    with np.errstate(invalid="ignore", over="ignore"):
+        c = float(np.median(ours / ref))
+        agree = int(np.count_nonzero(np.abs(ours - c * ref) - c * slack <= PDF_RELATIVE_TOLERANCE * c * ref))
+    return (c, agree, len(ours)) if np.isfinite(c) and c > 0 and agree >= CONSTANT_SHARE * len(ours) else None
+
+
+def pdf_agreement_check(points: np.ndarray, pdf: Pdf, reference_pdf: Pdf, reference: str = "the reference") -> CheckResult:
     """Our pdf equals the reference pdf at the same points inside the support.
 
     Allowed difference per point: PDF_RELATIVE_TOLERANCE of the reference value,
-    plus twice the reference's own change under one-ulp moves of the point.
+    plus twice the reference's own change under one-ulp moves of the point, plus PDF_ABSOLUTE_FLOOR (a float32
+    pdf underflows to 0 where a float64 one is still 1e-35). A pdf that is a constant times the
+    reference says so first, naming the factor when it is one (statistics.factors): "pdf = pi^2 x the
+    reference: pi^2 too large". Not judged (a failure) when the reference is 0 at every point. `reference`:
+    its name in the summary.
     """
     ref = as_values(reference_pdf(points), len(points), "reference pdf")
     inside = ref > 0
+    if not inside.any():
+        return not_judged(f"{reference} is 0 at all {len(points)} probe points", statistical=False,
+                          points=0, tolerance=PDF_RELATIVE_TOLERANCE)
     points, ref = points[inside], ref[inside]
     ours = as_values(pdf(points), len(points), "pdf")
     slack = 2.0 * _rounding_sensitivity(points, reference_pdf)
-    excess = np.abs(ours - ref) - slack
-    rel = np.where(np.isfinite(ours), np.maximum(excess, 0.0) / ref, np.inf)
+    with np.errstate(invalid="ignore", over="ignore"):  # an infinite pdf is a difference of inf, not a warning
+        diff = np.maximum(np.abs(ours - ref) - PDF_ABSOLUTE_FLOOR, 0.0)
+        excess = diff - slack
+        rel = np.where(np.isfinite(ours), np.maximum(excess, 0.0) / ref, np.inf)
+        raw = float(np.max(np.where(np.isfinite(ours), diff / ref, np.inf), initial=0.0))
     worst = float(np.max(rel, initial=0.0))
-    raw = float(np.max(np.abs(ours - ref) / ref, initial=0.0))
     ok = worst <= PDF_RELATIVE_TOLERANCE
-    needed_slack = int(np.count_nonzero((np.abs(ours - ref) > PDF_RELATIVE_TOLERANCE * ref)
+    needed_slack = int(np.count_nonzero((diff > PDF_RELATIVE_TOLERANCE * ref)
                                         & (rel <= PDF_RELATIVE_TOLERANCE)))
     summary = f"max rel. diff {raw:.2g}"
     if needed_slack:
@@ -236,52 +257,36 @@ def pdf_agreement_check(points: np.ndarray, pdf: Pdf, reference_pdf: Pdf) -> Che
         k = int(np.argmax(rel))
         detail["worst_point"] = points[k].tolist()
         detail["worst_values"] = [float(ours[k]), float(ref[k])]
+        summary += f", at ({', '.join(f'{x:.4g}' for x in points[k])}): {ours[k]:.4g} where {reference} is {ref[k]:.4g}"
+        constant = _constant_factor(ours, ref, slack)
+        if constant is not None:
+            factor, agree, probes = constant
+            detail["ratio"] = factor
+            where = "" if agree == probes else f" at {agree} of {probes} points"
+            phrase = factor_phrase(factor, PDF_RELATIVE_TOLERANCE)
+            if phrase:
+                detail["factor"] = name_factor(factor, PDF_RELATIVE_TOLERANCE)
+                summary = f"pdf = {detail['factor']} x {reference}{where}: {phrase}; {summary}"
+            else:
+                summary = f"pdf = {factor:.4g} x {reference}{where}; {summary}"
     return CheckResult(ok, worst, summary, details=detail)
 
 
-def homogeneity_check(observed: np.ndarray, reference_observed: np.ndarray) -> CheckResult:
-    """Our samples and the reference sampler's samples come from one distribution."""
+def homogeneity_check(observed: np.ndarray, reference_observed: np.ndarray, outside: int = 0,
+                      nonfinite: int = 0) -> CheckResult:
+    """Our samples and the reference sampler's samples come from one distribution.
+
+    Our samples that never reached `observed` (`outside` the domain, `nonfinite` of them NaN/Inf) are a hard
+    failure, as in chi2_check; an empty histogram is not judged (a failure), never a p-value.
+    """
     res = homogeneity(observed, reference_observed)
-    return CheckResult(None, res.p_value, f"p = {res.p_value:.3g}", p_value=res.p_value,
-                       details={"statistic": res.statistic, "dof": res.dof, "pooled_cells": res.pooled_cells})
-
-
-def hard_input_grid() -> np.ndarray:
-    """u on a grid of values that break careless warps, in both coordinates.
-
-    0, the smallest positive double and float, the smallest normal float, 0.5,
-    one ulp below 1 in double and in float, and 1.
-    """
-    values = np.array([0.0, 5e-324, float(np.float32(1.4e-45)), float(np.finfo(np.float32).tiny),
-                       0.5, 1.0 - 2.0 ** -53, 1.0 - 2.0 ** -24, 1.0])
-    a, b = np.meshgrid(values, values, indexing="ij")
-    return np.stack([a.ravel(), b.ravel()], axis=-1)
-
-
-def hard_inputs_check(domain: Domain, variants: dict[str, tuple[Sampler, Pdf]]) -> CheckResult:
-    """On hard inputs every sample is finite and in the domain, and its pdf finite and positive.
-
-    `variants` maps a label (e.g. "alpha=1e-4") to a (sample, pdf) pair. Warnings, not failures: a pdf
-    of 0 at a sample on the domain's boundary, and anything at an input with a coordinate u = 1 (outside
-    [0, 1)). A sampler with an `input_dtype` attribute (float32 for Dr.Jit functions, see warp_adapters)
-    is judged on u as it received it. `findings` come most serious first: NaN samples, naming their u.
-    The figure is the number of NaN/Inf samples at inputs in [0, 1).
-    """
-    u = hard_input_grid()
-    groups = []
-    for label, (sample, pdf) in variants.items():
-        points = as_points(sample(u), len(u), "sample")
-        values = as_values(pdf(points), len(points), "pdf")
-        seen = u.astype(getattr(sample, "input_dtype", np.float64))
-        codes, underlying = classify(domain, points, values, np.any(seen == 1.0, axis=1))
-        groups.append(describe(codes, underlying, points, values, u=u, seen=seen, label=label))
-    findings = merge(groups)
-    n = {f.kind.key: f.count for f in findings}
-    nonfinite = n.get("nan_sample", 0)
-    ok = not any(f.severity == "FAIL" for f in findings)
-    details = {"nan_inf": nonfinite, "outside": n.get("outside", 0),
-               "bad_pdf": sum(n.get(k, 0) for k in ("nan_pdf", "negative_pdf", "zero_pdf_inside")),
-               "zero_pdf_on_boundary": n.get("zero_pdf_boundary", 0), "failures_at_u_one": n.get("at_u_one", 0),
-               "inputs": len(u) * len(variants), "variants": list(variants)}
-    return CheckResult(ok, float(nonfinite), summarize(findings, f"NaN/Inf {nonfinite}"), details=details,
-                       findings=findings)
+    details = {"statistic": res.statistic, "dof": res.dof, "pooled_cells": res.pooled_cells}
+    if outside:
+        hard = lost_samples(outside, nonfinite)
+        if res.not_judged:
+            hard += f"; not judged: {res.not_judged}"
+        return CheckResult(False, 0.0, hard, details=details, p_value=0.0, hard_failure=hard,
+                           not_judged=res.not_judged)
+    if res.not_judged:
+        return not_judged(res.not_judged, **details)
+    return CheckResult(None, res.p_value, f"p = {res.p_value:.3g}", p_value=res.p_value, details=details)

@@ -37,7 +37,8 @@ class Domain:
 
     def inside(self, points: np.ndarray) -> np.ndarray:
         """Which points are finite and in the domain (NaN and Inf count as outside)."""
-        return np.all(np.isfinite(points), axis=1) & self.contains(np.nan_to_num(points))
+        finite = np.isfinite(points)
+        return np.all(finite, axis=1) & self.contains(np.where(finite, points, 0.0))
 
 
 def _azimuth(x: np.ndarray, y: np.ndarray) -> np.ndarray:

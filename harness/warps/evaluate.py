@@ -1,4 +1,5 @@
-"""Warp conformance: a sampler checked against its own pdf, and against a reference implementation.
+"""Warp conformance: a sampler checked against its own pdf, against the closed form its name promises, and
+against a reference implementation.
 
 Public API::
 
@@ -7,8 +8,9 @@ Public API::
 
 `sample` maps an (N, 2) array of uniforms in [0,1)^2 to (N, 2) or (N, 3)
 points, `pdf` maps such points to (N,) densities (w.r.t. area on 2D domains,
-solid angle on the sphere and hemisphere). Checks that need a reference
-implementation are skipped unless one is given. check_warp also takes float32
+solid angle on the sphere and hemisphere). A warp of a name mcval knows (the
+matrix's warps, harness.warps.targets) is also judged against that name's closed
+form; checks that need a reference implementation are skipped unless one is given. check_warp also takes float32
 results, constant pdfs and Mitsuba/Dr.Jit functions (see warp_adapters).
 
 Each check is PASS, WARN (passed, with warnings such as a pdf of 0 on the
@@ -23,17 +25,20 @@ from typing import Any, Callable
 import numpy as np
 
 from harness.warps import checks as wc
-from harness.statistics.cubature import CellIntegrals
-from harness.warps.domains import Domain, get_domain
+from harness.warps.check_result import CheckResult, skipped
+from harness.warps.hard_inputs import hard_inputs_check
+from harness.warps.domains import get_domain
 from harness.engines.base import WarpFunctions
-from harness.statistics.constants import HISTOGRAM_RES, SIGNIFICANCE, WARP_SAMPLES, sidak_level
+from harness.statistics.constants import SIGNIFICANCE, WARP_SAMPLES, sidak_level
 from harness.warps.adapters import NumpyPdf, NumpySampler
-from harness.warps.bins import Bins, equal_probability_bins, sample_quantum
+from harness.warps.bins import Bins, sample_quantum
+from harness.warps.target_checks import PDF_PROBES, judged_by_own_pdf, target_checks
+from harness.warps.targets import Target, known_names, target_for
 from harness.warps.throughput import throughput_check
 
 #: The checks, in the order reports show them.
-CHECK_NAMES = ("chi2", "normalisation", "domain", "pdf_vs_mitsuba", "samples_vs_mitsuba",
-               "hard_inputs", "throughput")
+CHECK_NAMES = ("chi2", "normalisation", "domain", "pdf_vs_target", "samples_vs_target", "pdf_vs_mitsuba",
+               "samples_vs_mitsuba", "hard_inputs", "throughput")
 
 
 @dataclass
@@ -43,7 +48,7 @@ class WarpResult:
     warp: str
     params: Any
     domain: str
-    checks: dict[str, wc.CheckResult]
+    checks: dict[str, CheckResult]
     #: Histograms over the parameter square: our samples, the pdf's expectation, the reference's samples.
     observed: np.ndarray
     expected: np.ndarray
@@ -52,6 +57,12 @@ class WarpResult:
     seed: int
     #: The histograms' cells (equal-probability in the pdf's marginals; see warp_bins).
     bins: Bins | None = None
+    #: The closed form the warp's name promises (None: judged against its own pdf only), our samples in its
+    #: equal-probability cells, the counts it expects there, and those cells.
+    target: Target | None = None
+    target_observed: np.ndarray | None = None
+    target_expected: np.ndarray | None = None
+    target_bins: Bins | None = None
 
     @property
     def passed(self) -> bool:
@@ -71,9 +82,17 @@ class WarpResult:
     def label(self) -> str:
         return self.warp if self.params is None else f"{self.warp} {format_params(self.params)}"
 
+    @property
+    def judged_against(self) -> str:
+        """What the warp was judged against, in words."""
+        if self.target is None:
+            return "its own pdf only (no closed form known for its name)"
+        return f"{self.target.label} (its name) and its own pdf"
+
     def to_json(self) -> dict[str, Any]:
         return {"warp": self.warp, "params": self.params, "domain": self.domain, "pass": self.passed,
                 "verdict": self.verdict, "warnings": self.warnings, "seed": self.seed, "seconds": self.seconds,
+                "target": None if self.target is None else self.target.label, "judged_against": self.judged_against,
                 "checks": {k: c.to_json() for k, c in self.checks.items()}}
 
 
@@ -85,12 +104,13 @@ def format_params(params: Any) -> str:
 
 def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "user warp",
                   params: Any = None, seed: int = 0, samples: int = WARP_SAMPLES,
-                  reference: WarpFunctions | None = None, native_run=None,
+                  reference: WarpFunctions | None = None, target: Target | None = None, native_run=None,
                   hard_variants: dict[str, tuple[wc.Sampler, wc.Pdf]] | None = None,
                   judge_throughput: bool = True) -> WarpResult:
     """Run every check; statistical ones are left undecided (see `decide`). A sampler taking float32 (its
-    `input_dtype`) gets float32 uniforms, all in [0, 1); `judge_throughput` False reports the throughput
-    without a floor (a user's code)."""
+    `input_dtype`) gets float32 uniforms, all in [0, 1); `target`: the closed form the warp's name promises
+    (harness.warps.targets; None: judged against its own pdf only); `judge_throughput` False reports the
+    throughput without a floor (a user's code)."""
     start = time.perf_counter()
     dom = get_domain(domain)
     rng = np.random.default_rng(seed)
@@ -102,40 +122,41 @@ def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "
     if points.shape[1] != dom.dim:
         raise ValueError(f"sample returned {points.shape[1]}D points; the {domain} domain is {dom.dim}D")
     inside = dom.inside(points)
+    ours = points[inside]
+    # Samples that never reach a histogram: outside the domain, and of those NaN/Inf.
+    lost = (int(np.count_nonzero(~inside)), int(np.count_nonzero(~np.all(np.isfinite(points), axis=1))))
     ref_points = None if reference is None else wc.as_points(
         reference.sample(np.random.default_rng([seed, 1]).random((samples, 2))), samples, "reference sample")
-    bins, cells = equal_probability_cells(dom, pdf, samples, points[inside],
-                                          *(() if ref_points is None else (ref_points,)))
-    observed = wc.histogram(dom, points[inside], bins)
+    quantum = sample_quantum(*((ours,) if ref_points is None else (ours, ref_points)))
+    bins, cells = wc.equal_probability_cells(dom, pdf, samples, quantum)
+    param = dom.to_param(ours)
+    observed = wc.histogram(dom, ours, bins, param)
 
     checks = {
-        "chi2": wc.chi2_check(observed, cells.values, int(np.count_nonzero(~inside)), bins),
+        "chi2": wc.chi2_check(observed, cells.values, lost[0], bins, lost[1]),
         "normalisation": wc.normalisation_check(float(cells.values.sum()), cells.error),
         "domain": wc.domain_check(dom, points, pdf, rng, u, getattr(sample, "input_dtype", np.float64)),
     }
+    by_name = (judged_by_own_pdf(name) if target is None else
+               target_checks(dom, target, pdf, ours, param, lost, samples, quantum, (bins, observed)))
+    checks.update(by_name.checks)
     reference_observed = None
     if reference is None:
-        checks["pdf_vs_mitsuba"] = wc.skipped("no reference implementation")
-        checks["samples_vs_mitsuba"] = wc.skipped("no reference implementation")
+        checks["pdf_vs_mitsuba"] = skipped("no reference implementation")
+        checks["samples_vs_mitsuba"] = skipped("no reference implementation")
     else:
-        probe = points[inside][:100_000]
-        centres = (np.arange(HISTOGRAM_RES) + 0.5) / HISTOGRAM_RES  # a uniform grid over the parameter square
-        grid = dom.from_param(*[a.ravel() for a in np.meshgrid(centres, centres, indexing="ij")])
-        checks["pdf_vs_mitsuba"] = wc.pdf_agreement_check(np.concatenate([probe, grid]), pdf, reference.pdf)
-        reference_observed = wc.histogram(dom, ref_points[dom.contains(ref_points)], bins)
-        checks["samples_vs_mitsuba"] = wc.homogeneity_check(observed, reference_observed)
-    checks["hard_inputs"] = wc.hard_inputs_check(dom, hard_variants or {"": (sample, pdf)})
+        ref_inside = ref_points[dom.inside(ref_points)]
+        # Where our samples are missing (NaN, outside), the reference's own show where its mass is.
+        probe = np.concatenate([ours[:PDF_PROBES], ref_inside[:max(PDF_PROBES - len(ours), 0)]])
+        checks["pdf_vs_mitsuba"] = wc.pdf_agreement_check(np.concatenate([probe, wc.parameter_grid(dom)]), pdf,
+                                                          reference.pdf, "the reference pdf")
+        reference_observed = wc.histogram(dom, ref_inside, bins)
+        checks["samples_vs_mitsuba"] = wc.homogeneity_check(observed, reference_observed, *lost)
+    checks["hard_inputs"] = hard_inputs_check(dom, hard_variants or {"": (sample, pdf)})
     checks["throughput"] = throughput_check(sample, native_run, reference, judged=judge_throughput)
     return WarpResult(name, params, domain, checks, observed, cells.values * samples,
-                      reference_observed, time.perf_counter() - start, seed, bins)
-
-
-def equal_probability_cells(dom: Domain, pdf: wc.Pdf, samples: int,
-                            *point_sets: np.ndarray) -> tuple[Bins, CellIntegrals]:
-    """The chi-square cells of `pdf` for `samples` samples, as fine as the precision of the samples in
-    `point_sets` allows (see warp_bins), and the pdf's integral over each."""
-    bins = equal_probability_bins(wc.parameter_density(dom, pdf), HISTOGRAM_RES, samples, sample_quantum(*point_sets))
-    return bins, wc.expected_probabilities(dom, pdf, bins)
+                      reference_observed, time.perf_counter() - start, seed, bins, target, by_name.observed,
+                      by_name.expected, by_name.bins)
 
 
 def decide(results: list[WarpResult], alpha: float = SIGNIFICANCE) -> float:
@@ -147,9 +168,29 @@ def decide(results: list[WarpResult], alpha: float = SIGNIFICANCE) -> float:
     return level
 
 
+def _alpha(params: Any, args: tuple) -> float | None:
+    """Beckmann's roughness as a caller gives it: params {"alpha": a}, or a single number in args."""
+    if isinstance(params, dict) and isinstance(params.get("alpha"), (int, float)):
+        return float(params["alpha"])
+    if len(args) == 1 and isinstance(args[0], (int, float)) and not isinstance(args[0], bool):
+        return float(args[0])
+    return None
+
+
+def resolve_target(target: str | None, name: str, domain: str, params: Any = None, args: tuple = ()) -> Target | None:
+    """The closed form a warp is judged against: `target`'s (a name mcval must know), else `name`'s if mcval
+    knows it, else None. Raises ValueError for an unknown `target` or one of another domain."""
+    found = target_for(target if target is not None else name, _alpha(params, args))
+    if found is None and target is not None:
+        raise ValueError(f"no closed form known for target {target!r}: known are {', '.join(known_names())}")
+    if found is not None and found.domain != domain:
+        raise ValueError(f"{found.warp} is a warp to the {found.domain} domain, not to the {domain}")
+    return found
+
+
 def check_warp(sample: Callable, pdf: Callable, domain: str, params: Any = None, seed: int = 0,
                *, args: tuple = (), samples: int = WARP_SAMPLES, reference: WarpFunctions | None = None,
-               name: str = "user warp", input_dtype: Any = None) -> WarpResult:
+               name: str = "user warp", target: str | None = None, input_dtype: Any = None) -> WarpResult:
     """Check a warp given as Python functions; see the module docstring.
 
     sample: (N, 2) uniforms in [0,1)^2 -> (N, 2) or (N, 3) points; pdf: points -> (N,) densities, or
@@ -164,12 +205,18 @@ def check_warp(sample: Callable, pdf: Callable, domain: str, params: Any = None,
     `input_dtype`: the precision `sample` receives its uniforms in (np.float32 for a float32 warp: it gets
     float32 uniforms in [0, 1), and the hard inputs judge u as it sees them; default float64, or float32 for
     a Dr.Jit function).
-    Raises ValueError when a function returns the wrong shape.
+    `target`: the warp this one claims to be, by Mitsuba's name or its short form ("tent", "uniform_disk",
+    "square_to_cosine_hemisphere", "beckmann:0.3"; Beckmann's alpha may come from params={"alpha": a} or
+    args=(a,) instead): its samples are then tested against that warp's closed-form density and its pdf
+    compared with it (pdf_vs_target, samples_vs_target). Default: `name`, when mcval knows it; a warp of any
+    other name is judged against its own pdf only, and its result says so (`judged_against`).
+    Raises ValueError when a function returns the wrong shape, for an unknown `target`, a target of another
+    domain, and Beckmann's without its alpha.
     """
+    found = resolve_target(target, name, domain, params, args)
     if params is None and args:
         params = list(args)
     result = evaluate_warp(NumpySampler(sample, args, input_dtype), NumpyPdf(pdf, args), domain, name=name,
-                           params=params,
-                           seed=seed, samples=samples, reference=reference)
+                           params=params, seed=seed, samples=samples, reference=reference, target=found)
     decide([result])
     return result

@@ -12,6 +12,8 @@ rows in s.
   (proportionally to p on both sides); the pdf is right.
 * samples_vs_mitsuba, "mass_moved": the same sampler defect, found by the homogeneity test of N samples of
   ours against N of the reference.
+* samples_vs_target, "mass_moved": the same sampler defect, found by the chi-square against the target's cells
+  (the chi2 case, with the target's cell probabilities).
 
 The noncentral chi-square gives a first estimate; simulation brackets it and bisects on a log scale.
 Deterministic checks get their exact figure. Results are cached in CACHE_PATH, keyed by warp, samples,
@@ -144,6 +146,11 @@ def _cases(p: np.ndarray, samples: int, level: float, replications: int, seed: i
 
 def _noncentral_estimate(case: _Case, level: float) -> float | None:
     """The defect size at which the noncentral chi-square has power POWER_TARGET (None: beyond the range)."""
+    with np.errstate(divide="ignore", invalid="ignore"):  # cells of probability 0 give NaN terms: no estimate
+        return _estimate(case, level)
+
+
+def _estimate(case: _Case, level: float) -> float | None:
     critical = sps.chi2.isf(level, case.dof)
     lo, hi = np.log(SEARCH_RANGE[0]), np.log(min(SEARCH_RANGE[1], 0.49))
 
@@ -197,6 +204,9 @@ def exact_powers() -> dict[str, list[Power]]:
         "pdf_vs_mitsuba": [Power("pdf_relative", PDF_RELATIVE_TOLERANCE,
                                  "relative pdf difference from Mitsuba at any probe point, beyond the reference's "
                                  "own float32 rounding", "exact")],
+        "pdf_vs_target": [Power("pdf_relative", PDF_RELATIVE_TOLERANCE,
+                                "relative pdf difference from the closed form of the warp's name at any probe point, "
+                                "beyond its change under one-ulp moves of the point", "exact")],
         "domain": [Power("any", None, "any sample outside the domain, pdf NaN or < 0 at a sample, pdf > 0 at "
                          "a probe outside the domain", "exact")],
         "hard_inputs": [Power("any", None, "any NaN/Inf sample or pdf not finite and > 0 on the hard inputs",
@@ -223,32 +233,59 @@ def _read_cache(path: Path) -> dict:
         return {}
 
 
+def _simulated(p: np.ndarray, samples: int, level: float, reference: bool, memo: dict) -> dict[str, list[dict]]:
+    """simulated_powers of cell probabilities p as JSON, shared within a run by warps of identical cells."""
+    key = f"{digest(p)}|{samples}|{level:.3g}"
+    found = memo.get(key)
+    if found is None or (reference and "samples_vs_mitsuba" not in found):
+        sim = simulated_powers(p, samples, level, reference)
+        memo[key] = found = {c: [f.to_json() for f in fs] for c, fs in sim.items()}
+    return {c: fs for c, fs in found.items() if reference or c != "samples_vs_mitsuba"}
+
+
+def _cached(cache: dict, key: str, p: np.ndarray, reference: bool, compute: Callable[[], dict]) -> tuple[dict, bool]:
+    """The cached figures of `key` if they are of these cell probabilities; else computed. Returns (figures,
+    whether the cache changed)."""
+    entry = cache.get(key)
+    d = digest(p)
+    if entry and entry.get("digest") == d and entry.get("reference") == reference:
+        return entry["figures"], False
+    cache[key] = {"digest": d, "reference": reference, "figures": compute()}
+    return cache[key]["figures"], True
+
+
+def _usable(p: np.ndarray | None) -> bool:
+    return p is not None and bool(np.all(np.isfinite(p)) and np.all(p >= 0) and p.sum() > 0)
+
+
 def attach_power(results: list, warp_keys: list[str], samples: int, level: float,
                  cache_path: Path | None = CACHE_PATH) -> None:
     """Put each check's figures into its details["power"] (a list of Power.to_json()), for every result.
 
-    results: WarpResults of one run (expected counts = N * cell probabilities); warp_keys: their keys;
-    cache_path: JSON cache of simulated figures (None: no cache). Warps with identical cells share one
-    simulation within a run.
+    results: WarpResults of one run (expected counts = N * cell probabilities, and the target's, if any);
+    warp_keys: their keys; cache_path: JSON cache of simulated figures (None: no cache). Warps with identical
+    cells share one simulation within a run (a correct warp's cells and its target's are alike).
     """
     cache = _read_cache(cache_path) if cache_path else {}
     memo: dict[str, dict] = {}
     changed = False
     for r, key in zip(results, warp_keys):
-        p = np.asarray(r.expected, dtype=float)
         figures: dict[str, list[Power | dict]] = dict(exact_powers())
-        if np.all(np.isfinite(p)) and np.all(p >= 0) and p.sum() > 0:
+        p = np.asarray(r.expected, dtype=float)
+        if _usable(p):
             reference = r.reference_observed is not None
-            k, d = cache_key(key, samples, p.shape, level), digest(p)
-            entry = cache.get(k)
-            if not (entry and entry.get("digest") == d and entry.get("reference") == reference):
-                memo_key = f"{d}|{samples}|{level:.3g}|{reference}"
-                if memo_key not in memo:
-                    sim = simulated_powers(p, samples, level, reference)
-                    memo[memo_key] = {c: [f.to_json() for f in fs] for c, fs in sim.items()}
-                entry = {"digest": d, "reference": reference, "figures": memo[memo_key]}
-                cache[k], changed = entry, True
-            figures.update(entry["figures"])
+            found, new = _cached(cache, cache_key(key, samples, p.shape, level), p, reference,
+                                 lambda: _simulated(p, samples, level, reference, memo))
+            figures.update(found)
+            changed |= new
+        q = getattr(r, "target_expected", None)
+        if _usable(q):
+            q = np.asarray(q, dtype=float)
+            found, new = _cached(cache, cache_key(key + "@target", samples, q.shape, level), q, False,
+                                 lambda: {"samples_vs_target": [f for f in _simulated(q, samples, level, False, memo)
+                                                                ["chi2"] if f["defect"] == "mass_moved"]})
+            figures.update(found)
+            changed |= new
         for name, check in r.checks.items():
             if name in figures and not check.skipped:
                 check.details["power"] = [f.to_json() if isinstance(f, Power) else f for f in figures[name]]

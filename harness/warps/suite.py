@@ -1,4 +1,5 @@
-"""The warp conformance matrix: every warp of our renderer, Beckmann at several alphas, against Mitsuba."""
+"""The warp conformance matrix: every warp of our renderer, Beckmann at several alphas, against its own pdf, the
+closed form of its name and Mitsuba."""
 from __future__ import annotations
 
 import zlib
@@ -13,6 +14,7 @@ from harness.statistics.constants import SIGNIFICANCE, WARP_SAMPLES
 from harness.warps.power import CACHE_PATH as POWER_CACHE
 from harness.warps.power import attach_power
 from harness.warps.evaluate import WarpResult, decide, evaluate_warp
+from harness.warps.targets import target_for
 
 #: Beckmann roughnesses in the matrix; small ones are where careless cell integrals fail.
 BECKMANN_ALPHAS = (0.01, 0.05, 0.1, 0.3, 1.0)
@@ -80,7 +82,8 @@ def check_spec(spec: WarpSpec, ours: Engine, reference: Engine | None, seed: int
             f = ours.warp(spec.name, a)
             variants[f"alpha={a:.3g}"] = (f.sample, f.pdf)
     return evaluate_warp(functions.sample, functions.pdf, spec.domain, name=spec.name, params=spec.params,
-                         seed=spec_seed(spec, seed), samples=samples, reference=ref, native_run=functions.native_run,
+                         seed=spec_seed(spec, seed), samples=samples, reference=ref,
+                         target=target_for(spec.name, spec.alpha), native_run=functions.native_run,
                          hard_variants=variants, judge_throughput=ours.throughput_judged)
 
 

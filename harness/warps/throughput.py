@@ -7,7 +7,8 @@ from typing import Any, Callable
 import numpy as np
 
 from harness.engines.base import WarpFunctions
-from harness.warps.checks import CheckResult, Sampler
+from harness.warps.check_result import CheckResult
+from harness.warps.checks import Sampler
 
 #: Below this many samples per second a warp cannot feed a renderer (a per-sample Python loop, a stuck rejection).
 THROUGHPUT_FLOOR = 1e6

@@ -23,8 +23,9 @@ def test_warps_writes_json_and_html(tmp_path):
     assert data["pass"] is True
     entries = {(e["warp"], json.dumps(e["params"])): e for e in data["warps"]}
     beckmann = entries[("square_to_beckmann", json.dumps({"alpha": 0.1}))]
-    assert set(beckmann["checks"]) == {"chi2", "normalisation", "domain", "pdf_vs_mitsuba", "samples_vs_mitsuba",
-                                       "hard_inputs", "throughput"}
+    assert set(beckmann["checks"]) == {"chi2", "normalisation", "domain", "pdf_vs_target", "samples_vs_target",
+                                       "pdf_vs_mitsuba", "samples_vs_mitsuba", "hard_inputs", "throughput"}
+    assert beckmann["target"] == "square_to_beckmann's D(m) cos(theta_m), Beckmann alpha=0.1"
     for check in beckmann["checks"].values():
         assert check["pass"] is True and "figure" in check
     run = tmp_path / "latest"

@@ -76,7 +76,7 @@ def test_calibrate_on_a_scheduler_gives_the_local_rates(cluster, tmp_path):
     assert main(args + ["--serial", "--out", str(tmp_path / "local")]) == 0
     far, near = (json.loads((tmp_path / d / "calibration-latest" / "calibration.json").read_text())
                  for d in ("cluster", "local"))
-    assert [w["warp"] for w in near["warps"]["warps"]] == ["tent"] * 2 + ["uniform_disk"] * 2
+    assert [w["warp"] for w in near["warps"]["warps"]] == ["tent"] * 3 + ["uniform_disk"] * 3  # chi2, by name, Mitsuba
     assert far["warps"]["warps"] == near["warps"]["warps"] and far["warps"]["pooled"] == near["warps"]["pooled"]
     assert far["images"]["blocks"] == near["images"]["blocks"] and near["images"]["comparisons"] == 3
     assert far["meta"]["warps ran on"].startswith("Dask scheduler") and near["meta"]["warps ran on"] == "serial"

@@ -54,7 +54,7 @@ def test_correct_warps_are_calibrated(ours, mitsuba):
              WarpSpec("square_to_beckmann", "hemisphere", 0.05)]
     cal = calibrate_warps(ours, mitsuba, specs, seeds=40, samples=100_000)
     assert cal.within, [(e.warp, e.check, [r.to_json() for r in e.rates]) for e in cal.entries if not e.within]
-    assert {e.check for e in cal.pooled} == {"chi2", "samples_vs_mitsuba"}
+    assert {e.check for e in cal.pooled} == {"chi2", "samples_vs_target", "samples_vs_mitsuba"}
     assert all(len(e.p_values) == 40 for e in cal.entries)
     out = cal.to_json()
     assert out["pooled"][0]["comparisons"] == 120 and isinstance(out["pooled"][0]["false_alarm_rate"], float)

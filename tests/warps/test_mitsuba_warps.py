@@ -1,5 +1,6 @@
-"""Mitsuba 3's own warps, passed to check_warp as they are: the harness must accept them, and find
-the one real bug among them (Beckmann's NaN direction at u = (0.5, 0.5))."""
+"""Mitsuba 3's own warps, passed to check_warp as they are and by their names (so also judged against the closed
+forms of those names): the harness must accept them, and find the one real bug among them (Beckmann's NaN
+direction at u = (0.5, 0.5))."""
 import numpy as np
 import pytest
 

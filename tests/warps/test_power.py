@@ -3,6 +3,7 @@ import numpy as np
 import pytest
 
 from harness.warps import checks as wc
+from harness.warps.check_result import CheckResult
 from harness.statistics.chi2 import goodness_of_fit, homogeneity
 from harness.warps.domains import get_domain
 from harness.statistics.constants import FLOAT32_QUANTUM, HISTOGRAM_RES
@@ -166,8 +167,8 @@ def test_power_at_alpha_001_is_within_2x_of_alpha_03(ours, mitsuba, tmp_path):
 class _Fake:
     def __init__(self, p):
         self.expected, self.reference_observed = N * p, None
-        self.checks = {"chi2": wc.CheckResult(True, 0.5, "p = 0.5", p_value=0.5),
-                       "normalisation": wc.CheckResult(True, 1.0, "integral = 1")}
+        self.checks = {"chi2": CheckResult(True, 0.5, "p = 0.5", p_value=0.5),
+                       "normalisation": CheckResult(True, 1.0, "integral = 1")}
 
 
 def test_power_is_cached_by_warp_and_cells(tmp_path, monkeypatch):
