@@ -74,7 +74,7 @@ def warp_tally(warps: dict) -> Tally:
     failure (`problems`)."""
     passed = sum(bool(w["pass"]) for w in warps["warps"])
     return Tally("warps", passed, len(warps["warps"]) - passed + len(warps["problems"]),
-                 () if warps["warps"] else ("the engine has none of the warps asked for",))
+                 () if warps["warps"] else (warps.get("nothing_judged", "the engine has none of the warps asked for"),))
 
 
 def _no_image_cases(args, not_applicable) -> Tally:

@@ -53,6 +53,7 @@ def run_warp_section(args, specs, run_dir: Path) -> tuple[bool, dict]:
     from harness.warps.suite import run_matrix
 
     ours = warp_engine(args)
+    asked_for = specs
     specs, problems = available_specs(ours, specs)
     for line in problems:
         console.print(f"[red]FAIL[/] {escape(line)}", soft_wrap=True)
@@ -67,10 +68,13 @@ def run_warp_section(args, specs, run_dir: Path) -> tuple[bool, dict]:
     meta = {"engine": ours.version(), "reference": reference.version() if reference else "none",
             "samples per warp": samples, "seed": args.seed, "seconds": round(seconds, 2),
             "machine": f"{platform.machine()}, {platform.system()} {platform.release()}"}
+    nothing = None
     if results:
         console.print(warp_table(results, level))
     else:
-        console.print(f"{escape(ours.name)} has none of the warps asked for")
+        asked = ", ".join(dict.fromkeys(spec.name for spec in asked_for))
+        nothing = f"{ours.name} exports none of the warps asked for ({asked})"
+        console.print(f"[red]No warp judged[/]: {escape(nothing)}")
     paths = write_warp_outputs(run_dir, specs, results, level, meta, args.seed, invocation(args))
     failed = [r.label for r in results if not r.passed]
     console.print(f"{len(results) - len(failed)} of {len(results)} warps pass, in {seconds:.1f} s. "
@@ -79,5 +83,7 @@ def run_warp_section(args, specs, run_dir: Path) -> tuple[bool, dict]:
         console.print(f"[red]FAIL[/] {label}: data in {run_dir / 'warps'}")
     payload = warp_payload(results, level, meta)
     payload["problems"] = problems
+    if nothing:
+        payload["nothing_judged"] = nothing
     payload["pass"] = ok = payload["pass"] and not problems and bool(results)
     return ok, payload

@@ -1,7 +1,7 @@
 """A user's C++ warp library through the C ABI of include/mcval_warps.h (examples/warps/, built by CMake):
 the correct build passes at several seeds with the checks against Mitsuba, the course report's pdfs fail,
 a sampler broken only at u = 1.0f warns, and a library missing a pdf is one line, with the rest checked."""
-import subprocess
+import json
 from pathlib import Path
 
 import numpy as np
@@ -11,6 +11,7 @@ from harness.cli import main
 from harness.engines.warp_library import WarpLibraryEngine, WarpUnavailable
 from harness.warps import check_warp
 from harness.warps.suite import SUITE, run_matrix, select
+from tests.helpers.warp_libraries import build_warp_library
 
 BUILT = Path(__file__).resolve().parents[2] / "build" / "examples" / "warps"
 SAMPLES = 200_000
@@ -46,6 +47,8 @@ def test_the_course_reports_pdfs_fail_their_normalisation(mitsuba):
     for r in by_name.values():
         assert not r.checks["normalisation"].passed and r.checks["normalisation"].figure == pytest.approx(np.pi**2, 1e-4)
         assert not r.checks["pdf_vs_mitsuba"].passed
+        assert r.checks["pdf_vs_target"].details["factor"] == "pi^2"  # the samplers are right: only the pdfs fail
+        assert r.checks["samples_vs_target"].passed and r.checks["samples_vs_mitsuba"].passed
 
 
 def test_a_sampler_broken_only_at_u_one_warns(mitsuba):
@@ -82,9 +85,7 @@ def test_a_library_missing_a_pdf_is_one_line_and_the_rest_is_checked(tmp_path, c
                       " { for (size_t i = 0; i < n; ++i) pdf[i] = (p[2*i] >= 0 && p[2*i] <= 1 && p[2*i+1] >= 0"
                       " && p[2*i+1] <= 1) ? 1.0f : 0.0f; }\n"
                       "void square_to_tent(const float *u, float *out, size_t n) { (void)u; (void)out; (void)n; }\n")
-    library = tmp_path / "libpartial.so"
-    include = Path(__file__).resolve().parents[2] / "include"
-    subprocess.run(["cc", "-shared", "-fPIC", f"-I{include}", str(source), "-o", str(library)], check=True)
+    library = build_warp_library(source, tmp_path)
     with pytest.raises(WarpUnavailable, match="exports square_to_tent but not square_to_tent_pdf"):
         WarpLibraryEngine(library).warp("square_to_tent")
     code = main(["warps", "--warp-library", str(library), "--no-mitsuba", "--samples", "50000",
@@ -100,3 +101,25 @@ def test_a_file_that_is_not_a_library_is_refused(tmp_path):
     bad.write_text("not a library")
     with pytest.raises(ValueError, match="cannot load it as a shared library"):
         WarpLibraryEngine(bad)
+
+
+@pytest.mark.parametrize("exports", ["nothing", "a warp not asked for"])
+def test_a_run_that_judges_no_warp_exits_3_and_says_why(tmp_path, capsys, exports):
+    source = tmp_path / "lonely.c"
+    source.write_text('#include "mcval_warps.h"\nint lonely_unrelated(void) { return 0; }\n' if exports == "nothing" else
+                      '#include "mcval_warps.h"\n'
+                      "void square_to_uniform_square(const float *u, float *out, size_t n)"
+                      " { for (size_t i = 0; i < 2 * n; ++i) out[i] = u[i]; }\n"
+                      "void square_to_uniform_square_pdf(const float *p, float *pdf, size_t n)"
+                      " { (void)p; for (size_t i = 0; i < n; ++i) pdf[i] = 1.0f; }\n")
+    library = build_warp_library(source, tmp_path)
+    code = main(["warps", "--warp-library", str(library), "--no-mitsuba", "--only", "tent", "--out",
+                 str(tmp_path / "results")])
+    printed = " ".join(capsys.readouterr().out.split())
+    assert code == 3  # nothing judged (harness/verdict.py)
+    assert "No warp judged: lonely exports none of the warps asked for (square_to_tent)" in printed
+    assert "— FAIL (nothing was judged)" in printed
+    results = json.loads((tmp_path / "results" / "latest" / "results.json").read_text())
+    assert results["pass"] is False and results["warps"] == []
+    assert results["verdict_reason"] == ("nothing was judged: warps: lonely exports none of the warps asked for "
+                                         "(square_to_tent)")
