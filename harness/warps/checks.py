@@ -85,10 +85,28 @@ def parameter_grid(domain: Domain, s_edges: np.ndarray | None = None, t_edges: n
     return domain.from_param(*[a.ravel() for a in np.meshgrid(s, t, indexing="ij")])
 
 
+#: Points of the parameter square at which a pdf's values identify it, and how many pdfs' cells are kept.
+_FINGERPRINT = np.random.default_rng(20240).random((2, 4096))
+_KEPT = 32
+_recent_cells: dict[tuple, Bins] = {}
+
+
 def equal_probability_cells(domain: Domain, pdf: Pdf, samples: int, quantum: float) -> tuple[Bins, CellIntegrals]:
     """The chi-square cells of `pdf` for `samples` samples, as fine as their rounding `quantum` allows (see
-    warp_bins.sample_quantum), and the pdf's integral over each."""
-    bins = equal_probability_bins(parameter_density(domain, pdf), HISTOGRAM_RES, samples, quantum)
+    warp_bins.sample_quantum), and the pdf's integral over each.
+
+    The cells of the last few pdfs are kept, by the pdf's values at 4096 fixed points: the same pdf at another
+    seed (tests, a user's loop) gets its cells again without the quantile search. Any cells fixed before the
+    samples are drawn give a valid test, and the integrals are always this pdf's.
+    """
+    values = np.asarray(pdf(domain.from_param(*_FINGERPRINT)), dtype=np.float64)
+    key = (domain.name, samples, quantum, values.tobytes())
+    bins = _recent_cells.get(key)
+    if bins is None:
+        bins = equal_probability_bins(parameter_density(domain, pdf), HISTOGRAM_RES, samples, quantum)
+        _recent_cells[key] = bins
+        while len(_recent_cells) > _KEPT:
+            del _recent_cells[next(iter(_recent_cells))]
     return bins, expected_probabilities(domain, pdf, bins)
 
 

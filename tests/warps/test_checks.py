@@ -248,3 +248,20 @@ def test_reports_show_warnings_apart():
     assert payload["warps"][0]["checks"]["hard_inputs"]["verdict"] == "WARN"
     xml = junit_xml([], payload["warps"])
     assert 'failures="0"' in xml and "<system-out>hard_inputs: WARN pdf 0" in xml and "<failure" not in xml
+
+
+def test_the_same_pdf_gets_its_cells_again_and_another_pdf_its_own(monkeypatch):
+    from harness.warps import checks as wc
+    from harness.warps.domains import get_domain
+    searched = []
+    real = wc.equal_probability_bins
+    monkeypatch.setattr(wc, "equal_probability_bins", lambda *a: searched.append(1) or real(*a))
+    disk = get_domain("disk")
+    first = wc.equal_probability_cells(disk, disk_pdf, 1000, 0.0)
+    again = wc.equal_probability_cells(disk, lambda p: disk_pdf(p).copy(), 1000, 0.0)  # another function, same pdf
+    assert len(searched) == 1 and again[0] is first[0]
+    # Another pdf, samples or rounding: a search of its own. The integrals are always the pdf's own.
+    half = wc.equal_probability_cells(disk, lambda p: 0.5 * disk_pdf(p), 1000, 0.0)
+    wc.equal_probability_cells(disk, disk_pdf, 2000, 0.0)
+    wc.equal_probability_cells(disk, disk_pdf, 1000, 2.0 ** -23)
+    assert len(searched) == 4 and half[1].values.sum() == pytest.approx(0.5, rel=1e-6)
