@@ -32,6 +32,8 @@ def test_warps_writes_json_and_html(tmp_path):
     assert json.loads((run / "results.json").read_text())["warps"]
     page = (run / "warps.html").read_text()
     assert page.count("data:image/png;base64,") == 2
+    assert "judged against square_to_tent&#x27;s (1-|x|)(1-|y|) on [-1,1]^2 (its name) and its own pdf" in page
+    assert "<th>samples_vs_target</th>" in page
 
 
 @pytest.mark.parametrize("verb, option", [("warps", "--only"), ("validate", "--warps-only")])

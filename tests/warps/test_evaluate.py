@@ -38,6 +38,15 @@ def test_nan_samples_fail_every_sample_check(name):
         assert failed["samples_vs_target"].startswith(f"{SAMPLES} NaN/Inf samples (against square_to_uniform_disk's")
 
 
+def test_a_million_nan_samples_beside_mitsuba_are_not_judged(mitsuba):
+    # Today's PASS with p = 1: the homogeneity test of an empty histogram against Mitsuba's.
+    result = check_warp(_nan_samples, disk_pdf, "disk", samples=1_000_000, name="uniform_disk",
+                        reference=mitsuba.warp("square_to_uniform_disk"))
+    check = result.checks["samples_vs_mitsuba"]
+    assert check.passed is False and check.not_judged == "an empty histogram (0 and 1000000 counts)"
+    assert check.summary.startswith("1000000 NaN/Inf samples; not judged")
+
+
 def test_a_few_nan_samples_fail_the_sample_checks_by_name():
     def sample(u):
         p = disk_sample(u)
