@@ -45,9 +45,11 @@ def _beckmann(p: np.ndarray, alpha: float | None) -> np.ndarray:
     up = z > 0
     zu = np.where(up, z, 1.0)
     tan2 = (p[:, 0] ** 2 + p[:, 1] ** 2) / (zu * zu)
-    with np.errstate(over="ignore", under="ignore"):
-        value = np.exp(-tan2 / alpha**2) / (np.pi * alpha**2 * zu**3)
-    return np.where(up, value, 0.0)
+    with np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore"):
+        e = np.exp(-tan2 / alpha**2)
+        value = e / (np.pi * alpha**2 * zu**3)
+    # Near the horizon exp underflows to 0 first (and cos^3 may too): the density is 0 there, not 0 / 0.
+    return np.where(up & (e > 0), value, 0.0)
 
 
 # Marginal CDFs on the domain's parameter square (harness.warps.domains: s is cos(theta) on the hemisphere,
