@@ -74,6 +74,7 @@ def test_a_calibration_with_no_null_run_exits_3(tmp_path, capsys):
     out = tmp_path / "results"
     assert main(["calibrate", "--warps", "--only", "tent", "--seeds", "0", "--no-mitsuba", "--out", str(out)]) == 3
     payload = json.loads((out / "calibration-latest" / "calibration.json").read_text())
-    assert payload["verdict_reason"] == ("nothing was judged: null warp runs: --seeds 0 over 1 warp checks gave "
+    # The tent's two checks without Mitsuba: chi2 and samples_vs_target.
+    assert payload["verdict_reason"] == ("nothing was judged: null warp runs: --seeds 0 over 2 warp checks gave "
                                          "none")
     assert not payload["pass"] and f"FAIL {payload['verdict_reason']}" in capsys.readouterr().out
