@@ -99,8 +99,9 @@ def test_a_pdf_that_differs_by_more_than_a_constant_names_no_factor():
 @pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_mitsubas_beckmann_passes_the_checks_against_its_name(mitsuba, seed):
-    """Mitsuba's sampler and pdf (masked to the hemisphere) at the matrix's alphas that test_mitsuba_warps.py leaves
-    out (it runs Mitsuba's other warps by their names), at the matrix's budget and level: no false FAIL."""
+    """Mitsuba's sampler and pdf (masked to the hemisphere) at alpha 0.01, whose float32 samples limit the cells to
+    2 x 51 (test_mitsuba_warps.py runs Mitsuba's other warps by their names), at the matrix's budget and level:
+    no false FAIL."""
     from harness.statistics.constants import SIGNIFICANCE, WARP_SAMPLES, sidak_level
     from harness.warps.adapters import masked_to_domain
     from harness.warps.bins import sample_quantum
@@ -111,7 +112,7 @@ def test_mitsubas_beckmann_passes_the_checks_against_its_name(mitsuba, seed):
 
     # The matrix's level beside Mitsuba: chi2 and samples_vs_target on every row, samples_vs_mitsuba on all but one.
     level = sidak_level(SIGNIFICANCE, 3 * len(SUITE) - 1)
-    for spec in select(["beckmann:0.01", "beckmann:0.1"]):
+    for spec in select(["beckmann:0.01"]):
         f, dom = mitsuba.warp(spec.name, spec.alpha), get_domain(spec.domain)
         points = f.sample(np.random.default_rng(spec_seed(spec, seed)).random((WARP_SAMPLES, 2)))
         inside = dom.inside(points)
