@@ -27,6 +27,7 @@ import numpy as np
 from harness.warps import checks as wc
 from harness.warps.check_result import CheckResult, skipped
 from harness.warps.hard_inputs import hard_inputs_check
+from harness.warps.pdf_agreement import pdf_agreement_check
 from harness.warps.domains import get_domain
 from harness.engines.base import WarpFunctions
 from harness.statistics.constants import SIGNIFICANCE, WARP_SAMPLES, sidak_level
@@ -148,7 +149,7 @@ def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "
         ref_inside = ref_points[dom.inside(ref_points)]
         # Where our samples are missing (NaN, outside), the reference's own show where its mass is.
         probe = np.concatenate([ours[:PDF_PROBES], ref_inside[:max(PDF_PROBES - len(ours), 0)]])
-        checks["pdf_vs_mitsuba"] = wc.pdf_agreement_check(np.concatenate([probe, wc.parameter_grid(dom)]), pdf,
+        checks["pdf_vs_mitsuba"] = pdf_agreement_check(np.concatenate([probe, wc.parameter_grid(dom)]), pdf,
                                                           reference.pdf, "the reference pdf")
         reference_observed = wc.histogram(dom, ref_inside, bins)
         checks["samples_vs_mitsuba"] = wc.homogeneity_check(observed, reference_observed, *lost)

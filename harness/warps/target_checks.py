@@ -18,6 +18,7 @@ from harness.warps import checks as wc
 from harness.warps.bins import Bins
 from harness.warps.check_result import CheckResult, skipped
 from harness.warps.domains import Domain
+from harness.warps.pdf_agreement import pdf_agreement_check
 from harness.warps.targets import Target
 
 #: Our samples among the points where the pdf is compared with the target (and with the reference).
@@ -60,7 +61,7 @@ def target_checks(dom: Domain, target: Target, pdf: wc.Pdf, inside_points: np.nd
                                  against=f"against {target.label}")
     probes = np.concatenate([inside_points[:PDF_PROBES], wc.parameter_grid(dom, bins.s_edges, bins.t_edges),
                              wc.parameter_grid(dom)])
-    pdf_check = wc.pdf_agreement_check(probes, pdf, target.pdf, target.label)
+    pdf_check = pdf_agreement_check(probes, pdf, target.pdf, target.label)
     for check in (samples_check, pdf_check):
         check.details["target"] = target.label
     return TargetOutcome({"pdf_vs_target": pdf_check, "samples_vs_target": samples_check}, observed,

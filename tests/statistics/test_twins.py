@@ -15,7 +15,8 @@ from harness.comparison.compare import compare_batches
 from harness.warps.domains import get_domain
 from harness.statistics.constants import IMAGE_POWER_TARGET
 from harness.images.regression import MEAN_SIGMAS, compare_runs
-from harness.warps.checks import expected_probabilities, normalisation_check, pdf_agreement_check
+from harness.warps.checks import expected_probabilities, normalisation_check
+from harness.warps.pdf_agreement import pdf_agreement_check
 from harness.warps.evaluate import check_warp
 
 TWO_PI = 2 * np.pi

@@ -7,6 +7,7 @@ from harness.engines.base import WarpFunctions
 from harness.warps import checks as wc
 from harness.warps.check_result import CheckResult
 from harness.warps.evaluate import check_warp, decide, evaluate_warp
+from harness.warps.pdf_agreement import pdf_agreement_check
 from tests.helpers.wrong_warps import disk_pdf, disk_sample
 
 SAMPLES = 100_000
@@ -95,7 +96,7 @@ def test_a_pdf_integrating_far_below_one_fails_and_chi2_does_not_pass(integral):
 
 
 def test_a_reference_that_is_0_at_every_probe_is_not_judged():
-    check = wc.pdf_agreement_check(disk_sample(np.random.default_rng(0).random((100, 2))), disk_pdf,
+    check = pdf_agreement_check(disk_sample(np.random.default_rng(0).random((100, 2))), disk_pdf,
                                    lambda p: np.zeros(len(p)), "the reference pdf")
     assert check.passed is False and check.summary == "not judged: the reference pdf is 0 at all 100 probe points"
 

@@ -7,6 +7,7 @@ from harness.statistics.constants import FLOAT32_QUANTUM
 from harness.warps import checks as wc
 from harness.warps.adapters import masked_to_domain
 from harness.warps.domains import get_domain
+from harness.warps.pdf_agreement import pdf_agreement_check
 from harness.warps.suite import SUITE
 from harness.warps.targets import KNOWN, target_for
 
@@ -38,7 +39,7 @@ def test_every_target_is_0_outside_its_domain():
 
 def _agreement(sample, pdf, target):
     points = sample(np.random.default_rng(1).random((20_000, 2)))
-    return wc.pdf_agreement_check(points, pdf, target.pdf, target.label)
+    return pdf_agreement_check(points, pdf, target.pdf, target.label)
 
 
 @pytest.mark.parametrize("spec", SUITE, ids=KEYS)
