@@ -65,6 +65,8 @@ class DaskExecutor(Executor):
         return self._client.scatter(value, hash=False, broadcast=True)
 
     def run(self, tasks: list[Task], on_status: Callable[[Status], None] | None = None) -> list[Outcome]:
+        from concurrent.futures import CancelledError
+
         from distributed import KilledWorker, as_completed
 
         status = Status(len(tasks))
@@ -81,6 +83,11 @@ class DaskExecutor(Executor):
                 out[i] = Outcome(future.result())
             except KilledWorker:
                 out[i] = Outcome(error=f"its worker died while running it ({ALLOWED_FAILURES} workers tried)")
+                status.failed += 1
+            except CancelledError as e:
+                # A worker that dies can take the scheduler's record of the task with it: the future is then
+                # cancelled ("reason: unknown") instead of raising KilledWorker. The case fails either way.
+                out[i] = Outcome(error=f"its worker died or the cluster cancelled it ({e})")
                 status.failed += 1
             status.done += 1
             # Tasks are submitted at once and the cluster runs as many as it has threads: the rest wait.
