@@ -38,6 +38,22 @@ def flip_map(test: np.ndarray, reference: np.ndarray, signed: bool = False) -> t
     return np.asarray(error)[..., 0], float(mean)
 
 
+#: SSIM's window side (scikit-image's default), and the smallest it is computed with on a small image.
+SSIM_WINDOW, SSIM_SMALLEST_WINDOW = 7, 3
+
+
+def _ssim(t: np.ndarray, r: np.ndarray, data_range: float) -> float:
+    """SSIM with scikit-image's 7 x 7 window, narrowed to the largest odd side the image holds (a film 32 x 4
+    is a real scene's shape at a small --resolution); NaN on an image under 3 pixels a side."""
+    from skimage.metrics import structural_similarity
+
+    shortest = min(t.shape[:2])
+    side = min(SSIM_WINDOW, shortest if shortest % 2 else shortest - 1)
+    if side < SSIM_SMALLEST_WINDOW:
+        return float("nan")
+    return float(structural_similarity(t, r, channel_axis=-1, data_range=data_range, win_size=side))
+
+
 def image_metrics(test: np.ndarray, reference: np.ndarray, signed: bool = False,
                   maps: dict[str, np.ndarray] | None = None) -> dict[str, float]:
     """MSE, RMSE, relMSE, SMAPE, PSNR, SSIM, FLIP mean and 95th percentile, CIEDE2000 mean, mean ratio.
@@ -46,7 +62,6 @@ def image_metrics(test: np.ndarray, reference: np.ndarray, signed: bool = False,
     see (x + 1) / 2. `maps`, if given, receives the FLIP map as "flip" (FLIP costs more than the rest).
     """
     import colour
-    from skimage.metrics import structural_similarity
 
     t = np.asarray(test, np.float64)
     r = np.asarray(reference, np.float64)
@@ -56,7 +71,7 @@ def image_metrics(test: np.ndarray, reference: np.ndarray, signed: bool = False,
     with np.errstate(divide="ignore", invalid="ignore"):
         smape_terms = np.where(np.abs(t) + np.abs(r) > 0, 2 * np.abs(diff) / (np.abs(t) + np.abs(r)), 0.0)
     data_range = float(r.max() - r.min()) or 1.0
-    ssim = float(structural_similarity(t, r, channel_axis=-1, data_range=data_range))
+    ssim = _ssim(t, r, data_range)
     error, flip_mean = flip_map(test, reference, signed)
     if maps is not None:
         maps["flip"] = error

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from harness.comparison.metrics import flip_map
+from harness.comparison.metrics import flip_map, image_metrics
 
 
 @pytest.mark.parametrize("scale", [1e-30, 1e-6, 1e6])
@@ -35,3 +35,15 @@ def test_a_comparison_keeps_its_flip_map_and_its_picture_uses_it(monkeypatch):
 
     monkeypatch.setattr(image_plots, "flip_map", computed_again)
     assert image_plots.comparison_png(test.mean(axis=0), ref.mean(axis=0), result, False)[:4] == b"\x89PNG"
+
+
+@pytest.mark.parametrize("shape", [(4, 32, 3), (32, 4, 3), (6, 6, 3), (2, 2, 3), (1, 5, 3)])
+def test_metrics_of_an_image_under_seven_pixels_a_side_are_made_not_a_crash(shape):
+    """SSIM's 7 x 7 window narrows to what the image holds (a 512 x 64 film at --resolution 32 is 32 x 4); under
+    3 pixels it is NaN. The other metrics are computed as at any size."""
+    rng = np.random.default_rng(3)
+    a, b = rng.random(shape), rng.random(shape)
+    m = image_metrics(a, b)
+    assert np.isnan(m["ssim"]) == (min(shape[:2]) < 3)
+    assert image_metrics(a, a)["ssim"] == pytest.approx(1.0) or min(shape[:2]) < 3
+    assert np.isfinite(m["mse"]) and np.isfinite(m["flip_mean"])
