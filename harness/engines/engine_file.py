@@ -3,6 +3,7 @@
 is one line naming the file, the line where it can be found, and what was expected."""
 from __future__ import annotations
 
+import math
 import os
 import re
 import shutil
@@ -64,6 +65,8 @@ def _program(first: str, here: Path) -> str | None:
     path = first.replace("{here}", str(here))
     if os.sep not in path:
         return None if shutil.which(path) else f"{path!r} is not a program on PATH"
+    if Path(path).is_dir():
+        return f"{path} is a folder, not a program"
     if not Path(path).is_file():
         return f"{path} does not exist"
     if not os.access(path, os.X_OK):
@@ -126,8 +129,10 @@ def read_engine_file(path: str | Path) -> EngineFile:
     if not isinstance(jobs, int) or isinstance(jobs, bool) or jobs < 1:
         raise error("jobs", f"jobs must be a whole number of at least 1 (got {jobs!r})")
     timeout = data.get("timeout")
-    if timeout is not None and (isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or timeout <= 0):
-        raise error("timeout", f"timeout must be a positive number of seconds (got {timeout!r})")
+    # A NaN or infinite timeout would disable it (a hung renderer then hangs the run): finite and positive only.
+    if timeout is not None and (isinstance(timeout, bool) or not isinstance(timeout, (int, float))
+                                or not math.isfinite(timeout) or timeout <= 0):
+        raise error("timeout", f"timeout must be a finite positive number of seconds (got {timeout!r})")
     integrators = data["integrators"]
     if not isinstance(integrators, dict) or not integrators:
         raise error("integrators", "[integrators] must map mcval's integrators to this renderer's names")

@@ -57,6 +57,18 @@ def test_a_missing_program_is_refused(tmp_path):
                                                                           '"no-such-renderer", "{scene}"'))
 
 
+def test_a_program_that_is_a_folder_is_called_a_folder(tmp_path):
+    (tmp_path / "renderer").mkdir()
+    message = _error(tmp_path, GOOD.replace("{here}/toy\", \"{scene}", "{here}/renderer\", \"{scene}"))
+    assert message.endswith(f"{tmp_path / 'renderer'} is a folder, not a program"), message
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "-inf", "0", "-5", "true", '"60"'])
+def test_a_timeout_that_would_not_end_a_hung_render_is_refused(tmp_path, value):
+    message = _error(tmp_path, GOOD.replace("[integrators]", f"timeout = {value}\n[integrators]"))
+    assert ":4: timeout must be a finite positive number of seconds" in message, message
+
+
 def test_a_program_that_is_not_executable_is_refused(tmp_path):
     assert "is not executable (chmod +x)" in _error(tmp_path, GOOD, executable=False)
 
