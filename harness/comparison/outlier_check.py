@@ -18,7 +18,8 @@ from harness.statistics.outlier_batch import BatchOutlier
 if TYPE_CHECKING:
     from harness.comparison.summary import Summary
 
-_CHANNELS = "RGB"
+#: The channels' names, by index, for messages.
+CHANNELS = "RGB"
 
 
 def _fails(outlier: BatchOutlier | None) -> bool:
@@ -46,7 +47,7 @@ class OutlierCheck:
         for side, o in (("test", self.test), ("reference", self.reference)):
             if _fails(o):
                 return (f"one {side} batch stands apart (a firefly?): batch {o.batch}'s image mean "
-                        f"({_CHANNELS[o.channel]}) is {o.value:.6g} where the other {o.batches - 1} average "
+                        f"({CHANNELS[o.channel]}) is {o.value:.6g} where the other {o.batches - 1} average "
                         f"{o.others:.6g}, t = {o.t:.3g} over their spread (p = {o.p_value:.2g}, level {OUTLIER_LEVEL:g})")
         judged = [side for side, o in (("test", self.test), ("reference", self.reference)) if o is not None]
         return (f"no batch stands apart ({' and '.join(judged)})" if judged

@@ -21,6 +21,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from harness.comparison.outlier_check import CHANNELS
 from harness.statistics.constants import sidak_level
 from harness.statistics.excess_spread import ExcessSpread, excess_spread
 from harness.statistics.variance_ratio import VarianceRatio, variance_ratio
@@ -28,7 +29,6 @@ from harness.statistics.variance_ratio import VarianceRatio, variance_ratio
 if TYPE_CHECKING:
     from harness.comparison.summary import Summary
 
-_CHANNELS = "RGB"
 #: Up to this many pixels beyond the critical ratio are called fireflies (single samples far off).
 FIREFLY_PIXELS = 16
 
@@ -81,7 +81,7 @@ class VarianceCheck:
             where = "pixel" if s.scale == "pixel" else "8x8 tile at"
             # A few pixels: fireflies; more, or tiles alone: an estimator noisier than the one declared, in places.
             what = "firefly" if s.scale == "pixel" and s.failures <= FIREFLY_PIXELS else "noise beyond the estimator's"
-            return (f"{what}: the test's {where} (row {s.worst[0]}, column {s.worst[1]}, {_CHANNELS[s.worst[2]]}) "
+            return (f"{what}: the test's {where} (row {s.worst[0]}, column {s.worst[1]}, {CHANNELS[s.worst[2]]}) "
                     f"has {s.ratio:.3g}x the per-sample variance of the reference's neighbourhood (at most "
                     f"{s.critical:.3g}x without a defect; {s.failures} {s.scale}s beyond it): a batch far off "
                     "where the same estimator's samples never stray so far")

@@ -22,7 +22,7 @@ import numpy as np
 from harness.comparison.independence_check import ALIKE_MIN_ELEMENTS, ALIKE_MIN_FRACTION, varying_elements
 from harness.comparison.summary import Summary
 from harness.integrators.entry import IntegratorEntry
-from harness.statistics.constants import ROUNDING_TOLERANCE
+from harness.statistics.welch import rounding_floor
 from harness.statistics.independence import BatchDependence
 
 NO_SIGNAL = "the base render is constant (all 0): an invariance cannot be judged on an image without signal"
@@ -33,8 +33,7 @@ def structure(mean: np.ndarray) -> int:
     rounding: 0 for an image constant in each channel."""
     m = np.asarray(mean, np.float64)
     median = np.median(m, axis=(0, 1))
-    finite = np.abs(m[np.isfinite(m)])
-    floor = ROUNDING_TOLERANCE * (np.abs(median) + (float(finite.mean()) if finite.size else 0.0))
+    floor = rounding_floor(m, at=median)
     with np.errstate(invalid="ignore"):
         return int(np.count_nonzero(np.abs(m - median) > floor))
 

@@ -30,9 +30,9 @@ import numpy as np
 from scipy.ndimage import maximum_filter
 from scipy.special import fdtri
 
-from harness.statistics.constants import ROUNDING_TOLERANCE, SPREAD_WINDOW, TILE_SIZE
+from harness.statistics.constants import SPREAD_WINDOW, TILE_SIZE
 from harness.statistics.tiles import tile_blocks
-from harness.statistics.welch import BatchStats
+from harness.statistics.welch import BatchStats, rounding_floor
 
 #: The rate (times 1 / N) below which a contribution none of N reference samples met is taken to lie: N samples
 #: miss one of rate 10 / N with probability e^-10 = 4.5e-5. A test batch that met it h times then shows a
@@ -84,9 +84,7 @@ def _ratios(test: BatchStats, reference: BatchStats, spp: tuple[int, int], windo
     floored at what a contribution that the reference's samples all missed may add (`largest`: the largest
     reference pixel value the element's samples may take; `pixels` of them in the element), and at the
     variance that float rounding of the values would show."""
-    mean = np.asarray(test.mean, np.float64)
-    finite = np.abs(mean[np.isfinite(mean)])
-    rounding = ROUNDING_TOLERANCE * (np.abs(mean) + (float(finite.mean()) if finite.size else 0.0))
+    rounding = rounding_floor(test.mean)
     vt = spp[0] * test.k * np.asarray(test.var_of_mean, np.float64)
     vr = spp[1] * reference.k * np.asarray(reference.var_of_mean, np.float64)
     vr = maximum_filter(np.where(np.isfinite(vr), vr, 0.0), size=(window, window, 1), mode="nearest")

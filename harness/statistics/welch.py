@@ -37,14 +37,20 @@ class BatchStats:
         return float(self.k - 1) if self.dof is None else self.dof
 
 
+def rounding_floor(values: np.ndarray, at: np.ndarray | None = None) -> np.ndarray:
+    """How far float rounding may move a value: ROUNDING_TOLERANCE (|value| + the mean magnitude of the finite
+    `values`), at each of `values`, or at `at` where given (a median, say)."""
+    v = np.asarray(values, np.float64)
+    finite = np.abs(v[np.isfinite(v)])
+    return ROUNDING_TOLERANCE * (np.abs(v if at is None else at) + (float(finite.mean()) if finite.size else 0.0))
+
+
 def beyond_rounding(stats: BatchStats) -> np.ndarray:
     """Elements whose K batch means spread beyond float rounding of the values: (K - 1) var_of_mean (the sum
     of squared deviations over K) above the squared floor ROUNDING_TOLERANCE (|mean| + the mean magnitude of
     the finite elements). A noiseless estimator summed in another order, or rounded one way in one engine and
     another way in the other, has no variance."""
-    mean = np.asarray(stats.mean, np.float64)
-    finite = np.abs(mean[np.isfinite(mean)])
-    floor = ROUNDING_TOLERANCE * (np.abs(mean) + (float(finite.mean()) if finite.size else 0.0))
+    floor = rounding_floor(stats.mean)
     with np.errstate(invalid="ignore", over="ignore"):
         return (stats.k - 1) * np.asarray(stats.var_of_mean, np.float64) > floor * floor
 
