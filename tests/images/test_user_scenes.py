@@ -1,5 +1,6 @@
 """Scenes of one's own (--scene): found in files and folders, prepared into the output folder (absolute mesh
 paths, the suite's resolution), and bad paths refused in one line."""
+import re
 import shutil
 import xml.etree.ElementTree as ET
 
@@ -14,6 +15,9 @@ def _scene(folder, name="ball", source="sphere_plane.xml"):
     folder.mkdir(parents=True, exist_ok=True)
     path = folder / f"{name}.xml"
     shutil.copy(SCENES_DIR / source, path)
+    for mesh in re.findall(r'name="filename" value="([^"]+)"', path.read_text()):  # a missing mesh is refused
+        (folder / mesh).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(SCENES_DIR / mesh, folder / mesh)
     return path
 
 
