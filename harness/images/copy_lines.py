@@ -4,15 +4,30 @@ FILE:LINE, through the copy's map of source lines (harness/images/scene_copy.py)
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
-from harness.images.suite import ImageCase
+if TYPE_CHECKING:
+    from harness.images.suite import ImageCase
 
 #: Mitsuba 3's parser on a scene loaded from a string (the harness loads every copy so).
 _MITSUBA_LINE = re.compile(r"(?:Error while loading string )?\(line (\d+), col \d+\)")
 
 
-def _source_line(case: ImageCase, line: int) -> int:
-    return case.source_lines[line] if 0 < line < len(case.source_lines) else 0
+def name_lines(reason: str, copy: str, source: str, source_lines: Sequence[int]) -> str:
+    """`reason` with each line of the copy it names (Mitsuba's "(line N, col M)", `copy`:N) as
+    `source`:LINE, where `source_lines` (per line of the copy, the source's line, 0: none) knows it."""
+    def line(n: str) -> int:
+        return source_lines[int(n)] if 0 < int(n) < len(source_lines) else 0
+
+    def mitsuba(match: re.Match) -> str:
+        return f"in {source}:{line(match.group(1))}" if line(match.group(1)) else match.group(0)
+
+    def ours(match: re.Match) -> str:
+        return f"{source}:{line(match.group(1))}" if line(match.group(1)) else match.group(0)
+
+    reason = _MITSUBA_LINE.sub(mitsuba, reason)
+    return re.sub(re.escape(copy) + r":(\d+)", ours, reason) if copy else reason
 
 
 def in_user_terms(reason: str, case: ImageCase) -> str:
@@ -22,16 +37,7 @@ def in_user_terms(reason: str, case: ImageCase) -> str:
         return reason
     copy = str(case.path)
     if case.source_lines:
-        def mitsuba(match: re.Match) -> str:
-            line = _source_line(case, int(match.group(1)))
-            return f"in {case.source}:{line}" if line else match.group(0)
-
-        def ours(match: re.Match) -> str:
-            line = _source_line(case, int(match.group(1)))
-            return f"{case.source}:{line}" if line else match.group(0)
-
-        reason = _MITSUBA_LINE.sub(mitsuba, reason)
-        reason = re.sub(re.escape(copy) + r":(\d+)", ours, reason)
+        reason = name_lines(reason, copy, case.source, case.source_lines)
     if copy in reason:
         reason = f"{reason} (the prepared copy of {case.source})"
     return reason

@@ -6,9 +6,10 @@ What the copy sets, and what it refuses (one SceneXmlError naming the file, the 
 - the film's width and height are whole numbers of pixels (at least 1); its size becomes $res, declared as the
   run's resolution, the height keeping the aspect; its crop window is scaled with it;
 - a sensor without a film gets Mitsuba's default one (768 x 576) at the run's resolution;
-- a file without a sensor gets the camera Mitsuba 3 would make for it (src/render/scene.cpp: a 45 degree
-  perspective camera looking along +z from before the scene's bounding box), written out, so that both
-  engines render the same view;
+- a file without a sensor gets the camera Mitsuba made for one until 3.0.0 (src/render/scene.cpp before
+  commit 1279b88, as Mitsuba 0.6 did: a 45 degree perspective camera looking along +z from before the
+  scene's bounding box), written out, so that both engines render the same view; Mitsuba 3.0.0 and later make
+  none (`mi.render` then has no sensor to render from), so the copy says so in a note;
 - every file a `filename` names must exist (one refusal for the scene, not one per case).
 """
 from __future__ import annotations
@@ -20,11 +21,14 @@ from pathlib import Path
 
 from harness.engines.nori.lined_xml import LinedXml, SceneXmlError, parse_lined
 from harness.engines.scene_paths import absolute_paths
+from harness.images.copy_lines import name_lines
 
 #: Mitsuba's hdrfilm without a width or height (its default film).
 MITSUBA_FILM = (768, 576)
-#: Mitsuba's camera for a scene without one (src/render/scene.cpp): its field of view, in degrees.
+#: The camera Mitsuba made for a scene without one until 3.0.0: its field of view, in degrees.
 DEFAULT_FOV = 45.0
+#: The tallest film the copy takes, over its width: its height follows the run's width.
+MAX_ASPECT = 16
 _CROP = (("crop_offset_x", 0), ("crop_offset_y", 0), ("crop_width", None), ("crop_height", None))
 
 
@@ -72,6 +76,9 @@ def _size_film(doc: LinedXml, film: ET.Element, defaults: dict[str, str], resolu
     height = _pixels(doc, given["height"], defaults) if "height" in given else MITSUBA_FILM[1]
     scale = resolution / width
     new_height = max(1, round(height * scale))
+    if new_height > MAX_ASPECT * resolution:
+        raise _fail(doc, film, f"a film {height / width:.3g} times as tall as wide would be {resolution} x "
+                               f"{new_height} pixels at the run's resolution (at most {MAX_ASPECT} times as tall)")
     crop = {name: _pixels(doc, given[name], defaults, least=0 if default == 0 else 1) if name in given else default
             for name, default in _CROP}
     for e in [e for e in film if e.get("name") in ("width", "height", *(n for n, _ in _CROP))]:
@@ -98,7 +105,7 @@ def _default_film(resolution: int) -> ET.Element:
 
 
 def default_sensor(bounds: tuple[tuple[float, ...], tuple[float, ...]] | None, resolution: int) -> ET.Element:
-    """The camera Mitsuba 3 gives a scene without a sensor (src/render/scene.cpp), for the scene's bounding box
+    """The camera Mitsuba gave a scene without a sensor until 3.0.0 (src/render/scene.cpp), for the bounding box
     `bounds` (min, max) or None (no shapes: at the origin), with Mitsuba's default sampler and a film of the
     run's resolution."""
     sensor = ET.Element("sensor", type="perspective")
@@ -154,11 +161,13 @@ def _source_lines(doc: LinedXml, root: ET.Element, text: str) -> list[int]:
     return result
 
 
-def prepare_mitsuba_file(text: str, path: Path, resolution: int, bounds_of, lines: bool = True) -> Prepared:
+def prepare_mitsuba_file(text: str, path: Path, resolution: int, bounds_of, lines: bool = True,
+                         notes: list[str] | None = None) -> Prepared:
     """The copy of the Mitsuba 3 file `path` (its `text`) for a run at `resolution` (see the module docstring).
     `bounds_of(text)`: the bounding box (min, max) of the scene written as `text`, or None, asked only for a
     file without a sensor. SceneXmlError for what the copy cannot be made of, naming the file and line
-    (`lines` False: `text` is a translation of the file, whose lines are not the file's; none are named)."""
+    (`lines` False: `text` is a translation of the file, whose lines are not the file's; none are named).
+    What the copy adds that changes the image (a camera) is a line in `notes`."""
     doc = parse_lined(text, path)
     if not lines:
         doc.lines.clear()
@@ -178,7 +187,17 @@ def prepare_mitsuba_file(text: str, path: Path, resolution: int, bounds_of, line
     root.insert(0, ET.Element("default", name="res", value=str(resolution)))
     if not sensors:
         # Appended last, so that the lines of the copy Mitsuba is asked about stay those of the copy.
-        bounds = bounds_of(_written(root))
+        before = _written(root)
+        try:
+            bounds = bounds_of(before)
+        except Exception as e:  # Mitsuba cannot load the file: its error, in the file's lines
+            why = name_lines(str(e), "", str(path), _source_lines(doc, root, before))
+            raise SceneXmlError(f"{path}: no <sensor>, and Mitsuba could not load it to place one: "
+                                f"{type(e).__name__}: {why}") from None
         root.append(default_sensor(bounds, resolution))
+        if notes is not None:
+            notes.append(f"{path}: no <sensor>: rendered from the camera Mitsuba gave such a file until 3.0.0 "
+                         f"({DEFAULT_FOV:g} degree perspective, along +z from before the scene's bounding box); "
+                         "Mitsuba 3 makes none")
     written = _written(root)
     return Prepared(written, _source_lines(doc, root, written))

@@ -86,10 +86,10 @@ def _prepared(path: Path, resolution: int, notes: list[str]) -> Prepared:
     translation leaves out is a line in `notes`."""
     text = path.read_text(errors="replace")
     if not _is_nori_text(text):
-        return prepare_mitsuba_file(text, path, resolution, scene_bounds)
+        return prepare_mitsuba_file(text, path, resolution, scene_bounds, notes=notes)
     # Its translation's lines are not the file's: its copy keeps no map.
     translated = _written(nori_to_mitsuba(text, path, notes))
-    return Prepared(prepare_mitsuba_file(translated, path, resolution, scene_bounds, lines=False).text)
+    return Prepared(prepare_mitsuba_file(translated, path, resolution, scene_bounds, lines=False, notes=notes).text)
 
 
 def _is_nori_text(text: str) -> bool:
