@@ -128,3 +128,13 @@ def test_a_nori_file_is_prepared_as_mitsubas_and_one_without_a_translation_carri
     assert ImageResult(noted_case, None, {}, {}, "none", 0, error="x").to_json()["scene_notes"] == list(noted.notes)
     (case,) = [c for c in select_cases(["bad:normals"], user=[bad, good])]
     assert case.problem == bad.problem
+
+
+def test_folders_are_searched_recursively_but_not_hidden_ones_nor_the_runs_output(tmp_path):
+    _scene(tmp_path / "in", "top")
+    _scene(tmp_path / "in" / "a" / "b", "nested")
+    _scene(tmp_path / "in" / ".git", "hidden")
+    _scene(tmp_path / "in" / "results" / ".scenes" / "x", "copy")
+    _scene(tmp_path / "in" / "results" / "run", "output")
+    found = scene_files([tmp_path / "in"], skip=(tmp_path / "in" / "results",))
+    assert sorted(p.stem for p in found) == ["nested", "top"]
