@@ -49,7 +49,13 @@ def _budgeted(cases, ours, reference, target: float, seed: int):
         if case.problem:
             planned.append(case)
             continue
-        budget = plan_budget(case, ours, reference, target, alpha, case_seed(case, seed) + 1)
+        try:
+            budget = plan_budget(case, ours, reference, target, alpha, case_seed(case, seed) + 1)
+        except Exception as e:  # the case itself fails in the run, with its own line
+            err.print(f"{escape(case.key)}: no budget planned ({escape(bounded(f'{type(e).__name__}: {e}'))}); "
+                      "it keeps its default", soft_wrap=True, highlight=False)
+            planned.append(case)
+            continue
         err.print(escape(budget.line), soft_wrap=True)
         budgets.append(budget)
         planned.append(dataclasses.replace(case, spp=budget.spp) if budget.spp else case)

@@ -172,9 +172,9 @@ def prepare_mitsuba_file(text: str, path: Path, resolution: int, bounds_of, line
     if not lines:
         doc.lines.clear()
     root = doc.root
-    defaults = _defaults(doc)
     written = _file_names(root)
     absolute_paths(root, path)
+    defaults = _defaults(doc)  # an included file's too
     _missing_files(doc, root, written)
     for film in root.iter("film"):
         _size_film(doc, film, defaults, resolution)

@@ -1,12 +1,12 @@
-"""Scene files given with --scene (a file or a folder of them, anywhere, read-only is fine): each is copied,
-prepared, into the run's output folder and rendered from there, so nothing is ever written beside it.
+"""Scene files given with --scene (files, or folders searched with their subfolders): each is copied, prepared,
+into the run's output folder and rendered from there, so nothing is ever written beside it.
 
-The copy differs from the file only in what every case of the suite sets: its <include>s inlined, its <path>s
-followed and file names made absolute (its meshes are read where they are; harness/engines/scene_paths.py),
-and the film's size as the `res` parameter, declared as a <default> of the resolution the run asks for (the
-suite's, --resolution, or a reference image's width; the aspect kept), which every render of the copy keeps.
-A file in Nori's dialect is first translated into Mitsuba 3's (harness/engines/nori); one that cannot be is
-kept as it is, and its cases fail with the translation's one line.
+The copy differs from the file only in what every case of the suite sets (harness/images/scene_copy.py): its
+<include>s inlined, its <path>s followed and file names made absolute (harness/engines/scene_paths.py), the
+film's size as the `res` parameter of the resolution the run asks for (the suite's, --resolution, or a
+reference image's width; the aspect kept), a camera for a file without one. A file in Nori's dialect is first
+translated into Mitsuba 3's (harness/engines/nori). What cannot be prepared is the scene's `problem`: the file
+is kept as it is, and its cases fail with that one line.
 """
 from __future__ import annotations
 
