@@ -1,7 +1,8 @@
 """A scene file's other files, found as Mitsuba 3 finds them, so that its text can be handed on from anywhere.
 
 Mitsuba resolves a relative file name against a list of folders: the scene's own, and before it every folder a
-`<path value="...">` names (relative to the file that says it, each new one searched first). `<include
+`<path value="...">` names (relative to the file that says it, else to those folders; each new one searched
+first). `<include
 filename="...">` inserts another scene file's elements where it stands. `absolute_paths` does the same once and
 for all: the includes inlined, the `<path>`s used and removed, and every file name made absolute, so that
 Mitsuba (loading from memory) and an engine file's renderer (reading a copy written elsewhere) see the scene as
@@ -37,6 +38,9 @@ def _expand(parent: ET.Element, file: Path, folders: list[Path], chain: tuple[Pa
         if e.tag == "path":
             value = e.get("value", "")
             folder = Path(value) if Path(value).is_absolute() else file.parent / value
+            if "$" not in value and not folder.is_dir():  # Mitsuba then asks its resolver's folders
+                found = _resolve(value, folders)
+                folder = found if found is not None and found.is_dir() else folder
             if "$" in value or not folder.is_dir():
                 raise SceneFileError(f"{file}: <path value=\"{value}\">: no such folder ({folder})")
             folders.insert(0, folder.resolve())
