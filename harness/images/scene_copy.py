@@ -172,8 +172,9 @@ def prepare_mitsuba_file(text: str, path: Path, resolution: int, bounds_of, line
     if not lines:
         doc.lines.clear()
     root = doc.root
+    read = list(root.iter())  # kept alive: `doc.lines` is keyed by id, which a freed element's successor reuses
     written = _file_names(root)
-    absolute_paths(root, path)
+    absolute_paths(root, path, doc.lines)
     defaults = _defaults(doc)  # an included file's too
     _missing_files(doc, root, written)
     for film in root.iter("film"):
@@ -200,4 +201,6 @@ def prepare_mitsuba_file(text: str, path: Path, resolution: int, bounds_of, line
                          f"({DEFAULT_FOV:g} degree perspective, along +z from before the scene's bounding box); "
                          "Mitsuba 3 makes none")
     written = _written(root)
-    return Prepared(written, _source_lines(doc, root, written))
+    lines = _source_lines(doc, root, written)
+    del read
+    return Prepared(written, lines)

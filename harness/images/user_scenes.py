@@ -26,7 +26,7 @@ from harness.images.scene_copy import Prepared, prepare_mitsuba_file
 
 @dataclass(frozen=True)
 class UserScene:
-    name: str        # the file's stem: the scene's name in reports and in --only
+    name: str        # the file's stem (scene_names): the scene's name in reports and in --only
     source: Path     # the file as given
     prepared: Path   # the copy that is rendered
     problem: str = ""  # why the file cannot be rendered at all (a Nori file without a translation), or ""
@@ -53,7 +53,7 @@ def _scene_files_under(folder: Path, skip: tuple[Path, ...]) -> list[Path]:
 def scene_files(paths: list[Path], skip: tuple[Path, ...] = ()) -> list[Path]:
     """Every scene file `paths` name: files as they are, folders as the *.xml files in them and their
     subfolders (not hidden ones, nor `skip`: the run's own output folder). ValueError naming a path that is
-    neither, a folder without scene files, or two scenes of one name."""
+    neither or a folder without scene files."""
     found: list[Path] = []
     for path in paths:
         if path.is_dir():
@@ -65,13 +65,25 @@ def scene_files(paths: list[Path], skip: tuple[Path, ...] = ()) -> list[Path]:
             found.append(path)
         else:
             raise ValueError(f"--scene {path}: no such file or folder")
-    names: dict[str, Path] = {}
+    unique: dict[Path, Path] = {}
     for path in found:
-        if path.stem in names and names[path.stem].resolve() != path.resolve():
-            raise ValueError(f"--scene: two scenes are called {path.stem} ({names[path.stem]} and {path}): "
-                             "give one of them")
-        names[path.stem] = path
-    return list(names.values())
+        unique.setdefault(path.resolve(), path)
+    return list(unique.values())
+
+
+def scene_names(files: list[Path]) -> list[str]:
+    """Each file's scene name: its stem, or where stems are shared (scene.xml in every folder of a corpus), the
+    stem after as many of its folders as tell it apart ("kitchen-scene"). ValueError where none do."""
+    names = []
+    for path in files:
+        for k in range(len(path.parts)):
+            name = "-".join([*path.parts[-1 - k:-1], path.stem])
+            if sum("-".join([*p.parts[-1 - k:-1], p.stem]) == name for p in files) == 1:
+                break
+        else:
+            raise ValueError(f"--scene: two scenes are called {path.stem} and nothing tells {path} apart")
+        names.append(name)
+    return names
 
 
 def _written(root: ET.Element) -> str:
@@ -99,7 +111,7 @@ def _is_nori_text(text: str) -> bool:
         return False
 
 
-def _prepare_one(path: Path, cache: Path, resolution: int) -> UserScene:
+def _prepare_one(path: Path, name: str, cache: Path, resolution: int) -> UserScene:
     """One scene file prepared; what cannot be prepared is the scene's problem (its cases fail with it)."""
     problem, notes, trace = "", [], ""
     dialect = "nori" if _is_nori_text(path.read_text(errors="replace")) else "mitsuba"
@@ -112,22 +124,23 @@ def _prepare_one(path: Path, cache: Path, resolution: int) -> UserScene:
         problem = one_line(f"{path}: its copy could not be prepared: {type(e).__name__}: {e}")
         trace = traceback.format_exc()
     digest = hashlib.sha256(f"{path.resolve()}\0{prepared.text}".encode()).hexdigest()[:16]
-    copy = cache / digest / f"{path.stem}.xml"
+    copy = cache / digest / f"{name}.xml"
     if not copy.exists():
         copy.parent.mkdir(parents=True, exist_ok=True)
         tmp = copy.with_suffix(".tmp")
         tmp.write_text(prepared.text)
         tmp.replace(copy)
-    return UserScene(path.stem, path, copy, problem, tuple(notes), dialect, tuple(prepared.source_lines), trace)
+    return UserScene(name, path, copy, problem, tuple(notes), dialect, tuple(prepared.source_lines), trace)
 
 
 def prepare_scenes(paths: list[Path], cache: Path, resolution: int, skip: tuple[Path, ...] = ()) -> list[UserScene]:
     """The scenes `paths` name (folders searched as scene_files does, `skip` left out), each prepared into
     cache/<digest>/<name>.xml (written once per content). ValueError for a file that cannot be read."""
     scenes = []
-    for path in scene_files(paths, skip):
+    files = scene_files(paths, skip)
+    for path, name in zip(files, scene_names(files)):
         try:
-            scenes.append(_prepare_one(path, cache, resolution))
+            scenes.append(_prepare_one(path, name, cache, resolution))
         except OSError as e:
             raise ValueError(f"--scene {path}: cannot read it ({e.strerror or e})") from None
     return scenes

@@ -77,3 +77,14 @@ def test_a_path_in_an_included_file_is_found_as_mitsuba_finds_it(tmp_path):
     absolute_paths(root, main)
     (mesh,) = [e.get("value") for e in root.iter("string") if e.get("name") == "filename"]
     assert mesh == str((tmp_path / "common" / "meshes" / "ball.ply").resolve())
+
+
+def test_what_leads_nowhere_names_its_line_when_the_lines_are_known(tmp_path):
+    from harness.engines.nori.lined_xml import parse_lined
+
+    main = tmp_path / "main.xml"
+    text = '<scene version="3.0.0">\n<shape type="rectangle"/>\n\n<include filename="none.xml"/></scene>'
+    main.write_text(text)
+    doc = parse_lined(text, main)
+    with pytest.raises(SceneFileError, match=rf"^{main}:4: <include filename=\"none.xml\">: not found in"):
+        absolute_paths(doc.root, main, doc.lines)

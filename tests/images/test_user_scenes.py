@@ -7,7 +7,7 @@ import xml.etree.ElementTree as ET
 import pytest
 
 from harness.images.suite import SCENES_DIR, USER, select_cases
-from harness.images.user_scenes import prepare_scenes, scene_files
+from harness.images.user_scenes import prepare_scenes, scene_files, scene_names
 from harness.invariance.suite import select
 
 
@@ -70,8 +70,15 @@ def test_bad_paths_are_one_line(tmp_path):
     (tmp_path / "empty").mkdir()
     with pytest.raises(ValueError, match="a folder without .xml scene files"):
         scene_files([tmp_path / "empty"])
-    with pytest.raises(ValueError, match="two scenes are called ball"):
-        scene_files([_scene(tmp_path / "a"), _scene(tmp_path / "b")])
+
+
+def test_scenes_of_one_name_are_told_apart_by_their_folders(tmp_path):
+    files = [_scene(tmp_path / "x" / "a"), _scene(tmp_path / "y" / "a"), _scene(tmp_path / "b"),
+             _scene(tmp_path / "c", "other")]
+    assert scene_names(files) == ["x-a-ball", "y-a-ball", "b-ball", "other"]
+    scenes = prepare_scenes([tmp_path / "x", tmp_path / "y", tmp_path / "b"], tmp_path / "cache", 16)
+    assert sorted(s.name for s in scenes) == ["b-ball", "x-a-ball", "y-a-ball"]
+    assert all(s.prepared.name == f"{s.name}.xml" for s in scenes)
 
 
 def test_user_scenes_replace_the_suite_or_join_it(tmp_path):
