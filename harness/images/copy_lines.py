@@ -10,8 +10,9 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from harness.images.suite import ImageCase
 
-#: Mitsuba 3's parser on a scene loaded from a string (the harness loads every copy so).
-_MITSUBA_LINE = re.compile(r"(?:Error while loading string )?\(line (\d+), col \d+\)")
+#: Mitsuba 3's parser on a scene loaded from a string (the harness loads every copy so): "Error while loading
+#: string (line N, col M)" for what it cannot parse, "At string (line N, col M)" for what it cannot instantiate.
+_MITSUBA_LINE = re.compile(r"(?:(?:Error while loading|At) string )?\(line (\d+), col \d+\)")
 
 
 def name_lines(reason: str, copy: str, source: str, source_lines: Sequence[int]) -> str:
