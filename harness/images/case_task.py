@@ -229,8 +229,8 @@ def run_image_case(case: ImageCase, ours: Engine, ref: ReferenceImage, s: int, a
     source = ref.describe()
 
     def failed(reason: str, mine: RenderResult | None = None, output: str = "") -> ImageResult:
-        return ImageResult(case, mine, {}, {}, source, s, None, alpha, run_seed, reason, tested=ours.name,
-                           error_output=output)
+        return ImageResult(case, mine, {}, {}, source, s, None, alpha, run_seed, one_line(in_user_terms(reason, case)),
+                           tested=ours.name, error_output=output)
 
     if case.problem:
         return failed(case.problem)
