@@ -148,3 +148,21 @@ def test_mitsubas_error_on_a_sensorless_file_names_the_files_line(tmp_path):
     path = tmp_path / "s.xml"
     with pytest.raises(SceneXmlError, match=rf"in {path}:4: .*<foo>"):
         prepare_mitsuba_file(text, path, 48, lambda t: scene_bounds(t, "scalar_rgb"))
+
+
+@pytest.mark.mitsuba
+def test_both_engines_render_a_sensorless_file_from_the_same_camera(tmp_path):
+    from harness.engines.mitsuba import MitsubaEngine
+    from harness.engines.ours import OurEngine
+    from harness.images.case_task import CaseJob, run_case_job
+    from harness.images.suite import select_cases
+    from harness.images.user_scenes import prepare_scenes
+
+    (tmp_path / "in").mkdir()
+    (tmp_path / "in" / "bare.xml").write_text(SENSORLESS)
+    (scene,) = prepare_scenes([tmp_path / "in"], tmp_path / "cache", 32)
+    assert not scene.problem and len(scene.notes) == 1
+    (case,) = select_cases(["bare:normals"], user=[scene])
+    result, _ = run_case_job(CaseJob(case, 1, 0.01, 0, False, OurEngine(), MitsubaEngine()))
+    assert result.error is None and result.passed, result.error
+    assert result.ours.mean.shape == (24, 32, 3) and (abs(result.ours.mean).sum(axis=-1) > 0).mean() > 0.1
