@@ -8,6 +8,7 @@ from pathlib import Path
 from rich.markup import escape
 
 from harness.commands.output import console, err, task_progress
+from harness.images.foreign_text import bounded
 from harness.verdict import Tally
 
 
@@ -48,13 +49,42 @@ def _budgeted(cases, ours, reference, target: float, seed: int):
         if case.problem:
             planned.append(case)
             continue
-        budget = plan_budget(case, ours, reference, target, alpha, case_seed(case, seed) + 1)
+        try:
+            budget = plan_budget(case, ours, reference, target, alpha, case_seed(case, seed) + 1)
+        except Exception as e:  # the case itself fails in the run, with its own line
+            err.print(f"{escape(case.key)}: no budget planned ({escape(bounded(f'{type(e).__name__}: {e}'))}); "
+                      "it keeps its default", soft_wrap=True, highlight=False)
+            planned.append(case)
+            continue
         err.print(escape(budget.line), soft_wrap=True)
         budgets.append(budget)
         planned.append(dataclasses.replace(case, spp=budget.spp) if budget.spp else case)
     err.print(f"--detect-bias {target:.3g}: about {sum(b.seconds for b in budgets):.1f} s of rendering for "
               f"{len(budgets)} case(s); where a target cannot be reached the case keeps its default budget")
     return planned, budgets
+
+
+def _print_message(message: str) -> None:
+    """A case's message: it may quote an engine's error, so bounded and not highlighted (rich's highlighter
+    takes minutes over a megabyte of one word)."""
+    err.print(f"[yellow]{escape(bounded(message))}[/]", soft_wrap=True, highlight=False)
+
+
+#: The run's log of errors no stage foresaw: each failed its case with one line, its traceback is here.
+ERRORS_LOG = "errors.log"
+
+
+def _log_tracebacks(results, run_dir: Path) -> None:
+    """Every traceback of the run's cases (an unforeseen error in a case or in preparing its scene) into the
+    run's ERRORS_LOG, and one line saying where."""
+    from harness.results import write_atomic
+
+    logged = [(r.case.key, r.error, r.traceback or r.case.traceback) for r in results
+              if r.traceback or r.case.traceback]
+    if logged:
+        write_atomic(run_dir / ERRORS_LOG, "".join(f"== {key}: {error}\n{trace}\n" for key, error, trace in logged))
+        err.print(f"[yellow]{len(logged)} case(s) failed with an error the harness did not foresee: "
+                  f"tracebacks in {escape(str(run_dir / ERRORS_LOG))}[/]", soft_wrap=True)
 
 
 def engine_meta(role: str, engine) -> dict[str, str]:
@@ -91,7 +121,7 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     start = time.perf_counter()
     with task_progress("images", executor) as show:
         results, alpha = run_images(cases, ours, reference, args.seed, on_status=show,
-                                    on_message=lambda m: err.print(f"[yellow]{escape(m)}[/]", soft_wrap=True),
+                                    on_message=_print_message,
                                     executor=executor, reference_image=reference_image(args))
         where = executor.description
     seconds = time.perf_counter() - start
@@ -114,6 +144,7 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     if phases:
         meta["phases before the images"] = " · ".join(f"{name} {s:.1f} s" for name, s in phases.items())
     payload = write_image_outputs(run_dir, results, alpha, warps, meta, baseline, invariance, run)
+    _log_tracebacks(results, run_dir)
     if real or not_applicable:
         payload["real_scenes"] = real_scenes_json(results, not_applicable)
     _print_regression(payload)
@@ -126,6 +157,6 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
         console.print(f"[yellow]INCONCLUSIVE[/] {r.case.key} — {escape(r.inconclusive)}", soft_wrap=True)
     for r in (r for r in results if r.failed):
         why = r.why
-        console.print(f"[red]FAIL[/] {r.case.key}{' — ' + escape(why) if why else ''}: "
-                      f"{escape(reproduce_command(r, run))}", soft_wrap=True)
+        console.print(f"[red]FAIL[/] {escape(r.case.key)}{' — ' + escape(bounded(why)) if why else ''}: "
+                      f"{escape(reproduce_command(r, run))}", soft_wrap=True, highlight=False)
     return tally, payload

@@ -55,7 +55,7 @@ def _case_selection(args: argparse.Namespace) -> dict:
         if width < 1:
             raise ValueError(f"--resolution {width}: expected a width of at least 1 pixel")
         # Against a reference image the scene renders at the image's size.
-        user = prepare_scenes(args.scene, args.out / ".scenes", image.size[0] if image else width)
+        user = prepare_scenes(args.scene, args.out / ".scenes", image.size[0] if image else width, skip=(args.out,))
         for note in (n for u in user for n in u.notes):
             err.print(f"[yellow]note:[/] {escape(note)}", soft_wrap=True)
     return {"integrators": tested_integrators(args), "user": user,

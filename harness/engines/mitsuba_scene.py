@@ -14,6 +14,7 @@ from pathlib import Path
 from harness.engines import mitsuba_direct
 from harness.engines.scene_paths import absolute_paths
 from harness.engines.written_scene import file_hide_emitters
+from harness.engines.xml_lines import remove_keeping_lines, replace_keeping_lines
 from harness.integrators import entry
 
 
@@ -32,9 +33,6 @@ def mitsuba_xml(text: str, integrator: str, sampler: str | None = None, tight: b
     root = ET.fromstring(text)
     hide = file_hide_emitters(root)
     old = [e for e in root if e.tag == "integrator"]
-    index = list(root).index(old[0]) if old else len(root)
-    for e in old:
-        root.remove(e)
     plugin = TIGHT_PLUGINS.get(mapping.plugin, mapping.plugin) if tight else mapping.plugin
     new = ET.Element("integrator", type=plugin)
     for tag, name, value in mapping.properties:
@@ -42,13 +40,19 @@ def mitsuba_xml(text: str, integrator: str, sampler: str | None = None, tight: b
         ET.SubElement(new, tag, name=name, value=hide if name == "hide_emitters" and hide is not None else value)
     if mapping.add_environment and not any(e.tag == "emitter" and e.get("type") == "constant" for e in root):
         root.append(ET.Element("emitter", type="constant"))
-    root.insert(index, new)
+    # Every edit keeps the lines of `text`: Mitsuba's errors name the line of the file it was given.
+    if old:
+        replace_keeping_lines(root, old[0], new)
+        for e in old[1:]:
+            remove_keeping_lines(root, e)
+    else:
+        root.append(new)
     for e in [e for e in root if e.tag == "emitter" and e.get("type") in mapping.drop_emitters]:
-        root.remove(e)
+        remove_keeping_lines(root, e)
     if mapping.drop_area_emitters:
         for shape in root.iter("shape"):
             for e in [e for e in shape if e.tag == "emitter" and e.get("type") == "area"]:
-                shape.remove(e)
+                remove_keeping_lines(shape, e)
     for element in root.iter("sampler"):
         kind = sampler or element.get("type")
         element.set("type", MITSUBA_SAMPLER.get(kind, kind))

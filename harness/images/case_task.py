@@ -3,6 +3,7 @@ files sent by content. What comes back is the case's result without our batches 
 report needs only their means), and the messages the case printed."""
 from __future__ import annotations
 
+import traceback
 from collections.abc import Sequence
 from concurrent.futures import Future
 from dataclasses import dataclass, replace
@@ -15,6 +16,8 @@ from harness.comparison.mismatch import diagnose
 from harness.distributed.bundle import Bundle, bundle_files
 from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine, RenderFailed, RenderResult
+from harness.images.copy_lines import in_user_terms
+from harness.images.foreign_text import one_line
 from harness.images.oracle import decide
 from harness.images.reference_image import ReferenceImage, against_image, fit_verdict
 from harness.images.render_ahead import RenderAhead, closed_form_args, render_args
@@ -85,7 +88,17 @@ def scene_bundle(case: ImageCase, engines: Sequence[Engine] = ()) -> Bundle:
 
 
 def run_case_job(job: CaseJob, bundle: Bundle | None = None):
-    """(ImageResult, messages). With a bundle, the case reads the bundle's copy of its files."""
+    """(ImageResult, messages). With a bundle, the case reads the bundle's copy of its files. An exception no
+    stage foresaw fails the case with one line (its traceback in the result, for the run's log)."""
+    try:
+        return _run_case_job(job, bundle)
+    except Exception as e:
+        reason = one_line(f"internal error: {type(e).__name__}: {in_user_terms(str(e), job.case)}")
+        return ImageResult(job.case, None, {}, {}, "none", job.seed, None, job.alpha, job.run_seed, reason,
+                           tested=job.test.name, traceback=traceback.format_exc()), []
+
+
+def _run_case_job(job: CaseJob, bundle: Bundle | None = None):
     case = on_files(job.case, bundle)
     messages: list[str] = []
     if job.reference_image is not None:
@@ -118,6 +131,14 @@ def _reason(e: Exception) -> str:
     return f"{type(e).__name__}: {text[0]}" if text else type(e).__name__
 
 
+class _StageFailed(Exception):
+    """A render of the case that failed: the line its result gives, and what the engine printed last."""
+
+    def __init__(self, reason: str, output: str = "") -> None:
+        super().__init__(reason)
+        self.reason, self.output = reason, output
+
+
 def _output(e: Exception) -> str:
     return e.output if isinstance(e, RenderFailed) else ""
 
@@ -134,28 +155,42 @@ def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: 
     references: dict[str, Reference] = {}
 
     def failed(reason: str, mine: RenderResult | None = None, output: str = "") -> ImageResult:
-        if case.source and str(case.path) in reason:  # a --scene file: the engines read its prepared copy
-            reason = f"{reason} (the prepared copy of {case.source})"
+        # A --scene file: the engines read its prepared copy, whose lines the user does not know.
+        reason = one_line(in_user_terms(reason, case))
         return ImageResult(case, mine, references, {}, source, s, None, alpha, run_seed, reason, tested=ours.name,
                            error_output=output)
 
-    if case.problem:  # a --scene file no engine can be given (a Nori file without a translation)
+    if case.problem:  # a --scene file no engine can be given (what its preparation refused)
         return failed(case.problem)
+
+    def tested() -> RenderResult:
+        try:
+            return mine_ahead.result() if mine_ahead is not None else ours.render(*render_args(case, s, params))
+        except Exception as e:
+            raise _StageFailed(f"{ours.name} render: {_reason(e)}", _output(e)) from e
+
+    mine = None
     try:
-        reference, source = load_reference(case, reference_engine)
+        try:
+            reference, source = load_reference(case, reference_engine)
+        except Exception as e:
+            raise _StageFailed(f"{reference_engine.name.capitalize()} reference: {_reason(e)}", _output(e)) from e
         if reference is None:
+            # The engine under test renders first: a file it cannot load costs no reference render.
+            mine = tested()
             if on_message:
                 on_message(f"{case.key}: {source}; rendering it now" +
                            ("" if case.group == USER else " (`make references` stores it)"))
-            reference = render_reference(case, reference_engine)
+            try:
+                reference = render_reference(case, reference_engine)
+            except Exception as e:
+                raise _StageFailed(f"{reference_engine.name.capitalize()} reference: {_reason(e)}",
+                                   _output(e)) from e
             source = f"rendered now ({source})"
-    except Exception as e:
-        return failed(f"{reference_engine.name.capitalize()} reference: {_reason(e)}", output=_output(e))
-    references[reference_engine.name] = reference
-    try:
-        mine = mine_ahead.result() if mine_ahead is not None else ours.render(*render_args(case, s, params))
-    except RenderFailed as e:
-        return failed(f"{ours.name} render: {e.reason}", output=e.output)
+        references[reference_engine.name] = reference
+        mine = mine or tested()
+    except _StageFailed as e:
+        return failed(e.reason, mine, e.output)
     if analytic is not None:
         try:
             exact = exact_ahead.result() if exact_ahead is not None else analytic.render(
@@ -194,8 +229,8 @@ def run_image_case(case: ImageCase, ours: Engine, ref: ReferenceImage, s: int, a
     source = ref.describe()
 
     def failed(reason: str, mine: RenderResult | None = None, output: str = "") -> ImageResult:
-        return ImageResult(case, mine, {}, {}, source, s, None, alpha, run_seed, reason, tested=ours.name,
-                           error_output=output)
+        return ImageResult(case, mine, {}, {}, source, s, None, alpha, run_seed, one_line(in_user_terms(reason, case)),
+                           tested=ours.name, error_output=output)
 
     if case.problem:
         return failed(case.problem)

@@ -51,6 +51,8 @@ class ImageResult:
     reference_problem: str | None = None
     #: For an INCONCLUSIVE case: the samples per pixel that would decide it, or why none would (one line).
     decisive_budget: str = ""
+    #: Where an exception no stage foresaw arose (the case failed with one line); written to the run's log.
+    traceback: str = ""
 
     @property
     def _deciding(self) -> list[Comparison]:

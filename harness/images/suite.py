@@ -97,6 +97,11 @@ class ImageCase:
     spp: int | None = field(default=None, compare=False)
     #: The dialect of the user's scene file as given: "mitsuba", or "nori" (a reference image of it is Nori's).
     dialect: str = field(default="mitsuba", compare=False)
+    #: Per line of a user's prepared copy, the line of the file as given it came from (0: none; empty: none
+    #: known): an engine's error then names the user's line (harness/images/copy_lines.py).
+    source_lines: tuple[int, ...] = field(default=(), compare=False, repr=False)
+    #: Where an unforeseen error in preparing the copy arose (the case's `problem`), for the run's log.
+    traceback: str = field(default="", compare=False, repr=False)
 
     @property
     def test_spp(self) -> int:
@@ -133,7 +138,7 @@ def scene_cases(user: Sequence[UserScene] | None = None, with_suite: bool = Fals
             raise ValueError(f"--scene {u.source}: the suite has a scene called {u.name} too; rename the file "
                              "or run it without --with-suite")
     return suite + [ImageCase(u.name, "", USER, u.prepared.parent, str(u.source), u.problem, u.notes,
-                              dialect=u.dialect)
+                              dialect=u.dialect, source_lines=u.source_lines, traceback=u.traceback)
                    for u in user or ()]
 
 
@@ -146,7 +151,8 @@ def _all_cases(integrators: Sequence[str] | None = None, user: Sequence[UserScen
     for scene in scene_cases(user, with_suite):
         for name in suite_integrators(integrators):
             case = replace(scene, integrator=name)
-            reason = entry(name).not_applicable(case.path)
+            # A scene that cannot be rendered fails its cases with why; whether they apply is moot.
+            reason = "" if case.problem else entry(name).not_applicable(case.path)
             (not_applicable.append((case, reason)) if reason else runnable.append(case))
     return runnable, not_applicable
 

@@ -1,43 +1,63 @@
-"""Scene files given with --scene (a file or a folder of them, anywhere, read-only is fine): each is copied,
-prepared, into the run's output folder and rendered from there, so nothing is ever written beside it.
+"""Scene files given with --scene (files, or folders searched with their subfolders): each is copied, prepared,
+into the run's output folder and rendered from there, so nothing is ever written beside it.
 
-The copy differs from the file only in what every case of the suite sets: its <include>s inlined, its <path>s
-followed and file names made absolute (its meshes are read where they are; harness/engines/scene_paths.py),
-and the film's size as the `res` parameter, declared as a <default> of the resolution the run asks for (the
-suite's, --resolution, or a reference image's width; the aspect kept), which every render of the copy keeps.
-A file in Nori's dialect is first translated into Mitsuba 3's (harness/engines/nori); one that cannot be is
-kept as it is, and its cases fail with the translation's one line.
+The copy differs from the file only in what every case of the suite sets (harness/images/scene_copy.py): its
+<include>s inlined, its <path>s followed and file names made absolute (harness/engines/scene_paths.py), the
+film's size as the `res` parameter of the resolution the run asks for (the suite's, --resolution, or a
+reference image's width; the aspect kept), a camera for a file without one. A file in Nori's dialect is first
+translated into Mitsuba 3's (harness/engines/nori). What cannot be prepared is the scene's `problem`: the file
+is kept as it is, and its cases fail with that one line.
 """
 from __future__ import annotations
 
 import hashlib
+import traceback
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
 
-from harness.engines.nori.lined_xml import NoriSceneError
+from harness.engines.mitsuba_bounds import scene_bounds
+from harness.engines.nori.lined_xml import SceneXmlError, parse_lined
 from harness.engines.nori.to_mitsuba import is_nori, nori_to_mitsuba
-from harness.engines.scene_paths import SceneFileError, absolute_paths, anchor_paths
-from harness.engines.written_scene import film_size
+from harness.engines.scene_paths import SceneFileError
+from harness.images.foreign_text import one_line
+from harness.images.scene_copy import Prepared, prepare_mitsuba_file
 
 
 @dataclass(frozen=True)
 class UserScene:
-    name: str        # the file's stem: the scene's name in reports and in --only
+    name: str        # the file's stem (scene_names): the scene's name in reports and in --only
     source: Path     # the file as given
     prepared: Path   # the copy that is rendered
     problem: str = ""  # why the file cannot be rendered at all (a Nori file without a translation), or ""
     notes: tuple[str, ...] = ()  # what its translation left out (only the file's own integrator would use it)
     dialect: str = "mitsuba"  # "nori" for a file in Nori's dialect
+    #: Per line of the copy, the line of the file as given it came from (0: none; empty: not known).
+    source_lines: tuple[int, ...] = ()
+    traceback: str = ""  # where an unforeseen error in preparing the copy arose, for the run's log
 
 
-def scene_files(paths: list[Path]) -> list[Path]:
-    """Every scene file `paths` name: files as they are, folders as their *.xml files. ValueError naming a path
-    that is neither, a folder without scene files, or two scenes of one name."""
+def _scene_files_under(folder: Path, skip: tuple[Path, ...]) -> list[Path]:
+    """The *.xml files under `folder` and its subfolders, hidden files and folders and `skip` left out."""
+    found = []
+    for path in sorted(folder.iterdir()):
+        if path.name.startswith(".") or any(path.resolve() == s.resolve() for s in skip):
+            continue
+        if path.is_dir():
+            found += _scene_files_under(path, skip)
+        elif path.suffix == ".xml" and path.is_file():
+            found.append(path)
+    return found
+
+
+def scene_files(paths: list[Path], skip: tuple[Path, ...] = ()) -> list[Path]:
+    """Every scene file `paths` name: files as they are, folders as the *.xml files in them and their
+    subfolders (not hidden ones, nor `skip`: the run's own output folder). ValueError naming a path that is
+    neither or a folder without scene files."""
     found: list[Path] = []
     for path in paths:
         if path.is_dir():
-            files = sorted(p for p in path.glob("*.xml") if not p.name.startswith("."))
+            files = _scene_files_under(path, skip)
             if not files:
                 raise ValueError(f"--scene {path}: a folder without .xml scene files")
             found += files
@@ -45,92 +65,82 @@ def scene_files(paths: list[Path]) -> list[Path]:
             found.append(path)
         else:
             raise ValueError(f"--scene {path}: no such file or folder")
-    names: dict[str, Path] = {}
+    unique: dict[Path, Path] = {}
     for path in found:
-        if path.stem in names and names[path.stem].resolve() != path.resolve():
-            raise ValueError(f"--scene: two scenes are called {path.stem} ({names[path.stem]} and {path}): "
-                             "give one of them")
-        names[path.stem] = path
-    return list(names.values())
+        unique.setdefault(path.resolve(), path)
+    return list(unique.values())
 
 
-def _fill_size_parameters(root: ET.Element, film: ET.Element) -> None:
-    """A film width or height given as a $parameter takes its <default> (in place): the suite sets the size."""
-    defaults = {e.get("name"): e.get("value") for e in root.iter("default")}
-    for e in film:
-        value = e.get("value", "")
-        if e.get("name") in ("width", "height") and value.startswith("$") and value[1:] in defaults:
-            e.set("value", defaults[value[1:]])
+def scene_names(files: list[Path]) -> list[str]:
+    """Each file's scene name: its stem, or where stems are shared (scene.xml in every folder of a corpus), the
+    stem after as many of its folders as tell it apart ("kitchen-scene"). ValueError where none do."""
+    names = []
+    for path in files:
+        for k in range(len(path.parts)):
+            name = "-".join([*path.parts[-1 - k:-1], path.stem])
+            if sum("-".join([*p.parts[-1 - k:-1], p.stem]) == name for p in files) == 1:
+                break
+        else:
+            raise ValueError(f"--scene: two scenes are called {path.stem} and nothing tells {path} apart")
+        names.append(name)
+    return names
 
 
 def _written(root: ET.Element) -> str:
-    """The prepared copy's text, one element a line: an engine's error then names a line that means something
-    in the copy (which the case's error names beside the file as given)."""
+    """The prepared copy's text, one element a line."""
     ET.indent(root)
     return ET.tostring(root, encoding="unicode")
 
 
-def _prepared_text(path: Path, resolution: int, notes: list[str] | None = None) -> str:
-    """The file's text as the suite renders it (see the module docstring); unchanged if it is not XML, so
-    that each engine reports the error as it would on the file itself. NoriSceneError for a Nori file that
-    has no translation; what a Nori file's translation leaves out is a line in `notes`."""
+def _prepared(path: Path, resolution: int, notes: list[str]) -> Prepared:
+    """The file as the suite renders it (see the module docstring). SceneXmlError (NoriSceneError for a Nori
+    file without a translation) naming the file and line of what cannot be prepared; what a Nori file's
+    translation leaves out is a line in `notes`."""
     text = path.read_text(errors="replace")
-    try:
-        root = ET.fromstring(text)
-    except ET.ParseError:
-        return text
-    if is_nori(root):
-        root = nori_to_mitsuba(text, path, notes)
-        text = _written(root)
-    try:
-        absolute_paths(root, path)
-    except SceneFileError:  # a <path> or <include> that leads nowhere: each engine's case says where
-        root = ET.fromstring(text)
-        anchor_paths(root, path.resolve().parent)
-        return _written(root)
-    film = next(root.iter("film"), None)
-    if film is not None:
-        _fill_size_parameters(root, film)
-        try:
-            width, height = film_size(root)
-        except ValueError:  # a size given as a $parameter: left as the file has it
-            return _written(root)
-        for e in [e for e in film if e.get("name") in ("width", "height")]:
-            film.remove(e)
-        ET.SubElement(film, "integer", name="width", value="$res")
-        ET.SubElement(film, "integer", name="height",
-                      value="$res" if width == height else str(max(1, round(resolution * height / width))))
-        for e in [e for e in root if e.tag == "default" and e.get("name") == "res"]:
-            root.remove(e)  # the file's own default would give another size
-        root.insert(0, ET.Element("default", name="res", value=str(resolution)))
-    return _written(root)
+    if not _is_nori_text(text):
+        return prepare_mitsuba_file(text, path, resolution, scene_bounds, notes=notes)
+    # Its translation's lines are not the file's: its copy keeps no map.
+    translated = _written(nori_to_mitsuba(text, path, notes))
+    return Prepared(prepare_mitsuba_file(translated, path, resolution, scene_bounds, lines=False, notes=notes).text)
 
 
-def _is_nori_file(path: Path) -> bool:
+def _is_nori_text(text: str) -> bool:
     try:
-        return is_nori(ET.parse(path).getroot())
-    except (ET.ParseError, OSError):
+        return is_nori(parse_lined(text, Path("-")).root)
+    except SceneXmlError:
         return False
 
 
-def prepare_scenes(paths: list[Path], cache: Path, resolution: int) -> list[UserScene]:
-    """The scenes `paths` name, each prepared into cache/<digest>/<name>.xml (written once per content)."""
+def _prepare_one(path: Path, name: str, cache: Path, resolution: int) -> UserScene:
+    """One scene file prepared; what cannot be prepared is the scene's problem (its cases fail with it)."""
+    problem, notes, trace = "", [], ""
+    dialect = "nori" if _is_nori_text(path.read_text(errors="replace")) else "mitsuba"
+    try:
+        prepared = _prepared(path, resolution, notes)
+    except (SceneXmlError, SceneFileError) as e:
+        prepared, problem = Prepared(path.read_text(errors="replace")), one_line(str(e))
+    except Exception as e:  # an input nobody foresaw costs its scene, not the run
+        prepared = Prepared(path.read_text(errors="replace"))
+        problem = one_line(f"{path}: its copy could not be prepared: {type(e).__name__}: {e}")
+        trace = traceback.format_exc()
+    digest = hashlib.sha256(f"{path.resolve()}\0{prepared.text}".encode()).hexdigest()[:16]
+    copy = cache / digest / f"{name}.xml"
+    if not copy.exists():
+        copy.parent.mkdir(parents=True, exist_ok=True)
+        tmp = copy.with_suffix(".tmp")
+        tmp.write_text(prepared.text)
+        tmp.replace(copy)
+    return UserScene(name, path, copy, problem, tuple(notes), dialect, tuple(prepared.source_lines), trace)
+
+
+def prepare_scenes(paths: list[Path], cache: Path, resolution: int, skip: tuple[Path, ...] = ()) -> list[UserScene]:
+    """The scenes `paths` name (folders searched as scene_files does, `skip` left out), each prepared into
+    cache/<digest>/<name>.xml (written once per content). ValueError for a file that cannot be read."""
     scenes = []
-    for path in scene_files(paths):
-        problem, notes = "", []
-        dialect = "nori" if _is_nori_file(path) else "mitsuba"
+    files = scene_files(paths, skip)
+    for path, name in zip(files, scene_names(files)):
         try:
-            text = _prepared_text(path, resolution, notes)
+            scenes.append(_prepare_one(path, name, cache, resolution))
         except OSError as e:
             raise ValueError(f"--scene {path}: cannot read it ({e.strerror or e})") from None
-        except NoriSceneError as e:
-            text, problem = path.read_text(errors="replace"), str(e)
-        digest = hashlib.sha256(f"{path.resolve()}\0{text}".encode()).hexdigest()[:16]
-        prepared = cache / digest / f"{path.stem}.xml"
-        if not prepared.exists():
-            prepared.parent.mkdir(parents=True, exist_ok=True)
-            tmp = prepared.with_suffix(".tmp")
-            tmp.write_text(text)
-            tmp.replace(prepared)
-        scenes.append(UserScene(path.stem, path, prepared, problem, tuple(notes), dialect))
     return scenes

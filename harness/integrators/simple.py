@@ -25,9 +25,10 @@ ENTRY = IntegratorEntry(
     name="simple",
     our_spp=32,
     reference_spp=256,
-    # One light sample, no BSDF sample: Mitsuba's direct integrator as ours; it sees point lights only.
+    # One light sample, no BSDF sample: Mitsuba's direct integrator as ours; it sees point lights only (our
+    # loader skips area emitters in shapes under simple, so Mitsuba's copy drops them too).
     mitsuba=MitsubaMapping("direct", (("integer", "emitter_samples", "1"), ("integer", "bsdf_samples", "0")),
-                           drop_emitters=("constant", *UNUSED_EMITTERS)),
+                           drop_emitters=("constant", *UNUSED_EMITTERS), drop_area_emitters=True),
     analytic=AnalyticForm("rho/pi * I * max(0, cos) / r^2 per point light, floor points behind a resting "
                           "sphere dark", _point_lights, scenes=("plane", "sphere_floor")),
     requirements=(("a point light", has_point_light),),

@@ -67,7 +67,8 @@ def _picture(r: ImageResult, name: str, comparison: Comparison) -> str:
             f'{base64.b64encode(png).decode()}">')
 
 
-def _entry(r: ImageResult, run: dict | None = None) -> str:
+def entry_html(r: ImageResult, run: dict | None = None) -> str:
+    """One case's section of the report."""
     parts = [f'<h3 id="{_esc(r.case.key)}">{_esc(r.case.scene)} — {_esc(r.case.integrator)}: {_verdict(r.verdict)}</h3>']
     if r.inconclusive:
         parts.append(f'<p class="warn">{_esc(r.inconclusive)}</p>')
@@ -171,7 +172,7 @@ def report_html(results: list[ImageResult], alpha: float, warps: dict | None, me
         n_ok = sum(r.passed for r in mine)
         links = " ".join(f'<a href="#{_esc(r.case.key)}">{_esc(r.case.scene)}</a> {_verdict(r.verdict)}' for r in mine)
         sections.append(f"<h2>{_esc(integrator)}: {n_ok} of {len(mine)} scenes pass</h2><p>{links}</p>"
-                        + "".join(_entry(r, run) for r in mine))
+                        + "".join(entry_html(r, run) for r in mine))
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>mcval report</title><style>{CSS}</style></head>
 <body><h1>mcval validation report: {_verdict(failed == 0 and (warps is None or warps["pass"])

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from harness.engines.mitsuba_scene import load_scene
+from harness.engines.mitsuba_scene import load_scene, mitsuba_xml
 from harness.images.suite import INTEGRATORS
 
 SCENES = Path(__file__).resolve().parents[2] / "scenes"
@@ -59,3 +59,16 @@ def test_emitters_no_integrator_uses_are_removed_as_our_loader_skips_them():
     kept = {i: [e.get("type") for e in ET.fromstring(mitsuba_xml(text, i)).findall("emitter")]
             for i in ("simple", "ao", "normals")}
     assert kept == {"simple": ["point"], "ao": ["constant"], "normals": []}
+
+
+@pytest.mark.parametrize("integrator", ["simple", "ao", "normals"])
+def test_area_emitters_in_shapes_leave_mitsubas_copy_where_our_loader_skips_them(integrator):
+    """Ours skips an area emitter inside a shape under each of these integrators (point lights only, or none):
+    Mitsuba's copy drops it too, and keeps its shape."""
+    import xml.etree.ElementTree as ET
+
+    text = (SCENES / "plane_point.xml").read_text().replace(
+        '<ref id="floor"/>', '<ref id="floor"/><emitter type="area"><rgb name="radiance" value="3"/></emitter>')
+    root = ET.fromstring(mitsuba_xml(text, integrator))
+    assert not [e for shape in root.iter("shape") for e in shape if e.tag == "emitter"]
+    assert len(list(root.iter("shape"))) == 1

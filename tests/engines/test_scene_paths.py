@@ -59,3 +59,32 @@ def test_both_engines_render_a_scene_that_includes_its_camera(tmp_path, ours, mi
     theirs = mitsuba.render(str(scene.prepared), "normals", 1, 1, 0, {"res": "16"})
     assert mine.batches.shape == theirs.batches.shape == (1, 16, 16, 3)
     assert (abs(mine.batches).sum(axis=-1) > 0).mean() > 0.2  # the ball and the rectangle are in view
+
+
+def test_a_path_in_an_included_file_is_found_as_mitsuba_finds_it(tmp_path):
+    """Mitsuba resolves <path> against the saying file's folder, else against its resolver's folders (the
+    main file's, and those named before): Mitsuba's documentation scenes include files that say the main
+    file's <path value="../../common"/> again from one folder deeper."""
+    (tmp_path / "common" / "meshes").mkdir(parents=True)
+    (tmp_path / "docs" / "scenes" / "include").mkdir(parents=True)
+    shutil.copy(SCENES_DIR / "meshes" / "sphere.ply", tmp_path / "common" / "meshes" / "ball.ply")
+    (tmp_path / "docs" / "scenes" / "include" / "shapes.xml").write_text(
+        '<scene version="3.0.0"><path value="../../common"/>'
+        '<shape type="ply"><string name="filename" value="meshes/ball.ply"/></shape></scene>')
+    main = tmp_path / "docs" / "scenes" / "main.xml"
+    main.write_text('<scene version="3.0.0"><include filename="include/shapes.xml"/></scene>')
+    root = ET.parse(main).getroot()
+    absolute_paths(root, main)
+    (mesh,) = [e.get("value") for e in root.iter("string") if e.get("name") == "filename"]
+    assert mesh == str((tmp_path / "common" / "meshes" / "ball.ply").resolve())
+
+
+def test_what_leads_nowhere_names_its_line_when_the_lines_are_known(tmp_path):
+    from harness.engines.nori.lined_xml import parse_lined
+
+    main = tmp_path / "main.xml"
+    text = '<scene version="3.0.0">\n<shape type="rectangle"/>\n\n<include filename="none.xml"/></scene>'
+    main.write_text(text)
+    doc = parse_lined(text, main)
+    with pytest.raises(SceneFileError, match=rf"^{main}:4: <include filename=\"none.xml\">: not found in"):
+        absolute_paths(doc.root, main, doc.lines)

@@ -1,12 +1,13 @@
 """Scenes of one's own (--scene): found in files and folders, prepared into the output folder (absolute mesh
 paths, the suite's resolution), and bad paths refused in one line."""
+import re
 import shutil
 import xml.etree.ElementTree as ET
 
 import pytest
 
 from harness.images.suite import SCENES_DIR, USER, select_cases
-from harness.images.user_scenes import prepare_scenes, scene_files
+from harness.images.user_scenes import prepare_scenes, scene_files, scene_names
 from harness.invariance.suite import select
 
 
@@ -14,6 +15,9 @@ def _scene(folder, name="ball", source="sphere_plane.xml"):
     folder.mkdir(parents=True, exist_ok=True)
     path = folder / f"{name}.xml"
     shutil.copy(SCENES_DIR / source, path)
+    for mesh in re.findall(r'name="filename" value="([^"]+)"', path.read_text()):  # a missing mesh is refused
+        (folder / mesh).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(SCENES_DIR / mesh, folder / mesh)
     return path
 
 
@@ -66,8 +70,15 @@ def test_bad_paths_are_one_line(tmp_path):
     (tmp_path / "empty").mkdir()
     with pytest.raises(ValueError, match="a folder without .xml scene files"):
         scene_files([tmp_path / "empty"])
-    with pytest.raises(ValueError, match="two scenes are called ball"):
-        scene_files([_scene(tmp_path / "a"), _scene(tmp_path / "b")])
+
+
+def test_scenes_of_one_name_are_told_apart_by_their_folders(tmp_path):
+    files = [_scene(tmp_path / "x" / "a"), _scene(tmp_path / "y" / "a"), _scene(tmp_path / "b"),
+             _scene(tmp_path / "c", "other")]
+    assert scene_names(files) == ["x-a-ball", "y-a-ball", "b-ball", "other"]
+    scenes = prepare_scenes([tmp_path / "x", tmp_path / "y", tmp_path / "b"], tmp_path / "cache", 16)
+    assert sorted(s.name for s in scenes) == ["b-ball", "x-a-ball", "y-a-ball"]
+    assert all(s.prepared.name == f"{s.name}.xml" for s in scenes)
 
 
 def test_user_scenes_replace_the_suite_or_join_it(tmp_path):
@@ -124,3 +135,13 @@ def test_a_nori_file_is_prepared_as_mitsubas_and_one_without_a_translation_carri
     assert ImageResult(noted_case, None, {}, {}, "none", 0, error="x").to_json()["scene_notes"] == list(noted.notes)
     (case,) = [c for c in select_cases(["bad:normals"], user=[bad, good])]
     assert case.problem == bad.problem
+
+
+def test_folders_are_searched_recursively_but_not_hidden_ones_nor_the_runs_output(tmp_path):
+    _scene(tmp_path / "in", "top")
+    _scene(tmp_path / "in" / "a" / "b", "nested")
+    _scene(tmp_path / "in" / ".git", "hidden")
+    _scene(tmp_path / "in" / "results" / ".scenes" / "x", "copy")
+    _scene(tmp_path / "in" / "results" / "run", "output")
+    found = scene_files([tmp_path / "in"], skip=(tmp_path / "in" / "results",))
+    assert sorted(p.stem for p in found) == ["nested", "top"]

@@ -8,7 +8,16 @@ from pathlib import Path
 from xml.parsers import expat
 
 
-class NoriSceneError(ValueError):
+#: Elements nested deeper than this are refused: Mitsuba's and Nori's scenes nest a few levels (a BSDF in a
+#: wrapper in a shape), and ElementTree writes and indents a tree recursively.
+MAX_DEPTH = 100
+
+
+class SceneXmlError(ValueError):
+    """A scene file that cannot be read or prepared, as one line: "FILE:LINE: <element>: why"."""
+
+
+class NoriSceneError(SceneXmlError):
     """A Nori scene file that cannot be translated, as one line: "FILE:LINE: <element>: why"."""
 
 
@@ -36,16 +45,28 @@ class LinedXml:
 
 
 def parse_lined(text: str, path: Path) -> LinedXml:
-    """`text` (the file at `path`) parsed; NoriSceneError with the line of the first syntax error."""
+    """`text` (the file at `path`) parsed; NoriSceneError with the line of the first syntax error, or of the
+    first element nested deeper than MAX_DEPTH."""
     builder = ET.TreeBuilder()
     parser = expat.ParserCreate()
     lines: dict[int, int] = {}
+    depth = 0
 
     def start(tag: str, attrs: dict[str, str]) -> None:
+        nonlocal depth
+        depth += 1
+        if depth > MAX_DEPTH:
+            raise NoriSceneError(f"{path}:{parser.CurrentLineNumber}: <{tag[:40]}>: elements nested more than "
+                                 f"{MAX_DEPTH} deep (no scene nests so far)")
         lines[id(builder.start(tag, attrs))] = parser.CurrentLineNumber
 
+    def end(tag: str) -> None:
+        nonlocal depth
+        depth -= 1
+        builder.end(tag)
+
     parser.StartElementHandler = start
-    parser.EndElementHandler = builder.end
+    parser.EndElementHandler = end
     parser.CharacterDataHandler = builder.data
     try:
         parser.Parse(text, True)

@@ -20,9 +20,11 @@ SCENE_CHILDREN = ("integrator", "camera", "sampler", "mesh", "emitter")
 
 
 def is_nori(root: ET.Element) -> bool:
-    """Whether a parsed scene file is in Nori's dialect: a <test> root, or a <scene> with a <camera>, a <mesh>
-    or a top-level <sampler>."""
-    return root.tag == "test" or (root.tag == "scene" and any(e.tag in NORI_TOP_LEVEL for e in root))
+    """Whether a parsed scene file is in Nori's dialect: a <test> root, or a <scene> without Mitsuba's `version`
+    attribute and with a <camera>, a <mesh> or a top-level <sampler> (which Mitsuba's files may hold too, for a
+    <ref> from their sensor)."""
+    return root.tag == "test" or (root.tag == "scene" and "version" not in root.attrib
+                                  and any(e.tag in NORI_TOP_LEVEL for e in root))
 
 
 def _one(r: Reader, root: ET.Element, tag: str, required: bool) -> ET.Element | None:

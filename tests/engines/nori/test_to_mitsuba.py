@@ -49,6 +49,8 @@ def test_nori_files_are_told_from_mitsubas():
     assert is_nori(ET.fromstring("<test type='ttest'/>"))
     assert not is_nori(ET.fromstring("<scene version='3.0.0'><sensor type='perspective'><sampler "
                                      "type='independent'/></sensor><shape type='obj'/></scene>"))
+    # Mitsuba's documentation scenes declare a top-level sampler that their sensor refers to.
+    assert not is_nori(ET.fromstring("<scene version='2.1.0'><sampler type='independent' id='s'/></scene>"))
 
 
 def test_the_camera_takes_noris_defaults(tmp_path):

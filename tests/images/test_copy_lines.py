@@ -1,0 +1,19 @@
+"""Engines' errors about a prepared copy named in the lines of the file as given."""
+from harness.images.copy_lines import name_lines
+
+LINES = [0, 1, 5, 9, 12]
+
+
+def test_mitsubas_parse_and_instantiation_errors_name_the_users_line():
+    assert name_lines("[parser.cpp:451] Error while loading string (line 3, col 8): bad", "C.xml", "U.xml", LINES) \
+        == "[parser.cpp:451] in U.xml:9: bad"
+    assert name_lines("[parser.cpp:1718] At string (line 4, col 4): failed to instantiate", "C.xml", "U.xml",
+                      LINES) == "[parser.cpp:1718] in U.xml:12: failed to instantiate"
+
+
+def test_ours_names_the_users_line_and_an_unknown_line_stays_the_copys():
+    assert name_lines("error: /c/C.xml:2: <foo>: unexpected", "/c/C.xml", "U.xml", LINES) == \
+        "error: U.xml:5: <foo>: unexpected"
+    assert name_lines("error: /c/C.xml:40: x (line 40, col 1)", "/c/C.xml", "U.xml", LINES) == \
+        "error: /c/C.xml:40: x (line 40, col 1)"
+    assert name_lines("a: 3", "", "U.xml", LINES) == "a: 3"
