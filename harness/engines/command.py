@@ -8,6 +8,7 @@ import subprocess
 import tempfile
 import threading
 import time
+import xml.etree.ElementTree as ET
 from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
 from functools import cached_property
 from pathlib import Path
@@ -132,7 +133,7 @@ class CommandEngine(Engine):
             try:
                 text, width, height, meshes = SCENE_WRITERS[self.file.scene_format](
                     Path(scene), dict(params or {}), integrator, theirs, spp)
-            except (OSError, ValueError) as e:
+            except (OSError, ValueError, ET.ParseError) as e:  # ParseError is no ValueError
                 raise RenderFailed(f"the harness could not write the scene for it: {e}") from None
             scene_file = Path(tmp) / "scene.xml"
             scene_file.write_text(text)

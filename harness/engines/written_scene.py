@@ -52,7 +52,10 @@ def film_size(root: ET.Element) -> tuple[int, int]:
     size = {"width": 768, "height": 576}
     for e in (film if film is not None else ()):
         if e.get("name") in size:
-            size[e.get("name")] = int(e.get("value"))
+            value = e.get("value", "")
+            if not value.strip().lstrip("+").isdigit() or int(value) < 1:
+                raise ValueError(f"the film's {e.get('name')} is {value!r}, not a whole number of pixels")
+            size[e.get("name")] = int(value)
     return size["width"], size["height"]
 
 
