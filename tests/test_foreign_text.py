@@ -1,0 +1,28 @@
+"""Foreign text (a renderer's version, output or message) is bounded and holds nothing that JSON written as
+UTF-8, an HTML page or XML 1.0 cannot carry."""
+import json
+import xml.etree.ElementTree as ET
+
+from harness.foreign_text import FOREIGN_LIMIT, foreign, xml_safe
+
+DIRTY = "a\x00b\x01\x1b[31m\x7f\x85\ud800\udfff\ufffe end\tok\n"
+
+
+def test_forbidden_characters_become_visible_escapes():
+    assert xml_safe(DIRTY) == "a\\x00b\\x01\\x1b[31m\\x7f\\x85\\ud800\\udfff\\ufffe end\tok\n"
+    assert xml_safe("plain é ü 漢 \n\t") == "plain é ü 漢 \n\t"
+
+
+def test_cleaned_text_goes_into_xml_and_utf8_json():
+    text = foreign(DIRTY.encode("utf-8", "surrogatepass") + b"\xff\xfe" + DIRTY.encode("utf-8", "surrogatepass"))
+    ET.fromstring(f"<a b='{text}'>{text}</a>".encode())  # parses
+    json.dumps(text, ensure_ascii=False).encode("utf-8")  # no lone surrogate left
+    assert "\ufffd" in text  # the malformed bytes
+
+
+def test_long_text_is_cut_at_its_head_or_tail():
+    text = "x" * 10 + "y" * (10 * FOREIGN_LIMIT)
+    head, tail = foreign(text), foreign(text, keep="tail")
+    assert head.startswith("xxx") and head.endswith(f"[... {9 * FOREIGN_LIMIT + 10} more characters]")
+    assert tail.startswith(f"[... {9 * FOREIGN_LIMIT + 10} characters before]") and "x" not in tail
+    assert len(head) < FOREIGN_LIMIT + 50 and foreign("short") == "short"
