@@ -49,7 +49,7 @@ def test_a_failed_call_keeps_its_output_and_the_reproduce_line_repeats_the_run(t
     failure = next(ET.parse(out / "latest" / "junit.xml").iter("failure"))
     assert failure.get("message") == case["error"] and "progress 79" in failure.text
     printed = " ".join(capsys.readouterr().out.split())
-    assert (f"python -m harness images --only plane_point:normals --seed 0 --engine {engine} --out {out}"
+    assert (f"mcval images --only plane_point:normals --seed 0 --engine {engine} --out {out}"
             in printed)
 
 
