@@ -11,7 +11,6 @@ import sys
 from pathlib import Path
 
 import pytest
-import setuptools
 
 REPO = Path(__file__).resolve().parents[1]
 ENGINE = REPO / "examples" / "renderer" / "pyrender.toml"
@@ -24,6 +23,8 @@ pytestmark = [pytest.mark.slow, pytest.mark.mitsuba]
 @pytest.fixture(scope="module")
 def mcval(tmp_path_factory) -> Path:
     """The `mcval` command of a fresh venv into which a copy of the repository was pip-installed."""
+    import setuptools  # (here, not at collection: it patches distutils in every process that imports it)
+
     tmp = tmp_path_factory.mktemp("install")
     source = tmp / "source"
     source.mkdir()
@@ -38,9 +39,10 @@ def mcval(tmp_path_factory) -> Path:
     (site_packages,) = (venv / "lib").glob("python*/site-packages")
     seen = [str(Path(setuptools.__file__).parents[1]), *site.getsitepackages()]
     (site_packages / "project_venv.pth").write_text("\n".join(dict.fromkeys(seen)) + "\n")
-    subprocess.run([str(venv / "bin" / "python"), "-m", "pip", "install", "--quiet", "--no-deps", "--no-index",
-                    "--no-build-isolation", "--no-compile", "--disable-pip-version-check", str(source)],
-                   check=True, cwd=tmp, env=_env(), capture_output=True)
+    pip = subprocess.run([str(venv / "bin" / "python"), "-m", "pip", "install", "--quiet", "--no-deps", "--no-index",
+                          "--no-build-isolation", "--no-compile", "--disable-pip-version-check", str(source)],
+                         cwd=tmp, env=_env(), capture_output=True, text=True)
+    assert pip.returncode == 0, pip.stdout[-2000:] + pip.stderr[-4000:]
     return venv / "bin" / "mcval"
 
 
