@@ -2,8 +2,9 @@
 library's error message), made safe before it is stored: bounded in length, and holding only characters that
 results.json, an HTML page and junit.xml can carry (XML 1.0 forbids most control characters, and a lone
 surrogate cannot be written as UTF-8). What a child process printed (child_process.output_tail, and so every
-render failure's reason and output) and an engine file's version line pass through `foreign`; every text file
-the harness writes (results.write_atomic: results.json, the pages, junit.xml) through `xml_safe`.
+render failure's reason and output), an engine file's version line and an image case's failure
+(ImageResult.error and error_output, whichever engine or stage it came from) pass through `foreign`; every
+text file the harness writes (results.write_atomic: results.json, the pages, junit.xml) through `xml_safe`.
 
 Public API::
 
@@ -34,14 +35,15 @@ def xml_safe(text: str) -> str:
 
 
 def foreign(text: str | bytes, limit: int = FOREIGN_LIMIT, keep: str = "head") -> str:
-    """`text` (bytes are read as UTF-8, a malformed byte as U+FFFD) made safe (xml_safe) and cut to `limit`
-    characters, keeping its start (`keep="head"`: a version, a reason) or its end ("tail": a call's last
-    output), with a note of how much was cut."""
+    """`text` (bytes are read as UTF-8, a malformed byte as U+FFFD) made safe (xml_safe) and cut to at most
+    `limit` characters, keeping its start (`keep="head"`: a version, a reason) or its end ("tail": a call's
+    last output), with a note of how much was cut. Applied twice, it changes nothing more."""
     if isinstance(text, bytes):
         text = text.decode("utf-8", errors="replace")
-    text = str(text)
-    if len(text) > limit:
-        cut = len(text) - limit
-        text = (f"{text[:limit]} [... {cut} more characters]" if keep == "head"
-                else f"[... {cut} characters before] {text[-limit:]}")
-    return xml_safe(text)
+    text = xml_safe(str(text))
+    if len(text) <= limit:
+        return text
+    kept = limit - 40  # room for the note
+    if keep == "head":
+        return f"{text[:kept]} [... {len(text) - kept} more characters]"
+    return f"[... {len(text) - kept} characters before] {text[-kept:]}"
