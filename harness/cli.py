@@ -1,5 +1,6 @@
-"""The command line: `python -m harness COMMAND`, the commands of harness/commands/ under one parser, and what
-every run shares: exit statuses, Ctrl-C and SIGTERM, and naming the partial output of an unfinished run."""
+"""The command line: `mcval COMMAND` (or `python -m harness COMMAND`), the commands of harness/commands/ under
+one parser, and what every run shares: exit statuses, Ctrl-C and SIGTERM, and naming the partial output of an
+unfinished run."""
 from __future__ import annotations
 
 import argparse
@@ -28,9 +29,9 @@ EPILOG = ("Each command but `references` writes results/<run>/ (results.json, HT
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """Every command and option of `python -m harness`, with its help."""
+    """Every command and option of `mcval`, with its help."""
     p = argparse.ArgumentParser(
-        prog="python -m harness",
+        prog="mcval",
         description="mcval: validate a Monte Carlo renderer against its pdfs and against Mitsuba 3.",
         epilog=EPILOG)
     sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")

@@ -10,6 +10,8 @@ from typing import Any
 
 import numpy as np
 
+from harness.foreign_text import xml_safe
+
 
 def point_link(link: Path, target: Path) -> None:
     """Make `link` a symlink to `target` (a sibling folder), replacing any older link atomically."""
@@ -40,13 +42,15 @@ def new_run_dir(root: str | Path = "results") -> Path:
 
 
 def write_atomic(path: str | Path, data: bytes | str) -> Path:
-    """Write to a temporary file beside `path`, then rename: readers never see half a file."""
+    """Write to a temporary file beside `path`, then rename: readers never see half a file. Text is written as
+    UTF-8 with every character XML 1.0 forbids escaped (foreign_text.xml_safe), so that a renderer's message
+    in it leaves results.json, a page or junit.xml readable."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
     try:
         with os.fdopen(fd, "wb") as f:
-            f.write(data.encode() if isinstance(data, str) else data)
+            f.write(xml_safe(data).encode() if isinstance(data, str) else data)
         os.replace(tmp, path)
     except BaseException:
         os.unlink(tmp)

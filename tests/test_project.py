@@ -18,6 +18,9 @@ def test_a_clone_is_found_from_inside_it(tmp_path):
     assert find_project(installed, cwd=tmp_path) == installed
     assert find_project(PROJECT, cwd=tmp_path) == PROJECT == SOURCE_ROOT
     assert find_project(installed, cwd=tmp_path, env=str(PROJECT)) == PROJECT
+    suite = tmp_path / "mcval_suite"
+    assert find_project(installed, cwd=tmp_path, installed=suite) == suite  # pip install . (setup.py)
+    assert find_project(installed, cwd=PROJECT, installed=suite) == PROJECT  # a clone comes first
     assert missing_reason(PROJECT) == "" and "not found" in missing_reason(installed)
 
 
@@ -26,7 +29,8 @@ def test_an_installed_copy_runs_the_suite_inside_the_clone_and_says_why_not_else
     from inside the clone, and from outside it refuses to select cases, with the reason (no run of 0 cases)."""
     site = tmp_path / "site"
     shutil.copytree(PROJECT / "harness", site / "harness", ignore=shutil.ignore_patterns("__pycache__"))
-    code = ("import harness.images.suite as s; print(s.ROOT); print(len(s.select_cases(None, integrators=('ao',))))")
+    # (sys.modules: as if no suite were installed, which an editable install of the project's .venv maps)
+    code = ("import sys; sys.modules['mcval_suite'] = None; import harness.images.suite as s; print(s.ROOT); print(len(s.select_cases(None, integrators=('ao',))))")
     env = {**os.environ, "PYTHONPATH": str(site)}
     env.pop("MCVAL_PROJECT", None)
     inside = subprocess.run([sys.executable, "-c", code], cwd=PROJECT / "scenes", env=env, capture_output=True,

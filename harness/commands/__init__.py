@@ -1,4 +1,4 @@
-"""The verbs of `python -m harness`, one module each: NAME, HELP, `add_arguments(parser)` and
+"""The verbs of `mcval`, one module each: NAME, HELP, `add_arguments(parser)` and
 `run(args, run_folder) -> Verdict` (harness/cli.py maps it to the exit status). The only package that prints."""
 from harness.commands import bench, calibrate, images, integrators, invariance, references, validate, warps
 

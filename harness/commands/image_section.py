@@ -133,8 +133,8 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     for r in results:
         if r.reference_fit is not None:
             console.print(f"{escape(r.case.key)}: {escape(r.reference_fit.summary)}", soft_wrap=True)
-    for name in match().without_entry:
-        console.print(f"[yellow]{escape(name)}[/]: no harness entry (not validated; see `python -m harness "
+    for name in (match().without_entry if ours.integrators is None else ()):  # (our renderer's registry)
+        console.print(f"[yellow]{escape(name)}[/]: no harness entry (not validated; see `mcval "
                       "integrators`)")
     run = invocation(args)
     meta = {**engine_meta("engine", ours), **engine_meta("reference", reference), "seed": args.seed,

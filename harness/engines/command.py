@@ -3,8 +3,8 @@ temporary folder of its own, with the scene file the harness writes for it (scen
 nori/to_nori for scene_format = "nori")."""
 from __future__ import annotations
 
+import math
 import os
-import subprocess
 import tempfile
 import threading
 import time
@@ -21,9 +21,12 @@ from harness.engines.engine_file import EngineFile, read_engine_file
 from harness.engines.render_process import THREADS_ENV, default_timeout
 from harness.engines.scene_writers import SCENE_WRITERS
 from harness.exr import ExrError, read_image
+from harness.foreign_text import FOREIGN_LIMIT, foreign
 
 #: Seconds the version command may take.
 VERSION_TIMEOUT = 30.0
+#: Bytes the version command may print before it is ended (only its first line is read).
+VERSION_OUTPUT_LIMIT = 1 << 20
 
 
 def call_seed(seed: int, k: int) -> int:
@@ -71,18 +74,25 @@ class CommandEngine(Engine):
 
     @cached_property
     def _version_line(self) -> str:
+        """The first line the version command printed (bounded and safe: harness/foreign_text.py), or why
+        there is none. It runs as a render call does (run_child): its own session, a time limit, its
+        output to a file of which only the start is read."""
         if not self.file.version:
             return "no version command"
         words = [w.replace("{here}", str(self.file.here)) for w in self.file.version]
-        try:
-            done = subprocess.run(words, capture_output=True, text=True, timeout=VERSION_TIMEOUT,
-                                  stdin=subprocess.DEVNULL)
-        except (OSError, subprocess.TimeoutExpired) as e:
-            return f"version command failed: {e}"
-        lines = [line.strip() for line in (done.stdout + done.stderr).splitlines() if line.strip()]
-        if done.returncode != 0:
-            return f"version command exited with status {done.returncode}"
-        return lines[0] if lines else "(version command printed nothing)"
+        with tempfile.TemporaryDirectory(prefix=f"mcval-{self.name}-version-") as tmp:
+            log = Path(tmp) / "version.log"
+            try:
+                run_child(words, Path(tmp), log, VERSION_TIMEOUT, output_limit=VERSION_OUTPUT_LIMIT)
+            except OSError as e:
+                return foreign(f"version command failed: {e.strerror or e}")
+            except RenderFailed as e:
+                if log.stat().st_size <= VERSION_OUTPUT_LIMIT:  # (ended for printing on: its first line counts)
+                    return f"version command failed: {e.reason}"
+            with open(log, "rb") as f:
+                head = f.read(4 * FOREIGN_LIMIT)
+        line = next((line.strip() for line in head.decode(errors="replace").split("\n") if line.strip()), "")
+        return foreign(line) if line else "(version command printed nothing)"
 
     def version(self) -> str:
         return f"{self.name} {self._version_line} ({self.file.path}: {' '.join(self.file.command)})"
@@ -115,10 +125,14 @@ class CommandEngine(Engine):
         try:
             image, attributes = read_image(output)
         except ExrError as e:
-            raise RenderFailed(f"wrote a file that is not a readable EXR image: {e}") from None
+            raise RenderFailed(foreign(f"wrote a file that is not a readable EXR image: {e}")) from None
         if image.shape[:2] != (height, width):
             raise RenderFailed(f"wrote a {image.shape[1]}x{image.shape[0]} image, expected {width}x{height}")
         seconds = render_seconds(attributes)
+        # A time the bench would plot and divide by: a negative, NaN or infinite one is the renderer's error.
+        if seconds is not None and not (math.isfinite(seconds) and seconds >= 0):
+            raise RenderFailed(f"{self.name} wrote renderSeconds = {seconds:g} in its EXR (seed {values['seed']}): "
+                               "a render time must be a finite number of seconds, at least 0")
         return image, wall if seconds is None else seconds
 
     def render(self, scene: str, integrator: str, spp: int, batches: int, seed: int,

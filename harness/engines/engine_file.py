@@ -57,7 +57,15 @@ def _words(value: object) -> bool:
 
 
 def _placeholders(words: tuple[str, ...]) -> set[str]:
-    return {field for w in words for _, field, _, _ in string.Formatter().parse(w) if field is not None}
+    """The placeholders the words hold; ValueError naming the word when one has an unbalanced brace."""
+    found = set()
+    for w in words:
+        try:
+            found |= {field for _, field, _, _ in string.Formatter().parse(w) if field is not None}
+        except ValueError as e:  # "{output" or "out}": what str.format would raise at the first call
+            raise ValueError(f"{w!r} is not a word with placeholders ({e}; a literal brace is written {{{{ or }}}})") \
+                from None
+    return found
 
 
 def _program(first: str, here: Path) -> str | None:
@@ -78,9 +86,18 @@ def read_engine_file(path: str | Path) -> EngineFile:
     """The engine file at `path`, checked; EngineFileError saying where and what otherwise."""
     path = Path(path).resolve()
     try:
-        text = path.read_text()
+        raw = path.read_bytes()
     except OSError as e:
         raise EngineFileError(f"{path}: cannot read the engine file ({e.strerror or e})") from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as e:
+        line = raw.count(b"\n", 0, e.start) + 1
+        raise EngineFileError(f"{path}:{line}: not a TOML text file (byte {e.start} is not UTF-8; an engine file "
+                              "is text: see docs/engines.md)") from None
+    if "\0" in text:
+        raise EngineFileError(f"{path}:{text.count(chr(10), 0, text.index(chr(0))) + 1}: not a TOML text file "
+                              "(it holds NUL bytes; an engine file is text: see docs/engines.md)")
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
@@ -106,7 +123,10 @@ def read_engine_file(path: str | Path) -> EngineFile:
     if not _words(command):
         raise error("command", "command must be a list of strings, the program first")
     command = tuple(command)
-    found = _placeholders(command)
+    try:
+        found = _placeholders(command)
+    except ValueError as e:
+        raise error("command", f"command: {e}") from None
     unknown = sorted(found - set(PLACEHOLDERS))
     if unknown:
         raise error("command", f"unknown placeholder {{{unknown[0]}}} in command (placeholders: "

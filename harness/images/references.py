@@ -7,7 +7,7 @@ the provenance and the tile and image batch statistics. A reference is reused
 only when its provenance (the hash of the scene file and every mesh it names,
 Mitsuba's version and variant, samples, batches, seed, resolution) matches what
 the run asks for; otherwise the run renders a fresh one and says so. Only
-`python -m harness references` (make references) writes them.
+`mcval references` (make references) writes them.
 
 Every file is checked when read. The .json records the size and SHA-256 of the
 .exr (so damaged bytes never reach the EXR decoder) and `content_sha256`, the

@@ -9,6 +9,7 @@ import numpy as np
 
 from harness.comparison.compare import Comparison
 from harness.engines.base import RenderResult
+from harness.foreign_text import foreign
 from harness.images.oracle import Finding
 from harness.images.references import Reference
 from harness.images.suite import ImageCase
@@ -53,6 +54,13 @@ class ImageResult:
     decisive_budget: str = ""
     #: Where an exception no stage foresaw arose (the case failed with one line); written to the run's log.
     traceback: str = ""
+
+    def __post_init__(self) -> None:
+        # Why a render failed is often an engine's own text (Mitsuba's message quoting a scene's 1 MB tag
+        # name, a renderer's output): bounded here, whichever engine and stage it came from.
+        if self.error is not None:
+            self.error = foreign(self.error)
+        self.error_output = foreign(self.error_output, keep="tail")
 
     @property
     def _deciding(self) -> list[Comparison]:

@@ -173,6 +173,13 @@ def select_cases(only: list[str] | None, integrators: Sequence[str] | None = Non
     cases = [*runnable, *(c for c, _ in not_applicable)]
     known = {c.key for c in cases} | {c.scene for c in cases} | set(suite_integrators(integrators))
     unknown = sorted(set(only) - known)
+    from harness.integrators import entries
+    rendered = suite_integrators(integrators)
+    for name in unknown:  # scene:normals, or normals, where the engine under test renders no normals
+        integrator = name.rpartition(":")[2]
+        if integrator in entries() and integrator not in rendered and name.rpartition(":")[0] in ("", *known):
+            raise ValueError(f"--only {name}: the engine under test does not render {integrator} (it renders "
+                             f"{', '.join(rendered) or 'none of them'})")
     if unknown:
         raise ValueError(f"unknown scene or case {', '.join(unknown)}: scenes are "
                          f"{', '.join(dict.fromkeys(c.scene for c in cases))}; integrators "

@@ -1,7 +1,7 @@
 """A reference engine's invariance cells, stored beside its reference images.
 
 How Mitsuba behaves under the invariances does not depend on the renderer under test, so, like its reference
-images, its cells are rendered once (`python -m harness references`, at REFERENCE_SEED) and stored:
+images, its cells are rendered once (`mcval references`, at REFERENCE_SEED) and stored:
 `references/<engine>/<scene>/invariance-<integrator>.json`, one file per case with every cell of it. A run
 reuses a file only when its provenance matches what the run would render: the scene file and its meshes
 (SHA-256), the engine's version, samples, batches, resolution, seed, the per-comparison level, the variants,

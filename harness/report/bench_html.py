@@ -33,7 +33,7 @@ def _same(b: CaseBench) -> str:
 
 def _throughput_html(throughput: list[dict] | None) -> str:
     if not throughput:
-        return "<p>No side-by-side throughput (run <code>python -m harness bench</code> with both engines).</p>"
+        return "<p>No side-by-side throughput (run <code>mcval bench</code> with both engines).</p>"
     rows = "".join(
         f"<tr><td>{t['scene']}:{t['integrator']}</td><td>{t['resolution']}², {t['spp']} spp, {t['sampler']}"
         + (f" (Mitsuba's sampler: {t['spp_rendered'][MITSUBA]} spp)"

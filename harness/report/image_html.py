@@ -162,7 +162,7 @@ def report_html(results: list[ImageResult], alpha: float, warps: dict | None, me
         summary.append(f'<li><a href="{_esc(bench_href)}">Speed against error</a> (the latest `make bench`)</li>')
     if calibration_href:
         summary.append(f'<li><a href="{_esc(calibration_href)}">Calibration</a>: the measured false-alarm rates '
-                       'and power of these tests (the latest `python -m harness calibrate`)</li>')
+                       'and power of these tests (the latest `mcval calibrate`)</li>')
     summary += [f"<li>{_esc(k)}: {_esc(v)}</li>" for k, v in meta.items()]
     sections = []
     for integrator in dict.fromkeys(r.case.integrator for r in results):

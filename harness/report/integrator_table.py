@@ -1,4 +1,4 @@
-"""`python -m harness integrators`: every integrator of the renderer with what the harness knows of it."""
+"""`mcval integrators`: every integrator of the renderer with what the harness knows of it."""
 from __future__ import annotations
 
 from rich import box

@@ -27,9 +27,9 @@ def invocation(args) -> dict:
 
 
 def reproduce_line(command: str, selection: list[str], seed: int, run: dict | None, scene_file: str = "") -> str:
-    """`[VAR=value ...] python -m harness COMMAND SELECTION --seed S [--scene FILE] [options]`."""
+    """`[VAR=value ...] mcval COMMAND SELECTION --seed S [--scene FILE] [options]`."""
     run = run or {"options": [], "environment": {}}
-    words = ["python", "-m", "harness", command, *selection, "--seed", str(seed)]
+    words = ["mcval", command, *selection, "--seed", str(seed)]
     if scene_file:
         words += ["--scene", scene_file]
     env = [f"{k}={shlex.quote(v)}" for k, v in run["environment"].items()]

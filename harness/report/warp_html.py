@@ -106,7 +106,7 @@ expected panel is flat). Expected counts integrate the pdf adaptively over every
 (O−E)/√E: a correct warp is noise; structure there is a bug. Power: the smallest planted defect each check
 detects in 90 % of simulated runs at this budget and level (hover for the defect). Whether each statistical
 check rejects correct warps as often as its level says, and no more, is measured by
-<code>python -m harness calibrate</code>: <a href="../calibration-latest/calibration.html">its latest page</a>.</p>
+<code>mcval calibrate</code>: <a href="../calibration-latest/calibration.html">its latest page</a>.</p>
 {_summary_table(results)}
 {sections}
 </body></html>

@@ -12,6 +12,7 @@ def test_help_lists_the_subcommands():
     out = subprocess.run([sys.executable, "-m", "harness", "--help"], capture_output=True, text=True)
     assert out.returncode == 0
     assert "warps" in out.stdout and "validate" in out.stdout
+    assert out.stdout.startswith("usage: mcval ")  # the installed command's name, also under python -m harness
 
 
 def test_warps_writes_json_and_html(tmp_path):

@@ -3,6 +3,7 @@ command and version), a failed call's output is kept, every reproduce line repea
 file and --out, progress reaches a log, and the scene's folder is left as it was."""
 import json
 import os
+import sys
 import shutil
 import stat
 import xml.etree.ElementTree as ET
@@ -48,7 +49,7 @@ def test_a_failed_call_keeps_its_output_and_the_reproduce_line_repeats_the_run(t
     failure = next(ET.parse(out / "latest" / "junit.xml").iter("failure"))
     assert failure.get("message") == case["error"] and "progress 79" in failure.text
     printed = " ".join(capsys.readouterr().out.split())
-    assert (f"python -m harness images --only plane_point:normals --seed 0 --engine {engine} --out {out}"
+    assert (f"mcval images --only plane_point:normals --seed 0 --engine {engine} --out {out}"
             in printed)
 
 
@@ -113,3 +114,26 @@ def test_a_renderer_whose_seeds_repeat_fails_as_batches_not_independent(tmp_path
     (case,) = _results(out)["images"]
     test = case["tests"]["mitsuba"]["independence"]["test"]
     assert test["dependent"] and test["correlation"] > 0.99 and not test["alike"]
+
+
+def test_control_characters_from_an_engine_leave_every_output_readable(tmp_path):
+    """Its version and its failed call's output hold C0 controls, DEL, malformed UTF-8 and an encoded lone
+    surrogate: results.json, report.html and junit.xml are written and parse, with the characters escaped."""
+    dirty = b"v\x00\x01\x08\x0b\x1b[31m\x1f\x7f \xff \xed\xa0\x80 end"
+    for name, body in (("ver.py", f"sys.stdout.buffer.write({dirty!r})"),
+                       ("bad.py", f"sys.stdout.buffer.write({dirty!r} + b'\\n' + {dirty!r}); sys.exit(2)")):
+        (tmp_path / name).write_text(f"#!{sys.executable}\nimport sys\n{body}\n")
+        (tmp_path / name).chmod(0o755)
+    engine = tmp_path / "bad.toml"
+    engine.write_text('name = "bad"\ncommand = ["{here}/bad.py", "{scene}", "{output}"]\n'
+                      'version = ["{here}/ver.py"]\n[integrators]\nsimple = "simple"\n')
+    out = tmp_path / "results"
+    assert main(["images", "--engine", str(engine), "--only", "plane_point:simple", "--out", str(out)]) == 1
+    (case,) = _results(out)["images"]
+    assert "\\x1b[31m\\x1f\\x7f \ufffd" in case["error"]  # (its vertical tab ends a line)
+    tree = ET.parse(out / "latest" / "junit.xml")
+    failure = next(tree.iter("failure"))
+    assert failure.get("message") == case["error"] and "\\x00" in failure.text
+    properties = {p.get("name"): p.get("value") for p in tree.iter("property")}
+    assert "v\\x00\\x01\\x08\\x0b\\x1b[31m" in properties["engine"]
+    assert "\\x00\\x01" in (out / "latest" / "report.html").read_text()

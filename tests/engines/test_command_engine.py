@@ -1,5 +1,6 @@
 """An engine file's renderer, call by call: a good one renders K independent batches; every way a call can go
 wrong is a RenderFailed of one line (with the last lines of its output), never an exception of the harness."""
+import re
 import sys
 import time
 
@@ -105,3 +106,48 @@ def test_a_failed_call_ends_the_calls_running_beside_it(tmp_path):
     with pytest.raises(RenderFailed, match="exited with status 5"):
         CommandEngine.from_path(engine).render(SCENE, "simple", 4, 2, 0, PARAMS)
     assert time.monotonic() - start < 30
+
+
+def _script(path, body: str):
+    path.write_text(f"#!{sys.executable}\nimport sys, os\n{body}\n")
+    path.chmod(0o755)
+    return path
+
+
+DIRTY = b"v1 \x00\x01\x1b[31m\x7f \xff\xfe \xed\xa0\x80 end"
+
+
+def test_a_version_of_100_mb_and_control_characters_is_bounded_and_safe(tmp_path):
+    _script(tmp_path / "ver.py", f"sys.stdout.buffer.write({DIRTY!r} + b'x' * 100_000_000 + b'\\nsecond line\\n')")
+    engine = CommandEngine.from_path(write_engine(tmp_path, "ours", extra='version = ["{here}/ver.py"]\n'))
+    version = engine.describe()["version"]
+    assert version.startswith("v1 \\x00\\x01\\x1b[31m\\x7f \ufffd\ufffd") and len(version) < 5000, version[:200]
+    assert "more characters]" in version and "second line" not in version
+    assert len(engine.version()) < 6000
+
+
+def test_a_failed_call_printing_control_characters_is_one_safe_line(tmp_path):
+    _script(tmp_path / "dirty.py", f"sys.stdout.buffer.write({DIRTY!r} * 3 + b'\\n' + {DIRTY!r}); sys.exit(2)")
+    engine = tmp_path / "dirty.toml"
+    engine.write_text('name = "dirty"\ncommand = ["{here}/dirty.py", "{scene}", "{output}"]\n'
+                      '[integrators]\nsimple = "simple"\n')
+    with pytest.raises(RenderFailed) as e:
+        CommandEngine.from_path(engine).render(SCENE, "simple", 4, 1, 0, PARAMS)
+    for text in (e.value.reason, e.value.output):
+        assert "\\x00\\x01\\x1b[31m\\x7f" in text and not any(ord(c) < 32 and c != "\n" for c in text), text
+
+
+@pytest.mark.parametrize("seconds", ["-1e30", "float('nan')", "float('inf')", "-1.0"])
+def test_a_render_time_that_is_not_a_time_fails_the_call_with_engine_and_value(tmp_path, seconds):
+    _script(tmp_path / "timed.py", "import numpy as np, OpenImageIO as oiio\n"
+                                   "spec = oiio.ImageSpec(8, 8, 3, 'float')\n"
+                                   f"spec.attribute('timed.renderSeconds', {seconds})\n"
+                                   "out = oiio.ImageOutput.create(sys.argv[2]); out.open(sys.argv[2], spec)\n"
+                                   "out.write_image(np.full((8, 8, 3), 0.25, np.float32)); out.close()")
+    engine = tmp_path / "timed.toml"
+    engine.write_text('name = "timed"\ncommand = ["{here}/timed.py", "{scene}", "{output}"]\n'
+                      '[integrators]\nsimple = "simple"\n')
+    value = f"{float(eval(seconds)):g}"
+    expected = rf"timed wrote renderSeconds = {re.escape(value)} in its EXR .*finite.*at least 0"
+    with pytest.raises(RenderFailed, match=expected):
+        CommandEngine.from_path(engine).render(SCENE, "simple", 4, 1, 0, PARAMS)

@@ -82,3 +82,20 @@ def test_bad_toml_and_missing_keys_are_refused(tmp_path):
     assert ":2: not valid TOML" in _error(tmp_path, 'name = "toy"\ncommand = [\n')
     assert ":1: missing 'integrators'" in _error(tmp_path, GOOD.split("[integrators]")[0])
     assert "jobs must be a whole number" in _error(tmp_path, "jobs = 0\n" + GOOD)
+
+
+@pytest.mark.parametrize("word", ["{output", "out}", "{output}}x"])
+def test_an_unbalanced_placeholder_names_its_line_and_the_word(tmp_path, word):
+    message = _error(tmp_path, GOOD.replace('"-o", "{output}"', f'"-o", "{word}", "{{output}}"'))
+    assert f"toy.toml:2: command: {word!r} is not a word with placeholders" in message, message
+    assert "a literal brace is written {{ or }}" in message
+
+
+@pytest.mark.parametrize("content, line", [(b"name = 'toy'\n\x89PNG\r\n\x1a\n\x00\x00", 2),
+                                          (b"\x7fELF\x02\x01\x01\x00\x00\x00", 1)])
+def test_a_binary_file_is_not_a_toml_text_file(tmp_path, content, line):
+    path = _file(tmp_path, GOOD)
+    path.write_bytes(content)
+    with pytest.raises(EngineFileError) as e:
+        read_engine_file(path)
+    assert str(e.value).startswith(f"{path}:{line}: not a TOML text file"), e.value

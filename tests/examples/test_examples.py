@@ -54,4 +54,4 @@ def test_an_absolute_ray_offset_fails_the_scale_invariance(tmp_path, capsys):
     cells = results["invariance"]["cells"]
     assert code == 1 and any(c["invariance"] == "scale" and not c["pass"] for c in cells)
     printed = " ".join(capsys.readouterr().out.split())
-    assert f"reproduce: python -m harness invariance --only sphere_plane:ao scale --seed 0 --engine {engine}" in printed
+    assert f"reproduce: mcval invariance --only sphere_plane:ao scale --seed 0 --engine {engine}" in printed
