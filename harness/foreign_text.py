@@ -10,6 +10,7 @@ Public API::
 
     foreign(text, limit=FOREIGN_LIMIT, keep="head")  # bounded and safe
     xml_safe(text)                                    # safe, not bounded
+    one_line(text, limit=LINE_LIMIT)                  # on one line, printable, bounded
 """
 from __future__ import annotations
 
@@ -47,3 +48,15 @@ def foreign(text: str | bytes, limit: int = FOREIGN_LIMIT, keep: str = "head") -
     if keep == "head":
         return f"{text[:kept]} [... {len(text) - kept} more characters]"
     return f"[... {len(text) - kept} characters before] {text[-kept:]}"
+
+
+#: Characters a one-line verdict keeps of foreign text (an engine's error, a line of a user's file).
+LINE_LIMIT = 400
+
+
+def one_line(text: str, limit: int = LINE_LIMIT) -> str:
+    """`text` on one line (its lines joined by " | ", runs of blanks and unprintable characters dropped),
+    bounded as `foreign` bounds it: a 1 MB tag name in Mitsuba's error must not reach a verdict whole."""
+    lines = [" ".join(line.split()) for line in str(text).strip().splitlines()]
+    joined = " | ".join(line for line in lines if line)
+    return foreign("".join(c for c in joined if c.isprintable()), limit)

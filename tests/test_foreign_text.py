@@ -33,3 +33,10 @@ def test_cutting_twice_changes_nothing_more():
     for keep in ("head", "tail"):
         once = foreign("\x00" * FOREIGN_LIMIT + "y" * FOREIGN_LIMIT, keep=keep)
         assert len(once) <= FOREIGN_LIMIT and foreign(once, keep=keep) == once
+
+
+def test_one_line_joins_lines_drops_controls_and_bounds():
+    from harness.foreign_text import LINE_LIMIT, one_line
+    assert one_line("  first   line\n\n second\x07 line \n") == "first line | second line"
+    long = one_line("<" + "a" * 1_000_000 + ">")
+    assert len(long) <= LINE_LIMIT and "more characters" in long

@@ -8,7 +8,7 @@ from pathlib import Path
 from rich.markup import escape
 
 from harness.commands.output import console, err, task_progress
-from harness.images.foreign_text import bounded
+from harness.foreign_text import LINE_LIMIT, foreign
 from harness.verdict import Tally
 
 
@@ -52,7 +52,7 @@ def _budgeted(cases, ours, reference, target: float, seed: int):
         try:
             budget = plan_budget(case, ours, reference, target, alpha, case_seed(case, seed) + 1)
         except Exception as e:  # the case itself fails in the run, with its own line
-            err.print(f"{escape(case.key)}: no budget planned ({escape(bounded(f'{type(e).__name__}: {e}'))}); "
+            err.print(f"{escape(case.key)}: no budget planned ({escape(foreign(f'{type(e).__name__}: {e}', LINE_LIMIT))}); "
                       "it keeps its default", soft_wrap=True, highlight=False)
             planned.append(case)
             continue
@@ -67,7 +67,7 @@ def _budgeted(cases, ours, reference, target: float, seed: int):
 def _print_message(message: str) -> None:
     """A case's message: it may quote an engine's error, so bounded and not highlighted (rich's highlighter
     takes minutes over a megabyte of one word)."""
-    err.print(f"[yellow]{escape(bounded(message))}[/]", soft_wrap=True, highlight=False)
+    err.print(f"[yellow]{escape(foreign(message, LINE_LIMIT))}[/]", soft_wrap=True, highlight=False)
 
 
 #: The run's log of errors no stage foresaw: each failed its case with one line, its traceback is here.
@@ -157,6 +157,6 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
         console.print(f"[yellow]INCONCLUSIVE[/] {r.case.key} — {escape(r.inconclusive)}", soft_wrap=True)
     for r in (r for r in results if r.failed):
         why = r.why
-        console.print(f"[red]FAIL[/] {escape(r.case.key)}{' — ' + escape(bounded(why)) if why else ''}: "
+        console.print(f"[red]FAIL[/] {escape(r.case.key)}{' — ' + escape(foreign(why, LINE_LIMIT)) if why else ''}: "
                       f"{escape(reproduce_command(r, run))}", soft_wrap=True, highlight=False)
     return tally, payload

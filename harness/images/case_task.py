@@ -17,7 +17,7 @@ from harness.distributed.bundle import Bundle, bundle_files
 from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine, RenderFailed, RenderResult
 from harness.images.copy_lines import in_user_terms
-from harness.images.foreign_text import one_line
+from harness.foreign_text import one_line
 from harness.images.oracle import decide
 from harness.images.reference_image import ReferenceImage, against_image, fit_verdict
 from harness.images.render_ahead import RenderAhead, closed_form_args, render_args

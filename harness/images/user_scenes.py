@@ -20,7 +20,7 @@ from harness.engines.mitsuba_bounds import scene_bounds
 from harness.engines.nori.lined_xml import SceneXmlError, parse_lined
 from harness.engines.nori.to_mitsuba import is_nori, nori_to_mitsuba
 from harness.engines.scene_paths import SceneFileError
-from harness.images.foreign_text import one_line
+from harness.foreign_text import one_line
 from harness.images.scene_copy import Prepared, prepare_mitsuba_file
 
 

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from harness.images.foreign_text import one_line
+from harness.foreign_text import one_line
 from harness.images.result import ImageResult
 from harness.images.regression import compare_runs, load_baseline
 from harness.report.image_html import entry_html, report_html, reproduce_command
