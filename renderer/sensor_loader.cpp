@@ -76,9 +76,26 @@ void requireOrthographicCorners(const XmlContext &ctx, const pugi::xml_node &nod
                             scene.camera.toWorld.point({x, y / aspect, scene.camera.nearClip}));
 }
 
+/// The sensor's <sampler>: its kind and sample_count. Mitsuba's stratified kinds become our sobol (stratified
+/// too); the seed and a kind's own knobs change the noise, never the expectation, and are accepted unread.
+void loadSampler(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene) {
+    const std::string type = typeOf(ctx, node);
+    const auto kind = samplerFromFile(type);
+    if (!kind)
+        ctx.fail(node, "unsupported sampler type \"" + type + "\": expected independent, stratified, multijitter, "
+                       "orthogonal, ldsampler or sobol");
+    scene.sampler = *kind;
+    XmlProps props(ctx, node);
+    scene.sampleCount = props.getInt("sample_count", 4);
+    props.requireRange("sample_count", scene.sampleCount, 1, kMaxSampleCount);
+    for (const char *name : {"seed", "jitter", "strength"}) props.ignore(name);
+    props.finish("sample_count, seed (and jitter, strength)");
+    if (!props.objects().empty()) ctx.fail(props.objects()[0], "unexpected element inside <sampler>");
+}
+
 }  // namespace
 
-void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene) {
+void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene, Deferred &deferred) {
     const std::string type = typeOf(ctx, node);
     if (type != "perspective" && type != "orthographic")
         ctx.fail(node, "unsupported sensor type: expected \"perspective\" or \"orthographic\"");
@@ -103,16 +120,11 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
         if (tag == "film") {
             loadFilm(ctx, child, scene.film);
         } else if (tag == "sampler") {
-            const auto type = parseSampler(typeOf(ctx, child));
-            if (!type) ctx.fail(child, "unsupported sampler type: expected \"independent\" or \"sobol\"");
-            scene.sampler = *type;
-            XmlProps sp(ctx, child);
-            scene.sampleCount = sp.getInt("sample_count", 4);
-            sp.requireRange("sample_count", scene.sampleCount, 1, kMaxSampleCount);
-            sp.finish("sample_count");
-            if (!sp.objects().empty()) ctx.fail(sp.objects()[0], "unexpected element inside <sampler>");
+            loadSampler(ctx, child, scene);
+        } else if (tag == "medium" || tag == "ref") {  // the medium the camera sits in
+            deferred.media.emplace_back(child, "<" + tag + "> in the sensor at line " + std::to_string(ctx.line(child)));
         } else {
-            ctx.fail(child, "unsupported element in <sensor>: expected <film> or <sampler>");
+            ctx.fail(child, "unsupported element in <sensor>: expected <film>, <sampler> or <medium>");
         }
     }
     if (orthographic) requireOrthographicCorners(ctx, node, scene);
