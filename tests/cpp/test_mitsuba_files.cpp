@@ -184,6 +184,14 @@ TEST(MitsubaFiles, DeeplyNestedBsdfsFailWithTheirLine) {
     EXPECT_TRUE(contains(message, "mcval_mitsuba_nested.xml:68: <bsdf>:"))
         << message.substr(0, 200);
     EXPECT_TRUE(contains(message, "bsdfs nested (or referenced through one another) more than 64 deep"));
+    // 2,000 twosided bsdfs each referring to the next: b0 on line 4, so b65 on line 69.
+    std::string chain = "  <shape type=\"rectangle\"><ref id=\"b0\"/></shape>\n";
+    for (int i = 0; i < 2000; ++i)
+        chain += "  <bsdf type=\"twosided\" id=\"b" + std::to_string(i) + "\"><ref id=\"b" + std::to_string(i + 1) +
+                 "\"/></bsdf>\n";
+    chain += "  <bsdf type=\"diffuse\" id=\"b2000\"/>\n";
+    const std::string refs = errorOf("chain", scene(chain), "ao");
+    EXPECT_TRUE(contains(refs, "mcval_mitsuba_chain.xml:69: <bsdf>: bsdfs nested")) << refs.substr(0, 200);
 }
 
 TEST(MitsubaFiles, ACropWindowIsThatPartOfTheWholeFilm) {
