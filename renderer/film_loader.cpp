@@ -27,8 +27,7 @@ void loadFilm(const XmlContext &ctx, const pugi::xml_node &node, FilmSpec &film)
         props.failAt("crop_height", "the crop window must lie within the film: crop_offset_y + crop_height = " +
                                         std::to_string(film.cropY) + " + " + std::to_string(film.cropHeight) +
                                         ", height " + std::to_string(film.height));
-    // Samples beyond the crop window's edge reach its pixels only through a filter wider than a pixel.
-    const bool sampleBorder = props.getBool("sample_border", false);
+    film.sampleBorder = props.getBool("sample_border", false);
     // Output formats: we always write an RGB OpenEXR; its component type is honoured.
     const std::string pixelFormat = props.getString("pixel_format", "rgb");
     if (pixelFormat != "rgb" && pixelFormat != "rgba")
@@ -64,10 +63,6 @@ void loadFilm(const XmlContext &ctx, const pugi::xml_node &node, FilmSpec &film)
         }
         if (!rp.objects().empty()) ctx.fail(rp.objects()[0], "unexpected element inside <rfilter>");
     }
-    if (sampleBorder && film.filter.type != FilterSpec::Type::Box)
-        props.failAt("sample_border", "sample_border with a filter wider than a pixel (here " +
-                                          std::string(film.filter.type == FilterSpec::Type::Tent ? "tent" : "gaussian") +
-                                          ") is not modelled: give a box rfilter or leave it false");
 }
 
 }  // namespace mcval

@@ -29,12 +29,15 @@ struct Tile {
     int x0, y0, width, height;
 };
 
-/// The tiles of the film's crop window (the whole film unless the scene crops it), in film pixels.
+/// The tiles of the pixels sampled, in film pixels: the film's crop window (the whole film unless the scene
+/// crops it), and with sample_border a band around it as wide as the filter's border (Mitsuba's).
 std::vector<Tile> makeTiles(const FilmSpec &film) {
     std::vector<Tile> tiles;
-    const int x1 = film.cropX + film.cropWidth, y1 = film.cropY + film.cropHeight;
-    for (int y = film.cropY; y < y1; y += kTileSize)
-        for (int x = film.cropX; x < x1; x += kTileSize)
+    const int border = film.sampleBorder ? static_cast<int>(std::ceil(film.filter.radius() - 0.5f)) : 0;
+    const int x0 = film.cropX - border, y0 = film.cropY - border;
+    const int x1 = film.cropX + film.cropWidth + border, y1 = film.cropY + film.cropHeight + border;
+    for (int y = y0; y < y1; y += kTileSize)
+        for (int x = x0; x < x1; x += kTileSize)
             tiles.push_back({x, y, std::min(kTileSize, x1 - x), std::min(kTileSize, y1 - y)});
     return tiles;
 }
@@ -75,10 +78,18 @@ struct RenderContext {
     const Camera &camera;
     const EmbreeScene &embree;
     const Integrator &integrator;
-    int width;
+    int width, height;  ///< the whole film's
     int spp;
     uint64_t seed;
     SamplerType sampler;
+
+    /// The sampler's key of film pixel (x, y): its index for a pixel of the film (whatever the crop window),
+    /// and past them, for the border pixels sample_border adds (at most 2^16 outside), one of their own.
+    uint64_t pixelKey(int x, int y) const {
+        if (x >= 0 && y >= 0 && x < width && y < height) return static_cast<uint64_t>(y) * width + x;
+        return static_cast<uint64_t>(width) * height + (static_cast<uint64_t>(y + 65536) << 32) +
+               static_cast<uint64_t>(x + 65536);
+    }
 };
 
 /// Camera-ray packets traced as one Embree stream: the coherent-stream traversal takes several packets
@@ -136,8 +147,7 @@ MCVAL_HOT void renderJobs(const RenderContext &ctx, int batch, int y, const Pack
     alignas(64) float filmX[kStreamPackets][kPacketSize], filmY[kStreamPackets][kPacketSize];
     int laneCounts[kStreamPackets] = {};
     for (int j = 0; j < n; ++j) {
-        const Sampler sampler(ctx.sampler, ctx.seed, static_cast<uint64_t>(batch),
-                              static_cast<uint64_t>(y) * ctx.width + jobs[j].x);
+        const Sampler sampler(ctx.sampler, ctx.seed, static_cast<uint64_t>(batch), ctx.pixelKey(jobs[j].x, y));
         jitter(sampler, jobs[j].x, y, jobs[j].first, filmX[j], filmY[j]);
         cameraRays(ctx.camera, filmX[j], filmY[j], jobs[j].count, camera[j]);
         laneCounts[j] = jobs[j].count;
@@ -145,7 +155,7 @@ MCVAL_HOT void renderJobs(const RenderContext &ctx, int batch, int y, const Pack
     }
     ctx.embree.intersect(camera, laneCounts, n, lanes);
     for (int j = 0; j < n; ++j) {
-        Sampler sampler(ctx.sampler, ctx.seed, static_cast<uint64_t>(batch), static_cast<uint64_t>(y) * ctx.width + jobs[j].x);
+        Sampler sampler(ctx.sampler, ctx.seed, static_cast<uint64_t>(batch), ctx.pixelKey(jobs[j].x, y));
         Color radiance[kPacketSize];
         ctx.integrator.LiPacket({jobs[j].count, static_cast<uint32_t>(jobs[j].first), lanes[j]}, sampler, radiance, counts);
         block.putPacket(jobs[j].x, y, filmX[j], filmY[j], radiance, jobs[j].count);
@@ -252,7 +262,7 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
     out.stats.bvhSeconds = secondsSince(start);
 
     const Camera camera(scene.camera, scene.film.width, scene.film.height);
-    const RenderContext ctx{camera, embree, *integrator, scene.film.width, spp, options.seed, sampler};
+    const RenderContext ctx{camera, embree, *integrator, scene.film.width, scene.film.height, spp, options.seed, sampler};
     const std::vector<Tile> tiles = makeTiles(scene.film);
     tbb::enumerable_thread_specific<RayCounts> counts;
     Progress progress{options.progress, tiles.size() * batches};

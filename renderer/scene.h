@@ -88,6 +88,9 @@ struct FilmSpec {
     /// hdrfilm's crop window: the image is pixels [cropX, cropX + cropWidth) x [cropY, cropY + cropHeight) of
     /// the width x height film, whose size the camera's projection keeps. The whole film by default.
     int cropX = 0, cropY = 0, cropWidth = 768, cropHeight = 576;
+    /// hdrfilm's sample_border: pixels as far outside the crop window as the filter reaches are sampled too,
+    /// so that its edge pixels get the samples around them that an inner pixel gets.
+    bool sampleBorder = false;
     FilterSpec filter;
     std::string componentFormat = "float32";  ///< hdrfilm component_format: float16 or float32
 };

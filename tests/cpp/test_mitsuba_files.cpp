@@ -1,6 +1,8 @@
 // Scene files as Mitsuba 3 reads them: what it loads and our integrators' answers do not depend on loads here
 // too (sampler kinds, converted property types, forward references, the 0.5 upgrade, media, unused emitters);
 // what changes the image (twosided, the tent filter, crop windows) is modelled; the rest fails with its line.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -225,6 +227,25 @@ TEST(MitsubaFiles, ACropWindowIsThatPartOfTheWholeFilm) {
     for (int y = 0; y < 9; ++y)
         for (int x = 0; x < 11; ++x) shifted += part.mean.rgb[3 * (y * 11 + x)] != full.mean.rgb[3 * ((y + 3) * 24 + x + 6)];
     EXPECT_GT(shifted, 10);
+    // With a gaussian filter, sample_border gives the window's edge pixels the samples around them that the
+    // whole film gives them (the same values, summed in another order); without it they lack them.
+    const std::string border = crop + "<boolean name=\"sample_border\" value=\"true\"/>";
+    const RenderOutput wide = render(loadScene(writeScene("uncropped_g", body("", "gaussian"))), options);
+    for (const bool sampleBorder : {true, false}) {
+        const RenderOutput edged =
+            render(loadScene(writeScene("bordered", body(sampleBorder ? border : crop, "gaussian"))), options);
+        double worst = 0.0;
+        for (int y = 0; y < 9; ++y)
+            for (int x = 0; x < 11; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const float a = edged.mean.rgb[3 * (y * 11 + x) + c], b = wide.mean.rgb[3 * ((y + 3) * 24 + x + 5) + c];
+                    worst = std::max(worst, double(std::abs(a - b)) / std::max(1e-3, double(std::abs(b))));
+                }
+        if (sampleBorder)
+            EXPECT_LT(worst, 1e-5);
+        else
+            EXPECT_GT(worst, 1e-2);
+    }
     const std::string outside = "<integer name=\"crop_offset_x\" value=\"20\"/>\n<integer name=\"crop_width\" value=\"5\"/>";
     EXPECT_TRUE(contains(errorOf("crop_outside", body(outside, "tent")), "mcval_mitsuba_crop_outside.xml:3:"));
     EXPECT_TRUE(contains(errorOf("crop_outside", body(outside, "tent")), "the crop window must lie within the film"));
