@@ -70,6 +70,9 @@ struct CameraSpec {
     Transform toWorld;
     float fov = 0.f;                 ///< degrees, along fovAxis (perspective only)
     std::string fovAxis = "x";       ///< x, y, diagonal, smaller, larger
+    /// principal_point_offset_x/y (perspective only): the principal point's offset from the film's centre,
+    /// in film widths and heights.
+    float principalOffsetX = 0.f, principalOffsetY = 0.f;
     float nearClip = 1e-2f;
     float farClip = 1e4f;
 };

@@ -57,6 +57,11 @@ void loadPerspective(const XmlContext &ctx, const pugi::xml_node &node, XmlProps
         cam.fovAxis != "larger")
         ctx.fail(node, "fov_axis must be x, y, diagonal, smaller or larger");
     props.ignore("focus_distance");  // a pinhole has no focus: accepted and ignored
+    // Bounded so that the view stays within a few films of the axis (exporters write 0).
+    cam.principalOffsetX = props.getFloat("principal_point_offset_x", 0.f);
+    cam.principalOffsetY = props.getFloat("principal_point_offset_y", 0.f);
+    props.requireRange("principal_point_offset_x", cam.principalOffsetX, -kMaxPrincipalOffset, kMaxPrincipalOffset);
+    props.requireRange("principal_point_offset_y", cam.principalOffsetY, -kMaxPrincipalOffset, kMaxPrincipalOffset);
 }
 
 /// An orthographic camera's to_world may scale and shear (its scale sizes the view, as in Mitsuba), but
@@ -88,8 +93,12 @@ void loadSampler(const XmlContext &ctx, const pugi::xml_node &node, SceneDescrip
     XmlProps props(ctx, node);
     scene.sampleCount = props.getInt("sample_count", 4);
     props.requireRange("sample_count", scene.sampleCount, 1, kMaxSampleCount);
-    for (const char *name : {"seed", "jitter", "strength"}) props.ignore(name);
-    props.finish("sample_count, seed (and jitter, strength)");
+    props.ignore("seed");
+    const bool jitters = type == "stratified" || type == "multijitter" || type == "orthogonal";
+    if (jitters) props.ignore("jitter");
+    if (type == "orthogonal") props.ignore("strength");
+    props.finish(std::string("sample_count, seed") + (jitters ? ", jitter" : "") +
+                 (type == "orthogonal" ? ", strength" : ""));
     if (!props.objects().empty()) ctx.fail(props.objects()[0], "unexpected element inside <sampler>");
 }
 
@@ -114,7 +123,8 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
     else
         requireRigid(ctx, node, cam.toWorld);
     props.finish(orthographic ? "near_clip, far_clip, to_world"
-                              : "fov, fov_axis, focal_length, near_clip, far_clip, focus_distance, to_world");
+                              : "fov, fov_axis, focal_length, near_clip, far_clip, focus_distance, "
+                                "principal_point_offset_x, principal_point_offset_y, to_world");
     for (const auto &child : props.objects()) {
         const std::string tag = child.name();
         if (tag == "film") {

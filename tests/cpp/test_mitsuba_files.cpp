@@ -56,6 +56,13 @@ TEST(MitsubaFiles, EveryMitsubaSamplerKindAndItsSeedLoad) {
         EXPECT_EQ(s.sampleCount, 16) << kind;
         EXPECT_EQ(s.sampler, std::string(kind) == "independent" ? SamplerType::Independent : SamplerType::Sobol) << kind;
     }
+    // A kind's own knobs on that kind only, as Mitsuba reads them (it fails on a property nothing reads).
+    EXPECT_EQ(errorOf("jitter", scene(kRectangle, "<sampler type=\"orthogonal\"><boolean name=\"jitter\" "
+                                                  "value=\"false\"/><integer name=\"strength\" value=\"2\"/></sampler>")),
+              "");
+    EXPECT_TRUE(contains(errorOf("jitter", scene(kRectangle, "<sampler type=\"independent\"><boolean name=\"jitter\" "
+                                                             "value=\"false\"/></sampler>")),
+                         "unsupported property \"jitter\""));
     const std::string message = errorOf("halton", scene(kRectangle, "\n<sampler type=\"halton\"/>"));
     EXPECT_TRUE(contains(message, "mcval_mitsuba_halton.xml:3:")) << message;
     EXPECT_TRUE(contains(message, "expected independent, stratified, multijitter, orthogonal, ldsampler")) << message;
@@ -77,6 +84,25 @@ TEST(MitsubaFiles, PropertyTypesMitsubaConvertsAreRead) {
     EXPECT_TRUE(contains(errorOf("float_for_int", scene(kRectangle, "<sampler type=\"independent\"><float "
                                                              "name=\"sample_count\" value=\"4\"/></sampler>")),
                          "must be a <integer>"));
+}
+
+TEST(MitsubaFiles, APrincipalPointOffsetMovesTheViewAsMitsubas) {
+    // Mitsuba's perspective: film position (x, y) looks where (x + ox width, y + oy height) would without it.
+    const auto camera = [](const std::string &offsets) {
+        const SceneDescription s = loadScene(writeScene("principal", scene(kRectangle, offsets)), {}, "normals");
+        return Camera(s.camera, 8, 8);
+    };
+    const Camera plain = camera(""), moved = camera("<float name=\"principal_point_offset_x\" value=\"0.25\"/>"
+                                                    "<integer name=\"principal_point_offset_y\" value=\"-1\"/>");
+    for (const float x : {0.f, 3.5f, 8.f}) {
+        float length;
+        const Vec3f got = moved.direction(x, 2.f, length), expected = plain.direction(x + 2.f, 2.f - 8.f, length);
+        EXPECT_NEAR(got.x, expected.x, 1e-6f);
+        EXPECT_NEAR(got.y, expected.y, 1e-6f);
+        EXPECT_NEAR(got.z, expected.z, 1e-6f);
+        EXPECT_GT(std::abs(got.x - plain.direction(x, 2.f, length).x) + std::abs(got.y - plain.direction(x, 2.f, length).y),
+                  1e-2f);  // the twin: it does move
+    }
 }
 
 TEST(MitsubaFiles, AReferenceMayPrecedeItsBsdfAndNameANestedOne) {
