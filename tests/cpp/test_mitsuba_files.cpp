@@ -184,6 +184,11 @@ TEST(MitsubaFiles, AMitsuba05FileIsUpgradedAsMitsuba3Upgrades) {
     EXPECT_EQ(s.meshes.at(0).reflectance.x, 0.25f);
     EXPECT_EQ(s.meshes.at(0).positions.at(0).z, -1.f);
     EXPECT_EQ(s.hideEmitters, std::optional<bool>(false));
+    // The version is each file's: a 0.5 file included by a 3.0 one is upgraded, and the 3.0 one is not.
+    writeScene("v05_part", "<scene version=\"0.5.0\">" + shapes + "</scene>\n");
+    const SceneDescription mixed = loadScene(
+        writeScene("v3_includes_v05", scene("  <include filename=\"mcval_mitsuba_v05_part.xml\"/>\n")));
+    EXPECT_EQ(mixed.meshes.at(0).reflectance.x, 0.25f);
     // A 3.0 file keeps its names, as Mitsuba 3 does: camelCase there is an unknown property.
     EXPECT_TRUE(contains(errorOf("v3_camel", scene(shapes, sensor)), "unsupported property \"farClip\""));
 }
