@@ -46,7 +46,7 @@ Material readTwoSided(const XmlContext &ctx, const pugi::xml_node &node, Definit
             ctx.fail(child, "unexpected element inside <bsdf type=\"twosided\">: expected <bsdf> or <ref>");
         if (sides.size() == 2) ctx.fail(child, "a twosided bsdf holds at most two bsdfs (front, back)");
         sides.push_back(tag == "bsdf" ? loadBsdf(ctx, child, defs, deferred, depth + 1)
-                                      : resolveBsdfRef(ctx, child, defs, deferred, depth));  // it adds the 1
+                                      : resolveBsdfRef(ctx, child, defs, deferred, depth + 1));
     }
     if (sides.empty()) ctx.fail(node, "a twosided bsdf needs a nested <bsdf> or <ref> (its one-sided material)");
     return {sides[0].reflectance, sides.back().reflectance};
@@ -107,7 +107,7 @@ Material resolveBsdfRef(const XmlContext &ctx, const pugi::xml_node &ref, Defini
     const auto it = defs.bsdfNodes.find(id);
     if (it == defs.bsdfNodes.end()) ctx.fail(ref, "no <bsdf id=\"" + id + "\"> in the file");
     if (defs.reading.count(id)) ctx.fail(ref, "the bsdf \"" + id + "\" refers to itself");
-    return loadBsdf(ctx, it->second, defs, deferred, depth + 1);
+    return loadBsdf(ctx, it->second, defs, deferred, depth);
 }
 
 }  // namespace mcval

@@ -19,7 +19,8 @@ void registerBsdfs(const XmlContext &ctx, const pugi::xml_node &node, Definition
 Material loadBsdf(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs, Deferred &deferred,
                   int depth = 0);
 
-/// The material of the bsdf a <ref id> names, wherever in the file it is defined.
+/// The material of the bsdf a <ref id> names, wherever in the file it is defined; `depth`: the named bsdf's, as
+/// if it stood where the reference does.
 Material resolveBsdfRef(const XmlContext &ctx, const pugi::xml_node &ref, Definitions &defs, Deferred &deferred,
                         int depth = 0);
 

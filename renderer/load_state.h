@@ -33,6 +33,8 @@ struct Deferred {
     /// <medium>s and references to them: no integrator of ours traces media, nor do the Mitsuba integrators
     /// they are compared with (direct, aov), so they are skipped.
     std::vector<std::pair<pugi::xml_node, std::string>> media;
+    /// Top-level bsdfs no shape refers to: read by no integrator, whatever their type.
+    std::vector<std::pair<pugi::xml_node, std::string>> unreferencedBsdfs;
 };
 
 /// A <shape type="shapegroup">'s members, in the group's space: kept aside, rendered only through instances.

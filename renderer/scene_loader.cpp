@@ -69,10 +69,9 @@ struct Walk {
     Deferred deferred;
 };
 
-/// The bsdfs and shapes the walk set aside, in document order, each shape's files looked for where it stood;
-/// then the instances, whose <ref> may name a shapegroup further down.
+/// The shapes the walk set aside, in document order, each shape's files looked for where it stood (a bsdf is
+/// read when a shape refers to it); then the instances, whose <ref> may name a shapegroup further down.
 void loadSetAside(XmlContext &ctx, Walk &w) {
-    for (const pugi::xml_node &node : w.bsdfs) loadBsdf(ctx, node, w.defs, w.deferred);
     for (const auto &[node, folders] : w.shapes) {
         ctx.folders = w.folderLists[folders];
         const std::string type = typeOf(ctx, node);
@@ -82,6 +81,10 @@ void loadSetAside(XmlContext &ctx, Walk &w) {
                        w.deferred);
     }
     for (const pugi::xml_node &node : w.instances) loadInstance(ctx, node, w.defs, w.scene);
+    for (const pugi::xml_node &node : w.bsdfs)
+        if (const std::string id = ctx.attr(node, "id"); !w.defs.bsdfs.count(id))
+            w.deferred.unreferencedBsdfs.emplace_back(node, "<bsdf id=\"" + id + "\"> at line " +
+                                                                std::to_string(ctx.line(node)) + " (no shape refers to it)");
 }
 
 /// The elements under `parent` (the <scene> of a file in `chain`, the outermost first), in document order:
@@ -188,6 +191,7 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     }
     for (const auto &[node, what] : deferred.otherEmitters) skipped.push_back(what);
     for (const auto &[node, what] : deferred.media) skipped.push_back(what);
+    for (const auto &[node, what] : deferred.unreferencedBsdfs) skipped.push_back(what);
     for (const auto &[node, what] : deferred.textures) skipped.push_back(what);
     for (const auto &unread : deferred.unreadReflectances) {
         if (info->use.readsReflectance)

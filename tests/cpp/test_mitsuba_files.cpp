@@ -115,7 +115,8 @@ TEST(MitsubaFiles, AReferenceMayPrecedeItsBsdfAndNameANestedOne) {
     EXPECT_EQ(s.meshes.at(0).reflectance.x, 0.7f);
     EXPECT_EQ(s.spheres.at(0).reflectance.x, 0.1f);
     EXPECT_EQ(s.meshes.at(1).reflectance.x, 0.1f);
-    const std::string cycle = scene(kRectangle + "  <bsdf type=\"twosided\" id=\"a\"><ref id=\"b\"/></bsdf>\n"
+    const std::string cycle = scene("  <shape type=\"cube\"><ref id=\"a\"/></shape>\n"
+                                    "  <bsdf type=\"twosided\" id=\"a\"><ref id=\"b\"/></bsdf>\n"
                                     "  <bsdf type=\"twosided\" id=\"b\">\n    <ref id=\"a\"/></bsdf>\n");
     EXPECT_TRUE(contains(errorOf("cycle", cycle, "ao"), "refers to itself")) << errorOf("cycle", cycle, "ao");
     const std::string twice = scene(kRectangle + "  <bsdf type=\"diffuse\" id=\"a\"/>\n  <bsdf type=\"diffuse\" id=\"a\"/>\n");
@@ -123,6 +124,15 @@ TEST(MitsubaFiles, AReferenceMayPrecedeItsBsdfAndNameANestedOne) {
         << errorOf("twice", twice);
     EXPECT_TRUE(contains(errorOf("missing", scene("  <shape type=\"cube\">\n<ref id=\"nowhere\"/></shape>\n")),
                          "mcval_mitsuba_missing.xml:4: <ref>: no <bsdf id=\"nowhere\"> in the file"));
+}
+
+TEST(MitsubaFiles, ABsdfNoShapeRefersToIsNotRead) {
+    // As no integrator reads it: a plastic one loads under ao, with a note.
+    const std::string body = scene(kRectangle + "  <bsdf type=\"plastic\" id=\"unused\"/>\n");
+    EXPECT_EQ(errorOf("unreferenced", body, "ao"), "");
+    const std::string used = scene("  <shape type=\"cube\"><ref id=\"unused\"/></shape>\n  <bsdf type=\"plastic\" "
+                                   "id=\"unused\"/>\n");
+    EXPECT_TRUE(contains(errorOf("referenced", used, "ao"), "mcval_mitsuba_referenced.xml:4: <bsdf>: unsupported bsdf"));
 }
 
 TEST(MitsubaFiles, TwosidedDiffuseIsDiffuseOnBothSides) {
