@@ -34,6 +34,9 @@ Camera::Camera(const CameraSpec &spec, int width, int height)
     const float halfWidth = m_orthographic ? 1.f : m_tanHalfX;
     m_scaleX = 2.f * halfWidth / float(width);
     m_scaleY = 2.f * halfWidth / m_aspect / float(height);
+    // Mitsuba's principal_point_offset: film position (x, y) looks where (x + ox width, y + oy height) would.
+    m_left = m_tanHalfX - spec.principalOffsetX * float(width) * m_scaleX;
+    m_top = m_tanHalfX / m_aspect - spec.principalOffsetY * float(height) * m_scaleY;
 }
 
 }  // namespace mcval

@@ -36,7 +36,7 @@ public:
     Vec3f direction(float x, float y, float &length) const {
         // Camera space: +z forward, +x to the left, +y up; the left edge of the image is +x. The
         // direction is (lx, ly, 1) in camera space, normalised once in world space.
-        const float lx = m_tanHalfX - x * m_scaleX, ly = m_tanHalfX / m_aspect - y * m_scaleY;
+        const float lx = m_left - x * m_scaleX, ly = m_top - y * m_scaleY;
         length = std::sqrt(lx * lx + ly * ly + 1.f);
         return normalize(m_axisX * lx + m_axisY * ly + m_axisZ);
     }
@@ -65,6 +65,9 @@ private:
     bool m_orthographic;
     Vec3f m_origin, m_forward;
     float m_fovX, m_tanHalfX, m_aspect, m_near, m_far;
+    /// Perspective: camera-space x and y (at unit distance) of the film's top-left corner, moved by the
+    /// principal point's offset.
+    float m_left = 0.f, m_top = 0.f;
     Vec3f m_axisX, m_axisY, m_axisZ;  ///< the camera's axes in world space (to_world's columns)
     float m_scaleX, m_scaleY;         ///< camera-space units per pixel (at unit distance, for perspective)
 };

@@ -83,6 +83,11 @@ public:
 
     /// The diffuse reflectance of geometry `geom` (Hit::geom), whatever the shape.
     const Color &reflectance(uint32_t geom) const { return m_reflectance[geom]; }
+    /// Whether geometry `geom` is lit from behind too (Mitsuba's twosided bsdf), as a diffuse surface whose
+    /// normal faces the ray; a one-sided one is black from behind.
+    bool twoSided(uint32_t geom) const { return m_twoSided[geom] != 0; }
+    /// The diffuse reflectance of the back of a two-sided geometry `geom` (black for a one-sided one).
+    const Color &backReflectance(uint32_t geom) const { return m_backReflectance[geom]; }
 
 private:
     /// Position and normals of a hit: on triangle prim of a mesh at barycentrics (u, v), or on an
@@ -115,7 +120,12 @@ private:
     std::vector<Disk> m_disks;          ///< copies: Embree holds pointers to them, so never resized
     std::vector<Cylinder> m_cylinders;
     uint32_t m_firstDisk = 0, m_firstCylinder = 0;  ///< their first geometry ids
+    /// Adds the next geometry id's material.
+    void addMaterial(const Color &front, const std::optional<Color> &back);
+
     std::vector<Color> m_reflectance;  ///< by geometry id: one table whatever the shape
+    std::vector<Color> m_backReflectance;
+    std::vector<uint8_t> m_twoSided;
     /// Every mesh's triangles, then a zero record that lanes without a triangle read harmlessly.
     std::vector<TriangleRecord> m_triangles;
     std::vector<TriangleNormals> m_normals;            ///< the smooth meshes' triangles, then a zero record

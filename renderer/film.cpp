@@ -11,12 +11,17 @@ namespace mcval {
 ImageBlock::ImageBlock(int x0, int y0, int width, int height, const FilterSpec &filter)
     : m_filter(filter), m_radius(filter.radius()) {
     static_assert(kMaxTaps >= 2 * 4 * kMaxFilterStddev + 2, "a gaussian's taps must fit wxs in put()");
-    if (filter.type == FilterSpec::Type::Gaussian) {  // weight()'s constants, once per block
-        m_alpha = -1.f / (2.f * filter.stddev * filter.stddev);
-        m_edge = expNonPositive(m_alpha * m_radius * m_radius);
+    static_assert(kMaxTaps >= 2 * kMaxTentRadius + 2, "a tent's taps must fit wxs in put()");
+    if (filter.type != FilterSpec::Type::Box) {  // weight()'s constants, once per block
+        if (filter.type == FilterSpec::Type::Gaussian) {
+            m_alpha = -1.f / (2.f * filter.stddev * filter.stddev);
+            m_edge = expNonPositive(m_alpha * m_radius * m_radius);
+        } else {
+            m_invRadius = 1.f / m_radius;
+        }
         m_taps = static_cast<int>(std::floor(m_radius + 0.5f));
         const size_t taps = 2 * static_cast<size_t>(m_taps) + 1;
-        m_scratch.assign(4 * taps * kMaxPacket + 8, 0.0);  // putGaussian: a, a^2, b, b^2 per tap and lane
+        m_scratch.assign(4 * taps * kMaxPacket + 8, 0.0);  // putWide: a, a^2, b, b^2 per tap and lane
     }
     const int border = static_cast<int>(std::ceil(m_radius - 0.5f));
     m_x0 = x0 - border;
@@ -78,18 +83,18 @@ void ImageBlock::putPacket(int x, int y, const float *fx, const float *fy, const
         putBox(x, y, L, count);  // a box filter keeps every sample in its own pixel
         return;
     }
-    putGaussian(x, y, fx, fy, L, count);
+    putWide(x, y, fx, fy, L, count);
 }
 
-Film::Film(int width, int height)
-    : m_width(width), m_height(height), m_data(static_cast<size_t>(ImageBlock::kChannels) * width * height, 0.0) {}
+Film::Film(int width, int height, int x0, int y0)
+    : m_width(width), m_height(height), m_x0(x0), m_y0(y0), m_data(static_cast<size_t>(ImageBlock::kChannels) * width * height, 0.0) {}
 
 void Film::merge(const ImageBlock &block) {
     for (int j = 0; j < block.height(); ++j) {
-        const int y = block.y0() + j;
+        const int y = block.y0() + j - m_y0;
         if (y < 0 || y >= m_height) continue;
         for (int i = 0; i < block.width(); ++i) {
-            const int x = block.x0() + i;
+            const int x = block.x0() + i - m_x0;
             if (x < 0 || x >= m_width) continue;
             const double *src = block.sums(i, j);
             double *dst = &m_data[ImageBlock::kChannels * (y * m_width + x)];

@@ -37,7 +37,7 @@ public:
     const double *sums(int i, int j) const { return &m_data[kStride * (j * m_width + i)]; }
 
     static constexpr int kChannels = 11;
-    /// Doubles per pixel in a block: the sums and a 0, so that putGaussian adds whole SIMD vectors
+    /// Doubles per pixel in a block: the sums and a 0, so that putWide adds whole SIMD vectors
     /// (4 + 8) to a pixel, at the same offsets every time (their stores then forward to its loads).
     static constexpr int kStride = 12;
     /// Pixels a sample reaches along one axis: 2 x the widest filter radius (4 x kMaxFilterStddev) + 1.
@@ -47,19 +47,22 @@ public:
 
 private:
     /// The filter's 1D weight at offset x (pixels); the 2D weight is separable. The gaussian is
-    /// Mitsuba's windowed one, shifted so that it reaches 0 at the radius.
+    /// Mitsuba's windowed one, shifted so that it reaches 0 at the radius; the tent is Mitsuba's.
     float weight(float x) const {
         if (m_filter.type == FilterSpec::Type::Box) return std::abs(x) <= 0.5f ? 1.f : 0.f;
+        if (m_filter.type == FilterSpec::Type::Tent) return tentWeight(x, m_invRadius);
         return std::max(0.f, expNonPositive(m_alpha * x * x) - m_edge);
     }
-    /// putPacket() for a gaussian filter (film_splat.cpp).
-    void putGaussian(int x, int y, const float *fx, const float *fy, const Color *L, int count);
+    static float tentWeight(float x, float invRadius) { return std::max(0.f, 1.f - std::abs(x * invRadius)); }
+    /// putPacket() for a filter wider than a pixel, gaussian or tent (film_splat.cpp).
+    void putWide(int x, int y, const float *fx, const float *fy, const Color *L, int count);
 
     FilterSpec m_filter;
     float m_radius;
     float m_alpha = 0.f, m_edge = 0.f;  ///< gaussian: -1 / (2 stddev^2), and its value at the radius
-    int m_taps = 0;                     ///< gaussian: the pixels x - m_taps .. x + m_taps a pixel x's samples reach
-    std::vector<double> m_scratch;      ///< gaussian: putGaussian()'s per-packet weights
+    float m_invRadius = 0.f;            ///< tent: 1 / radius
+    int m_taps = 0;                     ///< the pixels x - m_taps .. x + m_taps a pixel x's samples reach
+    std::vector<double> m_scratch;      ///< putWide()'s per-packet weights
     int m_x0, m_y0, m_width, m_height;
     std::vector<double> m_data;
 };
@@ -68,7 +71,8 @@ private:
 /// whatever the thread count.
 class Film {
 public:
-    Film(int width, int height);
+    /// An image of width x height pixels whose top-left is film pixel (x0, y0) (a crop window's offset).
+    Film(int width, int height, int x0 = 0, int y0 = 0);
     void merge(const ImageBlock &block);
 
     /// Mean radiance per pixel (RGB, row-major from the top-left), and the variance of that mean
@@ -76,7 +80,7 @@ public:
     void develop(std::vector<float> &mean, std::vector<float> &variance) const;
 
 private:
-    int m_width, m_height;
+    int m_width, m_height, m_x0, m_y0;
     std::vector<double> m_data;
 };
 

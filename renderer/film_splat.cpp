@@ -1,4 +1,4 @@
-// The gaussian filter's splat of a pixel's packet of samples: ImageBlock::putGaussian.
+// A wide (gaussian or tent) filter's splat of a pixel's packet of samples: ImageBlock::putWide.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -38,8 +38,9 @@ inline uint32_t positiveLanes(const float *w) {
 
 /// The 1D filter weights of a packet's lanes on the window's taps: w[o * 16 + k] for the pixel at
 /// first + o and lane k (the weight put() gives), and per tap the bit mask of the lanes (< count)
-/// with a non-zero weight there.
-MCVAL_HOT void tapWeights(int first, int taps, const float *pos, int count, float alpha, float edge, float *w,
+/// with a non-zero weight there. `weight(d)`: the filter at offset d.
+template <typename Weight>
+MCVAL_HOT void tapWeights(int first, int taps, const float *pos, int count, const Weight &weight, float *w,
                           uint32_t *masks) {
     alignas(64) float p[P];
     for (int k = 0; k < P; ++k) p[k] = pos[std::min(k, count - 1)];
@@ -47,8 +48,7 @@ MCVAL_HOT void tapWeights(int first, int taps, const float *pos, int count, floa
         const float centre = static_cast<float>(first + o) + 0.5f;
         float *wo = &w[o * P];
         for (int k = 0; k < P; ++k) {
-            const float d = centre - p[k];
-            wo[k] = std::max(0.f, expNonPositive(alpha * d * d) - edge);
+            wo[k] = weight(centre - p[k]);
         }
         masks[o] = positiveLanes(wo) & ((1u << count) - 1u);
     }
@@ -84,7 +84,7 @@ inline __attribute__((always_inline)) void splatColumns(uint32_t lanes, const do
 
 }  // namespace
 
-MCVAL_HOT void ImageBlock::putGaussian(int x, int y, const float *fx, const float *fy, const Color *L, int count) {
+MCVAL_HOT void ImageBlock::putWide(int x, int y, const float *fx, const float *fy, const Color *L, int count) {
     if (count <= 0) return;
     // 0 x inf would spread a non-finite sample onto pixels of weight 0, which put() skips.
     bool finite = true;
@@ -96,8 +96,17 @@ MCVAL_HOT void ImageBlock::putGaussian(int x, int y, const float *fx, const floa
     const int taps = 2 * m_taps + 1, firstX = x - m_taps, firstY = y - m_taps;
     alignas(64) float wx[kMaxTaps * P], wy[kMaxTaps * P];
     uint32_t maskX[kMaxTaps], maskY[kMaxTaps];
-    tapWeights(firstX, taps, fx, count, m_alpha, m_edge, wx, maskX);
-    tapWeights(firstY, taps, fy, count, m_alpha, m_edge, wy, maskY);
+    if (m_filter.type == FilterSpec::Type::Tent) {
+        const float inv = m_invRadius;
+        const auto tent = [inv](float d) { return tentWeight(d, inv); };
+        tapWeights(firstX, taps, fx, count, tent, wx, maskX);
+        tapWeights(firstY, taps, fy, count, tent, wy, maskY);
+    } else {
+        const float alpha = m_alpha, edge = m_edge;
+        const auto gaussian = [alpha, edge](float d) { return std::max(0.f, expNonPositive(alpha * d * d) - edge); };
+        tapWeights(firstX, taps, fx, count, gaussian, wx, maskX);
+        tapWeights(firstY, taps, fy, count, gaussian, wy, maskY);
+    }
 
     // The weights in double (a product of two is exact), and each lane's (1, L) and (1, L, L^2, 0):
     // a pixel's 11 sums are a b (1, L) and a^2 b^2 (1, L, L^2) summed over the lanes.

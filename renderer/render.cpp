@@ -29,11 +29,16 @@ struct Tile {
     int x0, y0, width, height;
 };
 
-std::vector<Tile> makeTiles(int width, int height) {
+/// The tiles of the pixels sampled, in film pixels: the film's crop window (the whole film unless the scene
+/// crops it), and with sample_border a band around it as wide as the filter's border (Mitsuba's).
+std::vector<Tile> makeTiles(const FilmSpec &film) {
     std::vector<Tile> tiles;
-    for (int y = 0; y < height; y += kTileSize)
-        for (int x = 0; x < width; x += kTileSize)
-            tiles.push_back({x, y, std::min(kTileSize, width - x), std::min(kTileSize, height - y)});
+    const int border = film.sampleBorder ? static_cast<int>(std::ceil(film.filter.radius() - 0.5f)) : 0;
+    const int x0 = film.cropX - border, y0 = film.cropY - border;
+    const int x1 = film.cropX + film.cropWidth + border, y1 = film.cropY + film.cropHeight + border;
+    for (int y = y0; y < y1; y += kTileSize)
+        for (int x = x0; x < x1; x += kTileSize)
+            tiles.push_back({x, y, std::min(kTileSize, x1 - x), std::min(kTileSize, y1 - y)});
     return tiles;
 }
 
@@ -73,10 +78,18 @@ struct RenderContext {
     const Camera &camera;
     const EmbreeScene &embree;
     const Integrator &integrator;
-    int width;
+    int width, height;  ///< the whole film's
     int spp;
     uint64_t seed;
     SamplerType sampler;
+
+    /// The sampler's key of film pixel (x, y): its index for a pixel of the film (whatever the crop window),
+    /// and past them, for the border pixels sample_border adds (at most 2^16 outside), one of their own.
+    uint64_t pixelKey(int x, int y) const {
+        if (x >= 0 && y >= 0 && x < width && y < height) return static_cast<uint64_t>(y) * width + x;
+        return static_cast<uint64_t>(width) * height + (static_cast<uint64_t>(y + 65536) << 32) +
+               static_cast<uint64_t>(x + 65536);
+    }
 };
 
 /// Camera-ray packets traced as one Embree stream: the coherent-stream traversal takes several packets
@@ -134,8 +147,7 @@ MCVAL_HOT void renderJobs(const RenderContext &ctx, int batch, int y, const Pack
     alignas(64) float filmX[kStreamPackets][kPacketSize], filmY[kStreamPackets][kPacketSize];
     int laneCounts[kStreamPackets] = {};
     for (int j = 0; j < n; ++j) {
-        const Sampler sampler(ctx.sampler, ctx.seed, static_cast<uint64_t>(batch),
-                              static_cast<uint64_t>(y) * ctx.width + jobs[j].x);
+        const Sampler sampler(ctx.sampler, ctx.seed, static_cast<uint64_t>(batch), ctx.pixelKey(jobs[j].x, y));
         jitter(sampler, jobs[j].x, y, jobs[j].first, filmX[j], filmY[j]);
         cameraRays(ctx.camera, filmX[j], filmY[j], jobs[j].count, camera[j]);
         laneCounts[j] = jobs[j].count;
@@ -143,7 +155,7 @@ MCVAL_HOT void renderJobs(const RenderContext &ctx, int batch, int y, const Pack
     }
     ctx.embree.intersect(camera, laneCounts, n, lanes);
     for (int j = 0; j < n; ++j) {
-        Sampler sampler(ctx.sampler, ctx.seed, static_cast<uint64_t>(batch), static_cast<uint64_t>(y) * ctx.width + jobs[j].x);
+        Sampler sampler(ctx.sampler, ctx.seed, static_cast<uint64_t>(batch), ctx.pixelKey(jobs[j].x, y));
         Color radiance[kPacketSize];
         ctx.integrator.LiPacket({jobs[j].count, static_cast<uint32_t>(jobs[j].first), lanes[j]}, sampler, radiance, counts);
         block.putPacket(jobs[j].x, y, filmX[j], filmY[j], radiance, jobs[j].count);
@@ -187,16 +199,16 @@ struct Progress {
 
 /// One batch image: its tiles in parallel, merged in a fixed order so that the bits do not depend
 /// on the thread count; `mean` and `variance` are the film's per-pixel estimate and its variance.
-void renderBatch(const RenderContext &ctx, int batch, const std::vector<Tile> &tiles, const FilterSpec &filter,
+void renderBatch(const RenderContext &ctx, int batch, const std::vector<Tile> &tiles, const FilmSpec &spec,
                  tbb::enumerable_thread_specific<RayCounts> &counts, Progress &progress, Image &mean, Image &variance) {
     std::vector<ImageBlock> blocks;
     blocks.reserve(tiles.size());
-    for (const Tile &t : tiles) blocks.emplace_back(t.x0, t.y0, t.width, t.height, filter);
+    for (const Tile &t : tiles) blocks.emplace_back(t.x0, t.y0, t.width, t.height, spec.filter);
     tbb::parallel_for(size_t(0), tiles.size(), [&](size_t ti) {
         renderTile(ctx, batch, tiles[ti], blocks[ti], counts.local());
         progress.tileDone();
     });
-    Film film(mean.width, mean.height);
+    Film film(mean.width, mean.height, spec.cropX, spec.cropY);
     for (const ImageBlock &block : blocks) film.merge(block);
     film.develop(mean.rgb, variance.rgb);
 }
@@ -206,9 +218,9 @@ void requireWithinLimits(const SceneDescription &scene, int spp, int batches) {
     if (spp > kMaxSampleCount) throw SceneError("spp must be at most " + std::to_string(kMaxSampleCount));
     if (batches > kMaxBatches) throw SceneError("batches must be at most " + std::to_string(kMaxBatches));
     // Film sums (11 doubles) and the mean, variance and batch images (3 floats each) per pixel.
-    const double bytes = double(scene.film.width) * scene.film.height * (11 * 8 + 12 * (2 + batches));
+    const double bytes = double(scene.film.cropWidth) * scene.film.cropHeight * (11 * 8 + 12 * (2 + batches));
     if (bytes > kMaxImageBytes)
-        throw SceneError(scene.file, 0, "a " + std::to_string(scene.film.width) + "x" + std::to_string(scene.film.height) +
+        throw SceneError(scene.file, 0, "a " + std::to_string(scene.film.cropWidth) + "x" + std::to_string(scene.film.cropHeight) +
                                             " film with " + std::to_string(batches) + " batches needs " +
                                             std::to_string(int(bytes / (1 << 20))) + " MiB; the limit is " +
                                             std::to_string(int(kMaxImageBytes / (1 << 20))) + " MiB");
@@ -229,7 +241,8 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
     }
     const int batches = std::max(1, options.batches);
     requireWithinLimits(scene, spp, batches);
-    const int width = scene.film.width, height = scene.film.height;
+    // The camera projects onto the whole film; the image is its crop window.
+    const int width = scene.film.cropWidth, height = scene.film.cropHeight;
 
     std::unique_ptr<tbb::global_control> limit;
     if (options.threads > 0)
@@ -248,16 +261,16 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
     const auto integrator = createIntegrator(spec, scene, embree);  // validates the name before any work
     out.stats.bvhSeconds = secondsSince(start);
 
-    const Camera camera(scene.camera, width, height);
-    const RenderContext ctx{camera, embree, *integrator, width, spp, options.seed, sampler};
-    const std::vector<Tile> tiles = makeTiles(width, height);
+    const Camera camera(scene.camera, scene.film.width, scene.film.height);
+    const RenderContext ctx{camera, embree, *integrator, scene.film.width, scene.film.height, spp, options.seed, sampler};
+    const std::vector<Tile> tiles = makeTiles(scene.film);
     tbb::enumerable_thread_specific<RayCounts> counts;
     Progress progress{options.progress, tiles.size() * batches};
 
     start = std::chrono::steady_clock::now();
     for (int b = 0; b < batches; ++b) {
         Image mean{width, height, {}}, variance{width, height, {}};
-        renderBatch(ctx, b, tiles, scene.film.filter, counts, progress, mean, variance);
+        renderBatch(ctx, b, tiles, scene.film, counts, progress, mean, variance);
         if (batches == 1) {
             out.mean = std::move(mean);
             out.variance = std::move(variance);

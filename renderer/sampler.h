@@ -101,6 +101,15 @@ inline std::optional<SamplerType> parseSampler(const std::string &name) {
     return std::nullopt;
 }
 
+/// The type a scene file's <sampler type="name"> renders with, or nothing: ours by name, and Mitsuba 3's
+/// stratified kinds (stratified, multijitter, orthogonal, ldsampler) as sobol, stratified within a pixel as
+/// they are. The expectation of every pixel is the same whichever is used.
+inline std::optional<SamplerType> samplerFromFile(const std::string &name) {
+    if (name == "stratified" || name == "multijitter" || name == "orthogonal" || name == "ldsampler")
+        return SamplerType::Sobol;
+    return parseSampler(name);
+}
+
 /// Sample values for one pixel of one batch: call startSample(i) for sample i, then next2D()
 /// for each 2D dimension pair the integrator needs.
 class Sampler {

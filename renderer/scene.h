@@ -25,6 +25,7 @@ struct Mesh {
     std::vector<Vec3f> normals;      ///< per vertex; empty for flat shading
     std::vector<uint32_t> indices;   ///< three per triangle, counter-clockwise seen from the front
     Color reflectance{0.5f, 0.5f, 0.5f};
+    std::optional<Color> backReflectance;  ///< two-sided (Mitsuba's twosided): the back's; none: black from behind
 };
 
 /// Mitsuba's `sphere` in world space, intersected exactly rather than tessellated.
@@ -34,6 +35,7 @@ struct Sphere {
     float radius = 1.f;
     bool flipNormals = false;        ///< front side inside: flip_normals, or a mirroring to_world (as Mitsuba)
     Color reflectance{0.5f, 0.5f, 0.5f};
+    std::optional<Color> backReflectance;  ///< two-sided (Mitsuba's twosided): the back's; none: black from behind
 };
 
 /// Mitsuba's `disk`: the unit disk at z = 0 of object space under an affine to_world, intersected exactly.
@@ -42,6 +44,7 @@ struct Disk {
     Affine toWorld;
     bool flipNormals = false;        ///< flip_normals: the front is object-space -z
     Color reflectance{0.5f, 0.5f, 0.5f};
+    std::optional<Color> backReflectance;  ///< two-sided (Mitsuba's twosided): the back's; none: black from behind
 };
 
 /// Mitsuba's `cylinder`: the open unit cylinder (radius 1, z in [0, 1]) of object space under
@@ -51,6 +54,7 @@ struct Cylinder {
     Affine toWorld;
     bool flipNormals = false;        ///< flip_normals: the normals point inward
     Color reflectance{0.5f, 0.5f, 0.5f};
+    std::optional<Color> backReflectance;  ///< two-sided (Mitsuba's twosided): the back's; none: black from behind
 };
 
 /// An isotropic point light; intensity in W/sr.
@@ -66,19 +70,30 @@ struct CameraSpec {
     Transform toWorld;
     float fov = 0.f;                 ///< degrees, along fovAxis (perspective only)
     std::string fovAxis = "x";       ///< x, y, diagonal, smaller, larger
+    /// principal_point_offset_x/y (perspective only): the principal point's offset from the film's centre,
+    /// in film widths and heights.
+    float principalOffsetX = 0.f, principalOffsetY = 0.f;
     float nearClip = 1e-2f;
     float farClip = 1e4f;
 };
 
-/// Reconstruction filter: `box` (radius 0.5) or `gaussian` (stddev 0.5, radius 4 stddev).
+/// Reconstruction filter: `box` (radius 0.5), `gaussian` (stddev 0.5, radius 4 stddev) or `tent`
+/// (max(0, 1 - |x| / radius), radius 1).
 struct FilterSpec {
-    enum class Type { Box, Gaussian } type = Type::Gaussian;
+    enum class Type { Box, Gaussian, Tent } type = Type::Gaussian;
     float stddev = 0.5f;
-    float radius() const { return type == Type::Box ? 0.5f : 4.f * stddev; }
+    float tentRadius = 1.f;
+    float radius() const { return type == Type::Box ? 0.5f : type == Type::Tent ? tentRadius : 4.f * stddev; }
 };
 
 struct FilmSpec {
     int width = 768, height = 576;   ///< Mitsuba's hdrfilm defaults
+    /// hdrfilm's crop window: the image is pixels [cropX, cropX + cropWidth) x [cropY, cropY + cropHeight) of
+    /// the width x height film, whose size the camera's projection keeps. The whole film by default.
+    int cropX = 0, cropY = 0, cropWidth = 768, cropHeight = 576;
+    /// hdrfilm's sample_border: pixels as far outside the crop window as the filter reaches are sampled too,
+    /// so that its edge pixels get the samples around them that an inner pixel gets.
+    bool sampleBorder = false;
     FilterSpec filter;
     std::string componentFormat = "float32";  ///< hdrfilm component_format: float16 or float32
 };

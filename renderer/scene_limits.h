@@ -27,6 +27,10 @@ constexpr int kMaxAoSamples = 1024;
 /// Range of a gaussian filter's standard deviation, in pixels: narrower underflows its weights,
 /// wider splats each sample over thousands of pixels (Mitsuba's default is 0.5).
 constexpr float kMinFilterStddev = 0.05f, kMaxFilterStddev = 4.f;
+/// Range of a tent filter's radius, in pixels: the gaussian's radii (4 stddev).
+constexpr float kMinTentRadius = 4.f * kMinFilterStddev, kMaxTentRadius = 4.f * kMaxFilterStddev;
+/// Largest |principal_point_offset_x| or |principal_point_offset_y|, in film widths and heights.
+constexpr float kMaxPrincipalOffset = 10.f;
 /// Range of the field of view, in degrees.
 constexpr float kMinFov = 1e-3f, kMaxFov = 179.9f;
 /// Largest scene file read, in bytes.

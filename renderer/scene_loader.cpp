@@ -8,6 +8,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "emitter_loader.h"
 #include "error.h"
 #include "scene_limits.h"
 #include "mesh.h"
@@ -27,44 +28,6 @@ namespace fs = std::filesystem;
 
 std::string typeOf(const XmlContext &ctx, const pugi::xml_node &node) { return ctx.attr(node, "type"); }
 
-/// Mitsuba 3's emitter types that none of our integrators uses; each is skipped with a note (and the
-/// harness removes them from Mitsuba's scene as well).
-bool isOtherEmitter(const std::string &type) {
-    return type == "directional" || type == "spot" || type == "projector" || type == "envmap";
-}
-
-void loadEmitter(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene, Deferred &deferred) {
-    const std::string type = typeOf(ctx, node);
-    if (isOtherEmitter(type)) {
-        deferred.otherEmitters.emplace_back(node, "<emitter type=\"" + type + "\"> at line " +
-                                                      std::to_string(ctx.line(node)));
-        return;
-    }
-    XmlProps props(ctx, node);
-    if (type == "point") {
-        PointLight light;
-        // Mitsuba places a point light by `position` or by `to_world` (its origin), not both.
-        const bool placed = props.has("to_world");
-        if (placed && props.has("position")) ctx.fail(node, "a point light takes position or to_world, not both");
-        light.position = placed ? props.getTransform("to_world").point({0.f, 0.f, 0.f})
-                                : props.getPoint("position", {0.f, 0.f, 0.f});
-        props.requireRange(placed ? "to_world" : "position", light.position, -kMaxCoordinate, kMaxCoordinate);
-        light.intensity = props.getColor("intensity", {1.f, 1.f, 1.f});
-        props.requireRange("intensity", light.intensity, 0.f, kMaxEmission);
-        props.finish("position or to_world, intensity");
-        scene.pointLights.push_back(light);
-    } else if (type == "constant") {
-        if (scene.environment) ctx.fail(node, "only one constant emitter is supported");
-        scene.environment = props.getColor("radiance", {1.f, 1.f, 1.f});
-        props.requireRange("radiance", *scene.environment, 0.f, kMaxEmission);
-        props.finish("radiance");
-    } else {
-        ctx.fail(node, "unsupported emitter type \"" + type +
-                           "\": expected point or constant (directional, spot, projector and envmap are skipped)");
-    }
-    if (!props.objects().empty()) ctx.fail(props.objects()[0], "unexpected element inside <emitter>");
-}
-
 /// The file's integrator: its type from the registry, its properties parsed by the integrator itself.
 void loadIntegrator(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene) {
     const std::string type = typeOf(ctx, node);
@@ -77,8 +40,8 @@ void loadIntegrator(const XmlContext &ctx, const pugi::xml_node &node, SceneDesc
 
 /// The `hide_emitters` of the file's integrator or of one nested in it (`moment`, `aov`), if given.
 std::optional<bool> fileHideEmitters(const XmlContext &ctx, const pugi::xml_node &integrator) {
-    const pugi::xml_node flag = integrator.find_node([](const pugi::xml_node &n) {
-        return std::string(n.name()) == "boolean" && std::string(n.attribute("name").value()) == "hide_emitters";
+    const pugi::xml_node flag = integrator.find_node([&ctx](const pugi::xml_node &n) {
+        return std::string(n.name()) == "boolean" && ctx.propertyName(n) == "hide_emitters";
     });
     if (!flag) return std::nullopt;
     return XmlProps(ctx, flag.parent()).getBool("hide_emitters", true);
@@ -90,16 +53,39 @@ std::optional<bool> fileHideEmitters(const XmlContext &ctx, const pugi::xml_node
                    "(python -m harness images --scene FILE)");
 }
 
-/// What the walk over a scene's elements gathers (the scene file's and its includes').
+/// What the walk over a scene's elements gathers (the scene file's and its includes'). Bsdfs and shapes are
+/// read after it, once every <bsdf id> a <ref> may name is known.
 struct Walk {
     Walk(SceneDescription &s, const std::string &i) : scene(s), integrator(i) {}
     SceneDescription &scene;
     const std::string &integrator;  ///< the caller's, overriding the file's; empty: the file's
     Definitions defs;
+    std::vector<pugi::xml_node> bsdfs;
+    /// Each top-level shape with the file resolver's folders where it stood (an index into folderLists).
+    std::vector<std::pair<pugi::xml_node, size_t>> shapes;
+    std::vector<std::vector<std::string>> folderLists;
     std::vector<pugi::xml_node> instances;
     bool hasSensor = false, hasIntegrator = false;
     Deferred deferred;
 };
+
+/// The shapes the walk set aside, in document order, each shape's files looked for where it stood (a bsdf is
+/// read when a shape refers to it); then the instances, whose <ref> may name a shapegroup further down.
+void loadSetAside(XmlContext &ctx, Walk &w) {
+    for (const auto &[node, folders] : w.shapes) {
+        ctx.folders = w.folderLists[folders];
+        const std::string type = typeOf(ctx, node);
+        if (type == "shapegroup") loadShapeGroup(ctx, node, w.defs, w.deferred);
+        else if (type == "instance") w.instances.push_back(node);
+        else loadShape(ctx, node, w.defs, {w.scene.meshes, w.scene.spheres, w.scene.disks, w.scene.cylinders},
+                       w.deferred);
+    }
+    for (const pugi::xml_node &node : w.instances) loadInstance(ctx, node, w.defs, w.scene);
+    for (const pugi::xml_node &node : w.bsdfs)
+        if (const std::string id = ctx.attr(node, "id"); !w.defs.bsdfs.count(id))
+            w.deferred.unreferencedBsdfs.emplace_back(node, "<bsdf id=\"" + id + "\"> at line " +
+                                                                std::to_string(ctx.line(node)) + " (no shape refers to it)");
+}
 
 /// The elements under `parent` (the <scene> of a file in `chain`, the outermost first), in document order:
 /// an <include> walks its file's elements where it stands, a <path> is searched from there on.
@@ -118,19 +104,18 @@ void walkElements(XmlContext &ctx, const pugi::xml_node &parent, Walk &w, const 
             walkElements(ctx, includeFile(ctx, node, inner), w, inner);
         } else if (tag == "sensor") {
             if (w.hasSensor) ctx.fail(node, "only one sensor is supported");
-            loadSensor(ctx, node, w.scene);
+            loadSensor(ctx, node, w.scene, w.deferred);
             w.hasSensor = true;
         } else if (tag == "shape") {
-            const std::string type = typeOf(ctx, node);
-            if (type == "shapegroup") loadShapeGroup(ctx, node, w.defs, w.deferred);
-            else if (type == "instance") w.instances.push_back(node);
-            else loadShape(ctx, node, w.defs, {w.scene.meshes, w.scene.spheres, w.scene.disks, w.scene.cylinders},
-                           w.deferred);
+            registerBsdfs(ctx, node, w.defs);
+            if (w.folderLists.empty() || w.folderLists.back() != ctx.folders) w.folderLists.push_back(ctx.folders);
+            w.shapes.emplace_back(node, w.folderLists.size() - 1);
         } else if (tag == "bsdf") {
-            const std::string id = ctx.attr(node, "id");
-            if (id.empty()) ctx.fail(node, "a top-level <bsdf> needs an id to be referenced by");
-            if (w.defs.groups.count(id)) ctx.fail(node, "the id \"" + id + "\" is already a shapegroup's");
-            w.defs.bsdfs[id] = loadBsdf(ctx, node, w.deferred);
+            if (ctx.attr(node, "id").empty()) ctx.fail(node, "a top-level <bsdf> needs an id to be referenced by");
+            registerBsdfs(ctx, node, w.defs);
+            w.bsdfs.push_back(node);
+        } else if (tag == "medium") {
+            w.deferred.media.emplace_back(node, "<medium> at line " + std::to_string(ctx.line(node)));
         } else if (tag == "emitter") {
             loadEmitter(ctx, node, w.scene, w.deferred);
         } else if (tag == "texture") {
@@ -147,7 +132,7 @@ void walkElements(XmlContext &ctx, const pugi::xml_node &parent, Walk &w, const 
             failNoriDialect(ctx, node);
         } else {
             ctx.fail(node, "unsupported element: expected <default>, <path>, <include>, <sensor>, <shape>, <bsdf>, "
-                           "<texture>, <emitter> or <integrator>");
+                           "<texture>, <emitter>, <medium> or <integrator>");
         }
     }
 }
@@ -182,10 +167,9 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     Walk w(scene, integrator);
     std::error_code ec;
     walkElements(ctx, root, w, {fs::weakly_canonical(path, ec).string()});
+    loadSetAside(ctx, w);
     Deferred &deferred = w.deferred;
     std::vector<std::string> skipped;
-    // Instances last: a <ref> may name a shapegroup further down, as Mitsuba resolves references.
-    for (const pugi::xml_node &node : w.instances) loadInstance(ctx, node, w.defs, scene);
     if (!w.hasSensor) ctx.fail(root, "the scene has no <sensor type=\"perspective\"> or <sensor type=\"orthographic\">");
     if (scene.meshes.empty() && scene.spheres.empty() && scene.disks.empty() && scene.cylinders.empty())
         ctx.fail(root, "the scene has no <shape>");
@@ -206,6 +190,8 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
         skipped.push_back(what);
     }
     for (const auto &[node, what] : deferred.otherEmitters) skipped.push_back(what);
+    for (const auto &[node, what] : deferred.media) skipped.push_back(what);
+    for (const auto &[node, what] : deferred.unreferencedBsdfs) skipped.push_back(what);
     for (const auto &[node, what] : deferred.textures) skipped.push_back(what);
     for (const auto &unread : deferred.unreadReflectances) {
         if (info->use.readsReflectance)

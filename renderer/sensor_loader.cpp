@@ -57,6 +57,11 @@ void loadPerspective(const XmlContext &ctx, const pugi::xml_node &node, XmlProps
         cam.fovAxis != "larger")
         ctx.fail(node, "fov_axis must be x, y, diagonal, smaller or larger");
     props.ignore("focus_distance");  // a pinhole has no focus: accepted and ignored
+    // Bounded so that the view stays within a few films of the axis (exporters write 0).
+    cam.principalOffsetX = props.getFloat("principal_point_offset_x", 0.f);
+    cam.principalOffsetY = props.getFloat("principal_point_offset_y", 0.f);
+    props.requireRange("principal_point_offset_x", cam.principalOffsetX, -kMaxPrincipalOffset, kMaxPrincipalOffset);
+    props.requireRange("principal_point_offset_y", cam.principalOffsetY, -kMaxPrincipalOffset, kMaxPrincipalOffset);
 }
 
 /// An orthographic camera's to_world may scale and shear (its scale sizes the view, as in Mitsuba), but
@@ -76,9 +81,30 @@ void requireOrthographicCorners(const XmlContext &ctx, const pugi::xml_node &nod
                             scene.camera.toWorld.point({x, y / aspect, scene.camera.nearClip}));
 }
 
+/// The sensor's <sampler>: its kind and sample_count. Mitsuba's stratified kinds become our sobol (stratified
+/// too); the seed and a kind's own knobs change the noise, never the expectation, and are accepted unread.
+void loadSampler(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene) {
+    const std::string type = typeOf(ctx, node);
+    const auto kind = samplerFromFile(type);
+    if (!kind)
+        ctx.fail(node, "unsupported sampler type \"" + type + "\": expected independent, stratified, multijitter, "
+                       "orthogonal, ldsampler or sobol");
+    scene.sampler = *kind;
+    XmlProps props(ctx, node);
+    scene.sampleCount = props.getInt("sample_count", 4);
+    props.requireRange("sample_count", scene.sampleCount, 1, kMaxSampleCount);
+    props.ignore("seed");
+    const bool jitters = type == "stratified" || type == "multijitter" || type == "orthogonal";
+    if (jitters) props.ignore("jitter");
+    if (type == "orthogonal") props.ignore("strength");
+    props.finish(std::string("sample_count, seed") + (jitters ? ", jitter" : "") +
+                 (type == "orthogonal" ? ", strength" : ""));
+    if (!props.objects().empty()) ctx.fail(props.objects()[0], "unexpected element inside <sampler>");
+}
+
 }  // namespace
 
-void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene) {
+void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene, Deferred &deferred) {
     const std::string type = typeOf(ctx, node);
     if (type != "perspective" && type != "orthographic")
         ctx.fail(node, "unsupported sensor type: expected \"perspective\" or \"orthographic\"");
@@ -97,22 +123,18 @@ void loadSensor(const XmlContext &ctx, const pugi::xml_node &node, SceneDescript
     else
         requireRigid(ctx, node, cam.toWorld);
     props.finish(orthographic ? "near_clip, far_clip, to_world"
-                              : "fov, fov_axis, focal_length, near_clip, far_clip, focus_distance, to_world");
+                              : "fov, fov_axis, focal_length, near_clip, far_clip, focus_distance, "
+                                "principal_point_offset_x, principal_point_offset_y, to_world");
     for (const auto &child : props.objects()) {
         const std::string tag = child.name();
         if (tag == "film") {
             loadFilm(ctx, child, scene.film);
         } else if (tag == "sampler") {
-            const auto type = parseSampler(typeOf(ctx, child));
-            if (!type) ctx.fail(child, "unsupported sampler type: expected \"independent\" or \"sobol\"");
-            scene.sampler = *type;
-            XmlProps sp(ctx, child);
-            scene.sampleCount = sp.getInt("sample_count", 4);
-            sp.requireRange("sample_count", scene.sampleCount, 1, kMaxSampleCount);
-            sp.finish("sample_count");
-            if (!sp.objects().empty()) ctx.fail(sp.objects()[0], "unexpected element inside <sampler>");
+            loadSampler(ctx, child, scene);
+        } else if (tag == "medium" || tag == "ref") {  // the medium the camera sits in
+            deferred.media.emplace_back(child, "<" + tag + "> in the sensor at line " + std::to_string(ctx.line(child)));
         } else {
-            ctx.fail(child, "unsupported element in <sensor>: expected <film> or <sampler>");
+            ctx.fail(child, "unsupported element in <sensor>: expected <film>, <sampler> or <medium>");
         }
     }
     if (orthographic) requireOrthographicCorners(ctx, node, scene);

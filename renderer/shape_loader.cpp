@@ -19,14 +19,20 @@ namespace fs = std::filesystem;
 
 std::string typeOf(const XmlContext &ctx, const pugi::xml_node &node) { return ctx.attr(node, "type"); }
 
+/// Whether a <ref> names a shape's medium (Mitsuba's interior and exterior) rather than its bsdf.
+bool isMediumSlot(const pugi::xml_node &ref) {
+    const std::string name = ref.attribute("name").value();
+    return name == "interior" || name == "exterior";
+}
+
 bool inRange(const Vec3f &p, float bound) {
     return std::abs(p.x) <= bound && std::abs(p.y) <= bound && std::abs(p.z) <= bound;  // false for NaN
 }
 
-/// The shape's one <bsdf> or <ref> (its reflectance; the default without one) and its area emitter,
+/// The shape's one <bsdf> or <ref> (its material; the default without one) and its area emitter and media,
 /// whatever the shape.
-Color loadShapeChildren(const XmlContext &ctx, const XmlProps &props, const Definitions &defs, Deferred &deferred) {
-    Color reflectance{0.5f, 0.5f, 0.5f};
+Material loadShapeChildren(const XmlContext &ctx, const XmlProps &props, Definitions &defs, Deferred &deferred) {
+    Material material;
     bool hasBsdf = false;
     for (const auto &child : props.objects()) {
         const std::string tag = child.name();
@@ -36,32 +42,35 @@ Color loadShapeChildren(const XmlContext &ctx, const XmlProps &props, const Defi
                                                           std::to_string(ctx.line(child)));
             continue;
         }
+        // The media on either side of the surface (interior, exterior), inline or by reference.
+        if (tag == "medium" || (tag == "ref" && isMediumSlot(child))) {
+            deferred.media.emplace_back(child, "<" + tag + " name=\"" + std::string(child.attribute("name").value()) +
+                                                   "\"> at line " + std::to_string(ctx.line(child)));
+            continue;
+        }
         if (hasBsdf && (tag == "bsdf" || tag == "ref")) ctx.fail(child, "a shape takes one bsdf");
         if (tag == "bsdf") {
-            reflectance = loadBsdf(ctx, child, deferred);
+            material = loadBsdf(ctx, child, defs, deferred);
         } else if (tag == "ref") {
-            const std::string id = ctx.attr(child, "id");
-            if (defs.groups.count(id))
-                ctx.fail(child, "<ref id=\"" + id + "\"> names a shapegroup: only a <shape type=\"instance\"> "
-                                "may refer to one");
-            const auto it = defs.bsdfs.find(id);
-            if (it == defs.bsdfs.end()) ctx.fail(child, "no <bsdf id=\"" + id + "\"> defined before this point");
-            reflectance = it->second;
+            material = resolveBsdfRef(ctx, child, defs, deferred);
         } else {
-            ctx.fail(child, "unsupported element in <shape>: expected <bsdf>, <ref> or <emitter type=\"area\">");
+            ctx.fail(child, "unsupported element in <shape>: expected <bsdf>, <ref>, <emitter type=\"area\"> or "
+                            "<medium>");
         }
         hasBsdf = true;
     }
-    return reflectance;
+    return material;
 }
 
 /// An exact shape (sphere, disk, cylinder), already read from `props`, with its name and its bsdf's
 /// reflectance, appended to `list`.
 template <typename Shape>
 void appendExact(std::vector<Shape> &list, Shape shape, const std::string &name, const XmlContext &ctx,
-                 const XmlProps &props, const Definitions &defs, Deferred &deferred) {
+                 const XmlProps &props, Definitions &defs, Deferred &deferred) {
     shape.name = name;
-    shape.reflectance = loadShapeChildren(ctx, props, defs, deferred);
+    const Material material = loadShapeChildren(ctx, props, defs, deferred);
+    shape.reflectance = material.reflectance;
+    shape.backReflectance = material.back;
     list.push_back(std::move(shape));
 }
 
@@ -85,41 +94,7 @@ void requirePosition(const XmlContext &ctx, const pugi::xml_node &node, const st
     ctx.fail(node, msg.str());
 }
 
-Color loadBsdf(const XmlContext &ctx, const pugi::xml_node &node, Deferred &deferred) {
-    const std::string type = typeOf(ctx, node);
-    const std::string at = " at line " + std::to_string(ctx.line(node));
-    // Every integrator of ours reads the shading normal, which these perturb (Mitsuba's sh_normal shows it).
-    if (type == "bumpmap" || type == "normalmap")
-        ctx.fail(node, "a <bsdf type=\"" + type + "\"> perturbs the shading normal, which every integrator here "
-                       "reads and this renderer does not model");
-    if (type != "diffuse") {
-        // Only `normals` can ignore it; whether that is allowed is decided when the integrator is known.
-        deferred.nonDiffuseBsdfs.emplace_back(node, "<bsdf type=\"" + type + "\">" + at);
-        return {0.5f, 0.5f, 0.5f};
-    }
-    XmlProps props(ctx, node);
-    // A reflectance given as a texture (inline or by <ref>) or per wavelength: whether it may go unread is
-    // decided when the integrator is known.
-    std::string unread;
-    for (const auto &child : props.objects())
-        if (std::string(child.name()) == "texture" || std::string(child.name()) == "ref")
-            unread = "a <" + std::string(child.name()) + "> at line " + std::to_string(ctx.line(child));
-    const pugi::xml_node given = props.node("reflectance");
-    if (given && std::string(given.name()) == "spectrum" && isPerWavelength(given))
-        unread = "a per-wavelength <spectrum> at line " + std::to_string(ctx.line(given));
-    if (!unread.empty()) {
-        deferred.unreadReflectances.push_back({node, "<bsdf type=\"diffuse\">" + at + " (reflectance: " + unread + ")",
-                                               unread});
-        return {0.5f, 0.5f, 0.5f};
-    }
-    const Color rho = props.getColor("reflectance", {0.5f, 0.5f, 0.5f});
-    props.requireRange("reflectance", rho, 0.f, 1.f);
-    props.finish("reflectance");
-    if (!props.objects().empty()) ctx.fail(props.objects()[0], "unexpected element inside <bsdf>");
-    return rho;
-}
-
-void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const Definitions &defs, ShapeLists out,
+void loadShape(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs, ShapeLists out,
                Deferred &deferred) {
     const std::string type = typeOf(ctx, node);
     XmlProps props(ctx, node);
@@ -165,7 +140,9 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, const Definiti
     }
     requireFiniteMesh(ctx, node, mesh);
     mesh.name = name;
-    mesh.reflectance = loadShapeChildren(ctx, props, defs, deferred);
+    const Material material = loadShapeChildren(ctx, props, defs, deferred);
+    mesh.reflectance = material.reflectance;
+    mesh.backReflectance = material.back;
     out.meshes.push_back(std::move(mesh));
 }
 

@@ -17,7 +17,7 @@ std::string at(const XmlContext &ctx, const pugi::xml_node &node) {
 }
 
 /// The members of a <shape type="shapegroup">, each loaded as a top-level shape would be.
-ShapeGroup readGroup(const XmlContext &ctx, const pugi::xml_node &node, const Definitions &defs, Deferred &deferred) {
+ShapeGroup readGroup(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs, Deferred &deferred) {
     XmlProps props(ctx, node);
     props.finish("no properties (a shapegroup only holds shapes: Mitsuba ignores its to_world; its instances "
                  "place it)");
@@ -42,7 +42,7 @@ void loadShapeGroup(const XmlContext &ctx, const pugi::xml_node &node, Definitio
     ShapeGroup group = readGroup(ctx, node, defs, deferred);
     const std::string id = node.attribute("id") ? ctx.attr(node, "id") : "";
     if (id.empty()) return;  // no instance can place it: checked, and not rendered (as in Mitsuba)
-    if (defs.groups.count(id) || defs.bsdfs.count(id)) ctx.fail(node, "the id \"" + id + "\" is already defined");
+    if (defs.groups.count(id) || defs.bsdfNodes.count(id)) ctx.fail(node, "the id \"" + id + "\" is already defined");
     defs.groups[id] = std::move(group);
 }
 

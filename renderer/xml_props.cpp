@@ -1,6 +1,7 @@
 #include "xml_props.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -15,6 +16,7 @@ namespace mcval {
 namespace {
 const std::set<std::string> kPropertyTags = {"float", "integer", "boolean", "string", "rgb",
                                              "point", "vector", "transform", "spectrum"};
+}  // namespace
 
 std::vector<std::string> splitNumbers(const std::string &text) {
     std::string s = text;
@@ -24,7 +26,6 @@ std::vector<std::string> splitNumbers(const std::string &text) {
     for (std::string tok; in >> tok;) out.push_back(tok);
     return out;
 }
-}  // namespace
 
 namespace {
 /// The included file `node` was read from, or null for the scene file itself.
@@ -65,6 +66,44 @@ void XmlContext::fail(const pugi::xml_node &node, const std::string &message) co
     throw SceneError(fileOf(node), line(node), "<" + std::string(node.name()) + ">: " + message);
 }
 
+namespace {
+/// Whether the file `node` was read from declares a version before 2.0.0 ("0.5.0", "0.6.0").
+bool isBeforeVersion2(const pugi::xml_node &node) {
+    pugi::xml_node root = node.root().first_child();
+    while (root && root.type() != pugi::node_element) root = root.next_sibling();
+    const std::string version = root.attribute("version").value();
+    return !version.empty() && std::isdigit(static_cast<unsigned char>(version[0])) && std::atoi(version.c_str()) < 2;
+}
+
+/// Mitsuba's camel_to_underscore_case: "toWorld" -> "to_world", "fovAxis" -> "fov_axis", "sRGB" -> "s_rgb".
+std::string snakeCase(const std::string &name) {
+    std::string out;
+    for (size_t i = 0; i < name.size(); ++i) {
+        const auto c = static_cast<unsigned char>(name[i]);
+        if (i > 0 && std::islower(static_cast<unsigned char>(name[i - 1])) && std::isupper(c)) {
+            out += '_';
+            out += static_cast<char>(std::tolower(c));
+            while (i + 1 < name.size() && std::isupper(static_cast<unsigned char>(name[i + 1])))
+                out += static_cast<char>(std::tolower(static_cast<unsigned char>(name[++i])));
+        } else {
+            out += name[i];
+        }
+    }
+    return out;
+}
+}  // namespace
+
+std::string XmlContext::propertyName(const pugi::xml_node &property) const {
+    const std::string name = property.attribute("name").value();
+    if (!isBeforeVersion2(property)) return name;
+    const std::string upgraded = snakeCase(name);
+    const pugi::xml_node owner = property.parent();
+    if (upgraded == "diffuse_reflectance" && std::string(owner.name()) == "bsdf" &&
+        std::string(owner.attribute("type").value()) == "diffuse")
+        return "reflectance";
+    return upgraded;
+}
+
 std::string XmlContext::attr(const pugi::xml_node &node, const char *name) const {
     std::string value = node.attribute(name).value();
     for (size_t pos = value.find('$'); pos != std::string::npos; pos = value.find('$', pos)) {
@@ -87,19 +126,21 @@ XmlProps::XmlProps(const XmlContext &ctx, const pugi::xml_node &element) : m_ctx
             m_objects.push_back(child);
             continue;
         }
-        const std::string name = child.attribute("name").value();
+        const std::string name = ctx.propertyName(child);
         if (name.empty()) ctx.fail(child, "property without a name attribute");
         if (m_props.count(name)) ctx.fail(child, "property \"" + name + "\" given twice");
         m_props[name] = child;
     }
 }
 
-pugi::xml_node XmlProps::find(const std::string &name, const char *tag) {
+pugi::xml_node XmlProps::find(const std::string &name, const char *tag, const char *alsoTag) {
     const auto it = m_props.find(name);
     if (it == m_props.end()) return {};
     m_used.insert(name);
-    if (std::string(it->second.name()) != tag)
-        m_ctx.fail(it->second, "property \"" + name + "\" must be a <" + tag + ">");
+    const std::string given = it->second.name();
+    if (given != tag && !(alsoTag && given == alsoTag))
+        m_ctx.fail(it->second, "property \"" + name + "\" must be a <" + tag + ">" +
+                                   (alsoTag ? std::string(" or an <") + alsoTag + ">" : std::string()));
     return it->second;
 }
 
@@ -126,8 +167,11 @@ Vec3f XmlProps::parseTriple(const pugi::xml_node &node, const std::string &text)
 }
 
 float XmlProps::getFloat(const std::string &name, float def) {
-    const auto node = find(name, "float");
-    return node ? parseFloat(node, m_ctx.attr(node, "value")) : def;
+    // Mitsuba reads an <integer> where it reads a float (Properties::get converts it).
+    const auto node = find(name, "float", "integer");
+    if (!node) return def;
+    const std::string text = m_ctx.attr(node, "value");
+    return std::string(node.name()) == "integer" ? static_cast<float>(parseInt(node, text)) : parseFloat(node, text);
 }
 
 float XmlProps::getFloatRequired(const std::string &name) {
@@ -137,12 +181,17 @@ float XmlProps::getFloatRequired(const std::string &name) {
 
 int XmlProps::getInt(const std::string &name, int def) {
     const auto node = find(name, "integer");
-    if (!node) return def;
-    const std::string text = m_ctx.attr(node, "value");
+    return node ? parseInt(node, m_ctx.attr(node, "value")) : def;
+}
+
+int XmlProps::parseInt(const pugi::xml_node &node, const std::string &text) const {
+    // Mitsuba skips white space around the digits.
+    const size_t first = text.find_first_not_of(" \t\r\n"), last = text.find_last_not_of(" \t\r\n");
+    const std::string digits = first == std::string::npos ? "" : text.substr(first, last - first + 1);
     errno = 0;
     char *end = nullptr;
-    const long v = std::strtol(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || errno == ERANGE || v < -2147483647L || v > 2147483647L)
+    const long long v = std::strtoll(digits.c_str(), &end, 10);
+    if (digits.empty() || *end != '\0' || errno == ERANGE || v < -2147483647LL || v > 2147483647LL)
         m_ctx.fail(node, "expected an integer, got \"" + text + "\"");
     return static_cast<int>(v);
 }
@@ -150,7 +199,9 @@ int XmlProps::getInt(const std::string &name, int def) {
 bool XmlProps::getBool(const std::string &name, bool def) {
     const auto node = find(name, "boolean");
     if (!node) return def;
-    const std::string text = m_ctx.attr(node, "value");
+    std::string text = m_ctx.attr(node, "value");
+    // Mitsuba compares without case ("True" is true).
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
     if (text == "true") return true;
     if (text == "false") return false;
     m_ctx.fail(node, "expected true or false, got \"" + text + "\"");
@@ -176,8 +227,9 @@ Vec3f XmlProps::getColor(const std::string &name, const Vec3f &def) {
     if (it == m_props.end()) return def;
     m_used.insert(name);
     const std::string tag = it->second.name();
-    if (tag == "float") {
-        const float v = parseFloat(it->second, m_ctx.attr(it->second, "value"));
+    if (tag == "float" || tag == "integer") {
+        const std::string text = m_ctx.attr(it->second, "value");
+        const float v = tag == "float" ? parseFloat(it->second, text) : static_cast<float>(parseInt(it->second, text));
         return {v, v, v};
     }
     if (tag == "spectrum") {
@@ -190,86 +242,19 @@ Vec3f XmlProps::getColor(const std::string &name, const Vec3f &def) {
         const float v = parseFloat(it->second, value);
         return {v, v, v};
     }
-    if (tag != "rgb") m_ctx.fail(it->second, "property \"" + name + "\" must be an <rgb>, a <spectrum> or a <float>");
+    if (tag != "rgb")
+        m_ctx.fail(it->second, "property \"" + name + "\" must be an <rgb>, a <spectrum>, a <float> or an <integer>");
     return parseTriple(it->second, m_ctx.attr(it->second, "value"));
 }
 
 Vec3f XmlProps::getPoint(const std::string &name, const Vec3f &def) {
-    const auto node = find(name, "point");
+    const auto node = find(name, "point", "vector");  // one type in Mitsuba's Properties
     if (!node) return def;
     if (node.attribute("value")) return parseTriple(node, m_ctx.attr(node, "value"));
     const auto coord = [&](const char *a) {
         return node.attribute(a) ? parseFloat(node, m_ctx.attr(node, a)) : 0.f;
     };
     return {coord("x"), coord("y"), coord("z")};
-}
-
-Transform XmlProps::getTransform(const std::string &name) {
-    const auto node = find(name, "transform");
-    return node ? parseTransform(node) : Transform();
-}
-
-Transform XmlProps::parseTransform(const pugi::xml_node &node) const {
-    Transform result;
-    for (pugi::xml_node step : node.children()) {
-        if (step.type() != pugi::node_element) continue;
-        try {
-            result = parseTransformStep(step) * result;  // later steps apply after earlier ones
-        } catch (const std::domain_error &e) {
-            m_ctx.fail(step, e.what());  // singular or overflowing: Transform knows no file or line
-        }
-    }
-    return result;
-}
-
-Transform XmlProps::parseTransformStep(const pugi::xml_node &step) const {
-    const std::string tag = step.name();
-    const auto triple = [&](float def) {
-        if (step.attribute("value")) return parseTriple(step, m_ctx.attr(step, "value"));
-        const auto c = [&](const char *a) { return step.attribute(a) ? parseFloat(step, m_ctx.attr(step, a)) : def; };
-        return Vec3f(c("x"), c("y"), c("z"));
-    };
-    if (tag == "translate") return Transform::translate(triple(0.f));
-    if (tag == "scale") return Transform::scale(triple(1.f));
-    if (tag == "rotate") {
-        if (!step.attribute("angle")) m_ctx.fail(step, "missing angle=\"degrees\"");
-        const Vec3f axis = triple(0.f);
-        if (squaredNorm(axis) == 0.f) m_ctx.fail(step, "rotation axis is zero: give x, y or z");
-        // Mitsuba 3 uses the axis as given: a non-unit one makes its rotation a shear, ours would not.
-        const double length = std::sqrt(double(axis.x) * axis.x + double(axis.y) * axis.y + double(axis.z) * axis.z);
-        if (!(std::abs(length - 1.0) <= 1e-5)) {
-            std::ostringstream msg;
-            msg << "rotate axis (" << axis.x << ", " << axis.y << ", " << axis.z << ") has length "
-                << std::setprecision(4) << length
-                << ", not 1: Mitsuba 3 would shear with it (it does not normalise); give a unit axis";
-            m_ctx.fail(step, msg.str());
-        }
-        return Transform::rotate(axis, parseFloat(step, m_ctx.attr(step, "angle")));
-    }
-    if (tag == "matrix") {
-        const auto parts = splitNumbers(m_ctx.attr(step, "value"));
-        if (parts.size() != 16) m_ctx.fail(step, "expected 16 numbers in value");
-        float a[16];
-        for (int i = 0; i < 16; ++i) a[i] = parseFloat(step, parts[i]);
-        return Transform(a);
-    }
-    if (tag == "lookat") {
-        const auto vec = [&](const char *a, bool required) {
-            if (!step.attribute(a)) {
-                if (required) m_ctx.fail(step, std::string("missing ") + a + "=\"x, y, z\"");
-                return Vec3f(0.f, 1.f, 0.f);
-            }
-            return parseTriple(step, m_ctx.attr(step, a));
-        };
-        const Vec3f origin = vec("origin", true), target = vec("target", true), up = vec("up", false);
-        const Vec3f dir = target - origin;
-        if (!std::isfinite(squaredNorm(dir))) m_ctx.fail(step, "origin and target are too far apart for float32");
-        if (!(squaredNorm(dir) > 0.f)) m_ctx.fail(step, "origin and target coincide");
-        if (!(squaredNorm(cross(normalize(up), normalize(dir))) > 1e-12f))
-            m_ctx.fail(step, "up is zero or parallel to the view direction");
-        return Transform::lookAt(origin, target, up);
-    }
-    m_ctx.fail(step, "unsupported transform step: expected translate, scale, rotate, matrix or lookat");
 }
 
 void XmlProps::requireRange(const std::string &name, const Vec3f &value, float lo, float hi) const {

@@ -37,9 +37,15 @@ struct XmlContext {
     std::string resolve(const std::string &name) const;
     /// Throws SceneError at the node's line.
     [[noreturn]] void fail(const pugi::xml_node &node, const std::string &message) const;
+    /// A property element's name as Mitsuba 3 reads it: in a file older than version 2.0.0 (Mitsuba 0.5, 0.6)
+    /// upgraded as Mitsuba does (camelCase to snake_case, a diffuse bsdf's diffuse_reflectance to reflectance).
+    std::string propertyName(const pugi::xml_node &property) const;
     /// An attribute's value with $name parameters substituted.
     std::string attr(const pugi::xml_node &node, const char *name) const;
 };
+
+/// The numbers of a value attribute ("1, 2, 3" or "1 2 3"), as text.
+std::vector<std::string> splitNumbers(const std::string &text);
 
 /// Whether a <spectrum> is given per wavelength ("400:0.2, 700:0.8" or a file) rather than as one value.
 bool isPerWavelength(const pugi::xml_node &spectrum);
@@ -49,15 +55,16 @@ class XmlProps {
 public:
     XmlProps(const XmlContext &ctx, const pugi::xml_node &element);
 
+    /// A <float>, or an <integer> (Mitsuba converts it).
     float getFloat(const std::string &name, float def);
     float getFloatRequired(const std::string &name);
     int getInt(const std::string &name, int def);
     bool getBool(const std::string &name, bool def);
     std::string getString(const std::string &name, const std::string &def);
     std::string getStringRequired(const std::string &name);
-    /// `<rgb>` with "r, g, b" or a single value, a `<float>` gray, or a constant `<spectrum>`.
+    /// `<rgb>` with "r, g, b" or a single value, a `<float>` or `<integer>` gray, or a constant `<spectrum>`.
     Vec3f getColor(const std::string &name, const Vec3f &def);
-    /// `<point>` with value="x, y, z" or x/y/z attributes.
+    /// `<point>` (or `<vector>`, the same type to Mitsuba) with value="x, y, z" or x/y/z attributes.
     Vec3f getPoint(const std::string &name, const Vec3f &def);
     Transform getTransform(const std::string &name);
     /// Whether the element has a property called `name`.
@@ -88,7 +95,9 @@ public:
     [[noreturn]] void failAt(const std::string &name, const std::string &message) const;
 
 private:
-    pugi::xml_node find(const std::string &name, const char *tag);
+    /// The property `name` (marked used), which must be a <tag> (or an <alsoTag>); empty if not given.
+    pugi::xml_node find(const std::string &name, const char *tag, const char *alsoTag = nullptr);
+    int parseInt(const pugi::xml_node &node, const std::string &text) const;
     float parseFloat(const pugi::xml_node &node, const std::string &text) const;
     Vec3f parseTriple(const pugi::xml_node &node, const std::string &text) const;
     Transform parseTransform(const pugi::xml_node &node) const;

@@ -20,18 +20,23 @@ namespace {
 MCVAL_HOT void aoPacket(const EmbreeScene &embree, const Color &environment, const Color &background, int samples,
                         const SamplePacket &packet, const Sampler &sampler, Color *out, RayCounts &counts) {
     const HitPacket &h = packet.lanes;
-    alignas(64) int front[kPacketSize], visible[kPacketSize];
+    alignas(64) int front[kPacketSize], visible[kPacketSize], back[kPacketSize];
+    // The shading normal on the side the ray came from (a two-sided surface's back is lit too).
+    alignas(64) float nx[kPacketSize], ny[kPacketSize], nz[kPacketSize];
     // The tangent frame around each lane's shading normal, in SoA form (an array of Frames would keep
     // the loops below from SIMD: 30 % slower).
     alignas(64) float sx[kPacketSize], sy[kPacketSize], sz[kPacketSize], tx[kPacketSize], ty[kPacketSize],
         tz[kPacketSize];
     int traced = 0;
     for (int i = 0; i < kPacketSize; ++i) {
-        // A back face returns 0; a camera ray that escapes returns the background.
-        front[i] = (i < packet.count) & h.front(i);
+        // A one-sided back face returns 0; a camera ray that escapes returns the background.
+        back[i] = (h.found[i] != 0) & !h.front(i);
+        front[i] = (i < packet.count) & (h.found[i] != 0) & (!back[i] | embree.twoSided(h.geom[i]));
         visible[i] = 0;
         traced += front[i];
-        const Frame frame({h.nx[i], h.ny[i], h.nz[i]});
+        const float side = back[i] ? -1.f : 1.f;
+        nx[i] = side * h.nx[i]; ny[i] = side * h.ny[i]; nz[i] = side * h.nz[i];
+        const Frame frame({nx[i], ny[i], nz[i]});
         sx[i] = frame.s.x; sy[i] = frame.s.y; sz[i] = frame.s.z;
         tx[i] = frame.t.x; ty[i] = frame.t.y; tz[i] = frame.t.z;
     }
@@ -59,8 +64,8 @@ MCVAL_HOT void aoPacket(const EmbreeScene &embree, const Color &environment, con
                 // counts rho * L_env.
                 const Vec3f l = squareToCosineHemisphere({ux[i], uy[i]});
                 // Frame::toWorld: s l.x + t l.y + n l.z.
-                const Vec3f wi{sx[i] * l.x + tx[i] * l.y + h.nx[i] * l.z, sy[i] * l.x + ty[i] * l.y + h.ny[i] * l.z,
-                               sz[i] * l.x + tz[i] * l.y + h.nz[i] * l.z};
+                const Vec3f wi{sx[i] * l.x + tx[i] * l.y + nx[i] * l.z, sy[i] * l.x + ty[i] * l.y + ny[i] * l.z,
+                               sz[i] * l.x + tz[i] * l.y + nz[i] * l.z};
                 const Vec3f o = h.spawnOrigin(i, wi);
                 r.org_x[i] = o.x; r.org_y[i] = o.y; r.org_z[i] = o.z;
                 r.dir_x[i] = wi.x; r.dir_y[i] = wi.y; r.dir_z[i] = wi.z;
@@ -75,7 +80,8 @@ MCVAL_HOT void aoPacket(const EmbreeScene &embree, const Color &environment, con
         counts.shadow += static_cast<uint64_t>(traced) * static_cast<uint64_t>(samples);
     }
     for (int i = 0; i < packet.count; ++i) {
-        out[i] = front[i] ? embree.reflectance(h.geom[i]) * environment *
+        const Color &rho = back[i] ? embree.backReflectance(h.geom[i]) : embree.reflectance(h.geom[i]);
+        out[i] = front[i] ? rho * environment *
                                 (static_cast<float>(visible[i]) / static_cast<float>(samples))
                  : h.found[i] ? Color(0.f, 0.f, 0.f)
                               : background;

@@ -18,8 +18,15 @@ namespace {
 MCVAL_HOT void simplePacket(const std::vector<PointLight> &lights, const EmbreeScene &embree, const SamplePacket &packet,
                             Color *out, RayCounts &counts) {
     const HitPacket &h = packet.lanes;
-    alignas(64) int front[kPacketSize];
-    for (int i = 0; i < kPacketSize; ++i) front[i] = i < packet.count && h.front(i);
+    alignas(64) int front[kPacketSize], back[kPacketSize];
+    // The shading normal on the side the ray came from (a two-sided surface's back is lit too).
+    alignas(64) float nx[kPacketSize], ny[kPacketSize], nz[kPacketSize];
+    for (int i = 0; i < kPacketSize; ++i) {
+        back[i] = (h.found[i] != 0) & !h.front(i);
+        front[i] = (i < packet.count) & (h.found[i] != 0) & (!back[i] | embree.twoSided(h.geom[i]));
+        const float side = back[i] ? -1.f : 1.f;
+        nx[i] = side * h.nx[i]; ny[i] = side * h.ny[i]; nz[i] = side * h.nz[i];
+    }
     alignas(64) float sumR[kPacketSize] = {}, sumG[kPacketSize] = {}, sumB[kPacketSize] = {};
     alignas(64) float weight[kPacketSize];
     OcclusionPacket shadow;
@@ -32,7 +39,7 @@ MCVAL_HOT void simplePacket(const std::vector<PointLight> &lights, const EmbreeS
             const float dist2 = tx * tx + ty * ty + tz * tz;
             const float dist = std::sqrt(dist2);
             const float wx = tx / dist, wy = ty / dist, wz = tz / dist;
-            const float cosTheta = h.nx[i] * wx + h.ny[i] * wy + h.nz[i] * wz;
+            const float cosTheta = nx[i] * wx + ny[i] * wy + nz[i] * wz;
             const bool on = (front[i] != 0) & (dist2 > 0.f) & (cosTheta > 0.f);
             const Vec3f o = h.spawnOrigin(i, {wx, wy, wz});
             r.org_x[i] = o.x; r.org_y[i] = o.y; r.org_z[i] = o.z;
@@ -59,7 +66,8 @@ MCVAL_HOT void simplePacket(const std::vector<PointLight> &lights, const EmbreeS
         }
     }
     for (int i = 0; i < packet.count; ++i)
-        out[i] = front[i] ? embree.reflectance(h.geom[i]) * Color(sumR[i], sumG[i], sumB[i]) * kInvPi
+        out[i] = front[i] ? (back[i] ? embree.backReflectance(h.geom[i]) : embree.reflectance(h.geom[i])) *
+                                Color(sumR[i], sumG[i], sumB[i]) * kInvPi
                             : Color(0.f, 0.f, 0.f);
 }
 
@@ -81,7 +89,7 @@ private:
 MCVAL_REGISTER_INTEGRATOR({
     "simple",
     "point lights on diffuse surfaces, with shadow rays",
-    SceneUse{/*needsPointLight=*/true, /*areaEmittersLight=*/true, /*readsReflectance=*/true},
+    SceneUse{/*needsPointLight=*/true, /*areaEmittersLight=*/false, /*readsReflectance=*/true},
     [](XmlProps *props) -> IntegratorMaker {
         if (props) props->finish("no properties");
         return [](const SceneDescription &scene, const EmbreeScene &embree) {

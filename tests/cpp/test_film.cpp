@@ -88,6 +88,35 @@ TEST(Film, GaussianPacketMatchesPutPerSample) {
     }
 }
 
+TEST(Film, TentPacketMatchesPutPerSample) {
+    // Mitsuba's default radius (1), a wider one, one narrower than a pixel, and the widest allowed.
+    for (const float radius : {1.f, 1.25f, 2.7f, 0.3f, 16.f}) {
+        FilterSpec f;
+        f.type = FilterSpec::Type::Tent;
+        f.tentRadius = radius;
+        for (const auto &[x0, y0, w, h] : std::vector<std::array<int, 4>>{{0, 0, 16, 16}, {125, 0, 3, 2}}) {
+            ImageBlock packet(x0, y0, w, h, f), single(x0, y0, w, h, f);
+            fill(packet, single, x0, y0, w, h, 1000, 5u + static_cast<unsigned>(x0));
+            EXPECT_LT(maxRelativeDifference(packet, single), 1e-5) << "radius " << radius << " tile " << x0;
+        }
+    }
+}
+
+TEST(Film, TentWeightsAreMitsubas) {
+    // tent.cpp: max(0, 1 - |x| / radius), separable: one sample at a pixel's centre, radius 2, gives the
+    // pixel weight 1, its neighbours 1/2 along an axis and 1/4 diagonally, the next ones 0.
+    FilterSpec f;
+    f.type = FilterSpec::Type::Tent;
+    f.tentRadius = 2.f;
+    ImageBlock block(4, 4, 1, 1, f);
+    block.put(4.5f, 4.5f, Color{1.f, 1.f, 1.f});
+    const int b = 4 - block.x0();  // the block's index of pixel 4
+    EXPECT_EQ(block.sums(b, b)[0], 1.0);
+    EXPECT_EQ(block.sums(b + 1, b)[0], 0.5);
+    EXPECT_EQ(block.sums(b - 1, b - 1)[0], 0.25);
+    EXPECT_EQ(block.sums(b + 2, b)[0], 0.0);  // in the border (ceil(2 - 0.5) = 2 wide), at the radius
+}
+
 TEST(Film, GaussianPacketCheckDetectsAShiftedSample) {
     // The twin of the test above with a wrong reference: the check must fail.
     const FilterSpec f = gaussian(0.5f);

@@ -1,0 +1,113 @@
+#include "bsdf_loader.h"
+
+#include <string>
+#include <vector>
+
+namespace mcval {
+
+namespace {
+
+std::string at(const XmlContext &ctx, const pugi::xml_node &node) { return " at line " + std::to_string(ctx.line(node)); }
+
+/// The diffuse bsdf's reflectance; one we cannot read (a texture, a per-wavelength spectrum) is deferred:
+/// whether it may go unread is decided when the integrator is known.
+Material readDiffuse(const XmlContext &ctx, const pugi::xml_node &node, Deferred &deferred) {
+    XmlProps props(ctx, node);
+    std::string unread;
+    for (const auto &child : props.objects())
+        if (std::string(child.name()) == "texture" || std::string(child.name()) == "ref")
+            unread = "a <" + std::string(child.name()) + ">" + at(ctx, child);
+    const pugi::xml_node given = props.node("reflectance");
+    if (given && std::string(given.name()) == "spectrum" && isPerWavelength(given))
+        unread = "a per-wavelength <spectrum>" + at(ctx, given);
+    if (!unread.empty()) {
+        deferred.unreadReflectances.push_back(
+            {node, "<bsdf type=\"diffuse\">" + at(ctx, node) + " (reflectance: " + unread + ")", unread});
+        return {};
+    }
+    const Color rho = props.getColor("reflectance", {0.5f, 0.5f, 0.5f});
+    props.requireRange("reflectance", rho, 0.f, 1.f);
+    props.finish("reflectance");
+    if (!props.objects().empty()) ctx.fail(props.objects()[0], "unexpected element inside <bsdf>");
+    return {rho, std::nullopt};
+}
+
+/// Mitsuba's twosided: its first bsdf on the front, its second (or the first again) on the back, each side
+/// seen as that bsdf's front (a twosided inside one adds nothing).
+Material readTwoSided(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs, Deferred &deferred,
+                      int depth) {
+    XmlProps props(ctx, node);
+    props.ignore("allow_transmission");  // diffuse sides transmit nothing
+    props.finish("allow_transmission (and one or two nested bsdfs)");
+    std::vector<Material> sides;
+    for (const auto &child : props.objects()) {
+        const std::string tag = child.name();
+        if (tag != "bsdf" && tag != "ref")
+            ctx.fail(child, "unexpected element inside <bsdf type=\"twosided\">: expected <bsdf> or <ref>");
+        if (sides.size() == 2) ctx.fail(child, "a twosided bsdf holds at most two bsdfs (front, back)");
+        sides.push_back(tag == "bsdf" ? loadBsdf(ctx, child, defs, deferred, depth + 1)
+                                      : resolveBsdfRef(ctx, child, defs, deferred, depth + 1));
+    }
+    if (sides.empty()) ctx.fail(node, "a twosided bsdf needs a nested <bsdf> or <ref> (its one-sided material)");
+    return {sides[0].reflectance, sides.back().reflectance};
+}
+
+Material readBsdf(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs, Deferred &deferred,
+                  int depth) {
+    const std::string type = ctx.attr(node, "type");
+    // Every integrator of ours reads the shading normal, which these perturb (Mitsuba's sh_normal shows it).
+    if (type == "bumpmap" || type == "normalmap")
+        ctx.fail(node, "a <bsdf type=\"" + type + "\"> perturbs the shading normal, which every integrator here "
+                       "reads and this renderer does not model");
+    if (type == "twosided") return readTwoSided(ctx, node, defs, deferred, depth);
+    if (type == "diffuse") return readDiffuse(ctx, node, deferred);
+    // Only `normals` can ignore it; whether that is allowed is decided when the integrator is known.
+    deferred.nonDiffuseBsdfs.emplace_back(node, "<bsdf type=\"" + type + "\">" + at(ctx, node));
+    return {};
+}
+
+}  // namespace
+
+void registerBsdfs(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs) {
+    // Iterative: a file may nest elements thousands deep.
+    std::vector<pugi::xml_node> stack{node};
+    while (!stack.empty()) {
+        const pugi::xml_node n = stack.back();
+        stack.pop_back();
+        if (std::string(n.name()) == "bsdf" && n.attribute("id")) {
+            const std::string id = ctx.attr(n, "id");
+            const auto [it, added] = defs.bsdfNodes.emplace(id, n);
+            if (!added)
+                ctx.fail(n, "the id \"" + id + "\" is already defined (in " + ctx.fileOf(it->second) + at(ctx, it->second) +
+                                ")");
+        }
+        for (pugi::xml_node child = n.last_child(); child; child = child.previous_sibling())
+            if (child.type() == pugi::node_element) stack.push_back(child);
+    }
+}
+
+Material loadBsdf(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs, Deferred &deferred, int depth) {
+    if (depth > kMaxBsdfDepth)
+        ctx.fail(node, "bsdfs nested (or referenced through one another) more than " + std::to_string(kMaxBsdfDepth) +
+                           " deep");
+    const std::string id = node.attribute("id") ? ctx.attr(node, "id") : "";
+    if (id.empty()) return readBsdf(ctx, node, defs, deferred, depth);
+    if (const auto it = defs.bsdfs.find(id); it != defs.bsdfs.end()) return it->second;
+    if (!defs.reading.insert(id).second) ctx.fail(node, "the bsdf \"" + id + "\" refers to itself");
+    const Material material = readBsdf(ctx, node, defs, deferred, depth);
+    defs.reading.erase(id);
+    return defs.bsdfs[id] = material;
+}
+
+Material resolveBsdfRef(const XmlContext &ctx, const pugi::xml_node &ref, Definitions &defs, Deferred &deferred,
+                        int depth) {
+    const std::string id = ctx.attr(ref, "id");
+    if (defs.groups.count(id))
+        ctx.fail(ref, "<ref id=\"" + id + "\"> names a shapegroup: only a <shape type=\"instance\"> may refer to one");
+    const auto it = defs.bsdfNodes.find(id);
+    if (it == defs.bsdfNodes.end()) ctx.fail(ref, "no <bsdf id=\"" + id + "\"> in the file");
+    if (defs.reading.count(id)) ctx.fail(ref, "the bsdf \"" + id + "\" refers to itself");
+    return loadBsdf(ctx, it->second, defs, deferred, depth);
+}
+
+}  // namespace mcval

@@ -1,0 +1,65 @@
+// What loading a scene file gathers besides the scene itself: definitions for <ref>s, and elements the chosen
+// integrator may not use, judged once it is known.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <pugixml.hpp>
+
+#include "scene.h"
+
+namespace mcval {
+
+/// Elements the chosen integrator may not use, judged once the integrator is known.
+struct Deferred {
+    std::vector<std::pair<pugi::xml_node, std::string>> nonDiffuseBsdfs, areaEmitters;
+    /// A diffuse BSDF whose reflectance we cannot read (`given`: a texture, a per-wavelength spectrum):
+    /// refused where the integrator reads the reflectance, skipped elsewhere (`what` in the note).
+    struct UnreadReflectance {
+        pugi::xml_node node;
+        std::string what, given;
+    };
+    std::vector<UnreadReflectance> unreadReflectances;
+    /// Top-level <texture>s: read only through a BSDF, which then is an unread reflectance.
+    std::vector<std::pair<pugi::xml_node, std::string>> textures;
+    /// Emitters of types no integrator of ours uses (directional, spot, projector, envmap): skipped.
+    std::vector<std::pair<pugi::xml_node, std::string>> otherEmitters;
+    /// <medium>s and references to them: no integrator of ours traces media, nor do the Mitsuba integrators
+    /// they are compared with (direct, aov), so they are skipped.
+    std::vector<std::pair<pugi::xml_node, std::string>> media;
+    /// Top-level bsdfs no shape refers to: read by no integrator, whatever their type.
+    std::vector<std::pair<pugi::xml_node, std::string>> unreferencedBsdfs;
+};
+
+/// A <shape type="shapegroup">'s members, in the group's space: kept aside, rendered only through instances.
+struct ShapeGroup {
+    std::vector<Mesh> meshes;
+    std::vector<Sphere> spheres;
+    std::vector<Disk> disks;
+    std::vector<Cylinder> cylinders;
+};
+
+/// A surface's material as the integrators see it: Mitsuba's diffuse (black from behind), or a twosided
+/// bsdf around diffuse ones (the back's reflectance too).
+struct Material {
+    Color reflectance{0.5f, 0.5f, 0.5f};
+    std::optional<Color> back;  ///< two-sided: the back's reflectance
+};
+
+/// What the file defines, for a <ref id>: bsdfs (their material) and shapegroups, which only an instance may
+/// refer to. Mitsuba resolves references once the whole file is read, so a <ref> may precede its definition.
+struct Definitions {
+    std::map<std::string, pugi::xml_node> bsdfNodes;  ///< every <bsdf id> of the file (registerBsdfs)
+    std::map<std::string, Material> bsdfs;            ///< those read so far
+    std::set<std::string> reading;                    ///< ids being read: a reference back to one is a cycle
+    std::map<std::string, ShapeGroup> groups;
+    uint64_t instancedTriangles = 0, instancedShapes = 0;  ///< copies made by instances so far (bounded)
+};
+
+}  // namespace mcval
