@@ -81,3 +81,18 @@ def test_a_time_limit_that_is_not_a_positive_number_is_refused(monkeypatch, valu
     monkeypatch.setenv(TIMEOUT_ENV, value)
     with pytest.raises(ValueError, match=f"{TIMEOUT_ENV}='{value}': give a positive number of seconds"):
         call_timeout()
+
+
+def test_a_pdf_infinite_at_one_point_in_a_hundred_fails_its_warp_and_the_page_renders(tmp_path):
+    source = tmp_path / "infinite.c"
+    source.write_text('#include <math.h>\n#include "mcval_warps.h"\n'
+                      "void square_to_uniform_square(const float *u, float *out, size_t n)"
+                      " { for (size_t i = 0; i < 2 * n; ++i) out[i] = u[i]; }\n"
+                      "void square_to_uniform_square_pdf(const float *p, float *pdf, size_t n)"
+                      " { (void)p; for (size_t i = 0; i < n; ++i) pdf[i] = i % 100 == 0 ? INFINITY : 1.0f; }\n")
+    code, results, junit = _run(build_warp_library(source, tmp_path), tmp_path / "out")
+    (warp,) = results["warps"]
+    assert code == 1 and warp["verdict"] == "FAIL"
+    assert warp["checks"]["chi2"]["summary"] == "pdf is not finite somewhere in the domain"
+    assert warp["checks"]["normalisation"]["summary"] == "pdf integrates to inf"
+    assert "pdf is not finite" in junit.find(".//failure").get("message")
