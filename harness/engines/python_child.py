@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import atexit
 import fcntl
+import math
 import os
 import pickle
 import select
@@ -47,6 +48,20 @@ class ChildRaised(Exception):
         super().__init__(reason)
         self.reason = reason
         self.original = original
+
+
+def seconds_from_env(name: str, default: float) -> float:
+    """A time limit: $`name` if set (a positive number of seconds), else `default`. ValueError otherwise."""
+    text = os.environ.get(name)
+    if not text:
+        return default
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"{name}={text!r}: give a positive number of seconds")
+    return value
 
 
 def frame(obj: Any) -> bytes:

@@ -8,14 +8,12 @@ has a time limit ($MCVAL_WARP_TIMEOUT seconds); a child that failed is replaced 
 from __future__ import annotations
 
 import hashlib
-import math
-import os
 from pathlib import Path
 
 import numpy as np
 
 from harness.engines.base import Engine, WarpFunctions
-from harness.engines.python_child import ChildFailed, ChildRaised, PythonChild
+from harness.engines.python_child import ChildFailed, ChildRaised, PythonChild, seconds_from_env
 
 #: Each warp of the ABI and the dimension of its points.
 DIMENSIONS = {"square_to_uniform_square": 2, "square_to_tent": 2, "square_to_uniform_disk": 2,
@@ -36,16 +34,7 @@ class WarpUnavailable(RuntimeError):
 
 def call_timeout() -> float:
     """$MCVAL_WARP_TIMEOUT if set (a positive number of seconds), else DEFAULT_TIMEOUT."""
-    text = os.environ.get(TIMEOUT_ENV)
-    if not text:
-        return DEFAULT_TIMEOUT
-    try:
-        value = float(text)
-    except ValueError:
-        value = math.nan
-    if not (math.isfinite(value) and value > 0):
-        raise ValueError(f"{TIMEOUT_ENV}={text!r}: give a positive number of seconds")
-    return value
+    return seconds_from_env(TIMEOUT_ENV, DEFAULT_TIMEOUT)
 
 
 def _float32(a: np.ndarray, columns: int) -> np.ndarray:
