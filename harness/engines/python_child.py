@@ -30,6 +30,8 @@ from harness.engines.child_process import (OUTPUT_LIMIT, cancelled, child_env, k
 _POLL_MS = 200
 _HEADER = 8
 _PIPE_BYTES = 1 << 20
+#: The log is emptied before a call once it holds this much: only one call's lines are read.
+_LOG_KEEP = 1 << 20
 #: The folder that holds the `harness` package: the child imports it from there, wherever it was started.
 _ROOT = str(Path(__file__).resolve().parents[2])
 
@@ -75,6 +77,8 @@ class PythonChild:
 
     def __init__(self) -> None:
         self.log = tempfile.TemporaryFile(prefix="mcval-child-")
+        # Appending (the child shares this open file): emptying it between calls leaves no hole.
+        fcntl.fcntl(self.log.fileno(), fcntl.F_SETFL, fcntl.fcntl(self.log.fileno(), fcntl.F_GETFL) | os.O_APPEND)
         request_r, self._request = os.pipe()
         self._answer, answer_w = os.pipe()
         env = child_env()
@@ -108,10 +112,22 @@ class PythonChild:
         its session), prints more than OUTPUT_LIMIT bytes, or `cancel` is set."""
         if self.proc.returncode is not None:
             raise ChildFailed("was not running")
+        if os.fstat(self.log.fileno()).st_size > _LOG_KEEP:
+            os.ftruncate(self.log.fileno(), 0)
         self.start = os.fstat(self.log.fileno()).st_size
         deadline = time.monotonic() + timeout
-        self._send(frame((function, args)), deadline, timeout, cancel)
-        status, value = pickle.loads(self._receive(deadline, timeout, cancel))
+        try:
+            self._send(frame((function, args)), deadline, timeout, cancel)
+            answer = self._receive(deadline, timeout, cancel)
+        except ChildFailed:
+            raise
+        except BaseException:  # interrupted mid-call (Ctrl-C): its next answer would be this call's
+            self.close()
+            raise
+        try:
+            status, value = pickle.loads(answer)
+        except Exception as e:
+            raise self._ended(f"answered what cannot be read ({type(e).__name__}: {e})") from None
         if status == "ok":
             return value
         reason, original = value
