@@ -22,10 +22,11 @@ EXIT_STATUS = {Verdict.PASS: 0, Verdict.FAIL: 1, Verdict.NOTHING_JUDGED: 3}
 EPILOG = ("Each command but `references` writes results/<run>/ (results.json, HTML pages, junit.xml); "
           "results/latest moves to it once the run is complete. Exit status: 1 if any check fails, 3 if "
           "nothing was judged (no case ran, or every one was skipped or inconclusive: the run says why), 2 on "
-          "bad input or an error, 130 if interrupted. Our renderer runs as a child process, one per "
-          "render: a crash, kill or hang fails that case only. Environment: MCVAL_RENDER, the `render` "
-          "binary (default: build/render); MCVAL_RENDER_TIMEOUT, seconds per render (default: 600 plus "
-          "a share per sample).")
+          "bad input or an error, 130 if interrupted. Our renderer, Mitsuba's renders and a --warp-library "
+          "run in child processes: a crash, kill or hang fails that case or warp only. Environment: "
+          "MCVAL_RENDER, the `render` binary (default: build/render); MCVAL_RENDER_TIMEOUT, seconds per render "
+          "(default: 600 plus a share per sample); MCVAL_MITSUBA_TIMEOUT, seconds per Mitsuba render (default: "
+          "3600); MCVAL_WARP_TIMEOUT, seconds per call into a --warp-library (default: 120).")
 
 
 def build_parser() -> argparse.ArgumentParser:

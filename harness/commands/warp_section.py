@@ -28,12 +28,16 @@ def warp_engine(args):
 def available_specs(engine, specs) -> tuple[list, list[str]]:
     """The specs `engine` can be checked on, and one line for each it cannot (a sampler without its pdf).
     A warp an optional engine (a user's library) lacks is left out; one ours lacks stays, and fails."""
+    from harness.engines.python_child import ChildFailed
     from harness.engines.warp_library import WarpUnavailable
 
     kept, problems = [], []
     for spec in specs:
         try:
             functions = engine.warp(spec.name, spec.alpha)
+        except ChildFailed:  # a library that could not be loaded: each warp asked for fails in its own row
+            kept.append(spec)
+            continue
         except WarpUnavailable as e:
             if str(e) not in problems:
                 problems.append(str(e))
@@ -76,11 +80,14 @@ def run_warp_section(args, specs, run_dir: Path) -> tuple[bool, dict]:
         nothing = f"{ours.name} exports none of the warps asked for ({asked})"
         console.print(f"[red]No warp judged[/]: {escape(nothing)}")
     paths = write_warp_outputs(run_dir, specs, results, level, meta, args.seed, invocation(args))
-    failed = [r.label for r in results if not r.passed]
+    failed = [r for r in results if not r.passed]
     console.print(f"{len(results) - len(failed)} of {len(results)} warps pass, in {seconds:.1f} s. "
                   f"Page: {paths['html']}")
-    for label in failed:
-        console.print(f"[red]FAIL[/] {label}: data in {run_dir / 'warps'}")
+    for r in results:
+        if r.failure:
+            console.print(f"[red]FAIL[/] {escape(r.failure)}", soft_wrap=True)
+        elif not r.passed:
+            console.print(f"[red]FAIL[/] {r.label}: data in {run_dir / 'warps'}")
     payload = warp_payload(results, level, meta)
     payload["problems"] = problems
     if nothing:

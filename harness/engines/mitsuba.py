@@ -11,6 +11,7 @@ import numpy as np
 from harness.engines import mitsuba_direct
 from harness.engines.base import Engine, RenderResult, WarpFunctions
 from harness.engines.mitsuba_scene import load_scene
+from harness.engines.mitsuba_worker import render_in_worker
 
 DEFAULT_VARIANT = "llvm_ad_rgb"
 #: The sampler plugins of Mitsuba 3 an engine can be told to render with.
@@ -116,6 +117,8 @@ class MitsubaEngine(Engine):
         return self._mi
 
     def warp(self, name: str, alpha: float | None = None) -> WarpFunctions | None:
+        # In this process, unlike renders: Mitsuba's warps are its own tested code on arrays the harness
+        # makes, not a user's scene, and a worker would add a copy of each million samples to every call.
         mi, dr = self._activate(), self._dr
         if not self.variant.startswith("llvm"):
             return None  # scalar variants take one sample per call: no array warps
@@ -157,7 +160,14 @@ class MitsubaEngine(Engine):
     def render(self, scene: str, integrator: str, spp: int, batches: int, seed: int,
                params: dict[str, str] | None = None) -> RenderResult:
         """Seconds: "load" (parse, build the scene and its BVH), "first" (the first batch, with the
-        JIT compilation of an llvm variant), "render" (all batches), "total"."""
+        JIT compilation of an llvm variant), "render" (all batches), "total". In a worker process
+        (harness/engines/mitsuba_worker.py): a scene that crashes or hangs Mitsuba raises RenderFailed."""
+        return render_in_worker((self.variant, self.sampler, self.native), scene, integrator, spp, batches, seed,
+                                params)
+
+    def render_here(self, scene: str, integrator: str, spp: int, batches: int, seed: int,
+                    params: dict[str, str] | None = None) -> RenderResult:
+        """`render` in this process (a worker's)."""
         mi = self._activate()
         start = time.perf_counter()
         loaded = load_scene(scene, integrator, sampler=self.sampler, tight=not self.native, **(params or {}))

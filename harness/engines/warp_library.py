@@ -1,14 +1,19 @@
 """A C or C++ warp library as an engine of warps alone: the functions of include/mcval_warps.h, float32 and
-interleaved, called through ctypes on numpy arrays (docs/engines.md#warps-in-c-or-c)."""
+interleaved, called on numpy arrays (docs/engines.md#warps-in-c-or-c).
+
+The library runs in a child process of its own (harness/engines/python_child.py): a segfault, an abort(), a
+write past its output, an exit() or a hang costs the warp whose call it was (a crash while loading: every
+warp of the library), with the library, the function and the signal or exit status in one line. Each call
+has a time limit ($MCVAL_WARP_TIMEOUT seconds); a child that failed is replaced at the next call."""
 from __future__ import annotations
 
-import ctypes
 import hashlib
 from pathlib import Path
 
 import numpy as np
 
 from harness.engines.base import Engine, WarpFunctions
+from harness.engines.python_child import ChildFailed, ChildRaised, PythonChild, seconds_from_env
 
 #: Each warp of the ABI and the dimension of its points.
 DIMENSIONS = {"square_to_uniform_square": 2, "square_to_tent": 2, "square_to_uniform_disk": 2,
@@ -16,18 +21,24 @@ DIMENSIONS = {"square_to_uniform_square": 2, "square_to_tent": 2, "square_to_uni
               "square_to_beckmann": 3}
 #: The warps that take a parameter (last, as a float).
 WITH_ALPHA = ("square_to_beckmann",)
+#: Seconds one call into the library may take (a million samples, or one timed throughput run) before its
+#: process is killed: $MCVAL_WARP_TIMEOUT, else this.
+TIMEOUT_ENV = "MCVAL_WARP_TIMEOUT"
+DEFAULT_TIMEOUT = 120.0
+_CHILD = "harness.engines.warp_library_child"
 
 
 class WarpUnavailable(RuntimeError):
     """A warp the library cannot be checked on, with one line saying why (a sampler without its pdf)."""
 
 
+def call_timeout() -> float:
+    """$MCVAL_WARP_TIMEOUT if set (a positive number of seconds), else DEFAULT_TIMEOUT."""
+    return seconds_from_env(TIMEOUT_ENV, DEFAULT_TIMEOUT)
+
+
 def _float32(a: np.ndarray, columns: int) -> np.ndarray:
     return np.ascontiguousarray(np.asarray(a, np.float32).reshape(-1, columns))
-
-
-def _pointer(a: np.ndarray):
-    return a.ctypes.data_as(ctypes.POINTER(ctypes.c_float))
 
 
 class WarpLibraryEngine(Engine):
@@ -41,61 +52,88 @@ class WarpLibraryEngine(Engine):
         self.path = Path(path).resolve()
         if not self.path.is_file():
             raise ValueError(f"--warp-library {path}: no such file")
-        try:
-            self._lib = ctypes.CDLL(str(self.path))
-        except OSError as e:
-            raise ValueError(f"--warp-library {path}: cannot load it as a shared library ({e})") from None
         self.name = self.label = self.path.stem.removeprefix("lib")
+        self._child: PythonChild | None = None
+        #: Why the library could not be loaded (its constructor crashed, hung or exited): every warp fails so.
+        self.load_failure: ChildFailed | None = None
+        try:
+            names = [name + pdf for name in DIMENSIONS for pdf in ("", "_pdf")]
+            self._exports = set(self._call("exports", names, what="loading it"))
+        except ChildRaised as e:
+            raise ValueError(f"--warp-library {path}: cannot load it as a shared library ({e.original or e})"
+                             ) from None
+        except ChildFailed as e:
+            self.load_failure, self._exports = e, set()
 
     def __reduce__(self):
         return WarpLibraryEngine, (self.path,)
 
+    def _call(self, function: str, *args, what: str):
+        """`function` of warp_library_child in the library's process (started if there is none). Raises
+        ChildFailed, naming the library and `what` was called, when the call crashes, exits, hangs or writes
+        past its output (the process is then ended: the next call starts another); ChildRaised for an error
+        the library is not to blame for."""
+        if self._child is None or not self._child.alive:
+            child = PythonChild()
+            try:
+                child.call(f"{_CHILD}:load", str(self.path), timeout=call_timeout())
+            except ChildFailed as e:
+                raise ChildFailed(f"{self.path.name}: loading it {e.reason}", e.output) from None
+            except ChildRaised:
+                child.close()
+                raise
+            self._child = child
+        try:
+            return self._child.call(f"{_CHILD}:{function}", *args, timeout=call_timeout())
+        except ChildFailed as e:
+            self._child = None
+            raise ChildFailed(f"{self.path.name}: {what} {e.reason}", e.output) from None
+        except ChildRaised as e:
+            if e.original is not None and type(e.original).__name__ == "OutputOverrun":
+                self._child.close()  # what it overwrote is unknown
+                self._child = None
+                raise ChildFailed(f"{self.path.name}: {what} {e.original}") from None
+            raise
+
     def exported(self) -> list[str]:
         """The warps of the ABI whose sampler the library exports."""
-        return [name for name in DIMENSIONS if hasattr(self._lib, name)]
+        return [name for name in DIMENSIONS if name in self._exports]
 
     def version(self) -> str:
         digest = hashlib.sha256(self.path.read_bytes()).hexdigest()[:12]
-        return f"warp library {self.path} (sha256 {digest}; exports {', '.join(self.exported()) or 'no warp'})"
-
-    def _function(self, name: str, alpha: bool):
-        fn = getattr(self._lib, name)
-        arguments = [ctypes.POINTER(ctypes.c_float), ctypes.POINTER(ctypes.c_float), ctypes.c_size_t]
-        fn.argtypes = arguments + ([ctypes.c_float] if alpha else [])
-        fn.restype = None
-        return fn
+        exports = (f"not loaded: {self.load_failure.reason}" if self.load_failure else
+                   f"exports {', '.join(self.exported()) or 'no warp'}")
+        return f"warp library {self.path} (sha256 {digest}; {exports})"
 
     def warp(self, name: str, alpha: float | None = None) -> WarpFunctions | None:
         """The library's sampler and pdf for `name`; None if it does not export the sampler, WarpUnavailable if
-        it exports the sampler without its pdf."""
-        if name not in DIMENSIONS or not hasattr(self._lib, name):
+        it exports the sampler without its pdf, ChildFailed if the library could not be loaded."""
+        if self.load_failure is not None and name in DIMENSIONS:
+            raise ChildFailed(f"{self.load_failure.reason}: {name} could not be checked", self.load_failure.output)
+        if name not in DIMENSIONS or name not in self._exports:
             return None
-        if not hasattr(self._lib, name + "_pdf"):
+        if name + "_pdf" not in self._exports:
             raise WarpUnavailable(f"{self.path.name} exports {name} but not {name}_pdf: a sampler cannot be "
                                   "checked without its density")
-        takes_alpha = name in WITH_ALPHA
-        sample_fn, pdf_fn = self._function(name, takes_alpha), self._function(name + "_pdf", takes_alpha)
-        extra = (ctypes.c_float(alpha),) if takes_alpha else ()
+        a = float(alpha) if name in WITH_ALPHA else None
         dim = DIMENSIONS[name]
+        at = "" if a is None else f" (alpha={a:g})"
 
         def sample(u: np.ndarray) -> np.ndarray:
-            u32 = _float32(u, 2)
-            out = np.zeros((len(u32), dim), np.float32)
-            sample_fn(_pointer(u32), _pointer(out), len(u32), *extra)
+            out = self._call("call", name, a, _float32(u, 2), dim, what=name + at)
             return out.astype(np.float64)
 
         def pdf(p: np.ndarray) -> np.ndarray:
             p32 = _float32(p, p.shape[1] if np.ndim(p) == 2 else dim)
-            out = np.zeros(len(p32), np.float32)
-            pdf_fn(_pointer(p32), _pointer(out), len(p32), *extra)
-            return out.astype(np.float64)
+            return self._call("call", name + "_pdf", a, p32, 1, what=f"{name}_pdf{at}").reshape(-1).astype(np.float64)
 
         # The library takes float32: a u of 1 - 2^-53 reaches it as 1, which the hard-input check forgives.
         sample.input_dtype = np.float32
 
         def native_run(n: int):
-            u = np.random.default_rng(1).random((n, 2), dtype=np.float32)
-            out = np.empty((n, dim), np.float32)
-            return lambda: sample_fn(_pointer(u), _pointer(out), n, *extra)
+            # The samples stay in the library's process: a timed call sends only its key there and back.
+            key = (name, a, n)
+            self._call("prepare", key, name, a, n, dim, what=name + at)
+            return lambda: self._call("run", key, what=name + at)
 
         return WarpFunctions(sample, pdf, native_run)

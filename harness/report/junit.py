@@ -43,7 +43,8 @@ def junit_xml(images: list[ImageResult], warps: list[dict] | None, meta: dict | 
 
     if warps is not None:
         suite("warps", [(_warp_case(w), w["pass"],
-                         "; ".join(f"{k}: {c['summary']}" for k, c in w["checks"].items() if c["pass"] is False),
+                         w.get("failure") or "; ".join(f"{k}: {c['summary']}" for k, c in w["checks"].items()
+                                                       if c["pass"] is False),
                          w["seconds"]) for w in warps],
               {_warp_case(w): _warnings(w) for w in warps})
     for integrator in sorted({r.case.integrator for r in images}):

@@ -41,8 +41,8 @@ def _summary_table(results: list[WarpResult]) -> str:
     head = "".join(f"<th>{html.escape(n)}</th>" for n in ("warp", *CHECK_NAMES, "power", "overall"))
     rows = []
     for r in results:
-        cells = []
-        for name in CHECK_NAMES:
+        cells = [f'<td class="fail" colspan="{len(CHECK_NAMES)}">{html.escape(r.failure)}</td>'] if r.failure else []
+        for name in CHECK_NAMES if not r.failure else ():
             c = r.checks.get(name)
             cells.append(_cell(None, c.summary if c else "") if c is None or c.skipped else _cell(c.verdict, c.summary))
         anchor = html.escape(r.label.replace(" ", "_"))
@@ -53,6 +53,10 @@ def _summary_table(results: list[WarpResult]) -> str:
 
 
 def _section(r: WarpResult, reproduce: str, data_file: str | None) -> str:
+    anchor = html.escape(r.label.replace(" ", "_"))
+    if r.failure:
+        return (f'<h2 id="{anchor}">{html.escape(r.label)} — FAIL</h2><p class="fail">{html.escape(r.failure)}</p>'
+                f"<p>Reproduce: <code>{html.escape(reproduce)}</code></p>")
     png = warp_heatmaps_png(r.observed, r.expected, r.reference_observed, r.domain, r.label)
     img = base64.b64encode(png).decode()
     rows = "".join(
@@ -67,7 +71,6 @@ def _section(r: WarpResult, reproduce: str, data_file: str | None) -> str:
         if data_file:
             extra += f"; histograms and failing data: <code>{html.escape(data_file)}</code>"
         extra += "</p>"
-    anchor = html.escape(r.label.replace(" ", "_"))
     return (f'<h2 id="{anchor}">{html.escape(r.label)} — {_warp_word(r)}</h2>'
             f'<p class="meta">domain {html.escape(r.domain)}, seed {r.seed}, {r.seconds:.2f} s; judged against '
             f'{html.escape(r.judged_against)}</p>{extra}'

@@ -64,10 +64,12 @@ class WarpResult:
     target_observed: np.ndarray | None = None
     target_expected: np.ndarray | None = None
     target_bins: Bins | None = None
+    #: Why no check could run, in one line (a user's library that crashed, exited or hung in this warp).
+    failure: str | None = None
 
     @property
     def passed(self) -> bool:
-        return all(bool(c.passed) for c in self.checks.values() if not c.skipped)
+        return self.failure is None and all(bool(c.passed) for c in self.checks.values() if not c.skipped)
 
     @property
     def warnings(self) -> int:
@@ -94,7 +96,14 @@ class WarpResult:
         return {"warp": self.warp, "params": self.params, "domain": self.domain, "pass": self.passed,
                 "verdict": self.verdict, "warnings": self.warnings, "seed": self.seed, "seconds": self.seconds,
                 "target": None if self.target is None else self.target.label, "judged_against": self.judged_against,
-                "checks": {k: c.to_json() for k, c in self.checks.items()}}
+                "checks": {k: c.to_json() for k, c in self.checks.items()},
+                **({"failure": self.failure} if self.failure else {})}
+
+
+def failed_warp(name: str, params: Any, domain: str, seed: int, reason: str) -> WarpResult:
+    """The result of a warp whose checks could not run: it fails with `reason`, and has no histograms."""
+    empty = np.zeros((0, 0))
+    return WarpResult(name, params, domain, {}, empty, empty, None, 0.0, seed, failure=reason)
 
 
 def format_params(params: Any) -> str:

@@ -10,10 +10,11 @@ from typing import Callable
 import numpy as np
 
 from harness.engines.base import Engine
+from harness.engines.python_child import ChildFailed
 from harness.statistics.constants import SIGNIFICANCE, WARP_SAMPLES
 from harness.warps.power import CACHE_PATH as POWER_CACHE
 from harness.warps.power import attach_power
-from harness.warps.evaluate import WarpResult, decide, evaluate_warp
+from harness.warps.evaluate import WarpResult, decide, evaluate_warp, failed_warp
 from harness.warps.targets import target_for
 
 #: Beckmann roughnesses in the matrix; small ones are where careless cell integrals fail.
@@ -70,7 +71,15 @@ def spec_seed(spec: WarpSpec, seed: int) -> int:
 
 
 def check_spec(spec: WarpSpec, ours: Engine, reference: Engine | None, seed: int, samples: int) -> WarpResult:
-    """Every check of one spec: our warp against its pdf and against the reference engine's."""
+    """Every check of one spec: our warp against its pdf and against the reference engine's. A warp in a
+    process of its own (a user's library) that crashes, exits or hangs fails alone, with that one line."""
+    try:
+        return _check_spec(spec, ours, reference, seed, samples)
+    except ChildFailed as e:
+        return failed_warp(spec.name, spec.params, spec.domain, spec_seed(spec, seed), e.reason)
+
+
+def _check_spec(spec: WarpSpec, ours: Engine, reference: Engine | None, seed: int, samples: int) -> WarpResult:
     functions = ours.warp(spec.name, spec.alpha)
     if functions is None:
         raise RuntimeError(f"engine {ours.name} has no warp {spec.name}")

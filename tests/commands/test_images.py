@@ -136,3 +136,27 @@ def test_a_run_with_no_case_to_judge_exits_3_and_says_why(tmp_path, capsys):
     assert payload["verdict_reason"] == ("nothing was judged: image cases: no case of the engine ours (it renders "
                                          "simple) applies to the scenes: cornell_box:simple: no point light")
     assert f"FAIL {payload['verdict_reason']}" in capsys.readouterr().out
+
+
+@pytest.mark.mitsuba
+def test_scenes_that_crash_or_hang_mitsuba_fail_their_own_cases_and_the_run_goes_on(tmp_path, monkeypatch, capsys):
+    from harness.engines.mitsuba_worker import TIMEOUT_ENV
+    from tests.engines.test_mitsuba_worker import misbehaving_scenes
+
+    monkeypatch.setenv(TIMEOUT_ENV, "3")  # the good scene first: its worker's compilation is in its limit
+    scenes = misbehaving_scenes(tmp_path)
+    out = tmp_path / "results"
+    code = main(["images", *(a for name in ("good", "crash", "hang") for a in ("--scene", str(scenes[name]))),
+                 "--only", "simple", "--resolution", "8", "--out", str(out)])
+    printed = " ".join(capsys.readouterr().out.split())
+    assert code == 1
+    results = {r["scene"]: r for r in json.loads((out / "latest" / "results.json").read_text())["images"]}
+    assert results["good"]["pass"] is True
+    messages = [f.get("message") for f in ET.parse(out / "latest" / "junit.xml").iter("failure")]
+    for scene, line in (("crash", "Mitsuba reference: Mitsuba was killed by SIGSEGV while loading or rendering "
+                                  "crash.xml"),
+                        ("hang", "Mitsuba reference: Mitsuba timed out after 3 s and was killed while loading or "
+                                 "rendering hang.xml")):
+        assert results[scene]["pass"] is False and results[scene]["error"] == line
+        assert f"FAIL {scene}:simple — {line}" in printed
+        assert line in messages
