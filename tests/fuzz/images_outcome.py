@@ -3,8 +3,8 @@ fuzz_images.py. A refused scene is right (its cases fail with a reason, rc 1); t
 
   signal       the run was killed by a signal
   exit-status  any exit status but 0, 1 and 3 (2 is an error that stopped the whole run)
-  hang         no exit within the time limit in CPU seconds, or four times it in wall seconds (then SIGKILL:
-               Mitsuba's loader ignores SIGTERM)
+  hang         no exit within the time limit in CPU seconds, no CPU used for 10 s (blocked), or four times
+               the limit in wall seconds (then SIGKILL: Mitsuba's loader ignores SIGTERM)
   memory       the run's processes held more than the memory limit (then SIGKILL)
   traceback    Python exception text in the output or in any string of results.json: "Traceback", "maximum
                recursion depth", or a built-in exception's name followed by ':' (IndexError: ...)
@@ -66,22 +66,24 @@ def images_command(scenes: list[Path], out: Path, resolution: int, seed: int) ->
 
 
 #: A run is hung when its processes have used the time limit in CPU seconds (a machine shared with other work
-#: stretches the wall clock, not the CPU time), or WALL_FACTOR times it in wall seconds (a wait on a FIFO or a
-#: lock uses none).
+#: stretches the wall clock, not the CPU time), when they have used next to no CPU for IDLE_SECONDS (a wait
+#: on a FIFO or a lock), or after WALL_FACTOR times the limit in wall seconds.
 WALL_FACTOR = 4
+IDLE_SECONDS, IDLE_CPU = 10.0, 0.05
 
 
-def _tree_usage(proc: psutil.Process) -> tuple[int, float]:
-    """(resident bytes, CPU seconds) of a process and its live children."""
-    rss, cpu = 0, 0.0
+def _tree_usage(proc: psutil.Process, cpu_by_pid: dict[int, float]) -> tuple[int, float]:
+    """(resident bytes of a process and its live children, CPU seconds of all it has run): `cpu_by_pid` keeps
+    the last CPU time seen of each process, so that a child's seconds still count once it has exited."""
+    rss = 0
     for p in [proc, *proc.children(recursive=True)]:
         try:
             rss += p.memory_info().rss
             times = p.cpu_times()
-            cpu += times.user + times.system
+            cpu_by_pid[p.pid] = times.user + times.system
         except psutil.Error:
             pass
-    return rss, cpu
+    return rss, sum(cpu_by_pid.values())
 
 
 def run_images(scenes: list[Path], out: Path, resolution: int, seed: int, timeout: float,
@@ -95,12 +97,16 @@ def run_images(scenes: list[Path], out: Path, resolution: int, seed: int, timeou
     with open(log, "wb") as sink:
         proc = subprocess.Popen(images_command(scenes, out, resolution, seed), cwd=ROOT, stdout=sink,
                                 stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, env=env, start_new_session=True)
-        watched, killed = psutil.Process(proc.pid), ""
+        watched, killed, samples, cpu_by_pid = psutil.Process(proc.pid), "", [], {}
         while proc.poll() is None:
-            rss, cpu = _tree_usage(watched)
+            rss, cpu = _tree_usage(watched, cpu_by_pid)
             wall = time.perf_counter() - start
+            samples.append((wall, cpu))
+            idle = [c for w, c in samples if w >= wall - IDLE_SECONDS]
             if cpu > timeout or wall > WALL_FACTOR * timeout:
                 killed = f"hang: no exit after {cpu:.0f} CPU seconds, {wall:.0f} s"
+            elif wall > IDLE_SECONDS and cpu - idle[0] < IDLE_CPU:
+                killed = f"hang: no CPU used for {IDLE_SECONDS:.0f} s (blocked), after {wall:.0f} s"
             elif rss > memory_limit:
                 killed = f"memory: more than {memory_limit >> 20} MiB"
             if killed:

@@ -80,13 +80,20 @@ def test_missing_results_and_a_broken_junit_are_findings(tmp_path):
 
 
 @pytest.mark.parametrize("program, outcome", [("while True: pass", "hang"),  # its CPU seconds
-                                              ("import time; time.sleep(30)", "hang"),  # 4 x its wall seconds
+                                              ("import time; time.sleep(30)", "hang"),  # no CPU for 10 s
                                               ("b = bytearray(400 << 20); import time; time.sleep(30)", "memory")])
 def test_a_hung_or_swelling_run_is_killed(tmp_path, monkeypatch, program, outcome):
     monkeypatch.setattr(images_outcome, "images_command", lambda *a: [sys.executable, "-c", program])
     rc, killed, _, seconds = images_outcome.run_images([], tmp_path / "out", 8, 0, timeout=0.75,
                                                        memory_limit=100 << 20)
     assert rc is None and killed.startswith(outcome) and seconds < 10, killed
+
+
+def test_a_blocked_run_is_a_hang_before_its_time_limit(tmp_path, monkeypatch):
+    monkeypatch.setattr(images_outcome, "images_command", lambda *a: [sys.executable, "-c", "import time; time.sleep(30)"])
+    monkeypatch.setattr(images_outcome, "IDLE_SECONDS", 1.0)
+    rc, killed, _, seconds = images_outcome.run_images([], tmp_path / "out", 8, 0, timeout=60, memory_limit=1 << 40)
+    assert rc is None and "no CPU used" in killed and seconds < 5, killed
 
 
 def test_a_whole_run_break_is_traced_to_its_variant(tmp_path, monkeypatch):
