@@ -8,8 +8,9 @@ fuzz_images.py. A refused scene is right (its cases fail with a reason, rc 1); t
   memory       the run's processes held more than the memory limit (then SIGKILL)
   traceback    Python exception text in the output or in any string of results.json: "Traceback", "maximum
                recursion depth", or a built-in exception's name followed by ':' (IndexError: ...)
-  exception-text  the same for the names the harness prefixes to load errors it passes on (RuntimeError:,
-               ValueError:, OSError: and its kin): the user reads a Python class name, not their file's line
+  exception-text  any other exception class's name and a colon: the names the harness prefixes to load errors
+               it passes on (RuntimeError:, ValueError:, OSError: and its kin, its own SceneFileError:): the
+               user reads a Python class name where their file's line belongs
   junit        junit.xml is not well-formed XML
   no-results   exit 0, 1 or 3 without results.json
 
@@ -34,10 +35,16 @@ import psutil
 
 ROOT = Path(__file__).resolve().parents[2]
 FINDINGS = ("signal", "exit-status", "hang", "memory", "traceback", "exception-text", "junit", "no-results")
-EXCEPTION_NAMES = sorted(n for n, v in vars(builtins).items()
-                         if isinstance(v, type) and issubclass(v, BaseException) and n.endswith(("Error", "Exception")))
-EXCEPTION_RE = re.compile(r"Traceback \(most recent call last\)|maximum recursion depth|\b(?:"
-                          + "|".join(EXCEPTION_NAMES) + r"):")
+#: Exception names that wrap a load error's own message (Mitsuba's parser, a file the harness cannot read).
+PASSED_ON = ("RuntimeError", "ValueError", "OSError", "FileNotFoundError", "IsADirectoryError", "NotADirectoryError",
+             "PermissionError", "UnicodeDecodeError")
+#: Python's own exceptions: a bug's text (IndexError: ...), but for those the harness passes load errors in.
+BUILTIN_NAMES = sorted(n for n, v in vars(builtins).items() if isinstance(v, type) and issubclass(v, BaseException)
+                       and n.endswith(("Error", "Exception")) and n not in PASSED_ON)
+TRACEBACK_RE = re.compile(r"Traceback \(most recent call last\)|maximum recursion depth|\b(?:"
+                          + "|".join(BUILTIN_NAMES) + r"):")
+#: Any exception class's name and a colon (RuntimeError:, the harness's own SceneFileError:, NoriSceneError:).
+CLASS_NAME_RE = re.compile(r"\b[A-Z]\w*(?:Error|Exception):")
 #: Seconds our renderer may take per render before the harness itself calls it hung (its own time limit).
 RENDER_TIMEOUT = "10"
 
@@ -128,21 +135,16 @@ def _strings(value) -> list[str]:
     return []
 
 
-#: Exception names that wrap a load error's own message (Mitsuba's parser, a file the harness cannot read).
-PASSED_ON = re.compile(r"\b(RuntimeError|ValueError|OSError|FileNotFoundError|IsADirectoryError|"
-                       r"NotADirectoryError|PermissionError|UnicodeDecodeError):")
-
-
 def _exception_text(text: str) -> tuple[str, str] | None:
-    """(outcome, the line) of Python exception text in `text`, or None."""
-    m = EXCEPTION_RE.search(text)
+    """(outcome, the line) of Python exception text in `text`: "traceback" for a traceback or a built-in
+    exception's text, "exception-text" for a class name before a message passed on; or None."""
+    m = TRACEBACK_RE.search(text) or CLASS_NAME_RE.search(text)
     if m is None:
         return None
     line_start = text.rfind("\n", 0, m.start()) + 1
     line_end = text.find("\n", m.end())
     line = text[line_start: line_end if line_end >= 0 else None].strip()[:300]
-    passed_on = PASSED_ON.fullmatch(m.group(0)) and not EXCEPTION_RE.search(PASSED_ON.sub("", text))
-    return ("exception-text" if passed_on else "traceback"), line
+    return ("traceback" if m.re is TRACEBACK_RE else "exception-text"), line
 
 
 def judge_run(rc: int | None, killed: str, output: str, out: Path, names: list[str]) -> list[Finding]:

@@ -67,10 +67,12 @@ def test_a_broken_run_is_a_finding_of_the_whole_run(tmp_path, rc, killed, outcom
 def test_exception_text_is_found_in_cases_and_output_and_given_to_its_scene(tmp_path):
     out = _run_folder(tmp_path, [{"scene": "v1", "error": "Mitsuba reference: IndexError: list index out of range"},
                                  {"scene": "v2", "idiff": {"reason": "Mitsuba reference: RuntimeError: [parser.cpp:451] "
-                                                                     "Error while loading"}}])
+                                                                     "Error while loading"}},
+                                 {"scene": "v3", "error": "SceneFileError: v3.xml: <include>: no such file"}])
     found = judge_run(1, "", "Traceback (most recent call last):\n  File x\nRecursionError: maximum recursion depth "
-                             "exceeded\n", out, ["v1", "v2"])
-    assert {(f.outcome, f.scene) for f in found} == {("traceback", "v1"), ("exception-text", "v2"), ("traceback", None)}
+                             "exceeded\n", out, ["v1", "v2", "v3"])
+    assert {(f.outcome, f.scene) for f in found} == {("traceback", "v1"), ("exception-text", "v2"),
+                                                     ("exception-text", "v3"), ("traceback", None)}
 
 
 def test_missing_results_and_a_broken_junit_are_findings(tmp_path):
