@@ -188,8 +188,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--runs", type=int, default=2000, help="variants to try (default 2000)")
     p.add_argument("--seed", type=int, default=1, help="campaign seed (default 1)")
     p.add_argument("--batch", type=int, default=20, help="variants per harness process (default 20)")
-    p.add_argument("--timeout", type=float, default=20.0, help="seconds a run may take, plus --per-variant-timeout "
-                                                               "for each variant, before it counts as a hang (20)")
+    p.add_argument("--timeout", type=float, default=20.0, help="CPU seconds a run may use, plus --per-variant-timeout "
+                   "for each variant, before it counts as a hang (20; no CPU used for 10 s, or 4 times the limit in "
+                   "wall seconds, is a hang too)")
     p.add_argument("--per-variant-timeout", type=float, default=1.5, help="(default 1.5; a variant takes 0.5 s)")
     p.add_argument("--memory-limit", type=int, default=6144, help="MiB a run's processes may hold (default 6144)")
     p.add_argument("--keep", type=int, default=2, help="reproducers saved per kind of finding (default 2)")
