@@ -21,6 +21,9 @@ TEST_JOBS ?= 2
 SANITIZE_BUILD := build-sanitize
 FUZZ_RUNS ?= 2000
 FUZZ_SEED ?= 1
+# The campaign of `images --scene` (harness, Mitsuba and ours together; tests/fuzz/fuzz_images.py).
+FUZZ_IMAGE_RUNS ?= 2000
+FUZZ_IMAGE_SEED ?= 1
 
 .PHONY: validate test references bench build deps clean sanitize sanitize-build fuzz mutate
 
@@ -35,7 +38,7 @@ test: build
 	$(VENV)/bin/lint-imports
 	$(PY) -m pytest -n $(TEST_JOBS) --dist loadfile
 	$(MAKE) --no-print-directory sanitize
-	$(MAKE) --no-print-directory fuzz FUZZ_RUNS=300
+	$(MAKE) --no-print-directory fuzz FUZZ_RUNS=300 FUZZ_IMAGE_RUNS=0
 
 ## sanitize: an ASan+UBSan build (-O1 -g1, as ASan advises: half the -O2 -g compile, the same run time within
 ## a tenth); the C++ tests, every scene x integrator and the fuzz corpus run under it
@@ -48,10 +51,12 @@ sanitize-build: build
 		-DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DMCVAL_SANITIZE=ON -DPython_EXECUTABLE=$(abspath $(PY))
 	cmake --build $(SANITIZE_BUILD) --target render test_renderer
 
-## fuzz: a bounded mutation-fuzz campaign of the sanitized renderer (FUZZ_RUNS variants, seed FUZZ_SEED);
-## each finding is saved as a reproducer under tests/fuzz/crashes/ and fails the target
+## fuzz: a bounded mutation-fuzz campaign of the sanitized renderer (FUZZ_RUNS variants, seed FUZZ_SEED), then
+## one of `images --scene` (FUZZ_IMAGE_RUNS variants, seed FUZZ_IMAGE_SEED); each finding is saved as a
+## reproducer (tests/fuzz/crashes/, tests/fuzz/findings/) and fails the target
 fuzz: sanitize-build
 	$(PY) tests/fuzz/fuzz_scenes.py --runs $(FUZZ_RUNS) --seed $(FUZZ_SEED) --render $(SANITIZE_BUILD)/render
+	@[ "$(FUZZ_IMAGE_RUNS)" = 0 ] || $(PY) tests/fuzz/fuzz_images.py --runs $(FUZZ_IMAGE_RUNS) --seed $(FUZZ_IMAGE_SEED)
 
 ## references: render and store the Mitsuba references (the only command that writes references/)
 references: build
