@@ -1,19 +1,27 @@
 """The bounding box Mitsuba 3 gives a scene: where it places the camera of a file without a sensor
 (harness/images/scene_copy.py). Mitsuba's only load of a user's file outside its renders, kept in this one
-function."""
+function and run, like the renders, in a worker process whose crash or hang costs this scene alone
+(harness/engines/mitsuba_worker.py)."""
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 
 from harness.engines.mitsuba import DEFAULT_VARIANT, load_mitsuba
+from harness.engines.mitsuba_worker import call_in_worker
 from harness.engines.xml_lines import remove_keeping_lines
 
 
 def scene_bounds(text: str, variant: str = DEFAULT_VARIANT) -> tuple[tuple[float, ...], tuple[float, ...]] | None:
     """(min, max) of the scene `text` (Mitsuba 3 XML, file names absolute) as Mitsuba loads it, or None for a
     scene without shapes. Its integrators and samplers are left out (ours have names Mitsuba lacks; neither
-    moves a shape). RuntimeError with Mitsuba's message if it cannot load the scene."""
-    mi = load_mitsuba(variant)
+    moves a shape). RuntimeError with Mitsuba's message if it cannot load the scene, RenderFailed (a
+    RuntimeError) if loading it crashes or hangs Mitsuba."""
+    return call_in_worker((variant, None, False), f"{__name__}:bounds_here", (text,), "while loading the scene")
+
+
+def bounds_here(engine: tuple, text: str) -> tuple[tuple[float, ...], tuple[float, ...]] | None:
+    """In a Mitsuba worker: scene_bounds of `text` (`engine` is the worker's (variant, sampler, native))."""
+    mi = load_mitsuba(engine[0])
     root = ET.fromstring(text)
     for parent in list(root.iter()):
         for e in [e for e in parent if e.tag in ("integrator", "sampler")]:

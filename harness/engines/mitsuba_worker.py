@@ -30,6 +30,16 @@ def render_in_worker(engine: tuple, scene: str, *args) -> RenderResult:
     """MitsubaEngine(*engine).render_here(scene, *args) in an idle worker (started if there is none). Raises
     what the render raised (Mitsuba's own errors), or RenderFailed when the worker dies or outlives the time
     limit (the worker is then ended)."""
+    result = call_in_worker(engine, f"{__name__}:render", (str(Path(scene).resolve()), *args),
+                            f"while loading or rendering {Path(scene).name}")
+    result.scene = str(scene)
+    return result
+
+
+def call_in_worker(engine: tuple, function: str, args: tuple, doing: str):
+    """`function` ("module:name", run in the worker) on `args` in an idle worker made for MitsubaEngine(*engine)
+    (started if there is none), under the render time limit. Raises what the function raised, or RenderFailed
+    saying what the worker was `doing` when it died or outlived the limit (the worker is then ended)."""
     timeout = render_timeout()
     with _lock:
         worker = None
@@ -44,19 +54,17 @@ def render_in_worker(engine: tuple, scene: str, *args) -> RenderResult:
             if worker is None:
                 worker = PythonChild()
                 worker.call(f"{__name__}:start", engine, timeout=START_SECONDS)
-            result = worker.call(f"{__name__}:render", engine, str(Path(scene).resolve()), *args, timeout=timeout)
+            result = worker.call(function, engine, *args, timeout=timeout)
         except ChildRaised as e:
             kept = _keep(worker)
             raise (e.original or RuntimeError(e.reason)) from None
         except ChildFailed as e:
-            raise RenderFailed(f"Mitsuba {e.reason} while loading or rendering {Path(scene).name}", e.output) \
-                from None
+            raise RenderFailed(f"Mitsuba {e.reason} {doing}", e.output) from None
         kept = _keep(worker)
-        result.scene = str(scene)
         return result
     finally:
         if worker is not None and not kept:
-            worker.close()  # failed, or interrupted mid-render: its state is unknown
+            worker.close()  # failed, or interrupted mid-call: its state is unknown
 
 
 def _keep(worker: PythonChild) -> bool:
