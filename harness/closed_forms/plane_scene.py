@@ -202,6 +202,12 @@ def _read_plane_scene(path: str | Path, params: dict[str, str] | None) -> PlaneS
     rfilter = film.find("rfilter")
     if rfilter is None or rfilter.get("type") != "box":
         raise NotAnalytic("closed forms are integrated over pixels with a box filter")
+    # The closed forms integrate the whole film through a centred pinhole: a crop window, a principal point
+    # offset or a sampled border would give another image than theirs.
+    framing = [e.get("name") for e in (*film, *sensor) if e.get("name", "").startswith(("crop_", "principal_point"))
+               or (e.get("name") == "sample_border" and e.get("value", "").strip().lower() == "true")]
+    if framing:
+        raise NotAnalytic(f"closed forms cover the whole film through a centred pinhole, not {framing[0]}")
     if (_prop(sensor, "string", "fov_axis") is not None) and _prop(sensor, "string", "fov_axis").get("value") != "x":
         raise NotAnalytic("fov_axis other than x")
     shapes = root.findall("shape")

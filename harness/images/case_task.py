@@ -128,6 +128,8 @@ def _reason(e: Exception) -> str:
     if isinstance(e, RenderFailed):
         return e.reason
     text = str(e).strip().splitlines()
+    if text and type(e) is RuntimeError:  # how Mitsuba raises its own errors ("[parser.cpp:N] ..."): its words
+        return text[0]
     return f"{type(e).__name__}: {text[0]}" if text else type(e).__name__
 
 

@@ -194,7 +194,7 @@ def prepare_mitsuba_file(text: str, path: Path, resolution: int, bounds_of, line
         except Exception as e:  # Mitsuba cannot load the file: its error, in the file's lines
             why = name_lines(str(e), "", str(path), _source_lines(doc, root, before))
             raise SceneXmlError(f"{path}: no <sensor>, and Mitsuba could not load it to place one: "
-                                f"{type(e).__name__}: {why}") from None
+                                f"{why if type(e) is RuntimeError else f'{type(e).__name__}: {why}'}") from None
         root.append(default_sensor(bounds, resolution))
         if notes is not None:
             notes.append(f"{path}: no <sensor>: rendered from the camera Mitsuba gave such a file until 3.0.0 "

@@ -4,6 +4,7 @@ import json
 import shutil
 import subprocess
 import xml.etree.ElementTree as ET
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -145,6 +146,15 @@ def test_scenes_that_crash_or_hang_mitsuba_fail_their_own_cases_and_the_run_goes
 
     monkeypatch.setenv(TIMEOUT_ENV, "3")  # the good scene first: its worker's compilation is in its limit
     scenes = misbehaving_scenes(tmp_path)
+    # Our renderer refuses the crashing file's mesh and the hanging file's filter, and a file the tested engine
+    # refuses costs no reference render: ours renders the good file in their place, so that Mitsuba is given them.
+    from harness.engines.ours import OurEngine
+    render = OurEngine.render
+
+    def good_in_place_of_crash(self, scene, *args, **kwargs):
+        return render(self, str(scenes["good"]) if Path(scene).name in ("crash.xml", "hang.xml") else scene, *args, **kwargs)
+
+    monkeypatch.setattr(OurEngine, "render", good_in_place_of_crash)
     out = tmp_path / "results"
     code = main(["images", *(a for name in ("good", "crash", "hang") for a in ("--scene", str(scenes[name]))),
                  "--only", "simple", "--resolution", "8", "--out", str(out)])

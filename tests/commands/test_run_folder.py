@@ -50,7 +50,9 @@ def test_a_run_that_dies_of_an_error_exits_2_and_leaves_latest(tmp_path, monkeyp
     def broken(*args, **kwargs):
         raise TypeError("a bug in the harness")
 
-    monkeypatch.setattr(OurEngine, "render", broken)
+    # A case's own failures (a render's, even an unforeseen one) cost that case; the run dies of an error
+    # outside every case, here in running them.
+    monkeypatch.setattr("harness.images.run.run_images", broken)
     assert main([*CASE, "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert "a bug in the harness" in err

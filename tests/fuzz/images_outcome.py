@@ -45,7 +45,9 @@ TRACEBACK_RE = re.compile(r"Traceback \(most recent call last\)|maximum recursio
                           + "|".join(BUILTIN_NAMES) + r"):")
 #: Any exception class's name and a colon (RuntimeError:, the harness's own SceneFileError:, NoriSceneError:).
 CLASS_NAME_RE = re.compile(r"\b[A-Z]\w*(?:Error|Exception):")
-#: Seconds our renderer may take per render before the harness itself calls it hung (its own time limit).
+#: Seconds our renderer and Mitsuba may take per render before the harness itself ends it (its own time limits,
+#: MCVAL_RENDER_TIMEOUT and MCVAL_MITSUBA_TIMEOUT): a render that hangs then costs its case, which is the
+#: behaviour under test; the campaign's hang verdict is for a harness that does not end it.
 RENDER_TIMEOUT = "10"
 
 
@@ -100,7 +102,8 @@ def run_images(scenes: list[Path], out: Path, resolution: int, seed: int, timeou
     start = time.perf_counter()
     log = out.with_suffix(".log")
     out.parent.mkdir(parents=True, exist_ok=True)
-    env = {**os.environ, "MCVAL_RENDER_TIMEOUT": RENDER_TIMEOUT, "COLUMNS": "200", "PYTHONUNBUFFERED": "1"}
+    env = {**os.environ, "MCVAL_RENDER_TIMEOUT": RENDER_TIMEOUT,
+           "MCVAL_MITSUBA_TIMEOUT": RENDER_TIMEOUT, "COLUMNS": "200", "PYTHONUNBUFFERED": "1"}
     with open(log, "wb") as sink:
         proc = subprocess.Popen(images_command(scenes, out, resolution, seed), cwd=ROOT, stdout=sink,
                                 stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, env=env, start_new_session=True)

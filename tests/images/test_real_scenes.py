@@ -150,10 +150,12 @@ def test_non_diffuse_bsdf_is_a_note_for_normals_and_an_error_for_simple_and_ao(t
         assert f"{path}:15:" in line
 
 
-def test_area_emitter_is_an_error_for_simple(tmp_path):
+def test_an_area_emitter_loads_where_the_integrator_ignores_it(tmp_path):
+    """simple sees point lights only, ao no emitter: a file with an area emitter renders under both (harness
+    drops it from Mitsuba's copy under simple)."""
     path = scene(tmp_path, shape_extra='<emitter type="area"><rgb name="radiance" value="1"/></emitter>')
-    one_error(run(path, "--integrator", "simple", "-o", tmp_path / "o.exr", "-q"), path, "area")
-    assert run(path, "--integrator", "ao", "-o", tmp_path / "o.exr", "-q").returncode == 0
+    for integrator in ("simple", "ao"):
+        assert run(path, "--integrator", integrator, "-o", tmp_path / "o.exr", "-q").returncode == 0
 
 
 def test_unknown_file_integrator_without_override_names_file_and_line(tmp_path):
