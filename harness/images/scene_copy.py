@@ -55,6 +55,10 @@ def _defaults(doc: LinedXml) -> dict[str, str]:
     return values
 
 
+#: The largest film size or crop value a file may give: Mitsuba reads an <integer> as a 64-bit one.
+MOST_PIXELS = 2**63 - 1
+
+
 def _pixels(doc: LinedXml, e: ET.Element, defaults: dict[str, str], least: int = 1) -> int:
     """The whole number of pixels `e` gives ($name through the file's defaults)."""
     value = (e.get("value") or "").strip()
@@ -66,6 +70,8 @@ def _pixels(doc: LinedXml, e: ET.Element, defaults: dict[str, str], least: int =
         raise _fail(doc, e, "expected a whole number of pixels") from None
     if number < least:
         raise _fail(doc, e, f"expected at least {least} pixel{'s' if least != 1 else ''}")
+    if number > MOST_PIXELS:
+        raise _fail(doc, e, f"expected at most {MOST_PIXELS} pixels")
     return number
 
 

@@ -119,6 +119,9 @@ def _prepare_one(path: Path, name: str, cache: Path, resolution: int) -> UserSce
         prepared = _prepared(path, resolution, notes)
     except (SceneXmlError, SceneFileError) as e:
         prepared, problem = Prepared(path.read_text(errors="replace")), one_line(str(e))
+    except OSError as e:  # a file the scene names that cannot be read (a folder, a name too long)
+        prepared = Prepared(path.read_text(errors="replace"))
+        problem = one_line(f"{path}: cannot read {e.filename or 'a file it names'}: {e.strerror or e}")
     except Exception as e:  # an input nobody foresaw costs its scene, not the run
         prepared = Prepared(path.read_text(errors="replace"))
         problem = one_line(f"{path}: its copy could not be prepared: {type(e).__name__}: {e}")

@@ -145,3 +145,14 @@ def test_folders_are_searched_recursively_but_not_hidden_ones_nor_the_runs_outpu
     _scene(tmp_path / "in" / "results" / "run", "output")
     found = scene_files([tmp_path / "in"], skip=(tmp_path / "in" / "results",))
     assert sorted(p.stem for p in found) == ["nested", "top"]
+
+
+@pytest.mark.parametrize("name", ["DIR", "x" * 5000])
+def test_a_file_the_scene_names_that_cannot_be_read_is_its_scenes_problem_in_words(tmp_path, name):
+    """An <include> of a folder, or of a name longer than the system allows: one line, no exception class."""
+    (tmp_path / "DIR").mkdir()
+    path = tmp_path / "s.xml"
+    path.write_text(f'<scene version="3.0.0"><include filename="{name}"/></scene>')
+    scene, = prepare_scenes([path], tmp_path / "cache", 16)
+    assert "cannot read" in scene.problem or "no such file" in scene.problem, scene.problem
+    assert "Error" not in scene.problem and "\n" not in scene.problem
