@@ -141,10 +141,15 @@ def _missing_files(doc: LinedXml, root: ET.Element, written: dict[int, str]) -> 
     `written`: the names as the file gives them)."""
     for e in root.iter("string"):
         value = e.get("value", "")
-        if e.get("name") == "filename" and value and "$" not in value and not Path(value).exists():
+        if e.get("name") != "filename" or not value or "$" in value:
+            continue
+        # A pipe, a device or a folder: reading it would block, never end (/dev/zero) or fail in every engine.
+        problem = ("no such file" if not Path(value).exists() else
+                   "not a regular file" if not Path(value).is_file() else None)
+        if problem:
             if id(e) in written:
                 e.set("value", written[id(e)])
-            raise _fail(doc, e, f"no such file ({value})")
+            raise _fail(doc, e, f"{problem} ({value})")
 
 
 def _written(root: ET.Element) -> str:

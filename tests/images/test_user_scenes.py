@@ -156,3 +156,19 @@ def test_a_file_the_scene_names_that_cannot_be_read_is_its_scenes_problem_in_wor
     scene, = prepare_scenes([path], tmp_path / "cache", 16)
     assert "cannot read" in scene.problem or "no such file" in scene.problem, scene.problem
     assert "Error" not in scene.problem and "\n" not in scene.problem
+
+
+@pytest.mark.parametrize("kind", ["fifo", "device", "folder"])
+def test_a_mesh_that_is_no_regular_file_is_refused_with_its_line(tmp_path, kind):
+    """Reading a named pipe blocks for ever and /dev/zero never ends: refused before any engine opens them."""
+    import os
+    target = {"fifo": tmp_path / "FIFO", "device": "/dev/zero", "folder": tmp_path / "DIR"}[kind]
+    if kind == "fifo":
+        os.mkfifo(target)
+    elif kind == "folder":
+        target.mkdir()
+    path = tmp_path / "s.xml"
+    path.write_text(f'<scene version="3.0.0">\n<shape type="ply">\n<string name="filename" value="{target}"/>'
+                    '\n</shape>\n</scene>')
+    scene, = prepare_scenes([path], tmp_path / "cache", 16)
+    assert scene.problem.startswith(f"{path}:3:") and "not a regular file" in scene.problem, scene.problem
