@@ -23,7 +23,7 @@ FUZZ_RUNS ?= 2000
 FUZZ_SEED ?= 1
 # The campaign of `images --scene` (harness, Mitsuba and ours together; tests/fuzz/fuzz_images.py).
 FUZZ_IMAGE_RUNS ?= 2000
-FUZZ_IMAGE_SEED ?= 1
+FUZZ_IMAGE_SEED ?= 4104
 
 .PHONY: validate test references bench build deps clean sanitize sanitize-build fuzz mutate
 
