@@ -38,7 +38,11 @@ class DaskExecutor(Executor):
         import dask
         from distributed import Client, LocalCluster
 
-        dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES - 1})
+        dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES - 1,
+                         # The active memory manager drops the copies `share` broadcast once no queued task
+                         # waits on them; a finished result lost with its worker is then recomputed without
+                         # its scene bundle (an existing scheduler keeps its own configuration).
+                         "distributed.scheduler.active-memory-manager.start": False})
         self._cluster = None
         if scheduler is None:
             cores = _worker_count()

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+import time
 from types import SimpleNamespace
 
 import psutil
@@ -120,6 +121,15 @@ def test_a_worker_dying_under_a_task_fails_that_case_only():
     normals, simple = results
     assert normals.passed and normals.error is None
     assert not simple.passed and simple.error.startswith("task failed: its worker died")
+
+
+def test_shared_data_stays_on_every_worker_once_no_task_waits_on_it():
+    from harness.distributed.dask_executor import DaskExecutor
+
+    with DaskExecutor(workers=2) as executor:
+        handle = executor.share(b"scene files")
+        time.sleep(5)  # past two rounds of the active memory manager (every 2 s), which would drop the copies
+        assert len(executor.client.who_has(handle)[handle.key]) == 2
 
 
 def test_the_embedded_cluster_listens_on_loopback_only():
