@@ -73,7 +73,7 @@ class _Budget(Mapping):
 
 INTEGRATORS = _Integrators()
 #: Samples per pixel per batch: ours in every run, Mitsuba's for stored references.
-OUR_SPP = _Budget("our_spp")
+OUR_SPP = _Budget("tested_spp")
 REFERENCE_SPP = _Budget("reference_spp")
 
 

@@ -5,9 +5,9 @@ from harness.integrators.entry import AnalyticForm, IntegratorEntry
 
 ENTRY = IntegratorEntry(
     name="ao",
-    our_spp=32,
+    tested_spp=32,
     reference_spp=256,
-    # Direct light from the environment alone: every other emitter is ignored (our loader skips them).
+    # Direct light from the environment alone: every other emitter is ignored (the renderer's loader skips them).
     emitters=("constant",),
     # Occlusion rays per camera sample, each cosine-weighted.
     parameters=(("integer", "samples", "1"),),
@@ -16,7 +16,7 @@ ENTRY = IntegratorEntry(
                           lambda scene, p, normal: times(scene.reflectance * scene.environment,
                                                          ao_visible(scene, p, normal)),
                           scenes=("plane", "sphere_floor"),
-                          # One cosine-weighted occlusion ray per camera sample, as ours and Mitsuba's direct.
+                          # One cosine-weighted occlusion ray per camera sample, as the renderers' estimator.
                           sample=lambda scene, p, normal, u: times(scene.reflectance * scene.environment,
                                                                    u < ao_visible(scene, p, normal))),
     linear_in=("light", "reflectance"),

@@ -34,8 +34,8 @@ class AnalyticForm:
     scenes: tuple[str, ...] = ("plane",)
     #: One sample of the estimator the renderers use, drawn with the closed form's exact probabilities (ao: one
     #: visibility ray, lit with probability V), or None where `shade` is noiseless per camera ray. Where a
-    #: contribution is rare, all K batches of ours can miss it; only a reference with the estimator's own noise
-    #: lets the comparison's sample floor (harness.statistics.welch.sample_floor) see that.
+    #: contribution is rare, all K batches of the tested engine can miss it; only a reference with the
+    #: estimator's own noise lets the comparison's sample floor (harness.statistics.welch.sample_floor) see that.
     sample: Sample | None = None
 
 
@@ -48,7 +48,7 @@ class IntegratorEntry:
     """One integrator as the harness sees it."""
 
     name: str
-    our_spp: int            # samples per pixel per batch of the tested engine's renders
+    tested_spp: int         # samples per pixel per batch of the tested engine's renders
     reference_spp: int      # samples per pixel per batch of the stored references
     #: The emitter types (the scene format's names: point, constant, area, directional, spot, projector,
     #: envmap) whose light it reads; every other emitter is ignored, so an engine removes it from its copy.
@@ -102,5 +102,5 @@ class IntegratorEntry:
 
 
 def has_point_light(root: ET.Element) -> str | None:
-    """A requirement: at least one point emitter (the only light our direct-lighting integrator sees)."""
+    """A requirement: at least one point emitter (the only light simple sees)."""
     return None if any(e.get("type") == "point" for e in root.iter("emitter")) else "no point light"

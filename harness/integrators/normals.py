@@ -5,7 +5,7 @@ from harness.integrators.entry import AnalyticForm, IntegratorEntry
 
 ENTRY = IntegratorEntry(
     name="normals",
-    our_spp=16,
+    tested_spp=16,
     reference_spp=64,
     # Emitters and BSDFs cannot change a normal: it reads no emitter (an envmap's missing image cannot fail it).
     aov="sh_normal",

@@ -22,9 +22,9 @@ def _point_lights(scene, p: np.ndarray, normal: np.ndarray) -> np.ndarray:
 
 ENTRY = IntegratorEntry(
     name="simple",
-    our_spp=32,
+    tested_spp=32,
     reference_spp=256,
-    # Point lights only: our loader skips every other emitter under simple, area emitters in shapes included.
+    # Point lights only: the renderer's loader skips every other emitter under simple, area emitters in shapes included.
     emitters=("point",),
     analytic=AnalyticForm("rho/pi * I * max(0, cos) / r^2 per point light, floor points behind a resting "
                           "sphere dark", _point_lights, scenes=("plane", "sphere_floor")),

@@ -25,7 +25,7 @@ def integrators_table(matched: Matched, reference: Engine) -> Table:
         needs = ", ".join(summary for summary, _ in e.requirements) or "-"
         # The plugin, then one line per change to the scene.
         mapping = (reference.integrator_mapping(e.name) or "not rendered").replace("; ", "\n")
-        table.add_row(e.name, escape(e.source), f"{e.our_spp}/{e.reference_spp}", escape(mapping),
+        table.add_row(e.name, escape(e.source), f"{e.tested_spp}/{e.reference_spp}", escape(mapping),
                       escape(e.analytic.summary) if e.analytic else "none", escape(needs))
     for name in matched.without_entry:
         table.add_row(name, "[yellow]no harness entry[/]", "", "", "", "")

@@ -16,7 +16,7 @@ from harness.report.integrator_table import integrators_table
 ROOT = Path(__file__).resolve().parents[2]
 CORNELL_BOX = ROOT / "scenes" / "real" / "cornell_box.xml"
 EXTRA = '''from harness.integrators.entry import IntegratorEntry
-ENTRY = IntegratorEntry(name="{name}", our_spp=2, reference_spp=8)
+ENTRY = IntegratorEntry(name="{name}", tested_spp=2, reference_spp=8)
 '''
 #: The integrators of this repository's renderer (Engine.integrators).
 RENDERER = ("normals", "simple", "ao")

@@ -7,7 +7,7 @@ from harness.integrators.entry import AnalyticForm, IntegratorEntry
 
 ENTRY = IntegratorEntry(
     name="albedo",
-    our_spp=4,
+    tested_spp=4,
     reference_spp=16,
     # The BSDF's diffuse reflectance at the first hit (3 channels, 0 on a miss): the AOV "albedo", which no
     # emitter changes. Mitsuba renders it with its aov plugin, without an edit of the harness's engines.
