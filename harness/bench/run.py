@@ -14,8 +14,7 @@ from harness.bench.throughput import QUIET_SECONDS
 from harness.distributed.bundle import Bundle
 from harness.distributed.executor import Executor, SerialExecutor, Status, Task
 from harness.engines.base import Engine
-from harness.engines.mitsuba import MitsubaEngine
-from harness.engines.ours import OurEngine
+from harness.engines.registry import DEFAULT_REFERENCE, DEFAULT_TEST
 from harness.images.case_task import on_files, share_scene_bundles
 from harness.images.suite import SCENES_DIR, ImageCase
 from harness.bench.truth import bench_truth
@@ -29,10 +28,6 @@ SEED_RESOLUTION = 768
 #: The sampler both engines run with for the engine comparison (like for like). The samplers each engine is
 #: benchmarked with, and those its best is chosen from, are the engine's own (Engine.samplers, best_samplers).
 SAME_SAMPLER = "independent"
-
-
-def _default_best() -> dict[str, tuple[str, ...]]:
-    return {OurEngine.name: OurEngine.best_samplers, MitsubaEngine.name: MitsubaEngine.best_samplers}
 
 
 def _sampler_of(label: str | None) -> str | None:
@@ -49,11 +44,11 @@ class CaseBench:
     curves: dict[str, Curve]
     reference_mean: np.ndarray
     truth: str = ""  # what the errors are measured against (bench_truth)
-    tested: str = OurEngine.name        # the engine under test, and the one its efficiency is compared with
-    reference: str = MitsubaEngine.name
-    #: Per engine, the samplers its best curve is chosen from (by measured efficiency on the case). An engine
-    #: with none of them run falls back on its best curve of any sampler.
-    best: dict[str, tuple[str, ...]] = field(default_factory=_default_best)
+    tested: str = DEFAULT_TEST        # the engine under test, and the one its efficiency is compared with
+    reference: str = DEFAULT_REFERENCE
+    #: Per engine, the samplers its best curve is chosen from (by measured efficiency on the case:
+    #: Engine.best_samplers). An engine with none of them run falls back on its best curve of any sampler.
+    best: dict[str, tuple[str, ...]] = field(default_factory=dict)
 
     def _pick(self, engine: str, sampler: str | None) -> str | None:
         """The label of `engine` with `sampler` (None: its most efficient best sampler), if it was run."""
@@ -65,23 +60,24 @@ class CaseBench:
         finite = [k for k in mine if self.curves[k].efficiency() == self.curves[k].efficiency()]
         return max(finite, key=lambda k: self.curves[k].efficiency()) if finite else (mine[0] if mine else None)
 
-    def comparison(self, sampler: str | None, ours: str | None = None, other: str | None = None) -> dict:
-        """Efficiency ours over `other`: both with `sampler` (the engine comparison), or each with its most
-        efficient stratified sampler (sampler None: what a user gets), over the steps both rendered. Names the
-        curves compared."""
-        a, b = self._pick(ours or self.tested, sampler), self._pick(other or self.reference, sampler)
+    def comparison(self, sampler: str | None, tested: str | None = None, other: str | None = None) -> dict:
+        """Efficiency of the tested engine over `other`: both with `sampler` (the engine comparison), or each
+        with its most efficient stratified sampler (sampler None: what a user gets), over the steps both
+        rendered. Names the curves compared (keys "ours" and "reference" in results.json)."""
+        tested, other = tested or self.tested, other or self.reference
+        a, b = self._pick(tested, sampler), self._pick(other, sampler)
         ratio = float("nan")
         if a and b:
             common = {s.spp for s in self.curves[a].steps} & {s.spp for s in self.curves[b].steps}
             ratio = self.curves[a].efficiency(common) / self.curves[b].efficiency(common)
         # An engine not run with that sampler has no curve: its NaN is not a lack of signal.
-        missing = [name for name, label in ((ours or self.tested, a), (other or self.reference, b)) if not label]
+        missing = [name for name, label in ((tested, a), (other, b)) if not label]
         return {"ratio": ratio, "ours": a, "reference": b, "missing": missing,
                 "ours_sampler": _sampler_of(a), "reference_sampler": _sampler_of(b)}
 
-    def efficiency_ratio(self, ours: str | None = None, other: str | None = None) -> float:
+    def efficiency_ratio(self, tested: str | None = None, other: str | None = None) -> float:
         """The like-for-like ratio (both engines with SAME_SAMPLER)."""
-        return self.comparison(SAME_SAMPLER, ours, other)["ratio"]
+        return self.comparison(SAME_SAMPLER, tested, other)["ratio"]
 
     def to_json(self) -> dict:
         return {"integrator": self.case.integrator, "scene": self.case.scene, "truth": self.truth,
@@ -124,7 +120,8 @@ def bench_case(case: ImageCase, engines: list[Engine], reference_engine: Engine,
     for e in engines:
         time.sleep(QUIET_SECONDS)  # the previous engine's threads have stopped spinning
         curves[e.label or e.name] = run_ladder(e, local, reference, seed, ladder, runs, on_step)
-    # The tested engine's efficiency is compared with the next engine run (Mitsuba as shipped, by default).
+    # The tested engine's efficiency is compared with the next engine run (Mitsuba as shipped, by default), else
+    # with the reference.
     compared = next((e.name for e in engines[1:] if e.name != engines[0].name), reference_engine.name)
     return CaseBench(case, curves, reference.summary.pixel.mean, truth, engines[0].name, compared,
                      {e.name: e.best_samplers for e in engines})
@@ -141,15 +138,16 @@ def _render_seconds(engine: Engine, scene: str, integrator: str, spp: int, seed:
                for k in range(passes))
 
 
-def seed_comparison(ours: Engine, runs: int = 3, on_step: Callable[[str], None] | None = None,
+def seed_comparison(tested: Engine, runs: int = 3, on_step: Callable[[str], None] | None = None,
                     reference: Engine | None = None) -> dict:
-    """Render seconds on the high-poly scene at the seed document's settings (medians of `runs`), ours and,
-    if given, the reference's beside it (after one warm-up render, which JIT-compiles an llvm variant)."""
+    """Render seconds on the high-poly scene at the seed document's settings (medians of `runs`), the tested
+    engine's and, if given, the reference's beside it (after one warm-up render, which JIT-compiles an llvm
+    variant)."""
     scene = str(SCENES_DIR / "highpoly.xml")
     out = {}
     for integrator, setting in SEED_SETTINGS.items():
         entry = {"spp": setting["spp"], "resolution": SEED_RESOLUTION, "seed_seconds": setting["seed_seconds"]}
-        for engine in [ours] + ([reference] if reference else []):
+        for engine in [tested] + ([reference] if reference else []):
             if engine is reference:
                 engine.render(scene, integrator, min(setting["spp"], engine.pass_spp or setting["spp"]), 1, 0,
                               {"res": str(SEED_RESOLUTION)})  # warm-up
@@ -159,7 +157,7 @@ def seed_comparison(ours: Engine, runs: int = 3, on_step: Callable[[str], None] 
                 if on_step:
                     on_step(f"seed settings: {engine.label or engine.name} {integrator} run {run + 1}/{runs}: "
                             f"{times[-1]:.1f} s")
-            if engine is ours:
+            if engine is tested:
                 entry.update(seconds=float(np.median(times)), runs=times)
             else:
                 entry.update(reference_seconds=float(np.median(times)), reference_runs=times,

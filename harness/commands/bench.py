@@ -14,25 +14,28 @@ from harness.verdict import Verdict
 
 NAME = "bench"
 HELP = "speed against error: convergence curves and efficiency ratios"
-ENGINES = ("mcval", "mitsuba-native", "mitsuba-scalar")  # registry names (harness/engines/registry.py)
+#: The engines the tested one is timed against unless --engines says otherwise (harness/engines/registry.py).
+TIMED_AGAINST = ("mitsuba-native", "mitsuba-scalar")
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.description = ("Render every case at a ladder of sample counts with our renderer and Mitsuba (llvm and "
-                     "scalar), several runs per step, one job at a time; write bench.html.")
+    p.description = ("Render every case at a ladder of sample counts with the tested engine and those it is timed "
+                     "against (by default this repository's renderer and Mitsuba, llvm and scalar), several runs per "
+                     "step, one job at a time; write bench.html.")
     add_common(p)
     p.add_argument("--scenes", "--only", dest="scenes", nargs="+", metavar="CASE",
                    help="as for `images` (default: the simple and ao cases of every scene)")
     add_scene_files(p)
-    p.add_argument("--engines", nargs="+", default=list(ENGINES), metavar="NAME",
-                   help="engines to run, the engine under test first (default: mcval mitsuba-native "
+    add_engines(p)
+    p.add_argument("--engines", nargs="+", metavar="NAME",
+                   help="engines to run, by registry name or engine file, the engine under test first; its "
+                        "efficiency is compared with the next (default: --engine, then mitsuba-native and "
                         "mitsuba-scalar; Mitsuba as shipped is the speed to beat)")
-    add_engines(p, test=False)
     p.add_argument("--max-spp", type=int, default=256, help="top of the ladder 1, 2, 4, ... (default 256)")
     p.add_argument("--same-sampler", action="store_true",
                    help="only the engine comparison: every engine with the independent sampler (by default each "
-                        "also runs its stratified samplers: ours sobol, Mitsuba ldsampler and multijitter, and our "
-                        "samplers' convergence slopes are measured)")
+                        "also runs its stratified samplers: ours sobol, Mitsuba ldsampler and multijitter, and the "
+                        "tested engine's samplers' convergence slopes are measured)")
     p.add_argument("--runs", type=int, default=3, help="independent runs per step (default 3)")
     p.add_argument("--rays-json", type=Path, help="figures written by build/bench_rays --json, to include")
     p.add_argument("--throughput-runs", type=int, default=3,
@@ -54,12 +57,14 @@ def _engines(args):
 
 
 def _measure(args, cases, engines, reference, ladder):
-    """The ladders, the seed settings, the throughput and the sampler slopes, as asked."""
-    from harness.bench.run import run_bench, seed_comparison
+    """The ladders, the seed settings, the throughput and the sampler slopes, as asked. The tested engine
+    (the first of --engines) is timed against the next one (Mitsuba as shipped, by default), else --reference."""
+    from harness.bench.run import SAME_SAMPLER, run_bench, seed_comparison
     from harness.distributed.cluster import open_executor
-    from harness.engines.mitsuba import DEFAULT_VARIANT, MitsubaEngine
-    from harness.engines.ours import OurEngine
+    from harness.engines.registry import make_engine
 
+    tested_name = args.engines[0]
+    compared_name = next((name for name in args.engines[1:] if name != tested_name), args.reference)
     with open_executor(args) as executor, progress_bar("bench") as progress:
         steps = sum(e.renders_exactly(spp) for e in engines for spp in ladder)
         task = progress.add_task("", total=len(cases) * (1 if executor.ships_files else steps))
@@ -67,26 +72,29 @@ def _measure(args, cases, engines, reference, ladder):
                             on_step=lambda m: progress.update(task, advance=1, description=m), executor=executor,
                             on_status=lambda st: progress.update(task, completed=st.done, description=st.last)
                             if executor.ships_files else None)
-        # Our renderer's own measurements (the seed document's settings, the side-by-side throughput, its
-        # samplers' slopes) run when it is among the engines.
-        ours = next((e for e in engines if isinstance(e, OurEngine)), None)
-        # Timed against the llvm Mitsuba among the engines, with the scene's own sampler.
-        mitsuba = next((MitsubaEngine(e.variant, native=e.native) for e in engines
-                        if isinstance(e, MitsubaEngine) and e.variant == DEFAULT_VARIANT), None)
-        seed = seed_comparison(ours, args.seed_runs, lambda m: progress.console.print(m), mitsuba) \
-            if args.seed_runs > 0 and ours is not None else None
+        seed = None
+        if args.seed_runs > 0:  # with the scene's own sampler
+            seed = seed_comparison(make_engine(tested_name, in_process=True), args.seed_runs,
+                                   lambda m: progress.console.print(m), make_engine(compared_name))
         throughput = None
-        if args.throughput_runs > 0 and ours is not None and mitsuba is not None:
+        if args.throughput_runs > 0:
             from harness.bench.throughput import CASES, measure
+            tested = make_engine(tested_name, sampler=SAME_SAMPLER, in_process=True)
+            # The tested engine as `images` runs it, where that is in another process (ours: its worker).
+            worker = make_engine(tested_name, sampler=SAME_SAMPLER)
+            worker = worker if worker.renders_elsewhere and not tested.renders_elsewhere else None
+            compared = make_engine(compared_name, sampler=SAME_SAMPLER)
             throughput = []
             for case in CASES:
                 progress.console.print(f"throughput: {case[0]}:{case[1]} {case[2]}² {case[3]} spp")
-                throughput.append(measure(*case, runs=args.throughput_runs).to_json())
+                throughput.append(measure(*case, tested, compared, worker, runs=args.throughput_runs,
+                                          sampler=SAME_SAMPLER).to_json())
         slopes = None
-        if ours is not None and not args.same_sampler:  # the slopes compare our samplers with each other
+        samplers = make_engine(tested_name).samplers
+        if len(samplers) > 1 and not args.same_sampler:  # the slopes compare the tested engine's samplers
             from harness.bench.sampler_slopes import sampler_slopes
-            progress.console.print("sampler slopes: cornell simple and ao, 32², our samplers")
-            slopes = sampler_slopes()
+            progress.console.print(f"sampler slopes: cornell simple and ao, 32², {', '.join(samplers)}")
+            slopes = sampler_slopes({s: make_engine(tested_name, sampler=s, in_process=True) for s in samplers})
     return benches, seed, throughput, slopes
 
 
@@ -107,12 +115,17 @@ def _why_nothing(args, selected) -> str:
 
 def run(args: argparse.Namespace, run: RunFolder) -> Verdict:
     from harness.bench.run import ray_rates
-    from harness.engines.registry import make_engine
+    from harness.engines.registry import DEFAULT_TEST, make_engine
     from harness.images.suite import select_cases
     from harness.integrators import entry
     from harness.report.bench_html import bench_html
     from harness.report.bench_table import bench_lines, bench_table
 
+    if args.engines and args.engine not in (DEFAULT_TEST, args.engines[0]):
+        raise ValueError(f"bench --engine {args.engine} --engines {' '.join(args.engines)}: the engine under test is "
+                         "the first of --engines; give one or the other")
+    args.engines = args.engines or [args.engine, *TIMED_AGAINST]
+    args.engine = args.engines[0]
     run_dir = run.start()
     # By default the simple and ao cases of our own scenes (the real scenes are validated, not benchmarked).
     from harness.commands.options import case_selection

@@ -44,6 +44,8 @@ class RenderResult:
     sampler: str = ""
     #: What is kept of dropped batches (see `light`): their mean image, per-batch image means, count.
     kept: tuple[np.ndarray, np.ndarray, int] | None = field(default=None, repr=False)
+    #: The rays it traced (camera, shadow and occlusion rays), where the engine counts them; else None.
+    rays: int | None = None
 
     @property
     def mean(self) -> np.ndarray:
@@ -113,6 +115,19 @@ class Engine(ABC):
         """The scene file this engine renders for `path`: the same file, unless the engine needs another one
         that gives the same image (see MitsubaEngine)."""
         return path
+
+    def integrator_mapping(self, integrator: str) -> str | None:
+        """How it renders mcval's `integrator` (an entry of harness/integrators/), in one line for listings:
+        its own name for it, or the plugin and what its copy of a scene drops (Mitsuba); None where it does
+        not render it. Derived from the entry's engine-neutral facts, so a new integrator needs no edit here."""
+        return integrator if self.integrators is None or integrator in self.integrators else None
+
+    def draws_same_estimator(self, scene: Path, integrator: str) -> bool:
+        """Whether its render of `scene` with `integrator` draws the integrator's own estimator, sample for
+        sample (the same camera rays and the same shading estimate of each). Then a tested engine whose batches
+        are all alike where this engine's vary ignores its seed, and the two engines' variances must agree
+        (harness.comparison.independence_check, variance_check). False unless the engine knows it does."""
+        return False
 
     def renders_exactly(self, spp: int) -> bool:
         """Whether a render asked for `spp` samples per pixel takes exactly that many (a sampler may round)."""

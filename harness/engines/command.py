@@ -72,6 +72,11 @@ class CommandEngine(Engine):
     def integrators(self) -> tuple[str, ...]:
         return tuple(self.file.integrators)
 
+    def integrator_mapping(self, integrator: str) -> str | None:
+        """Its engine file's `[integrators]` line: the <integrator type> its renderer reads, in its dialect."""
+        theirs = self.file.integrators.get(integrator)
+        return None if theirs is None else f'<integrator type="{theirs}"> ({self.file.scene_format} scene)'
+
     @cached_property
     def _version_line(self) -> str:
         """The first line the version command printed (bounded and safe: harness/foreign_text.py), or why

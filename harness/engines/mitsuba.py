@@ -10,6 +10,7 @@ import numpy as np
 
 from harness.engines import mitsuba_direct
 from harness.engines.base import Engine, RenderResult, WarpFunctions
+from harness.engines.mitsuba_integrators import mitsuba_mapping
 from harness.engines.mitsuba_scene import load_scene
 from harness.engines.mitsuba_worker import render_in_worker
 
@@ -81,6 +82,14 @@ class MitsubaEngine(Engine):
         substitute = path.with_name(f"{SCENE_SUBSTITUTES.get(path.stem, path.stem)}.xml")
         # Only for the suite's own scenes (in its scenes/ folder, or a worker's copy of it), never a user's.
         return substitute if path.parent.name == "scenes" and substitute.exists() else path
+
+    def integrator_mapping(self, integrator: str) -> str | None:
+        """Its plugin and properties for `integrator`, then what its copy of a scene drops or adds, "; "-separated
+        (harness/engines/mitsuba_integrators.py)."""
+        return mitsuba_mapping(integrator).summary()
+
+    def draws_same_estimator(self, scene: Path, integrator: str) -> bool:
+        return mitsuba_mapping(integrator).draws_same_estimator(scene)
 
     def __reduce__(self):
         # To a worker as its arguments: each worker process loads Mitsuba, sets the variant and JIT-compiles

@@ -1,5 +1,5 @@
-"""Our scene files, made into Mitsuba scenes: each integrator mapped onto its Mitsuba equivalent as its entry
-says (harness/integrators/<name>.py, `mitsuba`): the <integrator> replaced (keeping the file's `hide_emitters`),
+"""Our scene files, made into Mitsuba scenes: each integrator mapped onto its Mitsuba equivalent
+(harness/engines/mitsuba_integrators.py): the <integrator> replaced (keeping the file's `hide_emitters`),
 and removed what our loader skips for that integrator (emitter types, area emitters inside shapes), a constant
 emitter added where ours assumes one.
 A sampler Mitsuba does not have (ours: `sobol`) becomes its closest one (MITSUBA_SAMPLER).
@@ -15,7 +15,7 @@ from harness.engines import mitsuba_direct
 from harness.engines.scene_paths import absolute_paths
 from harness.engines.written_scene import file_hide_emitters
 from harness.engines.xml_lines import remove_keeping_lines, replace_keeping_lines
-from harness.integrators import entry
+from harness.engines.mitsuba_integrators import mitsuba_mapping
 
 
 #: Our samplers Mitsuba has no plugin of the same name for, and the Mitsuba sampler closest to each:
@@ -29,15 +29,18 @@ def mitsuba_xml(text: str, integrator: str, sampler: str | None = None, tight: b
     """The scene text with our `integrator` mapped onto Mitsuba's plugins; `sampler`, if given, is the
     Mitsuba sampler plugin to use instead of the scene's; `tight`: `direct` becomes `mcval_direct`, the same
     integrator with its ray offset taken to the limit (harness/engines/mitsuba_direct.py)."""
-    mapping = entry(integrator).mitsuba
+    mapping = mitsuba_mapping(integrator)
     root = ET.fromstring(text)
-    hide = file_hide_emitters(root)
     old = [e for e in root if e.tag == "integrator"]
+    # The file's own values win over the mapping's: hide_emitters always (written_scene.file_hide_emitters),
+    # the others where the file's integrator is the mapped plugin itself.
+    given = {"hide_emitters": file_hide_emitters(root)}
+    if old and old[0].get("type") == mapping.plugin:
+        given.update({e.get("name"): e.get("value") for e in old[0] if e.get("name") in mapping.file_values})
     plugin = TIGHT_PLUGINS.get(mapping.plugin, mapping.plugin) if tight else mapping.plugin
     new = ET.Element("integrator", type=plugin)
     for tag, name, value in mapping.properties:
-        # The file's own hide_emitters wins over the mapping's (written_scene.file_hide_emitters).
-        ET.SubElement(new, tag, name=name, value=hide if name == "hide_emitters" and hide is not None else value)
+        ET.SubElement(new, tag, name=name, value=given[name] if given.get(name) is not None else value)
     if mapping.add_environment and not any(e.tag == "emitter" and e.get("type") == "constant" for e in root):
         root.append(ET.Element("emitter", type="constant"))
     # Every edit keeps the lines of `text`: Mitsuba's errors name the line of the file it was given.

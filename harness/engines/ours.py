@@ -36,6 +36,14 @@ class OurEngine(Engine):
         self.in_process = in_process
         self.renders_elsewhere = not in_process
 
+    @property
+    def integrators(self) -> tuple[str, ...]:
+        """The integrators of the renderer's registry, in its order (mcval_renderer.integrators())."""
+        if not hasattr(self._m, "integrators"):
+            raise RuntimeError(f"{self._m.__file__} has no integrators(): it was built before the renderer's "
+                               "integrator registry; run `make build`")
+        return tuple(self._m.integrators())
+
     def __reduce__(self):
         # To a worker as its arguments: the module and the default binary are the worker's own.
         return OurEngine, (self.binary, self.timeout, self.sampler, self.in_process)
@@ -85,4 +93,4 @@ class OurEngine(Engine):
         seconds = {"load": s["load_seconds"], "build": s["bvh_seconds"], "render": s["render_seconds"],
                    "total": time.perf_counter() - start}
         return RenderResult(self.name, str(scene), integrator, spp, seed, np.asarray(out["batches"]), seconds,
-                            s["sampler"])
+                            s["sampler"], rays=s["camera_rays"] + s["shadow_rays"])

@@ -102,6 +102,15 @@ def make_engine(name: str, **options: Any) -> Engine:
 
 
 def engine_integrators(name: str) -> tuple[str, ...] | None:
-    """The integrators the engine `name` renders, read without making it (an engine file's table); None: every
-    integrator with an entry."""
-    return tuple(read_engine_file(name).integrators) if looks_like_engine_file(name) else None
+    """The integrators the engine `name` renders (Engine.integrators; an engine file's table is read without
+    making its engine); None: every integrator with an entry."""
+    if looks_like_engine_file(name):
+        return tuple(read_engine_file(name).integrators)
+    return make_engine(name).integrators
+
+
+def scene_bounds(text: str) -> tuple[tuple[float, ...], tuple[float, ...]] | None:
+    """(min, max) of the scene `text` as Mitsuba 3 loads it, in a worker process (harness/engines/mitsuba_bounds.py):
+    where the image suite places the camera of a --scene file without a sensor. None for a scene without shapes."""
+    from harness.engines.mitsuba_bounds import scene_bounds as mitsuba_bounds
+    return mitsuba_bounds(text)

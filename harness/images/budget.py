@@ -65,7 +65,7 @@ def plan_budget(case: ImageCase, ours: Engine, reference: Engine, target: float,
     pilot = pooled(summarize(result.batches))
     reference_summary = pooled(ref.summary)
     signed = entry(case.integrator).signed
-    same = draws_our_estimator(case, reference.name)
+    same = draws_our_estimator(case, reference)
     found = smallest_spp(pilot, pilot_spp, reference_summary, ref.spp, target, alpha, signed, same)
     if found.spp is None:
         return Budget(case.key, target, pilot_spp, found.pilot_bias, found.planned_bias, None, IMAGE_BATCHES, 0.0,

@@ -16,6 +16,7 @@ from harness.comparison.mismatch import diagnose
 from harness.distributed.bundle import Bundle, bundle_files
 from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine, RenderFailed, RenderResult
+from harness.engines.dialects import image_convention
 from harness.images.copy_lines import in_user_terms
 from harness.foreign_text import one_line
 from harness.images.oracle import decide
@@ -47,14 +48,11 @@ class CaseJob:
     closed_forms_ahead: RenderAhead | None = None
     index: int = 0
 
-#: The reference engines that render through the entries' Mitsuba mappings (same_estimator_in_mitsuba).
-MITSUBA_MAPPED = ("mitsuba", "mitsuba-scalar")
 
-
-def draws_our_estimator(case: ImageCase, reference: str) -> bool:
-    """Whether the reference engine named `reference` draws the case's estimator, sample for sample: a Mitsuba
-    engine where the integrator's entry says its mapping does on this scene."""
-    return reference in MITSUBA_MAPPED and entry(case.integrator).same_estimator(case.path)
+def draws_our_estimator(case: ImageCase, reference: Engine) -> bool:
+    """Whether the reference engine draws the case's estimator, sample for sample, as it says
+    (Engine.draws_same_estimator)."""
+    return reference.draws_same_estimator(case.path, case.integrator)
 
 
 def share_scene_bundles(executor, cases, engines: Sequence[Engine]) -> dict[str, object]:
@@ -204,8 +202,8 @@ def run_case(case: ImageCase, ours: Engine, reference_engine: Engine, analytic: 
     analytic_name = analytic.name if analytic is not None else None
     signed = entry(case.integrator).signed
     # The closed form draws our estimator (harness/engines/analytic.py: our camera rays, each shaded exactly or
-    # by the entry's `sample`); the reference engine does where the entry says so.
-    same = {name: name == analytic_name or draws_our_estimator(case, name) for name in references}
+    # by the entry's `sample`); the reference engine does where it says so.
+    same = {name: name == analytic_name or draws_our_estimator(case, reference_engine) for name in references}
     comparisons = {name: compare_summaries(summary, ref.summary, alpha, signed=signed, samples=(mine.spp, ref.spp),
                                            same_estimator=same[name])
                    for name, ref in references.items()}
@@ -245,7 +243,7 @@ def run_image_case(case: ImageCase, ours: Engine, ref: ReferenceImage, s: int, a
         mine = ours.render(*render_args(case, s, {"res": str(image.shape[1])}))
     except RenderFailed as e:
         return failed(f"{ours.name} render: {e.reason}", output=e.output)
-    convention = entry(case.integrator).nori_image if case.dialect == "nori" else None
+    convention = image_convention(case.dialect, case.integrator)
     if convention is not None:  # the image is Nori's: ours as Nori's integrator of that name writes it
         mine = replace(mine, batches=convention.apply(mine.batches))
     try:

@@ -11,7 +11,6 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from harness.images.user_scenes import UserScene
-from harness.integrators import match
 from harness.project import PROJECT_ROOT, missing_reason
 
 #: The clone of mcval whose scenes/ and references/ the suite uses (harness/project.py).
@@ -23,11 +22,13 @@ GROUP_DIRS = {"synthetic": SCENES_DIR, "real": REAL_SCENES_DIR}
 USER = "user"
 
 def suite_integrators(available: Sequence[str] | None = None) -> tuple[str, ...]:
-    """The integrators with an entry that the engine under test renders (`available`, e.g. an engine file's
-    table; None: our renderer's); those that check geometry first (a scene whose normals fail has a camera
-    or geometry mismatch, which the run notes on that scene's other cases)."""
+    """The integrators with an entry that the engine under test renders (`available`, its Engine.integrators;
+    None: the default tested engine's); those that check geometry first (a scene whose normals fail has a
+    camera or geometry mismatch, which the run notes on that scene's other cases)."""
     if available is None:
-        found = match().entries
+        from harness.engines.registry import DEFAULT_TEST, engine_integrators
+        from harness.integrators import match
+        found = match(engine_integrators(DEFAULT_TEST)).entries
     else:
         from harness.integrators import entries
         found = [e for name, e in entries().items() if name in available]
@@ -72,7 +73,7 @@ class _Budget(Mapping):
 
 INTEGRATORS = _Integrators()
 #: Samples per pixel per batch: ours in every run, Mitsuba's for stored references.
-OUR_SPP = _Budget("our_spp")
+OUR_SPP = _Budget("tested_spp")
 REFERENCE_SPP = _Budget("reference_spp")
 
 

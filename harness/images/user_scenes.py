@@ -16,7 +16,7 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
 
-from harness.engines.mitsuba_bounds import scene_bounds
+from harness.engines.registry import scene_bounds
 from harness.engines.nori.lined_xml import SceneXmlError, parse_lined
 from harness.engines.nori.to_mitsuba import is_nori, nori_to_mitsuba
 from harness.engines.scene_paths import SceneFileError

@@ -1,4 +1,4 @@
-"""Finding the integrator entries and matching them with the renderer's own list.
+"""Finding the integrator entries and matching them with the list of integrators the tested engine renders.
 
 Entries are the modules of this package with an `ENTRY`, plus every *.py file (with an `ENTRY`) in the
 folders of $MCVAL_INTEGRATOR_PATH (os.pathsep-separated), so a test can add one without editing the harness.
@@ -8,6 +8,7 @@ from __future__ import annotations
 import importlib
 import os
 import pkgutil
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from functools import cache
 from pathlib import Path
@@ -74,31 +75,21 @@ def entry(name: str) -> IntegratorEntry:
     return found[name]
 
 
-def renderer_integrators() -> tuple[str, ...]:
-    """The integrators of the renderer's registry, in its order (mcval_renderer.integrators())."""
-    from harness.native import renderer_module
-
-    module = renderer_module()
-    if not hasattr(module, "integrators"):
-        raise RuntimeError(f"{module.__file__} has no integrators(): it was built before the renderer's integrator "
-                           "registry; run `make build`")
-    return tuple(module.integrators())
-
-
 @dataclass(frozen=True)
 class Matched:
-    """The renderer's integrators with their entries, and those the harness has no entry for."""
+    """The tested engine's integrators with their entries, and those the harness has no entry for."""
 
     entries: tuple[IntegratorEntry, ...]
     without_entry: tuple[str, ...]
 
 
-def match() -> Matched:
-    """The renderer's integrators, each with its entry; an entry for an integrator the renderer lacks is an
-    error naming the entry's file."""
-    ours, found = renderer_integrators(), entries()
-    orphans = [e for name, e in found.items() if name not in ours]
+def match(integrators: Sequence[str]) -> Matched:
+    """The tested engine's `integrators` (Engine.integrators, in its order), each with its entry; an entry for an
+    integrator the engine lacks is an error naming the entry's file."""
+    found = entries()
+    orphans = [e for name, e in found.items() if name not in integrators]
     if orphans:
-        raise ValueError("; ".join(f"{e.source}: entry for integrator {e.name!r}, which the renderer does not "
-                                   f"have (mcval_renderer.integrators(): {', '.join(ours)})" for e in orphans))
-    return Matched(tuple(found[n] for n in ours if n in found), tuple(n for n in ours if n not in found))
+        raise ValueError("; ".join(f"{e.source}: entry for integrator {e.name!r}, which the tested engine does not "
+                                   f"render (its integrators: {', '.join(integrators)})" for e in orphans))
+    return Matched(tuple(found[n] for n in integrators if n in found),
+                   tuple(n for n in integrators if n not in found))

@@ -3,8 +3,7 @@ import numpy as np
 
 from harness.closed_forms.sphere import lit
 from harness.closed_forms.vectors import dot, sub
-from harness.integrators.entry import (UNUSED_EMITTERS, AnalyticForm, IntegratorEntry, MitsubaMapping,
-                                       has_point_light)
+from harness.integrators.entry import AnalyticForm, IntegratorEntry, has_point_light
 
 
 def _point_lights(scene, p: np.ndarray, normal: np.ndarray) -> np.ndarray:
@@ -23,19 +22,12 @@ def _point_lights(scene, p: np.ndarray, normal: np.ndarray) -> np.ndarray:
 
 ENTRY = IntegratorEntry(
     name="simple",
-    our_spp=32,
+    tested_spp=32,
     reference_spp=256,
-    # One light sample, no BSDF sample: Mitsuba's direct integrator as ours; it sees point lights only (our
-    # loader skips area emitters in shapes under simple, so Mitsuba's copy drops them too).
-    mitsuba=MitsubaMapping("direct", (("integer", "emitter_samples", "1"), ("integer", "bsdf_samples", "0")),
-                           drop_emitters=("constant", *UNUSED_EMITTERS), drop_area_emitters=True),
+    # Point lights only: the renderer's loader skips every other emitter under simple, area emitters in shapes included.
+    emitters=("point",),
     analytic=AnalyticForm("rho/pi * I * max(0, cos) / r^2 per point light, floor points behind a resting "
                           "sphere dark", _point_lights, scenes=("plane", "sphere_floor")),
     requirements=(("a point light", has_point_light),),
     linear_in=("light", "reflectance"),
-    # The same camera rays and a deterministic shading of each hit; with several lights Mitsuba's one emitter
-    # sample picks one of them where ours sums them all.
-    same_estimator_in_mitsuba=True,
-    estimator_differs=lambda root: ("several point lights" if sum(e.get("type") == "point" for e in root.iter("emitter")) > 1
-                                    else None),
 )

@@ -166,7 +166,8 @@ def run_invariances(engines: list[Engine], cases: list[InvarianceCase], invarian
     `seeds`: an engine's seed by name (default `seed`); `known`: the cells of (engine name, case key) already
     known (a reference engine's stored ones), which are not rendered again; `alpha`: the per-comparison level
     (default: family_alpha of these cases, a narrower family than the suite's for a subset). Base batches
-    that are one image are judged against a Mitsuba-mapped engine's among them (judge_against_references)."""
+    that are one image are judged against an engine among them that draws the same estimator
+    (judge_against_references)."""
     from harness.distributed.bundle import bundle_files
 
     executor = executor or SerialExecutor()
@@ -193,7 +194,7 @@ def run_invariances(engines: list[Engine], cases: list[InvarianceCase], invarian
     for engine, case in pairs:
         key = (engine.name, case.key)
         cells += known[key] if key in known else rendered.get(key, [])
-    judge_against_references(cells)
+    judge_against_references(cells, engines)
     return cells, alpha
 
 

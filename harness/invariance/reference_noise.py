@@ -6,21 +6,26 @@ noiseless (normals), whose noise, along edges, a reference with the same estimat
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from harness.comparison.independence_check import SideIndependence
-from harness.images.case_task import MITSUBA_MAPPED
-from harness.integrators import entry
+from harness.engines.base import Engine
 from harness.invariance.cell import Cell
 
 
-def judge_against_references(cells: list[Cell]) -> None:
-    """Set `dependence` on each cell of an engine not mapped through Mitsuba whose base batches are one image
-    where a Mitsuba-mapped engine's base of the same case, drawing the same estimator there
-    (IntegratorEntry.same_estimator), varies widely."""
-    references = [c for c in cells if c.engine in MITSUBA_MAPPED and c.base is not None]
+def judge_against_references(cells: list[Cell], engines: Sequence[Engine]) -> None:
+    """Set `dependence` on each cell whose base batches are one image where the base of the same case by one of
+    `engines` that draws the integrator's estimator there (Engine.draws_same_estimator) varies widely; the
+    cells of such an engine are the evidence, not judged."""
+    by_name = {e.name: e for e in engines}
+
+    def draws(cell: Cell) -> bool:
+        engine = by_name.get(cell.engine)
+        return engine is not None and engine.draws_same_estimator(cell.case.scene, cell.case.integrator)
+
+    references = [c for c in cells if c.base is not None and draws(c)]
     for cell in cells:
-        if cell.engine in MITSUBA_MAPPED or cell.dependence or cell.base is None or not cell.base.alike:
-            continue
-        if not entry(cell.case.integrator).same_estimator(cell.case.scene):
+        if cell.dependence or cell.base is None or not cell.base.alike or draws(cell):
             continue
         for ref in (r for r in references if r.case.key == cell.case.key):
             side = SideIndependence(cell.base.dependence, ref.base.varying, cell.base.elements, judge_alike=True)

@@ -54,5 +54,5 @@ def select(only: list[str] | None, resolution: int = RESOLUTION, integrators=Non
     keys += [(s, i) for s, i in pairs]
     invariances = [i for i in INVARIANCES if i.name in only] or list(INVARIANCES)
     problems = {c.scene: c.problem for c in scene_cases(user, with_suite)}
-    cases = [InvarianceCase(scenes[s], i, entry(i).our_spp, resolution, problems[s]) for s, i in dict.fromkeys(keys)]
+    cases = [InvarianceCase(scenes[s], i, entry(i).tested_spp, resolution, problems[s]) for s, i in dict.fromkeys(keys)]
     return cases, invariances

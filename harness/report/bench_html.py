@@ -7,7 +7,7 @@ import html
 from harness.bench.run import SAME_SAMPLER, CaseBench
 from harness.report.bench_plots import convergence_png, equal_time_png
 from harness.report.style import CSS
-from harness.bench.throughput import MITSUBA, OURS, WORKER
+from harness.bench.throughput import REFERENCE, TESTED, WORKER
 
 
 def _img(png: bytes, alt: str) -> str:
@@ -34,16 +34,16 @@ def _same(b: CaseBench) -> str:
 def _throughput_html(throughput: list[dict] | None) -> str:
     if not throughput:
         return "<p>No side-by-side throughput (run <code>mcval bench</code> with both engines).</p>"
+    nan = {TESTED: float("nan"), REFERENCE: float("nan")}
     rows = "".join(
-        f"<tr><td>{t['scene']}:{t['integrator']}</td><td>{t['resolution']}², {t['spp']} spp, {t['sampler']}"
-        + (f" (Mitsuba's sampler: {t['spp_rendered'][MITSUBA]} spp)"
-           if t.get("spp_rendered", {}).get(MITSUBA, t["spp"]) != t["spp"] else "") + "</td>"
-        f"<td>{t['median_seconds'][OURS]:.3f}</td><td>{t['median_seconds'][MITSUBA]:.3f}</td>"
-        f"<td class='{'pass' if t['mitsuba_over_ours'] >= 1 else 'fail'}'>{t['mitsuba_over_ours']:.2f}</td>"
-        + (f"<td>{t['median_seconds'][WORKER]:.3f}</td><td class='{'pass' if t['mitsuba_over_ours_worker'] >= 1 else 'fail'}'>"
-           f"{t['mitsuba_over_ours_worker']:.2f}</td>" if "mitsuba_over_ours_worker" in t else "<td>–</td><td>–</td>") +
-        f"<td>{t['samples_per_second'][OURS] / 1e6:.1f}</td><td>{t['samples_per_second'][MITSUBA] / 1e6:.1f}</td>"
-        f"<td>{t['rays_per_second'][OURS] / 1e6:.1f}</td><td>{t['rays_per_second'][MITSUBA] / 1e6:.1f}</td></tr>"
+        f"<tr><td>{t['scene']}:{t['integrator']}</td><td>{t['resolution']}², {t['spp']} spp, {t['sampler']}</td>"
+        f"<td>{t['median_seconds'][TESTED]:.3f}</td><td>{t['median_seconds'][REFERENCE]:.3f}</td>"
+        f"<td class='{'pass' if t['reference_over_tested'] >= 1 else 'fail'}'>{t['reference_over_tested']:.2f}</td>"
+        + (f"<td>{t['median_seconds'][WORKER]:.3f}</td><td class='{'pass' if t['reference_over_tested_worker'] >= 1 else 'fail'}'>"
+           f"{t['reference_over_tested_worker']:.2f}</td>" if "reference_over_tested_worker" in t else "<td>–</td><td>–</td>") +
+        f"<td>{t['samples_per_second'][TESTED] / 1e6:.1f}</td><td>{t['samples_per_second'][REFERENCE] / 1e6:.1f}</td>"
+        f"<td>{t.get('rays_per_second', nan)[TESTED] / 1e6:.1f}</td>"
+        f"<td>{t.get('rays_per_second', nan)[REFERENCE] / 1e6:.1f}</td></tr>"
         for t in throughput)
     return ("<p>Both engines in one process, the same scene file and sampler, render time only, each timed "
             "render after a pause and an untimed one of the same engine (so neither meets the other's threads still "

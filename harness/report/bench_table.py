@@ -4,7 +4,7 @@ from __future__ import annotations
 from rich.table import Table
 
 from harness.bench.run import SAME_SAMPLER
-from harness.bench.throughput import MITSUBA, OURS
+from harness.bench.throughput import REFERENCE, TESTED
 
 
 def _unmeasured(comparison: dict) -> str | None:
@@ -38,9 +38,11 @@ def bench_lines(payload: dict) -> list[str]:
     lines = []
     for t in payload["throughput"] or []:
         lines.append(f"throughput {t['scene']}:{t['integrator']} {t['resolution']}² {t['spp']} spp "
-                     f"({t['sampler']}): ours {t['median_seconds'][OURS]:.3f} s, Mitsuba "
-                     f"{t['median_seconds'][MITSUBA]:.3f} s, Mitsuba/ours {t['mitsuba_over_ours']:.2f}"
-                     + (f", in its worker {t['mitsuba_over_ours_worker']:.2f}" if "mitsuba_over_ours_worker" in t else ""))
+                     f"({t['sampler']}): {t['engines'][TESTED]} {t['median_seconds'][TESTED]:.3f} s, "
+                     f"{t['engines'][REFERENCE]} {t['median_seconds'][REFERENCE]:.3f} s, reference/tested "
+                     f"{t['reference_over_tested']:.2f}"
+                     + (f", in its worker {t['reference_over_tested_worker']:.2f}"
+                        if "reference_over_tested_worker" in t else ""))
     for integrator, by_sampler in (payload["sampler_slopes"] or {}).get("slopes", {}).items():
         lines.append(f"MSE slope on cornell {integrator}: " + ", ".join(f"{k} {v:.2f}" for k, v in by_sampler.items()))
     for name, v in (payload["seed_comparison"] or {}).items():

@@ -61,7 +61,8 @@ def test_same_sampler_and_best_against_best_pick_their_curves():
                              "mcval/sobol": curve("b", 0.25, 0.01),         # 400
                              "mitsuba/independent": curve("c", 1.0, 0.02),  # 50
                              "mitsuba/ldsampler": curve("d", 0.5, 0.01),    # 200
-                             "mitsuba/multijitter": curve("e", 1.0, 0.01)}, np.zeros(3))  # 100
+                             "mitsuba/multijitter": curve("e", 1.0, 0.01)}, np.zeros(3),  # 100
+                      best={"mcval": ("sobol",), "mitsuba": ("ldsampler", "multijitter")})
     same, best = bench.comparison("independent"), bench.comparison(None)
     assert same.pop("missing") == [] and best.pop("missing") == []
     assert same == pytest.approx({"ratio": 2.0, "ours": "mcval/independent", "reference": "mitsuba/independent",

@@ -6,6 +6,7 @@ from pathlib import Path
 import pytest
 
 import harness.integrators.registry as registry
+from harness.engines.mitsuba_integrators import mitsuba_mapping
 from harness.engines.mitsuba_scene import mitsuba_xml
 from harness.images.suite import (INTEGRATORS, OUR_SPP, REFERENCE_SPP, ImageCase, not_applicable_cases,
                                   select_cases)
@@ -14,9 +15,11 @@ from harness.report.integrator_table import integrators_table
 
 ROOT = Path(__file__).resolve().parents[2]
 CORNELL_BOX = ROOT / "scenes" / "real" / "cornell_box.xml"
-EXTRA = '''from harness.integrators.entry import IntegratorEntry, MitsubaMapping
-ENTRY = IntegratorEntry(name="{name}", our_spp=2, reference_spp=8, mitsuba=MitsubaMapping("aov"))
+EXTRA = '''from harness.integrators.entry import IntegratorEntry
+ENTRY = IntegratorEntry(name="{name}", tested_spp=2, reference_spp=8)
 '''
+#: The integrators of this repository's renderer (Engine.integrators).
+RENDERER = ("normals", "simple", "ao")
 
 
 @pytest.fixture
@@ -28,8 +31,9 @@ def extra_folder(tmp_path, monkeypatch):
 
 def test_the_product_has_exactly_normals_simple_and_ao():
     assert set(entries()) == {"normals", "simple", "ao"}
-    assert set(registry.renderer_integrators()) == {"normals", "simple", "ao"}
-    m = match()
+    from harness.engines.registry import engine_integrators
+    assert set(engine_integrators("mcval")) == set(RENDERER)
+    m = match(engine_integrators("mcval"))
     assert [e.name for e in m.entries] and m.without_entry == ()
     assert {e.source for e in m.entries} == {f"harness/integrators/{n}.py" for n in ("normals", "simple", "ao")}
 
@@ -44,17 +48,16 @@ def test_suite_views_are_the_entries_budgets():
 def test_an_entry_from_the_path_is_found_and_an_error_without_a_renderer_integrator(extra_folder):
     (extra_folder / "sparkle.py").write_text(EXTRA.format(name="sparkle"))
     assert entries()["sparkle"].source == str(extra_folder / "sparkle.py")
-    with pytest.raises(ValueError, match=r"sparkle\.py: entry for integrator 'sparkle', which the renderer"):
-        match()
+    with pytest.raises(ValueError, match=r"sparkle\.py: entry for integrator 'sparkle', which the tested engine"):
+        match(RENDERER)
 
 
-def test_a_renderer_integrator_without_entry_is_listed_not_dropped(monkeypatch):
-    monkeypatch.setattr(registry, "renderer_integrators", lambda: ("normals", "simple", "ao", "sparkle"))
-    m = match()
+def test_a_renderer_integrator_without_entry_is_listed_not_dropped(mitsuba):
+    m = match((*RENDERER, "sparkle"))
     assert m.without_entry == ("sparkle",) and len(m.entries) == 3
     from rich.console import Console
     console = Console(width=200, record=True)
-    console.print(integrators_table(m))
+    console.print(integrators_table(m, mitsuba))
     assert "no harness entry" in [line for line in console.export_text().splitlines() if "sparkle" in line][0]
 
 
@@ -82,7 +85,7 @@ def test_mitsuba_mapping_removes_the_area_emitter_but_keeps_its_shape(integrator
     root = _mapped(integrator)
     assert not [e for s in root.iter("shape") for e in s.iter("emitter")]
     assert "light" in {s.get("id") for s in root.iter("shape")}
-    assert [e.get("type") for e in root.findall("integrator")] == [entries()[integrator].mitsuba.plugin]
+    assert [e.get("type") for e in root.findall("integrator")] == [mitsuba_mapping(integrator).plugin]
     assert [e.get("type") for e in root.findall("emitter")] == (["constant"] if integrator == "ao" else [])
 
 

@@ -3,15 +3,15 @@ the diffuse reflectance of the first hit, 0 on a miss. Its entry reaches the har
 MCVAL_INTEGRATOR_PATH=tests/plugins/integrators, showing that an integrator is added without editing the harness."""
 import numpy as np
 
-from harness.integrators.entry import AnalyticForm, IntegratorEntry, MitsubaMapping
+from harness.integrators.entry import AnalyticForm, IntegratorEntry
 
 ENTRY = IntegratorEntry(
     name="albedo",
-    our_spp=4,
+    tested_spp=4,
     reference_spp=16,
-    # Mitsuba's aov "albedo" is the BSDF's diffuse reflectance at the first hit (3 channels, 0 on a miss, in
-    # scalar_rgb and llvm_ad_rgb alike); no emitter changes it.
-    mitsuba=MitsubaMapping("aov", (("string", "aovs", "albedo:albedo"),), drop_area_emitters=True),
+    # The BSDF's diffuse reflectance at the first hit (3 channels, 0 on a miss): the AOV "albedo", which no
+    # emitter changes. Mitsuba renders it with its aov plugin, without an edit of the harness's engines.
+    aov="albedo",
     analytic=AnalyticForm("the plane's reflectance",
                           lambda scene, p, normal: np.broadcast_to(scene.reflectance, p.shape)),
     linear_in=("reflectance",),  # no emitter changes it
