@@ -13,7 +13,7 @@ def integrators_table(matched: Matched) -> Table:
     an integrator without an entry says so (it is not validated)."""
     table = Table(title="Integrators: the renderer's registry and the harness's entries", box=box.SIMPLE_HEAD,
                   header_style="bold", padding=(0, 1),
-                  caption="spp: samples per pixel per batch, ours / Mitsuba's stored references")
+                  caption="spp: samples per pixel per batch, the tested engine's / the stored references'")
     for name in ("integrator", "entry", "spp"):
         table.add_column(name, no_wrap=True)
     table.add_column("Mitsuba", overflow="fold", min_width=26)

@@ -30,11 +30,11 @@ def _cell(cell: dict | None, gating: bool) -> str:
 
 def invariance_summary(payload: dict) -> str:
     """`187 of 190 checks of mcval pass, 3 beyond float32; 20 findings about the reference`."""
-    ours = [c for c in payload["cells"] if c["engine"] == payload["gating_engine"]]
-    passing = sum(c.get("status", "pass" if c["pass"] else "fail") == "pass" for c in ours)
-    beyond = sum(c.get("status") == "float32" for c in ours)
-    unjudged = sum(c.get("status") == "inconclusive" for c in ours)
-    return (f'{passing} of {len(ours)} checks of {escape(payload["gating_engine"])} pass'
+    gating = [c for c in payload["cells"] if c["engine"] == payload["gating_engine"]]
+    passing = sum(c.get("status", "pass" if c["pass"] else "fail") == "pass" for c in gating)
+    beyond = sum(c.get("status") == "float32" for c in gating)
+    unjudged = sum(c.get("status") == "inconclusive" for c in gating)
+    return (f'{passing} of {len(gating)} checks of {escape(payload["gating_engine"])} pass'
             + (f", {beyond} beyond float32" if beyond else "") + (f", {unjudged} not judged" if unjudged else "")
             + f'; {len(payload["findings"])} findings about the reference')
 
