@@ -1,4 +1,4 @@
-"""What OpenImageIO's `idiff` would say of our mean image against the reference's mean image.
+"""What OpenImageIO's `idiff` would say of the tested mean image against the reference's mean image.
 
 Reported beside our statistical verdict, never instead of it: idiff compares two single images with
 fixed thresholds and knows nothing of their noise, so it fails a noisy-but-correct pair and passes a

@@ -13,6 +13,8 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 
+import numpy as np
+
 from harness.comparison.cause import named_cause
 from harness.comparison.compare import compare_summaries
 from harness.comparison.mismatch import diagnose
@@ -130,7 +132,7 @@ def evaluate(case: ImageCase, tested: RenderResult | RenderFailure | None,
 
 
 def against_image(case: ImageCase, tested: RenderResult, test: Summary, reference: Summary, *, alpha: float,
-                  image_samples: int, image, reference_problem: str | None, convention: str | None = None,
+                  image_samples: int, image: np.ndarray, reference_problem: str | None, convention: str | None = None,
                   constants: Mapping[str, float] | None = None) -> CaseVerdict:
     """The verdict of `case` against a reference image (harness/images/reference_image.py): `test` and
     `reference` are the tested batches and the image as that model summarises them, `image_samples` the

@@ -166,13 +166,13 @@ def report_html(results: list[ImageResult], alpha: float, warps: dict | None, me
     summary += [f"<li>{_esc(k)}: {_esc(v)}</li>" for k, v in meta.items()]
     sections = []
     for integrator in dict.fromkeys(r.case.integrator for r in results):
-        mine = sorted((r for r in results if r.case.integrator == integrator), key=lambda r: r.passed)
-        if not mine:
+        cases = sorted((r for r in results if r.case.integrator == integrator), key=lambda r: r.passed)
+        if not cases:
             continue
-        n_ok = sum(r.passed for r in mine)
-        links = " ".join(f'<a href="#{_esc(r.case.key)}">{_esc(r.case.scene)}</a> {_verdict(r.verdict)}' for r in mine)
-        sections.append(f"<h2>{_esc(integrator)}: {n_ok} of {len(mine)} scenes pass</h2><p>{links}</p>"
-                        + "".join(entry_html(r, run) for r in mine))
+        n_ok = sum(r.passed for r in cases)
+        links = " ".join(f'<a href="#{_esc(r.case.key)}">{_esc(r.case.scene)}</a> {_verdict(r.verdict)}' for r in cases)
+        sections.append(f"<h2>{_esc(integrator)}: {n_ok} of {len(cases)} scenes pass</h2><p>{links}</p>"
+                        + "".join(entry_html(r, run) for r in cases))
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>mcval report</title><style>{CSS}</style></head>
 <body><h1>mcval validation report: {_verdict(failed == 0 and (warps is None or warps["pass"])

@@ -57,14 +57,14 @@ def invariance_section(payload: dict, heading: str = "h2") -> str:
         out.append(f'<p class="meta">Reference cells, rendered at seed {payload["meta"].get("reference_seed")}: '
                    + "; ".join(escape(line) for line in sources) + "</p>")
     for engine in dict.fromkeys(c["engine"] for c in cells):
-        mine = {(c["invariance"], f'{c["scene"]}:{c["integrator"]}'): c for c in cells if c["engine"] == engine}
-        columns = list(dict.fromkeys(inv for inv, _ in mine))
+        by_cell = {(c["invariance"], f'{c["scene"]}:{c["integrator"]}'): c for c in cells if c["engine"] == engine}
+        columns = list(dict.fromkeys(inv for inv, _ in by_cell))
         role = "under test: a FAIL fails the run" if engine == gating else "reference: a break is a finding"
         out.append(f"<{sub}>{escape(engine)} ({role})</{sub}><table><tr><th>scene:integrator</th>"
                    + "".join(f"<th>{escape(c)}</th>" for c in columns) + "</tr>")
         for key in rows:
             out.append(f"<tr><td>{escape(key)}</td>"
-                       + "".join(_cell(mine.get((inv, key)), engine == gating) for inv in columns) + "</tr>")
+                       + "".join(_cell(by_cell.get((inv, key)), engine == gating) for inv in columns) + "</tr>")
         out.append("</table>")
     out.append("<p>ratio: the transformed image's mean, mapped back by the expected factor, over the base's "
                "(furthest from 1 over the variants; mean |n| for normals). FLOAT32: the listed variants broke on a "
