@@ -32,7 +32,7 @@ def _absolute(test: np.ndarray, reference: np.ndarray) -> str | None:
     if not folded < EXPLAINED * plain:
         return None
     return (f"the reference holds |n|, each component's absolute value (Nori's normals integrator writes it so): "
-            f"|ours| is {folded:.2g} from it on average, ours {plain:.2g}")
+            f"|tested| is {folded:.2g} from it on average, the tested image {plain:.2g}")
 
 
 def _factor_name(ratio: float, constants: dict[str, float]) -> str | None:

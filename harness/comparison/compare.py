@@ -78,8 +78,9 @@ def _scale_test(name: str, a: BatchStats, b: BatchStats, noiseless: np.ndarray, 
     full = np.repeat(np.repeat(pmin, upsample, axis=0), upsample, axis=1)[: shape[0], : shape[1]]
     if full.shape != shape:
         full = np.full(shape, float(p.min()))
-    return ScaleTest(name, int(p.size), level, float(p.min()), int(np.count_nonzero(p < level)),
-                     (int(idx[0]) * upsample, int(idx[1]) * upsample), full), rho
+    return ScaleTest(scale=name, tests=int(p.size), level=level, min_p=float(p.min()),
+                     failures=int(np.count_nonzero(p < level)),
+                     worst=(int(idx[0]) * upsample, int(idx[1]) * upsample), p_map=full), rho
 
 
 def _at_least_own(stats: BatchStats) -> BatchStats:
@@ -174,8 +175,10 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     figures = _metrics(test.mean_image, reference.mean_image, signed, maps) if metrics else {}
     no_signal = _no_signal(test, reference)
     if not power:
-        return Comparison(scales, figures, float("nan"), (test.image.k, reference.image.k), finite, float("nan"),
-                          float("nan"), maps.get("flip"), independence, variance, outliers, no_signal)
+        return Comparison(scales=scales, metrics=figures, detectable_bias=float("nan"),
+                          batches=(test.image.k, reference.image.k), finite=finite, detectable_tile_bias=float("nan"),
+                          detectable_bias_most=float("nan"), flip_map=maps.get("flip"), independence=independence,
+                          variance=variance, outliers=outliers, inconclusive=no_signal)
     # The image-mean bias found half of the time, and the same for one tile (median over tiles).
     image_biases = half_power_bias(ref_image, image_tests["se"], image_tests["dof"], scales[2].level, rho,
                                    (IMAGE_POWER_TARGET, POWER_TARGET))
@@ -188,8 +191,10 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     inconclusive = no_signal or (f"the comparison finds a bias of the image mean only from {detectable:.3g} on (half of "
                                  f"the time), above the {INCONCLUSIVE_BIAS:.0%} it must resolve"
                                  if not detectable <= INCONCLUSIVE_BIAS else "")
-    return Comparison(scales, figures, detectable, (test.image.k, reference.image.k), finite, detectable_tile,
-                      detectable_most, maps.get("flip"), independence, variance, outliers, inconclusive)
+    return Comparison(scales=scales, metrics=figures, detectable_bias=detectable,
+                      batches=(test.image.k, reference.image.k), finite=finite, detectable_tile_bias=detectable_tile,
+                      detectable_bias_most=detectable_most, flip_map=maps.get("flip"), independence=independence,
+                      variance=variance, outliers=outliers, inconclusive=inconclusive)
 
 
 def compare_batches(test: np.ndarray, reference: np.ndarray, alpha: float = SIGNIFICANCE,

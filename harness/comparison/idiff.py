@@ -1,4 +1,4 @@
-"""What OpenImageIO's `idiff` would say of our mean image against the reference's mean image.
+"""What OpenImageIO's `idiff` would say of the tested mean image against the reference's mean image.
 
 Reported beside our statistical verdict, never instead of it: idiff compares two single images with
 fixed thresholds and knows nothing of their noise, so it fails a noisy-but-correct pair and passes a
@@ -18,20 +18,20 @@ import numpy as np
 IDIFF_TESTSUITE = {"fail": 0.004, "failpercent": 0.02, "hardfail": 0.012, "warn": 0.008, "warnpercent": 0.02}
 
 
-def idiff(ours: np.ndarray, reference: np.ndarray, thresholds: dict[str, float] = IDIFF_TESTSUITE) -> dict:
+def idiff(tested: np.ndarray, reference: np.ndarray, thresholds: dict[str, float] = IDIFF_TESTSUITE) -> dict:
     """ImageBufAlgo.compare on two (H, W, C) images, with idiff's (OIIO 3.x) verdict rule: PASS if no
     pixel differs by more than `fail` in any channel (warnings alone never count); else FAIL if more
     than failpercent % of pixels do, or any value differs by more than `hardfail`; else WARN if more
     than warnpercent % of pixels differ by more than `warn`; else PASS."""
     import OpenImageIO as oiio
 
-    if ours.shape != reference.shape:
-        raise ValueError(f"idiff: shapes differ: {ours.shape} vs {reference.shape}")
+    if tested.shape != reference.shape:
+        raise ValueError(f"idiff: shapes differ: {tested.shape} vs {reference.shape}")
     t = thresholds
-    a = oiio.ImageBuf(np.ascontiguousarray(ours, dtype=np.float32))
+    a = oiio.ImageBuf(np.ascontiguousarray(tested, dtype=np.float32))
     b = oiio.ImageBuf(np.ascontiguousarray(reference, dtype=np.float32))
     r = oiio.ImageBufAlgo.compare(a, b, t["fail"], t["warn"])
-    npixels = ours.shape[0] * ours.shape[1]
+    npixels = tested.shape[0] * tested.shape[1]
     if r.nfail == 0:
         verdict = "PASS"
     elif r.nfail > t["failpercent"] / 100 * npixels or r.maxerror > t["hardfail"]:

@@ -5,7 +5,7 @@ A side fails it in two ways: a pair of its batches agrees far beyond chance
 estimator (`same_estimator`), all its batches are alike while the reference's vary at ALIKE_MIN_FRACTION
 of the elements or more (a renderer that ignores the seed it is given: the spread the mean test divides
 by is zero): unless its image is one value everywhere, which is no signal, not a seed ignored. Without the
-same estimator, batches all alike may be an estimator without noise (ours on a
+same estimator, batches all alike may be an estimator without noise (mcval on a
 lone plane under ambient occlusion, against Mitsuba's emitter sampling), so they are not judged. Only a
 side whose batches were at hand is judged (a stored reference keeps no batches; it was judged when it
 was made).

@@ -1,14 +1,14 @@
 """What a failed comparison with a single image looks like: the simple differences between two renders of one
 scene that decide a verdict and that a user cannot see in a p-value.
 
-- background: the image is lit where ours is black (or the reverse) on a share of the frame: an environment
+- background: the image is lit where the tested image is black (or the reverse) on a share of the frame: an environment
   shown to camera rays in one and hidden in the other (`hide_emitters`);
-- zoom: the image matches ours scaled about the centre of the frame (a field of view or a look-at that
+- zoom: the image matches the tested image scaled about the centre of the frame (a field of view or a look-at that
   differs), and by how much;
-- shift: the image matches ours moved by a fraction of a pixel or more (a pixel-centre convention);
-- scale: the image is ours times a constant (a missing or extra factor), once zoom and shift are taken out.
+- shift: the image matches the tested image moved by a fraction of a pixel or more (a pixel-centre convention);
+- scale: the image is the tested image times a constant (a missing or extra factor), once zoom and shift are taken out.
 
-Each is a least-squares fit of ours, transformed, to the image on the inner part of the frame, both blurred
+Each is a least-squares fit of the tested image, transformed, to the image on the inner part of the frame, both blurred
 (the noise of a single image would swamp the fit); a transform is reported when it removes at least half of
 the squared difference that no transform leaves.
 """
@@ -46,31 +46,32 @@ def _inner(h: int, w: int) -> tuple[slice, slice]:
     return slice(by, h - by), slice(bx, w - bx)
 
 
-def diagnose(ours: np.ndarray, image: np.ndarray) -> str | None:
-    """One line on what makes `image` differ from `ours` (two (H, W, 3) mean images), or None if no simple
+def diagnose(tested: np.ndarray, image: np.ndarray) -> str | None:
+    """One line on what makes `image` differ from `tested` (two (H, W, 3) mean images), or None if no simple
     difference explains it."""
-    ours, image = np.asarray(ours, np.float64), np.asarray(image, np.float64)
+    tested, image = np.asarray(tested, np.float64), np.asarray(image, np.float64)
     found = []
-    black_ours = np.all(ours == 0, axis=-1) & np.any(image > 0, axis=-1)
-    black_image = np.all(image == 0, axis=-1) & np.any(ours > 0, axis=-1)
-    for share, dark, lit in ((black_ours.mean(), "ours", "the image"), (black_image.mean(), "the image", "ours")):
+    black_tested = np.all(tested == 0, axis=-1) & np.any(image > 0, axis=-1)
+    black_image = np.all(image == 0, axis=-1) & np.any(tested > 0, axis=-1)
+    for share, dark, lit in ((black_tested.mean(), "the tested image", "the image"),
+                             (black_image.mean(), "the image", "the tested image")):
         if share >= BACKGROUND_SHARE:
             found.append(f"{lit} is lit where {dark} is black on {100 * share:.0f} % of the frame (an environment "
                          "shown to camera rays in one and hidden in the other: hide_emitters)")
     if found:
         return "; ".join(found)
     # Both blurred first: the fit is about where the edges are, and a noisy image's noise would swamp it.
-    ours, image = (gaussian_filter(x, (BLUR, BLUR, 0)) for x in (ours, image))
-    inner = _inner(*ours.shape[:2])
+    tested, image = (gaussian_filter(x, (BLUR, BLUR, 0)) for x in (tested, image))
+    inner = _inner(*tested.shape[:2])
     target = image[inner]
 
     def residual(zoom: float, dy: float = 0.0, dx: float = 0.0) -> tuple[float, float]:
-        moved = _moved(ours, zoom, dy, dx)[inner] if (zoom, dy, dx) != (1.0, 0.0, 0.0) else ours[inner]
+        moved = _moved(tested, zoom, dy, dx)[inner] if (zoom, dy, dx) != (1.0, 0.0, 0.0) else tested[inner]
         norm = float(np.square(moved).sum())
         gain = float((moved * target).sum()) / norm if norm > 0 else 1.0
         return float(np.square(target - gain * moved).sum()), gain
 
-    plain = float(np.square(target - ours[inner]).sum())
+    plain = float(np.square(target - tested[inner]).sum())
     if plain == 0:
         return None
     zoom = min(ZOOMS, key=lambda z: residual(z)[0])
@@ -80,12 +81,12 @@ def diagnose(ours: np.ndarray, image: np.ndarray) -> str | None:
         return None
     parts = []
     if abs(zoom - 1.0) > 1e-9:
-        parts.append(f"zoomed by {zoom:.3f} about the centre (a field of view {1 / zoom:.3f} times ours)")
+        parts.append(f"zoomed by {zoom:.3f} about the centre (a field of view {1 / zoom:.3f} times the tested one)")
     if dy or dx:
         parts.append(f"moved by ({dx:+.2f}, {dy:+.2f}) pixels (x, y)")
     if abs(gain - 1.0) > 1e-3:
         parts.append(f"times {gain:.4f}")
     if not parts:
         return None
-    return (f"the image matches ours {', '.join(parts)}: that leaves {100 * left / plain:.0f} % of the squared "
+    return (f"the image matches the tested image {', '.join(parts)}: that leaves {100 * left / plain:.0f} % of the squared "
             "difference")

@@ -13,7 +13,7 @@ from harness.comparison.outlier_check import OutlierCheck
 from harness.comparison.variance_check import VarianceCheck
 
 SCALES = ("pixel", "tile", "image")
-@dataclass
+@dataclass(kw_only=True)
 class ScaleTest:
     """Every test at one scale: how many, at what level, the smallest p-value and where."""
 
@@ -36,7 +36,7 @@ class ScaleTest:
                 "failures": self.failures, "worst": list(self.worst), "pass": self.passed}
 
 
-@dataclass
+@dataclass(kw_only=True)
 class Comparison:
     """The verdict of one test-vs-reference comparison."""
 

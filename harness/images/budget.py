@@ -52,7 +52,7 @@ class Budget:
         return dataclasses.asdict(self)
 
 
-def plan_budget(case: ImageCase, ours: Engine, reference: Engine, target: float, alpha: float,
+def plan_budget(case: ImageCase, tested: Engine, reference: Engine, target: float, alpha: float,
                 seed: int) -> Budget:
     """The budget of `case` for a bias `target` (relative, e.g. 0.005) at the run's per-comparison `alpha`."""
     ref, _ = load_reference(case, reference)
@@ -60,7 +60,7 @@ def plan_budget(case: ImageCase, ours: Engine, reference: Engine, target: float,
         ref = render_reference(case, reference)
     pilot_spp = OUR_SPP[case.integrator]
     start = time.perf_counter()
-    result = ours.render(str(case.path), case.integrator, pilot_spp, IMAGE_BATCHES, seed, render_params(case))
+    result = tested.render(str(case.path), case.integrator, pilot_spp, IMAGE_BATCHES, seed, render_params(case))
     render_seconds = result.seconds.get("render", time.perf_counter() - start)
     pilot = pooled(summarize(result.batches))
     reference_summary = pooled(ref.summary)

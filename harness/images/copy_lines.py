@@ -1,5 +1,5 @@
 """An engine's error about a --scene file's prepared copy, said in the terms of the file as given: the line of
-the copy it names (Mitsuba's "(line N, col M)" of the text it loaded, ours "COPY:N") becomes the user's
+the copy it names (Mitsuba's "(line N, col M)" of the text it loaded, mcval's "COPY:N") becomes the user's
 FILE:LINE, through the copy's map of source lines (harness/images/scene_copy.py)."""
 from __future__ import annotations
 
@@ -24,11 +24,11 @@ def name_lines(reason: str, copy: str, source: str, source_lines: Sequence[int])
     def mitsuba(match: re.Match) -> str:
         return f"in {source}:{line(match.group(1))}" if line(match.group(1)) else match.group(0)
 
-    def ours(match: re.Match) -> str:
+    def path_line(match: re.Match) -> str:
         return f"{source}:{line(match.group(1))}" if line(match.group(1)) else match.group(0)
 
     reason = _MITSUBA_LINE.sub(mitsuba, reason)
-    return re.sub(re.escape(copy) + r":(\d+)", ours, reason) if copy else reason
+    return re.sub(re.escape(copy) + r":(\d+)", path_line, reason) if copy else reason
 
 
 def in_user_terms(reason: str, case: ImageCase) -> str:

@@ -46,7 +46,8 @@ def null_comparison(job: NullJob, bundle: Bundle | None = None) -> dict:
     (the tested engine twice) which planted biases the default level finds."""
     case = on_files(job.case, bundle)
     spp, signed = OUR_SPP[case.integrator], entry(case.integrator).signed
-    # The test side as the validation renders ours; the reference side with more batches, as a reference has.
+    # The test side as the validation renders the tested engine's; the reference side with more batches, as a
+    # reference has.
     test_engine, ref_engine = {"test-test": (job.test, job.test),
                                "reference-reference": (job.reference, job.reference),
                                "test-closed-form": (job.test, AnalyticEngine())}[job.kind]
@@ -59,7 +60,8 @@ def null_comparison(job: NullJob, bundle: Bundle | None = None) -> dict:
     samples = (spp, ref_spp)
     rejected, summary = {}, summarize(test)
     for level in CALIBRATION_LEVELS:
-        # Both sides draw one estimator (one engine twice, or ours and the closed form): the noise is judged too.
+        # Both sides draw one estimator (one engine twice, or the tested engine and the closed form): the noise is
+        # judged too.
         c = compare_summaries(summary, reference, level, signed, samples=samples, metrics=False, power=False,
                               same_estimator=True)
         rejected[str(level)] = {**{s.scale: not s.passed for s in c.scales},

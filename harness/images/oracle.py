@@ -1,9 +1,10 @@
-"""The closed form as the oracle between our renderer and Mitsuba.
+"""The closed form as the oracle between the tested engine and the reference engine.
 
-Where a scene has a closed form and our render agrees with it but not with Mitsuba, the disagreement is
-Mitsuba's: the case passes, with a finding that says what the reference breaks and the evidence (Mitsuba's
-own comparison with the closed form, and each engine's image-mean ratio to it). Where ours disagrees with
-the closed form, nothing is overruled and the case fails as before.
+Where a scene has a closed form and the tested render agrees with it but not with the reference engine's, the
+disagreement is the reference's: its comparison is overruled (harness/images/evaluate.py then leaves it out of
+the verdict), with a finding that says what the reference breaks and the evidence (the reference's own
+comparison with the closed form, and each engine's image-mean ratio to it). Where the tested render disagrees
+with the closed form, nothing is overruled.
 """
 from __future__ import annotations
 
@@ -15,14 +16,14 @@ from harness.comparison.compare import Comparison, compare_summaries
 from harness.comparison.summary import Summary
 
 
-@dataclass
+@dataclass(kw_only=True)
 class Finding:
     """A reference overruled by the closed form, and why."""
 
     overruled: str                 # the reference engine whose failed comparison no longer decides
     text: str                      # one line for the terminal and results.json
     reference_vs_closed_form: dict  # the reference's own comparison with the closed form (Comparison.to_json)
-    mean_ratio: dict[str, list[float]]  # image mean over the closed form's, per channel, by engine
+    mean_ratio: dict[str, list[float]]  # image mean over the closed form's, per channel: the reference's, "tested"
 
     def to_json(self) -> dict:
         return {"overruled": self.overruled, "text": self.text, "mean_ratio": self.mean_ratio,
@@ -50,9 +51,11 @@ def _fmt(ratio: list[float]) -> str:
     return "/".join(f"{r:.4f}" for r in ratio)
 
 
-def decide(comparisons: dict[str, Comparison], ours: Summary, references: dict[str, Summary],
-           alpha: float, signed: bool, samples: dict[str, int], reference: str, closed_form: str) -> Finding | None:
-    """A finding when ours agrees with the closed form and fails against the reference engine; else None.
+def overrule(comparisons: dict[str, Comparison], tested: Summary, references: dict[str, Summary],
+             alpha: float, signed: bool, samples: dict[str, int], reference: str,
+             closed_form: str) -> Finding | None:
+    """A finding when the tested render agrees with the closed form and fails against the reference engine;
+    else None.
 
     `comparisons`, `references` (summaries) and `samples` (samples per pixel) are keyed by engine name, the
     reference engine's `reference` and the closed form's `closed_form`."""
@@ -61,17 +64,18 @@ def decide(comparisons: dict[str, Comparison], ours: Summary, references: dict[s
         return None
     noise = "variance" in other.failed_checks or (other.independence is not None and not other.independence.test.passed)
     if noise and exact.variance is not None and not exact.variance.same_estimator:
-        return None  # a closed form that does not draw our estimator knows the mean, not our noise
+        return None  # a closed form that does not draw the tested estimator knows the mean, not its noise
     evidence = compare_summaries(references[reference], references[closed_form], alpha, signed=signed,
                                  samples=(samples[reference], samples[closed_form]),
                                  same_estimator=exact.variance is None or exact.variance.same_estimator)
     ratios = {reference: _ratio(references[reference], references[closed_form]),
-              "ours": _ratio(ours, references[closed_form])}
+              "tested": _ratio(tested, references[closed_form])}
     shown = reference.capitalize()
     if evidence.passed:
-        what = "disagrees with ours, though the closed form does not reject either"
+        what = "disagrees with the tested engine, though the closed form does not reject either"
     else:
         what = f"breaks the closed form: {shown} against it {_where(evidence)}"
-    text = (f"reference {what}; image mean over the closed form: {shown} {_fmt(ratios[reference])}, ours "
-            f"{_fmt(ratios['ours'])} (ours agrees with the closed form; ours against {shown} {_where(other)})")
-    return Finding(reference, text, evidence.to_json(), ratios)
+    text = (f"reference {what}; image mean over the closed form: {shown} {_fmt(ratios[reference])}, tested "
+            f"{_fmt(ratios['tested'])} (the tested engine agrees with the closed form; against {shown} it "
+            f"{_where(other)})")
+    return Finding(overruled=reference, text=text, reference_vs_closed_form=evidence.to_json(), mean_ratio=ratios)

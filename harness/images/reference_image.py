@@ -90,14 +90,14 @@ def against_image(ref: ReferenceImage, image: np.ndarray, test: Summary, batches
     own = np.asarray(test.pixel.var_of_mean)
     shown = local_variance(batches, image)
     # A pixel variance of K batches is far too small where few of them saw a rare contribution; the image's
-    # neighbourhood predicts it too (scaled from N samples to K s), and where ours is far below that prediction
-    # (as harness.statistics.welch.sample_floor judges it), the prediction is taken.
+    # neighbourhood predicts it too (scaled from N samples to K s), and where the tested one is far below that
+    # prediction (as harness.statistics.welch.sample_floor judges it), the prediction is taken.
     predicted = shown * ref.spp / (k * spp)
     missed = own < MISSED_CONTRIBUTION * predicted
     pixel = BatchStats(test.pixel.mean, np.where(missed, predicted, own) * (1.0 + factor), k, test.pixel.dof)
     inflated = Summary(pixel, _scaled(test.tile, 1.0 + factor), _scaled(test.image, 1.0 + factor),
                        test.tile_size, test.minimum)
-    # What the image's own neighbourhood shows beyond the model (a rare contribution our batches all missed)
+    # What the image's own neighbourhood shows beyond the model (a rare contribution the tested batches all missed)
     # is the image's side of the variance; under the model it is about 0.
     # Where all K batches agree (to float32 rounding) they cannot say whether the image saw a rare contribution
     # there or is wrong: the pixel's deviation is its variance (the tile and image scales still see a bias).

@@ -36,7 +36,7 @@ from harness.statistics.welch import BatchStats
 
 REFERENCES_DIR = ROOT / "references"
 REFERENCE_SEED = 1000
-#: Batches of a reference: more than ours, so its own noise matters less.
+#: Batches of a reference: more than the tested engine's, so its own noise matters less.
 REFERENCE_BATCHES = 16
 #: Every scene is validated at this resolution (references stay small).
 RESOLUTION = 128

@@ -8,13 +8,14 @@ from typing import Callable
 from harness.distributed.executor import Executor, SerialExecutor, Status, Task
 from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine
+from harness.images.case_renders import CaseRenders
 from harness.images.case_task import CaseJob, run_case_job, share_scene_bundles
-from harness.images.references import RESOLUTION, render_params
-from harness.images.render_ahead import RenderAhead, closed_form_args, render_args
+from harness.images.evaluate import failure, with_scene_notes
+from harness.images.references import RESOLUTION
+from harness.images.render_ahead import RendersAhead
 from harness.images.reference_image import ReferenceImage
-from harness.images.result import GEOMETRY_NOTE, ImageResult
+from harness.images.result import ImageResult
 from harness.images.suite import ImageCase
-from harness.integrators import entry
 from harness.statistics.constants import SIGNIFICANCE, sidak_level
 
 
@@ -41,55 +42,52 @@ def comparison_level(cases: list[ImageCase], has_closed_form: dict[ImageCase, bo
     return sidak_level(SIGNIFICANCE, len(cases) + sum(has_closed_form.values()))
 
 
-def run_images(cases: list[ImageCase], ours: Engine, reference: Engine, seed: int = 0,
+def run_images(cases: list[ImageCase], tested: Engine, reference: Engine, seed: int = 0,
                on_status: Callable[[Status], None] | None = None,
                on_message: Callable[[str], None] | None = None,
                executor: Executor | None = None,
                reference_image: ReferenceImage | None = None) -> tuple[list[ImageResult], float]:
     """Every case, one task each on `executor` (default: here, one after another); all comparisons of the
     run share a family-wise false-alarm rate of SIGNIFICANCE (Sidak). Returns the results, in the order of
-    `cases`, and the per-comparison alpha. A render that fails (our RenderFailed, or any exception of a
-    reference engine), or a task whose worker dies, fails its case with the reason, and the run goes on."""
+    `cases`, and the per-comparison alpha. A render that fails (the tested engine's RenderFailed, or any
+    exception of a reference engine), or a task whose worker dies, fails its case with the reason, and the
+    run goes on."""
     executor = executor or SerialExecutor()
     has_closed_form = closed_forms(cases) if reference_image is None else dict.fromkeys(cases, False)
     alpha = comparison_level(cases, has_closed_form)
-    bundles = share_scene_bundles(executor, cases, (ours, reference))
-    # Run here, one case after another, our render of the next case and the closed forms overlap the
-    # comparisons of this one (harness/images/render_ahead.py).
-    ahead = closed = None
-    if isinstance(executor, SerialExecutor) and ours.renders_elsewhere and reference_image is None:
-        ahead = RenderAhead(ours, [render_args(c, case_seed(c, seed), render_params(c)) for c in cases])
-        closed = RenderAhead(AnalyticEngine(), [closed_form_args(c, case_seed(c, seed), render_params(c))
-                                                if has_closed_form[c] else None for c in cases], depth=None)
+    bundles = share_scene_bundles(executor, cases, (tested, reference))
+    seeds = [case_seed(c, seed) for c in cases]
+    # Run here, one case after another, the tested render of the next case and the closed forms overlap the
+    # comparisons of this one (harness/images/render_ahead.py); the cases ask for their renders alike.
+    if isinstance(executor, SerialExecutor) and tested.renders_elsewhere and reference_image is None:
+        renders = RendersAhead(tested, reference, cases, seeds, [has_closed_form[c] for c in cases])
+    else:
+        renders = CaseRenders(tested, reference)
     tasks = [Task(case.key, run_case_job,
-                  (CaseJob(case, case_seed(case, seed), alpha, seed, has_closed_form[case], ours, reference,
-                           reference_image, ahead, closed, k),
+                  (CaseJob(case=case, seed=s, alpha=alpha, run_seed=seed, closed_form=has_closed_form[case],
+                           renders=renders, reference_image=reference_image),
                    bundles.get(case.scene)))
-             for k, case in enumerate(cases)]
+             for case, s in zip(cases, seeds)]
     try:
         outcomes = executor.run(tasks, on_status)
     finally:
-        for started in (ahead, closed):
-            if started is not None:
-                started.close()
-    geometry_failed: set[str] = set()
-    refused: set[str] = set()
-    results = []
-    for case, outcome in zip(cases, outcomes):
+        renders.close()
+    results, said = [], []
+    for case, s, outcome in zip(cases, seeds, outcomes):
         if outcome.ok:
             result, messages = outcome.value
         else:
-            result, messages = ImageResult(case, None, {}, {}, "none", case_seed(case, seed), None, alpha, seed,
-                                           f"task failed: {outcome.error}", tested=ours.name), []
-        for m in messages:
-            if on_message:
-                on_message(m)
-        # A case's own cause (a named factor, |n|) comes first; the scene's geometry note after it.
-        if case.scene in geometry_failed:
-            result.note = "; ".join(n for n in (result.note, GEOMETRY_NOTE) if n)
-        if entry(case.integrator).checks_geometry and result.error is None and result.failed:
-            geometry_failed.add(case.scene)
-            result.note = result.note or GEOMETRY_NOTE
+            result, messages = ImageResult(case=case, decision=failure(f"task failed: {outcome.error}"),
+                                           tested_engine=tested.name, seed=s, alpha=alpha, run_seed=seed), []
+        results.append(result)
+        said.append(messages)
+    # A case's own cause (a named factor, |n|) comes first; the scene's geometry note after it.
+    for result, decision in zip(results, with_scene_notes(cases, [r.decision for r in results])):
+        result.decision = decision
+    refused: set[str] = set()
+    for case, result, messages in zip(cases, results, said):
+        for m in messages if on_message else ():
+            on_message(m)
         if result.error is not None and on_message and case.scene not in refused:
             # What the preparation of a scene refused is said once for the scene, not once per case.
             on_message(f"{case.scene if case.problem else case.key}: {result.error}")
@@ -97,5 +95,4 @@ def run_images(cases: list[ImageCase], ours: Engine, reference: Engine, seed: in
                 refused.add(case.scene)
         if result.finding is not None and on_message:
             on_message(f"{case.key}: {result.finding.text}")
-        results.append(result)
     return results, alpha

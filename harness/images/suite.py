@@ -72,7 +72,7 @@ class _Budget(Mapping):
 
 
 INTEGRATORS = _Integrators()
-#: Samples per pixel per batch: ours in every run, Mitsuba's for stored references.
+#: Samples per pixel per batch: the tested engine's in every run, the reference engine's for stored references.
 OUR_SPP = _Budget("tested_spp")
 REFERENCE_SPP = _Budget("reference_spp")
 

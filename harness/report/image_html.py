@@ -56,13 +56,13 @@ def _picture(r: ImageResult, name: str, comparison: Comparison) -> str:
     """The row of panels; NaN and Inf shown as 0 (the bad pixels are red on the p-value map, which
     counts them as certain rejections, and listed above it)."""
     signed = entry(r.case.integrator).signed
-    ours = np.nan_to_num(r.ours.mean, nan=0.0, posinf=0.0, neginf=0.0)
+    tested = np.nan_to_num(r.tested.mean, nan=0.0, posinf=0.0, neginf=0.0)
     ref = np.nan_to_num(r.references[name].summary.mean_image, nan=0.0, posinf=0.0, neginf=0.0)
     if not signed and not ref.max() > 0:
         # FLIP's HDR mode cannot place its exposures on an all-black reference and ends the process.
         return "<p class='meta'>No pictures: the reference holds no positive value.</p>"
     shown = "closed form" if r.references[name].source == CLOSED_FORM else name.capitalize()
-    png = comparison_png(ours, ref, comparison, signed, shown, r.engine)
+    png = comparison_png(tested, ref, comparison, signed, shown, r.engine)
     return (f'<img alt="{_esc(r.case.key)} against {_esc(name)}" src="data:image/png;base64,'
             f'{base64.b64encode(png).decode()}">')
 
@@ -84,7 +84,7 @@ def entry_html(r: ImageResult, run: dict | None = None) -> str:
         parts.append(f"<p class='meta'>scene file: {_esc(r.case.source)}</p>")
         parts.extend(f"<p class='meta'>note: {_esc(note)}</p>" for note in r.case.notes)
     parts.append(f"<p>{_esc(idiff_sentence(r.idiff))}</p>")
-    if r.error is not None or r.ours is None:
+    if r.error is not None or r.tested is None:
         parts.append(f'<p class="fail">Render failed: {_esc(r.error)}; nothing to compare.</p>')
         if r.error_output:
             parts.append(f"<p>What it printed last:</p><pre>{_esc(r.error_output)}</pre>")
@@ -108,15 +108,15 @@ def entry_html(r: ImageResult, run: dict | None = None) -> str:
         parts.append(
             f"<p class='meta'>against {_esc(name)} ({ref.spp} spp × "
             f"{'one image' if r.reference_fit is not None else f'{ref.summary.image.k} batches'}"
-            f"{', ' + _esc(r.reference_source) if ref.source != CLOSED_FORM else ''}); {_esc(tested)} {r.ours.spp} spp × "
-            f"{r.ours.count} batches, seed {r.seed}; smallest detectable bias of the image mean "
+            f"{', ' + _esc(r.reference_source) if ref.source != CLOSED_FORM else ''}); {_esc(tested)} {r.tested.spp} spp × "
+            f"{r.tested.count} batches, seed {r.seed}; smallest detectable bias of the image mean "
             f"{comparison.detectable_bias:.2%}</p>"
             + _bad_pixels(comparison) + _picture(r, name, comparison) +
             f"<div style='display:flex;gap:2em;align-items:flex-start'><table><tr><th>scale</th><th>tests</th><th>level</th><th>min p</th>"
             f"<th>fails</th><th>worst (row, col)</th><th></th></tr>{rows}</table>"
             f"<table><tr><th>metric</th><th>value</th></tr>{metrics}</table>"
             f"<table><tr><th>seconds</th><th>{_esc(tested)}</th><th>{_esc(name)}</th></tr>"
-            + "".join(f"<tr><td>{_esc(k)}</td><td>{_seconds(r.ours.seconds, k)}</td>"
+            + "".join(f"<tr><td>{_esc(k)}</td><td>{_seconds(r.tested.seconds, k)}</td>"
                       f"<td>{_seconds(ref.seconds, k)}</td></tr>"
                       for k in ("load", "build", "first", "render", "total"))
             + "</table></div>")
@@ -166,13 +166,13 @@ def report_html(results: list[ImageResult], alpha: float, warps: dict | None, me
     summary += [f"<li>{_esc(k)}: {_esc(v)}</li>" for k, v in meta.items()]
     sections = []
     for integrator in dict.fromkeys(r.case.integrator for r in results):
-        mine = sorted((r for r in results if r.case.integrator == integrator), key=lambda r: r.passed)
-        if not mine:
+        cases = sorted((r for r in results if r.case.integrator == integrator), key=lambda r: r.passed)
+        if not cases:
             continue
-        n_ok = sum(r.passed for r in mine)
-        links = " ".join(f'<a href="#{_esc(r.case.key)}">{_esc(r.case.scene)}</a> {_verdict(r.verdict)}' for r in mine)
-        sections.append(f"<h2>{_esc(integrator)}: {n_ok} of {len(mine)} scenes pass</h2><p>{links}</p>"
-                        + "".join(entry_html(r, run) for r in mine))
+        n_ok = sum(r.passed for r in cases)
+        links = " ".join(f'<a href="#{_esc(r.case.key)}">{_esc(r.case.scene)}</a> {_verdict(r.verdict)}' for r in cases)
+        sections.append(f"<h2>{_esc(integrator)}: {n_ok} of {len(cases)} scenes pass</h2><p>{links}</p>"
+                        + "".join(entry_html(r, run) for r in cases))
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>mcval report</title><style>{CSS}</style></head>
 <body><h1>mcval validation report: {_verdict(failed == 0 and (warps is None or warps["pass"])

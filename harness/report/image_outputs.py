@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from harness.foreign_text import one_line
+from harness.images.evaluate import failure
 from harness.images.result import ImageResult
 from harness.images.regression import compare_runs, load_baseline
 from harness.report.image_html import entry_html, report_html, reproduce_command
@@ -21,14 +22,14 @@ def _case_outputs(r: ImageResult, run_dir: Path, run: dict | None) -> None:
     if not r.passed and r.error is None:  # (a failed render has no arrays; its entry says why)
         # What is needed to see why: both means, the variances and the p-value maps.
         stem = run_dir / "images" / f"{r.case.scene}_{r.case.integrator}"
-        arrays = {"ours_mean": r.ours.mean, "ours_batches": r.ours.batches}
+        arrays = {"tested_mean": r.tested.mean, "tested_batches": r.tested.batches}
         for name, ref in r.references.items():
             arrays[f"{name}_mean"] = ref.summary.pixel.mean
             arrays[f"{name}_var_of_mean"] = ref.summary.pixel.var_of_mean
             for scale in r.comparisons[name].scales:
                 arrays[f"{name}_p_{scale.scale}"] = scale.p_map
             finite = r.comparisons[name].finite
-            if not finite.passed:  # 1: NaN, Inf or negative in ours, 2: in the reference, 3: both
+            if not finite.passed:  # 1: NaN, Inf or negative in the tested image, 2: in the reference, 3: both
                 arrays[f"{name}_bad_pixels"] = (finite.test.mask + 2 * finite.reference.mask).astype(np.uint8)
         write_npz(stem.with_suffix(".npz"), **arrays)
         write_json(stem.with_suffix(".json"), {**entry, "reproduce": reproduce_command(r, run)})
@@ -40,8 +41,8 @@ def _reportable(r: ImageResult, run_dir: Path, run: dict | None) -> None:
     try:
         _case_outputs(r, run_dir, run)
     except Exception as e:
-        r.ours, r.references, r.comparisons, r.finding, r.reference_fit = None, {}, {}, None, None
-        r.error = one_line(f"report: {type(e).__name__}: {e}")
+        r.tested, r.references, r.reference_fit = None, {}, None
+        r.decision = failure(one_line(f"report: {type(e).__name__}: {e}"))
         r.traceback = traceback.format_exc()
 
 

@@ -1,4 +1,5 @@
-"""The row of pictures for one comparison: ours, Mitsuba, signed difference, p-value map, FLIP map."""
+"""The row of pictures for one comparison: the tested image, the reference, signed difference, p-value map,
+FLIP map."""
 from __future__ import annotations
 
 import numpy as np
@@ -22,18 +23,18 @@ def rejection_map(comparison: Comparison) -> np.ndarray:
     return np.minimum(*maps)
 
 
-def comparison_png(ours: np.ndarray, reference: np.ndarray, comparison: Comparison, signed: bool,
-                   reference_name: str = "Mitsuba", tested_name: str = "ours") -> bytes:
+def comparison_png(tested: np.ndarray, reference: np.ndarray, comparison: Comparison, signed: bool,
+                   reference_name: str = "reference", tested_name: str = "tested") -> bytes:
     """PNG of five panels, the last three each with its own scale bar; the tested image is titled
     `tested_name`."""
-    diff = (ours - reference).mean(axis=-1)
+    diff = (tested - reference).mean(axis=-1)
     limit = float(np.percentile(np.abs(diff), 99.5)) or 1e-6
     flip = comparison.flip_map
-    if flip is None or flip.shape != ours.shape[:2]:  # a comparison made without its metrics
-        flip, _ = flip_map(ours, reference, signed)
+    if flip is None or flip.shape != tested.shape[:2]:  # a comparison made without its metrics
+        flip, _ = flip_map(tested, reference, signed)
     bars = (Bar("RdBu_r", -limit, limit), Bar("RdYlGn", -3.0, 3.0), Bar("magma", 0.0, 1.0))
     maps = (diff, rejection_map(comparison), flip)
     titles = (f"{tested_name} − reference (mean of RGB)", "log10(p / level): red rejects", "FLIP")
-    panels = [Panel(display(ours, signed), tested_name), Panel(display(reference, signed), reference_name)]
+    panels = [Panel(display(tested, signed), tested_name), Panel(display(reference, signed), reference_name)]
     panels += [Panel(bar.colour(data), title, bar) for bar, data, title in zip(bars, maps, titles)]
     return row_png(panels)

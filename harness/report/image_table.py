@@ -42,7 +42,7 @@ def _cell(result: ImageResult) -> str:
 
 def image_table(results: list[ImageResult], alpha: float) -> Table:
     """One row per (scene, integrator): verdict, failing scales, mean ratio, relMSE, FLIP, seconds."""
-    tested = results[0].engine if results else "ours"
+    tested = results[0].engine if results else "tested"
     reference = next((name for r in results for name in r.references), "reference")
     table = Table(title=f"{tested} against {reference} (per-comparison α {alpha:.2g}, family-wise 0.01)",
                   box=box.SIMPLE_HEAD, padding=(0, 1), header_style="bold")
@@ -54,12 +54,12 @@ def image_table(results: list[ImageResult], alpha: float) -> Table:
         m = next(iter(r.comparisons.values()), None)
         if r.error is not None or m is None:  # a render failed: no comparison (the CLI prints why)
             table.add_row(r.case.scene, r.case.integrator, "[bold red]FAIL[/] render failed", "—", "—", "—", "—", idiff_short(r.idiff),
-                          f"{r.ours.seconds['total']:.2f}" if r.ours else "—", "—")
+                          f"{r.tested.seconds['total']:.2f}" if r.tested else "—", "—")
             continue
         verdicts = _cell(r) + (" (+exact)" if len(r.comparisons) > 1 else "")
         table.add_row(r.case.scene, r.case.integrator, verdicts, f"{m.metrics['mean_ratio']:.4f}",
                       f"{m.metrics['relmse']:.1e}", f"{m.metrics['flip_mean']:.3f}", f"{m.detectable_bias:.1e}", idiff_short(r.idiff),
-                      f"{r.ours.seconds['total']:.2f}", f"{next(iter(r.references.values())).seconds.get('total', 0):.2f}")
+                      f"{r.tested.seconds['total']:.2f}", f"{next(iter(r.references.values())).seconds.get('total', 0):.2f}")
     table.caption = (f"mean ratio: {tested} / {reference} image mean; min bias: smallest relative bias of the image mean "
                      "detected half of the time; +exact: also compared with the closed form; s: wall seconds of all "
                      "the case's renders, loading included (a stored reference: those that made it)\n" + LEGEND)

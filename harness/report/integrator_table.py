@@ -15,7 +15,7 @@ def integrators_table(matched: Matched, reference: Engine) -> Table:
     not validated)."""
     table = Table(title="Integrators: the renderer's registry and the harness's entries", box=box.SIMPLE_HEAD,
                   header_style="bold", padding=(0, 1),
-                  caption="spp: samples per pixel per batch, the tested engine's / the stored references")
+                  caption="spp: samples per pixel per batch, the tested engine's / the stored references'")
     for name in ("integrator", "entry", "spp"):
         table.add_column(name, no_wrap=True)
     table.add_column(f"{reference.name} renders it as", overflow="fold", min_width=26)

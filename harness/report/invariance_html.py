@@ -30,11 +30,11 @@ def _cell(cell: dict | None, gating: bool) -> str:
 
 def invariance_summary(payload: dict) -> str:
     """`187 of 190 checks of mcval pass, 3 beyond float32; 20 findings about the reference`."""
-    ours = [c for c in payload["cells"] if c["engine"] == payload["gating_engine"]]
-    passing = sum(c.get("status", "pass" if c["pass"] else "fail") == "pass" for c in ours)
-    beyond = sum(c.get("status") == "float32" for c in ours)
-    unjudged = sum(c.get("status") == "inconclusive" for c in ours)
-    return (f'{passing} of {len(ours)} checks of {escape(payload["gating_engine"])} pass'
+    gating = [c for c in payload["cells"] if c["engine"] == payload["gating_engine"]]
+    passing = sum(c.get("status", "pass" if c["pass"] else "fail") == "pass" for c in gating)
+    beyond = sum(c.get("status") == "float32" for c in gating)
+    unjudged = sum(c.get("status") == "inconclusive" for c in gating)
+    return (f'{passing} of {len(gating)} checks of {escape(payload["gating_engine"])} pass'
             + (f", {beyond} beyond float32" if beyond else "") + (f", {unjudged} not judged" if unjudged else "")
             + f'; {len(payload["findings"])} findings about the reference')
 
@@ -57,14 +57,14 @@ def invariance_section(payload: dict, heading: str = "h2") -> str:
         out.append(f'<p class="meta">Reference cells, rendered at seed {payload["meta"].get("reference_seed")}: '
                    + "; ".join(escape(line) for line in sources) + "</p>")
     for engine in dict.fromkeys(c["engine"] for c in cells):
-        mine = {(c["invariance"], f'{c["scene"]}:{c["integrator"]}'): c for c in cells if c["engine"] == engine}
-        columns = list(dict.fromkeys(inv for inv, _ in mine))
+        by_cell = {(c["invariance"], f'{c["scene"]}:{c["integrator"]}'): c for c in cells if c["engine"] == engine}
+        columns = list(dict.fromkeys(inv for inv, _ in by_cell))
         role = "under test: a FAIL fails the run" if engine == gating else "reference: a break is a finding"
         out.append(f"<{sub}>{escape(engine)} ({role})</{sub}><table><tr><th>scene:integrator</th>"
                    + "".join(f"<th>{escape(c)}</th>" for c in columns) + "</tr>")
         for key in rows:
             out.append(f"<tr><td>{escape(key)}</td>"
-                       + "".join(_cell(mine.get((inv, key)), engine == gating) for inv in columns) + "</tr>")
+                       + "".join(_cell(by_cell.get((inv, key)), engine == gating) for inv in columns) + "</tr>")
         out.append("</table>")
     out.append("<p>ratio: the transformed image's mean, mapped back by the expected factor, over the base's "
                "(furthest from 1 over the variants; mean |n| for normals). FLOAT32: the listed variants broke on a "

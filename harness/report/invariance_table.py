@@ -30,7 +30,8 @@ def _cell_text(cell: Cell | None, gating: bool) -> str:
 
 
 def invariance_tables(cells: list[Cell], alpha: float, gating_engine: str) -> list[Table]:
-    """One table per engine (ours first): rows scene:integrator, a column per invariance; none without cells."""
+    """One table per engine (the tested one first): rows scene:integrator, a column per invariance; none without
+    cells."""
     if not cells:
         return []
     engines = list(dict.fromkeys(c.engine for c in cells))

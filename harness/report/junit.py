@@ -57,6 +57,6 @@ def junit_xml(images: list[ImageResult], warps: list[dict] | None, meta: dict | 
                 message = f"INCONCLUSIVE: {r.inconclusive}"
             ok = None if r.verdict == "INCONCLUSIVE" else r.passed
             cases.append((r.case.scene, ok, (r.note + "; " if r.note else "") + message,
-                          r.ours.seconds.get("total", 0.0) if r.ours else 0.0))
+                          r.tested.seconds.get("total", 0.0) if r.tested else 0.0))
         suite(integrator, cases)
     return ET.tostring(root, encoding="unicode", xml_declaration=True)

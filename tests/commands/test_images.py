@@ -117,7 +117,7 @@ def test_a_failing_comparison_leaves_its_data(tmp_path, ours, mitsuba, monkeypat
     data = json.loads((run / "results.json").read_text())
     assert data["pass"] is False and data["images"][0]["data"] == "images/plane_point_simple.npz"
     arrays = np.load(run / "images" / "plane_point_simple.npz")
-    assert {"ours_mean", "mitsuba_mean", "mitsuba_p_pixel", "analytic_p_image"} <= set(arrays.files)
+    assert {"tested_mean", "mitsuba_mean", "mitsuba_p_pixel", "analytic_p_image"} <= set(arrays.files)
     suites = ET.parse(run / "junit.xml").getroot()
     assert any(s.get("failures") == "1" for s in suites)
 

@@ -34,11 +34,11 @@ def test_a_factor_is_found():
 
 
 def test_a_background_shown_in_one_image_only_is_found():
-    ours = _scene()
-    ours[:20] = 0.0
+    tested = _scene()
+    tested[:20] = 0.0
     image = _scene()
     image[:20] = 0.6
-    assert "lit where ours is black on 21 %" in diagnose(ours, image)
+    assert "lit where the tested image is black on 21 %" in diagnose(tested, image)
 
 
 @pytest.mark.parametrize("seed", range(3))

@@ -61,16 +61,17 @@ def test_a_hung_renderer_is_ended_by_the_timeout(tmp_path, monkeypatch, capsys):
 
 @pytest.mark.parametrize("failing", ["mitsuba", "analytic"])
 def test_a_reference_engine_that_raises_fails_its_case(tmp_path, monkeypatch, failing):
-    import harness.images.case_task as image_run
+    import harness.images.case_renders as case_renders
+    import harness.images.gather as gather
 
     def boom(*args, **kwargs):
         raise RuntimeError("the reference engine broke\nsecond line")
 
     if failing == "mitsuba":
-        monkeypatch.setattr(image_run, "load_reference", lambda case, engine: (None, "no stored reference"))
-        monkeypatch.setattr(image_run, "render_reference", boom)
+        monkeypatch.setattr(gather, "load_reference", lambda case, engine: (None, "no stored reference"))
+        monkeypatch.setattr(case_renders, "render_reference", boom)
     else:
-        monkeypatch.setattr(image_run.AnalyticEngine, "render", boom)
+        monkeypatch.setattr(case_renders.AnalyticEngine, "render", boom)
     out = tmp_path / "results"
     assert main(["images", "--only", "plane_point:ao", "--out", str(out)]) == 1
     entry = json.loads((out / "latest" / "results.json").read_text())["images"][0]

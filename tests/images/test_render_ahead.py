@@ -32,7 +32,7 @@ class Slow(Engine):
         time.sleep(0.02)
         with self.lock:
             self.running -= 1
-        if scene == "bad":
+        if scene.endswith("bad") or scene.endswith("bad.xml"):
             raise RenderFailed("bad scene")
         return RenderResult(self.name, scene, integrator, spp, seed, None, {})
 
@@ -73,3 +73,29 @@ def test_every_render_at_once_skips_the_cases_without_one():
     finally:
         ahead.close()
     assert engine.order == ["a", "c"]
+
+
+def test_a_case_asks_renders_ahead_as_it_asks_any_renders():
+    from pathlib import Path
+
+    from harness.images.case_renders import CaseRenders
+    from harness.images.render_ahead import RendersAhead
+    from harness.images.suite import ImageCase
+
+    engine = Slow()
+    cases = [ImageCase(s, "ao") for s in ("a", "bad", "c")]
+    renders = RendersAhead(engine, engine, cases, [1, 2, 3], [False] * 3)
+    assert isinstance(renders, CaseRenders)
+    try:
+        assert Path(renders.tested(cases[0], 1).scene).stem == "a"
+        time.sleep(0.05)
+        assert [Path(s).stem for s in engine.order] == ["a", "bad"]  # the next case's render began ahead
+        with pytest.raises(RenderFailed, match="bad scene"):
+            renders.tested(cases[1], 2)
+        # Another seed than the run's, or a second request, is rendered when asked, as CaseRenders renders it.
+        assert Path(renders.tested(cases[0], 9).scene).stem == "a"
+        assert Path(renders.tested(cases[0], 1).scene).stem == "a"
+        assert Path(renders.tested(cases[2], 3).scene).stem == "c"
+    finally:
+        renders.close()
+    assert sorted(Path(s).stem for s in engine.order) == ["a", "a", "a", "bad", "c"]

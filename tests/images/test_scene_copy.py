@@ -155,6 +155,7 @@ def test_mitsubas_error_on_a_sensorless_file_names_the_files_line(tmp_path):
 def test_both_engines_render_a_sensorless_file_from_the_same_camera(tmp_path):
     from harness.engines.mitsuba import MitsubaEngine
     from harness.engines.ours import OurEngine
+    from harness.images.case_renders import CaseRenders
     from harness.images.case_task import CaseJob, run_case_job
     from harness.images.suite import select_cases
     from harness.images.user_scenes import prepare_scenes
@@ -164,6 +165,7 @@ def test_both_engines_render_a_sensorless_file_from_the_same_camera(tmp_path):
     (scene,) = prepare_scenes([tmp_path / "in"], tmp_path / "cache", 32)
     assert not scene.problem and len(scene.notes) == 1
     (case,) = select_cases(["bare:normals"], user=[scene])
-    result, _ = run_case_job(CaseJob(case, 1, 0.01, 0, False, OurEngine(), MitsubaEngine()))
+    result, _ = run_case_job(CaseJob(case=case, seed=1, alpha=0.01, run_seed=0, closed_form=False,
+                                          renders=CaseRenders(OurEngine(), MitsubaEngine())))
     assert result.error is None and result.passed, result.error
-    assert result.ours.mean.shape == (24, 32, 3) and (abs(result.ours.mean).sum(axis=-1) > 0).mean() > 0.1
+    assert result.tested.mean.shape == (24, 32, 3) and (abs(result.tested.mean).sum(axis=-1) > 0).mean() > 0.1

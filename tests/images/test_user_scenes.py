@@ -53,15 +53,17 @@ def test_the_copy_declares_the_asked_size_over_the_files_own_default(tmp_path):
 
 @pytest.mark.mitsuba
 def test_a_scene_renders_at_the_resolution_asked_for(tmp_path):
+    from harness.images.case_renders import CaseRenders
     from harness.images.case_task import CaseJob, run_case_job
     from harness.engines.mitsuba import MitsubaEngine
     from harness.engines.ours import OurEngine
 
     (scene,) = prepare_scenes([_scene(tmp_path / "in", source="plane_point.xml")], tmp_path / "cache", 40)
     (case,) = select_cases(["ball:normals"], user=[scene])
-    result, _ = run_case_job(CaseJob(case, 1, 0.01, 0, False, OurEngine(), MitsubaEngine()))
+    result, _ = run_case_job(CaseJob(case=case, seed=1, alpha=0.01, run_seed=0, closed_form=False,
+                                          renders=CaseRenders(OurEngine(), MitsubaEngine())))
     assert result.error is None, result.error
-    assert result.ours.mean.shape == (40, 40, 3) and result.passed
+    assert result.tested.mean.shape == (40, 40, 3) and result.passed
 
 
 def test_bad_paths_are_one_line(tmp_path):
@@ -131,8 +133,9 @@ def test_a_nori_file_is_prepared_as_mitsubas_and_one_without_a_translation_carri
     assert noted.notes[0].startswith(f"{folder / 'noted.xml'}:2: <integrator type=\"whitted\">: not compared")
     (noted_case,) = select_cases(["noted:normals"], user=[bad, good, noted])
     assert noted_case.notes == noted.notes  # carried to the results and the report
+    from harness.images.evaluate import failure
     from harness.images.result import ImageResult
-    assert ImageResult(noted_case, None, {}, {}, "none", 0, error="x").to_json()["scene_notes"] == list(noted.notes)
+    assert ImageResult(case=noted_case, decision=failure("x")).to_json()["scene_notes"] == list(noted.notes)
     (case,) = [c for c in select_cases(["bad:normals"], user=[bad, good])]
     assert case.problem == bad.problem
 
