@@ -88,6 +88,11 @@ public:
     bool twoSided(uint32_t geom) const { return m_twoSided[geom] != 0; }
     /// The diffuse reflectance of the back of a two-sided geometry `geom` (black for a one-sided one).
     const Color &backReflectance(uint32_t geom) const { return m_backReflectance[geom]; }
+    /// The area emitter of geometry `geom` (Hit::emitter): its index in SceneEmitters, whose list starts
+    /// with the emitting shapes in geometry order; -1 for a shape that does not emit.
+    int emitter(uint32_t geom) const { return m_emitterOf[geom]; }
+    /// The table of emitter() by geometry id (HitPacket::emitterOf).
+    const int *emitterTable() const { return m_emitterOf.data(); }
 
 private:
     /// Position and normals of a hit: on triangle prim of a mesh at barycentrics (u, v), or on an
@@ -120,12 +125,14 @@ private:
     std::vector<Disk> m_disks;          ///< copies: Embree holds pointers to them, so never resized
     std::vector<Cylinder> m_cylinders;
     uint32_t m_firstDisk = 0, m_firstCylinder = 0;  ///< their first geometry ids
-    /// Adds the next geometry id's material.
-    void addMaterial(const Color &front, const std::optional<Color> &back);
+    /// Adds the next geometry id's material and its emitter index (-1 if it does not emit).
+    void addMaterial(const Color &front, const std::optional<Color> &back, bool emits);
 
     std::vector<Color> m_reflectance;  ///< by geometry id: one table whatever the shape
     std::vector<Color> m_backReflectance;
     std::vector<uint8_t> m_twoSided;
+    std::vector<int> m_emitterOf;      ///< by geometry id: emitter()
+    int m_areaEmitters = 0;            ///< emitting shapes so far
     /// Every mesh's triangles, then a zero record that lanes without a triangle read harmlessly.
     std::vector<TriangleRecord> m_triangles;
     std::vector<TriangleNormals> m_normals;            ///< the smooth meshes' triangles, then a zero record

@@ -22,6 +22,9 @@ struct HitPacket {
     alignas(64) uint32_t geom[kPacketSize], prim[kPacketSize];
     alignas(64) int found[kPacketSize];
     float offsetFloor = 0.f;  ///< Hit::offsetFloor, the same for every hit of a scene
+    /// Hit::emitter by geometry id (the scene's table; nullptr: none), read by hit(i) only: the SIMD loops
+    /// that do not ask for emitters pay nothing for them.
+    const int *emitterOf = nullptr;
 
     Ray ray(int i) const {
         Ray r;
@@ -40,6 +43,7 @@ struct HitPacket {
         h.geom = geom[i];
         h.prim = prim[i];
         h.offsetFloor = offsetFloor;
+        h.emitter = found[i] && emitterOf ? emitterOf[geom[i]] : -1;
         return h;
     }
     void setRay(int i, const Ray &r) {
@@ -48,6 +52,7 @@ struct HitPacket {
         tnear[i] = r.tnear;
         tfar[i] = r.tfar;
     }
+    /// Lane i's hit; its emitter is read back through emitterOf, which the scene's trace sets.
     void setHit(int i, const Hit &h) {
         t[i] = h.t;
         px[i] = h.p.x; py[i] = h.p.y; pz[i] = h.p.z;

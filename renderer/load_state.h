@@ -12,12 +12,17 @@
 
 #include <pugixml.hpp>
 
+#include "emitters/emitter.h"
 #include "scene.h"
 
 namespace mcval {
 
 /// Elements the chosen integrator may not use, judged once the integrator is known.
 struct Deferred {
+    /// The emitter kinds the chosen integrator reads, once it is known (`known`): a shape's area emitter is
+    /// then read where it stands, or kept aside to be skipped with a note.
+    EmitterKinds reads;
+    bool known = false;
     std::vector<std::pair<pugi::xml_node, std::string>> nonDiffuseBsdfs, areaEmitters;
     /// A diffuse BSDF whose reflectance we cannot read (`given`: a texture, a per-wavelength spectrum):
     /// refused where the integrator reads the reflectance, skipped elsewhere (`what` in the note).
@@ -28,8 +33,14 @@ struct Deferred {
     std::vector<UnreadReflectance> unreadReflectances;
     /// Top-level <texture>s: read only through a BSDF, which then is an unread reflectance.
     std::vector<std::pair<pugi::xml_node, std::string>> textures;
-    /// Emitters of types no integrator of ours uses (directional, spot, projector, envmap): skipped.
-    std::vector<std::pair<pugi::xml_node, std::string>> otherEmitters;
+    /// Top-level emitters read only by the integrators that declare their kind (spot, directional), or by none
+    /// (projector, envmap: Unmodelled): read, refused or skipped with a note once the integrator is known.
+    struct OtherEmitter {
+        pugi::xml_node node;
+        std::string what;
+        EmitterKind kind;
+    };
+    std::vector<OtherEmitter> otherEmitters;
     /// <medium>s and references to them: no integrator of ours traces media, nor do the Mitsuba integrators
     /// they are compared with (direct, aov), so they are skipped.
     std::vector<std::pair<pugi::xml_node, std::string>> media;

@@ -26,6 +26,7 @@ struct Mesh {
     std::vector<uint32_t> indices;   ///< three per triangle, counter-clockwise seen from the front
     Color reflectance{0.5f, 0.5f, 0.5f};
     std::optional<Color> backReflectance;  ///< two-sided (Mitsuba's twosided): the back's; none: black from behind
+    std::optional<Color> areaRadiance;     ///< its <emitter type="area">'s radiance, where the integrator reads it
 };
 
 /// Mitsuba's `sphere` in world space, intersected exactly rather than tessellated.
@@ -36,6 +37,7 @@ struct Sphere {
     bool flipNormals = false;        ///< front side inside: flip_normals, or a mirroring to_world (as Mitsuba)
     Color reflectance{0.5f, 0.5f, 0.5f};
     std::optional<Color> backReflectance;  ///< two-sided (Mitsuba's twosided): the back's; none: black from behind
+    std::optional<Color> areaRadiance;     ///< its <emitter type="area">'s radiance, where the integrator reads it
 };
 
 /// Mitsuba's `disk`: the unit disk at z = 0 of object space under an affine to_world, intersected exactly.
@@ -45,6 +47,7 @@ struct Disk {
     bool flipNormals = false;        ///< flip_normals: the front is object-space -z
     Color reflectance{0.5f, 0.5f, 0.5f};
     std::optional<Color> backReflectance;  ///< two-sided (Mitsuba's twosided): the back's; none: black from behind
+    std::optional<Color> areaRadiance;     ///< its <emitter type="area">'s radiance, where the integrator reads it
 };
 
 /// Mitsuba's `cylinder`: the open unit cylinder (radius 1, z in [0, 1]) of object space under
@@ -55,12 +58,27 @@ struct Cylinder {
     bool flipNormals = false;        ///< flip_normals: the normals point inward
     Color reflectance{0.5f, 0.5f, 0.5f};
     std::optional<Color> backReflectance;  ///< two-sided (Mitsuba's twosided): the back's; none: black from behind
+    std::optional<Color> areaRadiance;     ///< its <emitter type="area">'s radiance, where the integrator reads it
 };
 
 /// An isotropic point light; intensity in W/sr.
 struct PointLight {
     Vec3f position;
     Color intensity;
+};
+
+/// Mitsuba's `spot`: a point light at to_world's origin shining along its +z; intensity in W/sr on the axis.
+struct SpotLight {
+    Transform toWorld;
+    Color intensity{1.f, 1.f, 1.f};
+    float cutoffAngle = 20.f;        ///< degrees: no light beyond
+    float beamWidth = 15.f;          ///< degrees: full intensity within (Mitsuba's default: 3/4 of the cutoff)
+};
+
+/// Mitsuba's `directional`: light from infinitely far away along one direction; irradiance in W/m^2.
+struct DirectionalLight {
+    Vec3f direction{0.f, 0.f, 1.f};  ///< where the light travels (unit)
+    Color irradiance{1.f, 1.f, 1.f};
 };
 
 /// Mitsuba's `perspective` or `orthographic` sensor.
@@ -122,6 +140,8 @@ struct SceneDescription {
     std::vector<Disk> disks;
     std::vector<Cylinder> cylinders;
     std::vector<PointLight> pointLights;
+    std::vector<SpotLight> spotLights;                ///< read where the integrator reads spot lights
+    std::vector<DirectionalLight> directionalLights;  ///< read where the integrator reads directional lights
     std::optional<Color> environment;  ///< radiance of the `constant` emitter, if any
     /// The file's <integrator>'s `hide_emitters`, whatever its type (nested ones included): every Mitsuba
     /// integrator reads it with one meaning, so it holds for the chosen integrator too. Unset: not given.

@@ -111,7 +111,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "  <shape type=\"ply\"><string name=\"filename\" value=\"nowhere.ply\"/></shape>\n</scene>\n",
                 "nowhere.ply", 3},
         BadCase{"bad_integrator", std::string(kHeader) + sensor() + kShape + "  <integrator type=\"path\"/>\n</scene>\n",
-                "unsupported integrator type \"path\": expected albedo, ao, ao_uniform, normals or simple", 4},
+                "unsupported integrator type \"path\": expected albedo, ao, ao_uniform, every_emitter, normals or simple", 4},
         BadCase{"bad_rfilter", std::string(kHeader) +
                 "  <sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n    <film type=\"hdrfilm\">\n"
                 "      <rfilter type=\"lanczos\"/></film></sensor>\n" + kShape + "</scene>\n",
