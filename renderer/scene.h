@@ -10,22 +10,21 @@
 #include <vector>
 
 #include "affine.h"
+#include "bsdfs/bsdf.h"
 #include "sampler.h"
 #include "transform.h"
 #include "vector.h"
 
 namespace mcval {
 
-using Color = Vec3f;  ///< linear RGB
 
-/// A triangle mesh in world space with its diffuse reflectance.
+/// A triangle mesh in world space with its BSDF.
 struct Mesh {
     std::string name;                ///< what the scene called it (for messages)
     std::vector<Vec3f> positions;
     std::vector<Vec3f> normals;      ///< per vertex; empty for flat shading
     std::vector<uint32_t> indices;   ///< three per triangle, counter-clockwise seen from the front
-    Color reflectance{0.5f, 0.5f, 0.5f};
-    std::optional<Color> backReflectance;  ///< two-sided (Mitsuba's twosided): the back's; none: black from behind
+    uint32_t bsdf = 0;               ///< its BSDF: an index into SceneDescription::bsdfs (0: the default)
     std::optional<Color> areaRadiance;     ///< its <emitter type="area">'s radiance, where the integrator reads it
 };
 
@@ -35,8 +34,7 @@ struct Sphere {
     Vec3f center;
     float radius = 1.f;
     bool flipNormals = false;        ///< front side inside: flip_normals, or a mirroring to_world (as Mitsuba)
-    Color reflectance{0.5f, 0.5f, 0.5f};
-    std::optional<Color> backReflectance;  ///< two-sided (Mitsuba's twosided): the back's; none: black from behind
+    uint32_t bsdf = 0;               ///< its BSDF: an index into SceneDescription::bsdfs (0: the default)
     std::optional<Color> areaRadiance;     ///< its <emitter type="area">'s radiance, where the integrator reads it
 };
 
@@ -45,8 +43,7 @@ struct Disk {
     std::string name;                ///< what the scene called it (for messages)
     Affine toWorld;
     bool flipNormals = false;        ///< flip_normals: the front is object-space -z
-    Color reflectance{0.5f, 0.5f, 0.5f};
-    std::optional<Color> backReflectance;  ///< two-sided (Mitsuba's twosided): the back's; none: black from behind
+    uint32_t bsdf = 0;               ///< its BSDF: an index into SceneDescription::bsdfs (0: the default)
     std::optional<Color> areaRadiance;     ///< its <emitter type="area">'s radiance, where the integrator reads it
 };
 
@@ -56,8 +53,7 @@ struct Cylinder {
     std::string name;                ///< what the scene called it (for messages)
     Affine toWorld;
     bool flipNormals = false;        ///< flip_normals: the normals point inward
-    Color reflectance{0.5f, 0.5f, 0.5f};
-    std::optional<Color> backReflectance;  ///< two-sided (Mitsuba's twosided): the back's; none: black from behind
+    uint32_t bsdf = 0;               ///< its BSDF: an index into SceneDescription::bsdfs (0: the default)
     std::optional<Color> areaRadiance;     ///< its <emitter type="area">'s radiance, where the integrator reads it
 };
 
@@ -139,6 +135,8 @@ struct SceneDescription {
     std::vector<Sphere> spheres;
     std::vector<Disk> disks;
     std::vector<Cylinder> cylinders;
+    /// The BSDFs the shapes name; the first is Mitsuba's default (diffuse, reflectance 0.5), a shape's without one.
+    BsdfList bsdfs = defaultBsdfs();
     std::vector<PointLight> pointLights;
     std::vector<SpotLight> spotLights;                ///< read where the integrator reads spot lights
     std::vector<DirectionalLight> directionalLights;  ///< read where the integrator reads directional lights

@@ -173,6 +173,7 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
         w.deferred.reads = known->use.emitters;
     }
     loadSetAside(ctx, w);
+    scene.bsdfs = w.defs.list;
     Deferred &deferred = w.deferred;
     std::vector<std::string> skipped;
     if (!w.hasSensor) ctx.fail(root, "the scene has no <sensor type=\"perspective\"> or <sensor type=\"orthographic\">");

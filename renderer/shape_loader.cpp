@@ -41,6 +41,7 @@ struct ShapeChildren {
 ShapeChildren loadShapeChildren(const XmlContext &ctx, const XmlProps &props, Definitions &defs, Deferred &deferred) {
     ShapeChildren out;
     Material &material = out.material;
+    material = defaultBsdf();
     bool hasBsdf = false;
     for (const auto &child : props.objects()) {
         const std::string tag = child.name();
@@ -82,8 +83,7 @@ void appendExact(std::vector<Shape> &list, Shape shape, const std::string &name,
                  const XmlProps &props, Definitions &defs, Deferred &deferred) {
     shape.name = name;
     const ShapeChildren children = loadShapeChildren(ctx, props, defs, deferred);
-    shape.reflectance = children.material.reflectance;
-    shape.backReflectance = children.material.back;
+    shape.bsdf = defs.indexOf(children.material);
     shape.areaRadiance = children.areaRadiance;
     list.push_back(std::move(shape));
 }
@@ -155,8 +155,7 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, Definitions &d
     requireFiniteMesh(ctx, node, mesh);
     mesh.name = name;
     const ShapeChildren children = loadShapeChildren(ctx, props, defs, deferred);
-    mesh.reflectance = children.material.reflectance;
-    mesh.backReflectance = children.material.back;
+    mesh.bsdf = defs.indexOf(children.material);
     mesh.areaRadiance = children.areaRadiance;
     out.meshes.push_back(std::move(mesh));
 }
