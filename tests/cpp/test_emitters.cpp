@@ -209,6 +209,22 @@ TEST(Emitters, HitsNameTheirEmitterInGeometryOrder) {
     down.d = {0.f, 0.f, -1.f};
     ASSERT_TRUE(s.embree->intersect(down, hit));
     EXPECT_EQ(hit.emitter, -1);
+    // A packet of camera rays names them too, lane by lane, and so does a packet built by hand.
+    RayHitPacket rays;
+    HitPacket hits;
+    rays.set(0, true, {0.f, 0.f, 0.f}, {0.f, 0.f, 1.f}, 0.f, 1e30f);
+    rays.set(1, true, {5.f, 0.f, 0.f}, {0.f, 0.f, 1.f}, 0.f, 1e30f);
+    rays.set(2, true, {0.f, 0.f, 0.f}, {0.f, 0.f, -1.f}, 0.f, 1e30f);
+    rays.set(3, true, {0.f, 0.f, 0.f}, {1.f, 0.f, 0.f}, 0.f, 1e30f);  // escapes
+    s.embree->intersect(rays, 4, hits);
+    EXPECT_EQ(hits.hit(0).emitter, 0);
+    EXPECT_EQ(hits.hit(1).emitter, 1);
+    EXPECT_EQ(hits.hit(2).emitter, -1);
+    EXPECT_EQ(hits.hit(3).emitter, -1);
+    HitPacket byHand;
+    byHand.clearHit(0);
+    byHand.setHit(0, hits.hit(1));
+    EXPECT_EQ(byHand.hit(0).emitter, 1);
 }
 
 TEST(Emitters, TheIrradianceOfADiskARectangleAndASphereIsTheClosedForm) {
