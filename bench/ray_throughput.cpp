@@ -113,7 +113,7 @@ int main(int argc, char **argv) {
     CLI11_PARSE(app, argc, argv);
 
     const SceneDescription scene = loadScene(scenePath);
-    const EmbreeScene embree(scene.meshes, scene.spheres, scene.disks, scene.cylinders);
+    const EmbreeScene embree(scene.meshes, scene.spheres, scene.disks, scene.cylinders, scene.bsdfs);
     std::printf("%s: %dx%d, %d spp, %zu triangles; medians of %d runs\n", scenePath.c_str(), scene.film.width,
                 scene.film.height, spp, [&] { size_t n = 0; for (const Mesh &m : scene.meshes) n += m.indices.size() / 3; return n; }(),
                 repeats);

@@ -3,6 +3,9 @@
 #include <string>
 #include <vector>
 
+#include "bsdfs/diffuse.h"
+#include "bsdfs/twosided.h"
+
 namespace mcval {
 
 namespace {
@@ -23,13 +26,13 @@ Material readDiffuse(const XmlContext &ctx, const pugi::xml_node &node, Deferred
     if (!unread.empty()) {
         deferred.unreadReflectances.push_back(
             {node, "<bsdf type=\"diffuse\">" + at(ctx, node) + " (reflectance: " + unread + ")", unread});
-        return {};
+        return defaultBsdf();
     }
     const Color rho = props.getColor("reflectance", {0.5f, 0.5f, 0.5f});
     props.requireRange("reflectance", rho, 0.f, 1.f);
     props.finish("reflectance");
     if (!props.objects().empty()) ctx.fail(props.objects()[0], "unexpected element inside <bsdf>");
-    return {rho, std::nullopt};
+    return std::make_shared<DiffuseBsdf>(rho);
 }
 
 /// Mitsuba's twosided: its first bsdf on the front, its second (or the first again) on the back, each side
@@ -49,7 +52,7 @@ Material readTwoSided(const XmlContext &ctx, const pugi::xml_node &node, Definit
                                       : resolveBsdfRef(ctx, child, defs, deferred, depth + 1));
     }
     if (sides.empty()) ctx.fail(node, "a twosided bsdf needs a nested <bsdf> or <ref> (its one-sided material)");
-    return {sides[0].reflectance, sides.back().reflectance};
+    return std::make_shared<TwoSidedBsdf>(sides[0], sides.back());
 }
 
 Material readBsdf(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs, Deferred &deferred,
@@ -63,7 +66,7 @@ Material readBsdf(const XmlContext &ctx, const pugi::xml_node &node, Definitions
     if (type == "diffuse") return readDiffuse(ctx, node, deferred);
     // Only `normals` can ignore it; whether that is allowed is decided when the integrator is known.
     deferred.nonDiffuseBsdfs.emplace_back(node, "<bsdf type=\"" + type + "\">" + at(ctx, node));
-    return {};
+    return defaultBsdf();
 }
 
 }  // namespace

@@ -42,7 +42,7 @@ float halfExtent(const std::vector<Vec3f> &points) {
 }  // namespace
 
 EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphere> &spheres,
-                         const std::vector<Disk> &disks, const std::vector<Cylinder> &cylinders)
+                         const std::vector<Disk> &disks, const std::vector<Cylinder> &cylinders, const BsdfList &bsdfs)
     : m_meshes(meshes), m_spheres(spheres), m_disks(disks), m_cylinders(cylinders) {
     m_device = rtcNewDevice(nullptr);
     if (!m_device) throw std::runtime_error("cannot create an Embree device");
@@ -81,7 +81,7 @@ EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphe
         rtcCommitGeometry(geom);
         rtcAttachGeometry(m_scene, geom);  // ids follow mesh order
         rtcReleaseGeometry(geom);
-        addMaterial(mesh.reflectance, mesh.backReflectance);
+        addMaterial(bsdfs, mesh.bsdf, mesh.areaRadiance.has_value());
         m_firstTriangle.push_back(static_cast<uint32_t>(m_triangles.size()));
         m_firstNormals.push_back(mesh.normals.empty() ? kFlat : static_cast<uint32_t>(m_normals.size()));
         for (size_t f = 0; f < mesh.indices.size() / 3; ++f) {
@@ -97,19 +97,19 @@ EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphe
     m_normals.push_back({});
     for (const Sphere &sphere : spheres) {
         attachSphere(m_device, m_scene, sphere);  // ids after the meshes'
-        addMaterial(sphere.reflectance, sphere.backReflectance);
+        addMaterial(bsdfs, sphere.bsdf, sphere.areaRadiance.has_value());
         smallest = std::min(smallest, sphere.radius);
     }
     m_firstDisk = static_cast<uint32_t>(meshes.size() + spheres.size());
     m_firstCylinder = m_firstDisk + static_cast<uint32_t>(m_disks.size());
     for (const Disk &disk : m_disks) {
         attachUserGeometry(m_device, m_scene, disk);  // ids after the spheres'
-        addMaterial(disk.reflectance, disk.backReflectance);
+        addMaterial(bsdfs, disk.bsdf, disk.areaRadiance.has_value());
         smallest = std::min(smallest, float(shapeSize(disk)));
     }
     for (const Cylinder &cylinder : m_cylinders) {
         attachUserGeometry(m_device, m_scene, cylinder);  // ids after the disks'
-        addMaterial(cylinder.reflectance, cylinder.backReflectance);
+        addMaterial(bsdfs, cylinder.bsdf, cylinder.areaRadiance.has_value());
         smallest = std::min(smallest, float(shapeSize(cylinder)));
     }
     if (std::isfinite(smallest)) m_offsetFloor = kOffsetFloorPerSize * smallest;
@@ -122,10 +122,15 @@ EmbreeScene::EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphe
     }
 }
 
-void EmbreeScene::addMaterial(const Color &front, const std::optional<Color> &back) {
-    m_reflectance.push_back(front);
-    m_backReflectance.push_back(back.value_or(Color(0.f, 0.f, 0.f)));
-    m_twoSided.push_back(back.has_value() ? 1 : 0);
+void EmbreeScene::addMaterial(const BsdfList &bsdfs, uint32_t index, bool emits) {
+    m_emitterOf.push_back(emits ? m_areaEmitters++ : -1);
+    const std::shared_ptr<const Bsdf> &bsdf = index < bsdfs.size() ? bsdfs[index] : defaultBsdf();
+    m_bsdf.push_back(bsdf);
+    // The packet paths' tables: a side that is not Lambertian reads 0 there (its integrator refused it).
+    const Color black(0.f, 0.f, 0.f);
+    m_reflectance.push_back(bsdf->lambertianAlbedo(true).value_or(black));
+    m_twoSided.push_back(bsdf->twoSided() ? 1 : 0);
+    m_backReflectance.push_back(bsdf->twoSided() ? bsdf->lambertianAlbedo(false).value_or(black) : black);
 }
 
 EmbreeScene::~EmbreeScene() {

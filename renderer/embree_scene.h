@@ -58,9 +58,11 @@ class EmbreeScene {
 public:
     /// Builds the BVH over all meshes and exact shapes; meshes and spheres must outlive this object
     /// (disks and cylinders are copied). Geometry ids are the meshes' indices, then the spheres', the
-    /// disks' and the cylinders' after them.
+    /// disks' and the cylinders' after them. Shapes name their BSDF in `bsdfs` (an index past its end, as
+    /// with none given: Mitsuba's default diffuse 0.5).
     explicit EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphere> &spheres = {},
-                         const std::vector<Disk> &disks = {}, const std::vector<Cylinder> &cylinders = {});
+                         const std::vector<Disk> &disks = {}, const std::vector<Cylinder> &cylinders = {},
+                         const BsdfList &bsdfs = {});
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene &) = delete;
     EmbreeScene &operator=(const EmbreeScene &) = delete;
@@ -81,13 +83,21 @@ public:
     /// Traces the set lanes of `packet` (nothing if none); read the answers with packet.blocked(i).
     void occluded(OcclusionPacket &packet, bool coherent) const;
 
-    /// The diffuse reflectance of geometry `geom` (Hit::geom), whatever the shape.
+    /// The BSDF of geometry `geom` (Hit::geom), whatever the shape.
+    const Bsdf &bsdf(uint32_t geom) const { return *m_bsdf[geom]; }
+    /// The Lambertian albedo of the front of geometry `geom` (its BSDF's lambertianAlbedo, 0 where that side
+    /// is not Lambertian), in one flat table for the packet paths (simple, ao).
     const Color &reflectance(uint32_t geom) const { return m_reflectance[geom]; }
     /// Whether geometry `geom` is lit from behind too (Mitsuba's twosided bsdf), as a diffuse surface whose
     /// normal faces the ray; a one-sided one is black from behind.
     bool twoSided(uint32_t geom) const { return m_twoSided[geom] != 0; }
-    /// The diffuse reflectance of the back of a two-sided geometry `geom` (black for a one-sided one).
+    /// The Lambertian albedo of the back of a two-sided geometry `geom` (black for a one-sided one).
     const Color &backReflectance(uint32_t geom) const { return m_backReflectance[geom]; }
+    /// The area emitter of geometry `geom` (Hit::emitter): its index in SceneEmitters, whose list starts
+    /// with the emitting shapes in geometry order; -1 for a shape that does not emit.
+    int emitter(uint32_t geom) const { return m_emitterOf[geom]; }
+    /// The table of emitter() by geometry id (HitPacket::emitterOf).
+    const int *emitterTable() const { return m_emitterOf.data(); }
 
 private:
     /// Position and normals of a hit: on triangle prim of a mesh at barycentrics (u, v), or on an
@@ -120,12 +130,16 @@ private:
     std::vector<Disk> m_disks;          ///< copies: Embree holds pointers to them, so never resized
     std::vector<Cylinder> m_cylinders;
     uint32_t m_firstDisk = 0, m_firstCylinder = 0;  ///< their first geometry ids
-    /// Adds the next geometry id's material.
-    void addMaterial(const Color &front, const std::optional<Color> &back);
+    /// Adds the next geometry id's BSDF (bsdfs[index], the default past its end) and its emitter index (-1 if
+    /// it does not emit).
+    void addMaterial(const BsdfList &bsdfs, uint32_t index, bool emits);
 
+    std::vector<std::shared_ptr<const Bsdf>> m_bsdf;  ///< by geometry id
     std::vector<Color> m_reflectance;  ///< by geometry id: one table whatever the shape
     std::vector<Color> m_backReflectance;
     std::vector<uint8_t> m_twoSided;
+    std::vector<int> m_emitterOf;      ///< by geometry id: emitter()
+    int m_areaEmitters = 0;            ///< emitting shapes so far
     /// Every mesh's triangles, then a zero record that lanes without a triangle read harmlessly.
     std::vector<TriangleRecord> m_triangles;
     std::vector<TriangleNormals> m_normals;            ///< the smooth meshes' triangles, then a zero record

@@ -55,6 +55,7 @@ __attribute__((always_inline)) inline void EmbreeScene::fillHit(const Ray &ray, 
     hit.geom = geom;
     hit.prim = prim;
     hit.offsetFloor = m_offsetFloor;
+    hit.emitter = m_emitterOf[geom];
     if (geom >= m_meshes.size()) {
         // An exact shape: the exact point and normal; its shading normal is its geometric one.
         if (geom < m_firstDisk)
@@ -120,6 +121,7 @@ MCVAL_HOT void EmbreeScene::fillHits(const RTCRayHit16 &rh, int count, HitPacket
         others += found & (h.geomID[i] >= m_firstDisk);
     }
     hits.offsetFloor = m_offsetFloor;
+    hits.emitterOf = m_emitterOf.data();
     if (spheres != 0) fillSphereHits(rh, hits);
     if (others != 0) fillDiskCylinderHits(rh, hits);
 }

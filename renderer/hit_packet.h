@@ -22,6 +22,10 @@ struct HitPacket {
     alignas(64) uint32_t geom[kPacketSize], prim[kPacketSize];
     alignas(64) int found[kPacketSize];
     float offsetFloor = 0.f;  ///< Hit::offsetFloor, the same for every hit of a scene
+    /// Hit::emitter by geometry id (the scene's table, which its trace sets), read by hit(i) only: the SIMD
+    /// loops that do not ask for emitters pay nothing for them. nullptr: the lanes' own, as setHit gave them.
+    const int *emitterOf = nullptr;
+    alignas(64) int emitter[kPacketSize];  ///< Hit::emitter of lanes set by setHit (where emitterOf is nullptr)
 
     Ray ray(int i) const {
         Ray r;
@@ -40,6 +44,7 @@ struct HitPacket {
         h.geom = geom[i];
         h.prim = prim[i];
         h.offsetFloor = offsetFloor;
+        h.emitter = !found[i] ? -1 : emitterOf ? emitterOf[geom[i]] : emitter[i];
         return h;
     }
     void setRay(int i, const Ray &r) {
@@ -48,6 +53,7 @@ struct HitPacket {
         tnear[i] = r.tnear;
         tfar[i] = r.tfar;
     }
+    /// Lane i's hit, its emitter included (for a packet whose emitterOf is nullptr, as one built by hand).
     void setHit(int i, const Hit &h) {
         t[i] = h.t;
         px[i] = h.p.x; py[i] = h.p.y; pz[i] = h.p.z;
@@ -56,12 +62,14 @@ struct HitPacket {
         geom[i] = h.geom;
         prim[i] = h.prim;
         offsetFloor = h.offsetFloor;
+        emitter[i] = h.emitter;
         found[i] = 1;
     }
     /// Lane i without a hit: zeros.
     void clearHit(int i) {
         t[i] = px[i] = py[i] = pz[i] = gx[i] = gy[i] = gz[i] = nx[i] = ny[i] = nz[i] = 0.f;
         geom[i] = prim[i] = 0;
+        emitter[i] = -1;
         found[i] = 0;
     }
     /// Whether lane i hit the front of its surface (the side its shading normal points to): one-sided

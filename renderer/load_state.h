@@ -12,12 +12,17 @@
 
 #include <pugixml.hpp>
 
+#include "emitters/emitter.h"
 #include "scene.h"
 
 namespace mcval {
 
 /// Elements the chosen integrator may not use, judged once the integrator is known.
 struct Deferred {
+    /// The emitter kinds the chosen integrator reads, once it is known (`known`): a shape's area emitter is
+    /// then read where it stands, or kept aside to be skipped with a note.
+    EmitterKinds reads;
+    bool known = false;
     std::vector<std::pair<pugi::xml_node, std::string>> nonDiffuseBsdfs, areaEmitters;
     /// A diffuse BSDF whose reflectance we cannot read (`given`: a texture, a per-wavelength spectrum):
     /// refused where the integrator reads the reflectance, skipped elsewhere (`what` in the note).
@@ -28,8 +33,14 @@ struct Deferred {
     std::vector<UnreadReflectance> unreadReflectances;
     /// Top-level <texture>s: read only through a BSDF, which then is an unread reflectance.
     std::vector<std::pair<pugi::xml_node, std::string>> textures;
-    /// Emitters of types no integrator of ours uses (directional, spot, projector, envmap): skipped.
-    std::vector<std::pair<pugi::xml_node, std::string>> otherEmitters;
+    /// Top-level emitters read only by the integrators that declare their kind (spot, directional), or by none
+    /// (projector, envmap: Unmodelled): read, refused or skipped with a note once the integrator is known.
+    struct OtherEmitter {
+        pugi::xml_node node;
+        std::string what;
+        EmitterKind kind;
+    };
+    std::vector<OtherEmitter> otherEmitters;
     /// <medium>s and references to them: no integrator of ours traces media, nor do the Mitsuba integrators
     /// they are compared with (direct, aov), so they are skipped.
     std::vector<std::pair<pugi::xml_node, std::string>> media;
@@ -45,18 +56,24 @@ struct ShapeGroup {
     std::vector<Cylinder> cylinders;
 };
 
-/// A surface's material as the integrators see it: Mitsuba's diffuse (black from behind), or a twosided
-/// bsdf around diffuse ones (the back's reflectance too).
-struct Material {
-    Color reflectance{0.5f, 0.5f, 0.5f};
-    std::optional<Color> back;  ///< two-sided: the back's reflectance
-};
+/// A surface's material as the loader reads it: its BSDF (Mitsuba's diffuse, black from behind, or a twosided
+/// around diffuse ones).
+using Material = std::shared_ptr<const Bsdf>;
 
 /// What the file defines, for a <ref id>: bsdfs (their material) and shapegroups, which only an instance may
 /// refer to. Mitsuba resolves references once the whole file is read, so a <ref> may precede its definition.
 struct Definitions {
     std::map<std::string, pugi::xml_node> bsdfNodes;  ///< every <bsdf id> of the file (registerBsdfs)
     std::map<std::string, Material> bsdfs;            ///< those read so far
+    BsdfList list = defaultBsdfs();                   ///< the scene's BSDFs, which shapes name by index
+    std::map<const Bsdf *, uint32_t> indices;          ///< where each of them is in `list`
+    /// The index in `list` of `material` (added the first time): what a shape holds.
+    uint32_t indexOf(const Material &material) {
+        if (material == list[0]) return 0;
+        const auto [it, added] = indices.emplace(material.get(), uint32_t(list.size()));
+        if (added) list.push_back(material);
+        return it->second;
+    }
     std::set<std::string> reading;                    ///< ids being read: a reference back to one is a cycle
     std::map<std::string, ShapeGroup> groups;
     uint64_t instancedTriangles = 0, instancedShapes = 0;  ///< copies made by instances so far (bounded)

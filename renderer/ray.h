@@ -31,6 +31,7 @@ struct Hit {
     uint32_t geom = 0;  ///< Embree geometry id: a mesh's index, or an exact shape's after the meshes
     uint32_t prim = 0;
     float offsetFloor = 0.f;  ///< smallest offset of a ray leaving the hit (offsetRayOrigin)
+    int emitter = -1;   ///< the area emitter of the surface hit (an index into SceneEmitters), or -1
 };
 
 /// Moves p off its surface to the side of n (the unit geometric normal, flipped toward where the

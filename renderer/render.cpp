@@ -257,7 +257,7 @@ RenderOutput render(const SceneDescription &scene, const RenderOptions &options)
 
     workersStart();
     auto start = std::chrono::steady_clock::now();
-    const EmbreeScene embree(scene.meshes, scene.spheres, scene.disks, scene.cylinders);
+    const EmbreeScene embree(scene.meshes, scene.spheres, scene.disks, scene.cylinders, scene.bsdfs);
     const auto integrator = createIntegrator(spec, scene, embree);  // validates the name before any work
     out.stats.bvhSeconds = secondsSince(start);
 

@@ -10,22 +10,22 @@
 #include <vector>
 
 #include "affine.h"
+#include "bsdfs/bsdf.h"
 #include "sampler.h"
 #include "transform.h"
 #include "vector.h"
 
 namespace mcval {
 
-using Color = Vec3f;  ///< linear RGB
 
-/// A triangle mesh in world space with its diffuse reflectance.
+/// A triangle mesh in world space with its BSDF.
 struct Mesh {
     std::string name;                ///< what the scene called it (for messages)
     std::vector<Vec3f> positions;
     std::vector<Vec3f> normals;      ///< per vertex; empty for flat shading
     std::vector<uint32_t> indices;   ///< three per triangle, counter-clockwise seen from the front
-    Color reflectance{0.5f, 0.5f, 0.5f};
-    std::optional<Color> backReflectance;  ///< two-sided (Mitsuba's twosided): the back's; none: black from behind
+    uint32_t bsdf = 0;               ///< its BSDF: an index into SceneDescription::bsdfs (0: the default)
+    std::optional<Color> areaRadiance;     ///< its <emitter type="area">'s radiance, where the integrator reads it
 };
 
 /// Mitsuba's `sphere` in world space, intersected exactly rather than tessellated.
@@ -34,8 +34,8 @@ struct Sphere {
     Vec3f center;
     float radius = 1.f;
     bool flipNormals = false;        ///< front side inside: flip_normals, or a mirroring to_world (as Mitsuba)
-    Color reflectance{0.5f, 0.5f, 0.5f};
-    std::optional<Color> backReflectance;  ///< two-sided (Mitsuba's twosided): the back's; none: black from behind
+    uint32_t bsdf = 0;               ///< its BSDF: an index into SceneDescription::bsdfs (0: the default)
+    std::optional<Color> areaRadiance;     ///< its <emitter type="area">'s radiance, where the integrator reads it
 };
 
 /// Mitsuba's `disk`: the unit disk at z = 0 of object space under an affine to_world, intersected exactly.
@@ -43,8 +43,8 @@ struct Disk {
     std::string name;                ///< what the scene called it (for messages)
     Affine toWorld;
     bool flipNormals = false;        ///< flip_normals: the front is object-space -z
-    Color reflectance{0.5f, 0.5f, 0.5f};
-    std::optional<Color> backReflectance;  ///< two-sided (Mitsuba's twosided): the back's; none: black from behind
+    uint32_t bsdf = 0;               ///< its BSDF: an index into SceneDescription::bsdfs (0: the default)
+    std::optional<Color> areaRadiance;     ///< its <emitter type="area">'s radiance, where the integrator reads it
 };
 
 /// Mitsuba's `cylinder`: the open unit cylinder (radius 1, z in [0, 1]) of object space under
@@ -53,14 +53,28 @@ struct Cylinder {
     std::string name;                ///< what the scene called it (for messages)
     Affine toWorld;
     bool flipNormals = false;        ///< flip_normals: the normals point inward
-    Color reflectance{0.5f, 0.5f, 0.5f};
-    std::optional<Color> backReflectance;  ///< two-sided (Mitsuba's twosided): the back's; none: black from behind
+    uint32_t bsdf = 0;               ///< its BSDF: an index into SceneDescription::bsdfs (0: the default)
+    std::optional<Color> areaRadiance;     ///< its <emitter type="area">'s radiance, where the integrator reads it
 };
 
 /// An isotropic point light; intensity in W/sr.
 struct PointLight {
     Vec3f position;
     Color intensity;
+};
+
+/// Mitsuba's `spot`: a point light at to_world's origin shining along its +z; intensity in W/sr on the axis.
+struct SpotLight {
+    Transform toWorld;
+    Color intensity{1.f, 1.f, 1.f};
+    float cutoffAngle = 20.f;        ///< degrees: no light beyond
+    float beamWidth = 15.f;          ///< degrees: full intensity within (Mitsuba's default: 3/4 of the cutoff)
+};
+
+/// Mitsuba's `directional`: light from infinitely far away along one direction; irradiance in W/m^2.
+struct DirectionalLight {
+    Vec3f direction{0.f, 0.f, 1.f};  ///< where the light travels (unit)
+    Color irradiance{1.f, 1.f, 1.f};
 };
 
 /// Mitsuba's `perspective` or `orthographic` sensor.
@@ -121,7 +135,11 @@ struct SceneDescription {
     std::vector<Sphere> spheres;
     std::vector<Disk> disks;
     std::vector<Cylinder> cylinders;
+    /// The BSDFs the shapes name; the first is Mitsuba's default (diffuse, reflectance 0.5), a shape's without one.
+    BsdfList bsdfs = defaultBsdfs();
     std::vector<PointLight> pointLights;
+    std::vector<SpotLight> spotLights;                ///< read where the integrator reads spot lights
+    std::vector<DirectionalLight> directionalLights;  ///< read where the integrator reads directional lights
     std::optional<Color> environment;  ///< radiance of the `constant` emitter, if any
     /// The file's <integrator>'s `hide_emitters`, whatever its type (nested ones included): every Mitsuba
     /// integrator reads it with one meaning, so it holds for the chosen integrator too. Unset: not given.

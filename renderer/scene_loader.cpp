@@ -167,7 +167,13 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     Walk w(scene, integrator);
     std::error_code ec;
     walkElements(ctx, root, w, {fs::weakly_canonical(path, ec).string()});
+    // The integrator is known now (the caller's, else the file's): shapes read the emitters it reads.
+    if (const IntegratorInfo *known = findIntegrator(integrator.empty() ? scene.integrator.type : integrator)) {
+        w.deferred.known = true;
+        w.deferred.reads = known->use.emitters;
+    }
     loadSetAside(ctx, w);
+    scene.bsdfs = w.defs.list;
     Deferred &deferred = w.deferred;
     std::vector<std::string> skipped;
     if (!w.hasSensor) ctx.fail(root, "the scene has no <sensor type=\"perspective\"> or <sensor type=\"orthographic\">");
@@ -185,11 +191,9 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     }
     if (info->use.needsPointLight && scene.pointLights.empty())
         ctx.fail(root, "the scene has no point light, the only emitter the " + chosen + " integrator uses");
-    for (const auto &[node, what] : deferred.areaEmitters) {
-        if (info->use.areaEmittersLight) ctx.fail(node, "the " + chosen + " integrator does not model area emitters");
-        skipped.push_back(what);
-    }
-    for (const auto &[node, what] : deferred.otherEmitters) skipped.push_back(what);
+    // An area emitter kept aside is one the integrator does not read (those it reads are on their shapes).
+    for (const auto &[node, what] : deferred.areaEmitters) skipped.push_back(what);
+    judgeOtherEmitters(ctx, deferred, chosen, scene, skipped);
     for (const auto &[node, what] : deferred.media) skipped.push_back(what);
     for (const auto &[node, what] : deferred.unreferencedBsdfs) skipped.push_back(what);
     for (const auto &[node, what] : deferred.textures) skipped.push_back(what);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "disk_cylinder_loader.h"
+#include "emitter_loader.h"
 #include "error.h"
 #include "mesh.h"
 #include "scene_limits.h"
@@ -29,17 +30,30 @@ bool inRange(const Vec3f &p, float bound) {
     return std::abs(p.x) <= bound && std::abs(p.y) <= bound && std::abs(p.z) <= bound;  // false for NaN
 }
 
-/// The shape's one <bsdf> or <ref> (its material; the default without one) and its area emitter and media,
-/// whatever the shape.
-Material loadShapeChildren(const XmlContext &ctx, const XmlProps &props, Definitions &defs, Deferred &deferred) {
+/// What a shape holds besides its geometry: its material and, where the integrator reads it, its area emitter.
+struct ShapeChildren {
     Material material;
+    std::optional<Color> areaRadiance;
+};
+
+/// The shape's one <bsdf> or <ref> (its material; the default without one) and its area emitter (read where
+/// the integrator reads area emitters, kept aside to be judged otherwise) and media, whatever the shape.
+ShapeChildren loadShapeChildren(const XmlContext &ctx, const XmlProps &props, Definitions &defs, Deferred &deferred) {
+    ShapeChildren out;
+    Material &material = out.material;
+    material = defaultBsdf();
     bool hasBsdf = false;
     for (const auto &child : props.objects()) {
         const std::string tag = child.name();
         if (tag == "emitter") {
             if (typeOf(ctx, child) != "area") ctx.fail(child, "a shape's emitter must be of type \"area\"");
-            deferred.areaEmitters.emplace_back(child, "<emitter type=\"area\"> at line " +
-                                                          std::to_string(ctx.line(child)));
+            if (deferred.known && deferred.reads.has(EmitterKind::Area)) {
+                if (out.areaRadiance) ctx.fail(child, "a shape takes one area emitter");
+                out.areaRadiance = readAreaRadiance(ctx, child);
+            } else {
+                deferred.areaEmitters.emplace_back(child, "<emitter type=\"area\"> at line " +
+                                                              std::to_string(ctx.line(child)));
+            }
             continue;
         }
         // The media on either side of the surface (interior, exterior), inline or by reference.
@@ -59,7 +73,7 @@ Material loadShapeChildren(const XmlContext &ctx, const XmlProps &props, Definit
         }
         hasBsdf = true;
     }
-    return material;
+    return out;
 }
 
 /// An exact shape (sphere, disk, cylinder), already read from `props`, with its name and its bsdf's
@@ -68,9 +82,9 @@ template <typename Shape>
 void appendExact(std::vector<Shape> &list, Shape shape, const std::string &name, const XmlContext &ctx,
                  const XmlProps &props, Definitions &defs, Deferred &deferred) {
     shape.name = name;
-    const Material material = loadShapeChildren(ctx, props, defs, deferred);
-    shape.reflectance = material.reflectance;
-    shape.backReflectance = material.back;
+    const ShapeChildren children = loadShapeChildren(ctx, props, defs, deferred);
+    shape.bsdf = defs.indexOf(children.material);
+    shape.areaRadiance = children.areaRadiance;
     list.push_back(std::move(shape));
 }
 
@@ -140,9 +154,9 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, Definitions &d
     }
     requireFiniteMesh(ctx, node, mesh);
     mesh.name = name;
-    const Material material = loadShapeChildren(ctx, props, defs, deferred);
-    mesh.reflectance = material.reflectance;
-    mesh.backReflectance = material.back;
+    const ShapeChildren children = loadShapeChildren(ctx, props, defs, deferred);
+    mesh.bsdf = defs.indexOf(children.material);
+    mesh.areaRadiance = children.areaRadiance;
     out.meshes.push_back(std::move(mesh));
 }
 

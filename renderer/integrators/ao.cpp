@@ -109,7 +109,7 @@ private:
 MCVAL_REGISTER_INTEGRATOR({
     "ao",
     "ambient occlusion under the constant emitter, cosine-weighted (properties: samples, hide_emitters = true)",
-    SceneUse{/*needsPointLight=*/false, /*areaEmittersLight=*/false, /*readsReflectance=*/true},
+    SceneUse{/*needsPointLight=*/false, /*emitters=*/EmitterKinds{EmitterKind::Constant}, /*readsReflectance=*/true},
     [](XmlProps *props) -> IntegratorMaker {
         int samples = 1;
         if (props) {

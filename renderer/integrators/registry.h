@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "../emitters/emitter.h"
 #include "integrator.h"
 
 namespace mcval {
@@ -17,7 +18,11 @@ class XmlProps;
 /// use and refuses what it cannot model but would change its answer.
 struct SceneUse {
     bool needsPointLight = false;   ///< a scene without a point light is an error
-    bool areaEmittersLight = false; ///< area emitters would light its image (refused) or not (skipped)
+    /// The emitter kinds that light its image: a spot, directional or area emitter of a kind it reads is
+    /// read, one of a kind it does not read is skipped with a note; an emitter this renderer does not model
+    /// (envmap, projector) is refused where it reads EmitterKind::Unmodelled. Point and constant emitters
+    /// are read whatever the integrator.
+    EmitterKinds emitters;
     bool readsReflectance = false;  ///< non-diffuse bsdfs would change its answer (refused) or not (skipped)
 };
 

@@ -89,7 +89,7 @@ private:
 MCVAL_REGISTER_INTEGRATOR({
     "simple",
     "point lights on diffuse surfaces, with shadow rays",
-    SceneUse{/*needsPointLight=*/true, /*areaEmittersLight=*/false, /*readsReflectance=*/true},
+    SceneUse{/*needsPointLight=*/true, /*emitters=*/EmitterKinds{EmitterKind::Point}, /*readsReflectance=*/true},
     [](XmlProps *props) -> IntegratorMaker {
         if (props) props->finish("no properties");
         return [](const SceneDescription &scene, const EmbreeScene &embree) {

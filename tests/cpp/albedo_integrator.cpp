@@ -24,7 +24,7 @@ private:
 MCVAL_REGISTER_INTEGRATOR({
     "albedo",
     "diffuse reflectance at the first hit (test build only)",
-    SceneUse{/*needsPointLight=*/false, /*areaEmittersLight=*/false, /*readsReflectance=*/true},
+    SceneUse{/*needsPointLight=*/false, /*emitters=*/EmitterKinds{}, /*readsReflectance=*/true},
     [](XmlProps *props) -> IntegratorMaker {
         if (props) props->finish("no properties");
         return [](const SceneDescription &, const EmbreeScene &embree) { return std::make_unique<AlbedoIntegrator>(embree); };

@@ -39,7 +39,7 @@ private:
 MCVAL_REGISTER_INTEGRATOR({
     "ao_uniform",
     "ambient occlusion sampled uniformly on the hemisphere, weighted by 2 cos (test build only)",
-    SceneUse{/*needsPointLight=*/false, /*areaEmittersLight=*/false, /*readsReflectance=*/true},
+    SceneUse{/*needsPointLight=*/false, /*emitters=*/EmitterKinds{EmitterKind::Constant}, /*readsReflectance=*/true},
     [](XmlProps *props) -> IntegratorMaker {
         if (props) {
             props->ignore("hide_emitters");

@@ -52,7 +52,7 @@ struct Traced {
     SceneDescription scene;
     EmbreeScene embree;
     explicit Traced(SceneDescription s)
-        : scene(std::move(s)), embree(scene.meshes, scene.spheres, scene.disks, scene.cylinders) {}
+        : scene(std::move(s)), embree(scene.meshes, scene.spheres, scene.disks, scene.cylinders, scene.bsdfs) {}
 
     /// The hit of the ray from o along d; both paths must agree on it.
     bool trace(const Vec3f &o, const Vec3f &d, Hit &hit) const {

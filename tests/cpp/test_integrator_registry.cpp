@@ -16,12 +16,18 @@ namespace fs = std::filesystem;
 TEST(IntegratorRegistry, ListsEveryLinkedIntegratorSorted) {
     // If the linker dropped an integrator's object file (a static library instead of the OBJECT
     // library), its name would be missing here.
-    EXPECT_EQ(integratorNames(), (std::vector<std::string>{"albedo", "ao", "ao_uniform", "normals", "simple"}));
-    EXPECT_EQ(integratorNameList(), "albedo, ao, ao_uniform, normals or simple");
+    // every_emitter is the test binary's own (test_emitter_loader.cpp).
+    EXPECT_EQ(integratorNames(),
+              (std::vector<std::string>{"albedo", "ao", "ao_uniform", "every_emitter", "normals", "simple"}));
+    EXPECT_EQ(integratorNameList(), "albedo, ao, ao_uniform, every_emitter, normals or simple");
     ASSERT_NE(findIntegrator("ao"), nullptr);
     EXPECT_EQ(findIntegrator("path"), nullptr);
     EXPECT_TRUE(findIntegrator("simple")->use.needsPointLight);
     EXPECT_FALSE(findIntegrator("normals")->use.readsReflectance);
+    // The emitter kinds each reads: what the loader keeps for it, and skips with a note otherwise.
+    EXPECT_EQ(findIntegrator("simple")->use.emitters, EmitterKinds{EmitterKind::Point});
+    EXPECT_EQ(findIntegrator("ao")->use.emitters, EmitterKinds{EmitterKind::Constant});
+    EXPECT_TRUE(findIntegrator("normals")->use.emitters.empty());
 }
 
 TEST(IntegratorRegistry, TheTestOnlyAlbedoRendersTheReflectance) {
@@ -50,7 +56,7 @@ TEST(IntegratorRegistry, UnknownNameListsTheChoices) {
         render(scene, options);
         FAIL() << "an unknown integrator rendered";
     } catch (const SceneError &e) {
-        EXPECT_NE(std::string(e.what()).find("unknown integrator \"path\": expected albedo, ao, ao_uniform, normals or simple"),
+        EXPECT_NE(std::string(e.what()).find("unknown integrator \"path\": expected albedo, ao, ao_uniform, every_emitter, normals or simple"),
                   std::string::npos) << e.what();
     }
 }

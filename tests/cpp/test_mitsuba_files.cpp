@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "bsdf_albedo.h"
+
 #include "camera.h"
 #include "error.h"
 #include "render.h"
@@ -77,7 +79,7 @@ TEST(MitsubaFiles, PropertyTypesMitsubaConvertsAreRead) {
         "  <integrator type=\"ao\"><boolean name=\"hide_emitters\" value=\"False\"/></integrator>\n</scene>\n";
     const SceneDescription s = loadScene(writeScene("conversions", body));
     EXPECT_EQ(s.camera.fov, 45.f);
-    EXPECT_EQ(s.meshes.at(0).reflectance.y, 1.f);
+    EXPECT_EQ(test::frontAlbedo(s, s.meshes.at(0)).y, 1.f);
     EXPECT_EQ(s.pointLights.at(0).position.z, 3.f);
     EXPECT_EQ(s.hideEmitters, std::optional<bool>(false));
     // What Mitsuba does not convert stays an error: a float where an integer is read.
@@ -112,9 +114,9 @@ TEST(MitsubaFiles, AReferenceMayPrecedeItsBsdfAndNameANestedOne) {
         "  <shape type=\"cube\"><bsdf type=\"diffuse\" id=\"inner\"><rgb name=\"reflectance\" value=\"0.1\"/></bsdf>"
         "</shape>\n  <bsdf type=\"diffuse\" id=\"later\"><rgb name=\"reflectance\" value=\"0.7\"/></bsdf>\n");
     const SceneDescription s = loadScene(writeScene("forward", body), {}, "ao");
-    EXPECT_EQ(s.meshes.at(0).reflectance.x, 0.7f);
-    EXPECT_EQ(s.spheres.at(0).reflectance.x, 0.1f);
-    EXPECT_EQ(s.meshes.at(1).reflectance.x, 0.1f);
+    EXPECT_EQ(test::frontAlbedo(s, s.meshes.at(0)).x, 0.7f);
+    EXPECT_EQ(test::frontAlbedo(s, s.spheres.at(0)).x, 0.1f);
+    EXPECT_EQ(test::frontAlbedo(s, s.meshes.at(1)).x, 0.1f);
     const std::string cycle = scene("  <shape type=\"cube\"><ref id=\"a\"/></shape>\n"
                                     "  <bsdf type=\"twosided\" id=\"a\"><ref id=\"b\"/></bsdf>\n"
                                     "  <bsdf type=\"twosided\" id=\"b\">\n    <ref id=\"a\"/></bsdf>\n");
@@ -142,12 +144,12 @@ TEST(MitsubaFiles, TwosidedDiffuseIsDiffuseOnBothSides) {
         "<bsdf type=\"diffuse\"><float name=\"reflectance\" value=\"0.2\"/></bsdf></bsdf>\n"
         "  <shape type=\"cube\"><ref id=\"pair\"/></shape>\n  <shape type=\"sphere\"/>\n");
     const SceneDescription s = loadScene(writeScene("twosided", body), {}, "ao");
-    EXPECT_EQ(s.meshes.at(0).reflectance.x, 0.3f);
-    ASSERT_TRUE(s.meshes.at(0).backReflectance.has_value());
-    EXPECT_EQ(s.meshes.at(0).backReflectance->z, 0.3f);
-    EXPECT_EQ(s.meshes.at(1).reflectance.x, 0.5f);
-    EXPECT_EQ(s.meshes.at(1).backReflectance->x, 0.2f);
-    EXPECT_FALSE(s.spheres.at(0).backReflectance.has_value());
+    EXPECT_EQ(test::frontAlbedo(s, s.meshes.at(0)).x, 0.3f);
+    ASSERT_TRUE(test::backAlbedo(s, s.meshes.at(0)).has_value());
+    EXPECT_EQ(test::backAlbedo(s, s.meshes.at(0))->z, 0.3f);
+    EXPECT_EQ(test::frontAlbedo(s, s.meshes.at(1)).x, 0.5f);
+    EXPECT_EQ(test::backAlbedo(s, s.meshes.at(1))->x, 0.2f);
+    EXPECT_FALSE(test::backAlbedo(s, s.spheres.at(0)).has_value());
     // Around a bsdf we cannot model it is refused where the reflectance is read, skipped under normals.
     const std::string plastic = scene("  <shape type=\"rectangle\"><bsdf type=\"twosided\">\n    <bsdf "
                                       "type=\"plastic\"/></bsdf></shape>\n");
@@ -191,14 +193,14 @@ TEST(MitsubaFiles, AMitsuba05FileIsUpgradedAsMitsuba3Upgrades) {
     EXPECT_EQ(s.camera.nearClip, 0.5f);
     EXPECT_EQ(s.camera.farClip, 50.f);
     EXPECT_EQ(s.camera.fovAxis, "y");
-    EXPECT_EQ(s.meshes.at(0).reflectance.x, 0.25f);
+    EXPECT_EQ(test::frontAlbedo(s, s.meshes.at(0)).x, 0.25f);
     EXPECT_EQ(s.meshes.at(0).positions.at(0).z, -1.f);
     EXPECT_EQ(s.hideEmitters, std::optional<bool>(false));
     // The version is each file's: a 0.5 file included by a 3.0 one is upgraded, and the 3.0 one is not.
     writeScene("v05_part", "<scene version=\"0.5.0\">" + shapes + "</scene>\n");
     const SceneDescription mixed = loadScene(
         writeScene("v3_includes_v05", scene("  <include filename=\"mcval_mitsuba_v05_part.xml\"/>\n")));
-    EXPECT_EQ(mixed.meshes.at(0).reflectance.x, 0.25f);
+    EXPECT_EQ(test::frontAlbedo(mixed, mixed.meshes.at(0)).x, 0.25f);
     // A 3.0 file keeps its names, as Mitsuba 3 does: camelCase there is an unknown property.
     EXPECT_TRUE(contains(errorOf("v3_camel", scene(shapes, sensor)), "unsupported property \"farClip\""));
 }

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "bsdf_albedo.h"
+
 #include "error.h"
 #include "camera.h"
 #include "scene.h"
@@ -53,11 +55,12 @@ TEST(SceneLoader, AValidSceneLoads) {
     const SceneDescription scene = loadScene(path);
     ASSERT_EQ(scene.meshes.size(), 1u);
     EXPECT_EQ(scene.meshes[0].indices.size(), 36u);
-    EXPECT_FLOAT_EQ(scene.meshes[0].reflectance.x, 0.3f);
+    EXPECT_FLOAT_EQ(test::frontAlbedo(scene, scene.meshes[0]).x, 0.3f);
     EXPECT_EQ(scene.integrator.type, "ao");
     EXPECT_TRUE(static_cast<bool>(scene.integrator.make));  // ao parsed its samples itself
     EXPECT_EQ(scene.film.width, 8);
-    EXPECT_FLOAT_EQ(loadScene(path, {{"w", "0.9"}}).meshes[0].reflectance.x, 0.9f);
+    const SceneDescription overridden = loadScene(path, {{"w", "0.9"}});
+    EXPECT_FLOAT_EQ(test::frontAlbedo(overridden, overridden.meshes[0]).x, 0.9f);
 }
 
 struct BadCase {
@@ -111,7 +114,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "  <shape type=\"ply\"><string name=\"filename\" value=\"nowhere.ply\"/></shape>\n</scene>\n",
                 "nowhere.ply", 3},
         BadCase{"bad_integrator", std::string(kHeader) + sensor() + kShape + "  <integrator type=\"path\"/>\n</scene>\n",
-                "unsupported integrator type \"path\": expected albedo, ao, ao_uniform, normals or simple", 4},
+                "unsupported integrator type \"path\": expected albedo, ao, ao_uniform, every_emitter, normals or simple", 4},
         BadCase{"bad_rfilter", std::string(kHeader) +
                 "  <sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n    <film type=\"hdrfilm\">\n"
                 "      <rfilter type=\"lanczos\"/></film></sensor>\n" + kShape + "</scene>\n",
@@ -289,8 +292,8 @@ TEST(SceneLoader, ASpectrumIsReadWhenConstantAndAnUnreadableReflectanceIsRefused
                                  "  <shape type=\"rectangle\"><bsdf type=\"diffuse\">"
                                  "<spectrum name=\"reflectance\" value=\"0.25\"/></bsdf></shape>\n</scene>\n";
     const SceneDescription scene = loadScene(writeScene("spectrum_constant", constant), {}, "ao");
-    EXPECT_EQ(scene.meshes.at(0).reflectance.x, 0.25f);
-    EXPECT_EQ(scene.meshes.at(0).reflectance.z, 0.25f);
+    EXPECT_EQ(test::frontAlbedo(scene, scene.meshes.at(0)).x, 0.25f);
+    EXPECT_EQ(test::frontAlbedo(scene, scene.meshes.at(0)).z, 0.25f);
     for (const std::string &reflectance :
          {std::string("<spectrum name=\"reflectance\" value=\"400:0.78, 700:0.78\"/>"),
           std::string("<texture type=\"bitmap\" name=\"reflectance\"><string name=\"filename\" value=\"x.png\"/>"

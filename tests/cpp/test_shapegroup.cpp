@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "bsdf_albedo.h"
+
 #include "embree_scene.h"
 #include "error.h"
 #include "scene.h"
@@ -51,7 +53,7 @@ std::string errorOf(const std::string &name, const std::string &shapes) {
 
 /// The first hit of the ray o + t d, which must exist.
 Hit trace(const SceneDescription &scene, const Vec3f &o, const Vec3f &d) {
-    const EmbreeScene embree(scene.meshes, scene.spheres, scene.disks, scene.cylinders);
+    const EmbreeScene embree(scene.meshes, scene.spheres, scene.disks, scene.cylinders, scene.bsdfs);
     Ray ray;
     ray.o = o;
     ray.d = d;
@@ -81,7 +83,7 @@ TEST(ShapeGroup, IsRenderedOnlyThroughItsInstances) {
         load("two", kGroup + instance("<translate value=\"0, 10, 0\"/>") + instance("<translate value=\"0, 20, 0\"/>"));
     ASSERT_EQ(scene.meshes.size(), 2u);
     ASSERT_EQ(scene.spheres.size(), 2u);
-    EXPECT_FLOAT_EQ(scene.meshes[1].reflectance.x, 0.25f);  // a member keeps its bsdf
+    EXPECT_FLOAT_EQ(test::frontAlbedo(scene, scene.meshes[1]).x, 0.25f);  // a member keeps its bsdf
     EXPECT_FLOAT_EQ(scene.spheres[1].center.y, 20.f);
     EXPECT_NE(scene.meshes[0].name.find("instance at line"), std::string::npos);
     // An instance may come before its shapegroup, as Mitsuba resolves references once the file is read;

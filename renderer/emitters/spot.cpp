@@ -1,0 +1,47 @@
+// Mitsuba's spot emitter (src/emitters/spot.cpp): a point light whose intensity falls off linearly in
+// angle between beam_width and cutoff_angle, as its falloff_curve computes it.
+#include <cmath>
+
+#include "../warp.h"
+#include "delta_lights.h"
+
+namespace mcval {
+
+namespace {
+
+float radians(float degrees) { return degrees * (kPi / 180.f); }
+
+}  // namespace
+
+SpotEmitter::SpotEmitter(const SpotLight &light)
+    : m_light(light), m_position(light.toWorld.point({0.f, 0.f, 0.f})), m_cutoffRad(radians(light.cutoffAngle)),
+      m_cosCutoff(std::cos(m_cutoffRad)), m_cosBeam(std::cos(radians(light.beamWidth))),
+      m_invTransitionWidth(1.f / (m_cutoffRad - radians(light.beamWidth))) {}
+
+float SpotEmitter::falloff(const Vec3f &local) const {
+    const float cosTheta = normalize(local).z;
+    const float beam = cosTheta >= m_cosBeam ? 1.f : (m_cutoffRad - std::acos(cosTheta)) * m_invTransitionWidth;
+    return cosTheta > m_cosCutoff ? beam : 0.f;
+}
+
+EmitterSample SpotEmitter::sample(const Vec3f &ref, const Vec2f &) const {
+    EmitterSample s;
+    s.p = m_position;
+    const Vec3f toLight = s.p - ref;
+    s.dist = norm(toLight);
+    const float invDist = 1.f / s.dist;
+    s.d = toLight * invDist;
+    s.pdf = 1.f;
+    s.delta = true;
+    // The direction leaving the light toward ref, in the light's own space (to_world's inverse).
+    const Vec3f &w = -s.d;
+    const auto &inv = m_light.toWorld.inv;
+    const Vec3f local{inv[0][0] * w.x + inv[0][1] * w.y + inv[0][2] * w.z,
+                      inv[1][0] * w.x + inv[1][1] * w.y + inv[1][2] * w.z,
+                      inv[2][0] * w.x + inv[2][1] * w.y + inv[2][2] * w.z};
+    const float f = falloff(local);
+    s.weight = f > 0.f ? m_light.intensity * (f * (invDist * invDist)) : Color(0.f, 0.f, 0.f);
+    return s;
+}
+
+}  // namespace mcval
