@@ -112,3 +112,47 @@ def test_the_analytic_engine_renders_a_lit_plane_for_an_entry_that_names_it(monk
         name="flat", our_spp=1, reference_spp=1, mitsuba=MitsubaMapping("direct"),
         analytic=AnalyticForm("a plane's", lit_plane.radiance, scenes=("plane",))))
     assert not analytic.AnalyticEngine.supports(path, {"res": "16"}, "flat")
+
+
+def _rewritten_radiance(tmp_path, name: str, kind: str, value, points: np.ndarray) -> np.ndarray:
+    """The closed form of the scene rewritten by an invariance, at the images of `points` under its matrix."""
+    from harness.invariance.rewrite import rewrite, step_matrix
+
+    path = rewrite(SCENES / f"{name}.xml", tmp_path / f"{name}-{kind}.xml", kind, value)
+    scene = load_plane_scene(path)
+    m = step_matrix(kind, value) if kind in ("scale", "rotate", "translate") else np.eye(4)
+    moved = points @ m[:3, :3].T + m[:3, 3]
+    normal = m[:3, :3] @ UP
+    return lit_plane.radiance(scene, moved, normal / np.linalg.norm(normal))
+
+
+INVARIANCE_STEPS = [("scale", 1e-3), ("scale", 1e3), ("rotate", ((0.3, 1.0, 0.2), 37.0)),
+                    ("translate", (10.0, -20.0, 30.0))]
+
+
+@pytest.mark.parametrize("name", LIT)
+@pytest.mark.parametrize("kind, value", INVARIANCE_STEPS)
+def test_scale_rotation_and_translation_leave_a_lit_plane_unchanged(tmp_path, name, kind, value):
+    """The invariances' rewrites move each area light with its shape, and an area light's radiance needs no
+    factor under scale (the solid angle it subtends is unchanged), unlike a point light's intensity."""
+    points = np.array([[0.0, 0, 0], [0.4, 0, -0.7], [-3.0, 0, 2.0], [6.0, 0, -9.0]])
+    base = lit_plane.radiance(_load(name), points, UP)
+    assert np.allclose(_rewritten_radiance(tmp_path, name, kind, value, points), base, rtol=1e-9)
+
+
+@pytest.mark.parametrize("name", LIT)
+def test_the_light_rewrite_scales_the_area_lights_radiance(tmp_path, name):
+    points = np.array([[0.0, 0, 0], [-3.0, 0, 2.0]])
+    base = lit_plane.radiance(_load(name), points, UP)
+    assert np.allclose(_rewritten_radiance(tmp_path, name, "light", 2.0, points), 2 * base, rtol=1e-12)
+
+
+def test_an_area_light_scaled_as_a_point_light_is_rejected(tmp_path):
+    """Planted twin: radiance times s^2 under scale (as a point light's intensity) breaks the scale invariance."""
+    from harness.invariance.rewrite import rewrite
+
+    scaled = rewrite(SCENES / "plane_disk_light.xml", tmp_path / "scaled.xml", "scale", 1e3)
+    wrong = rewrite(scaled, tmp_path / "wrong.xml", "light", 1e6)
+    points = np.array([[0.0, 0, -0.5], [2.0, 0, 1.0]])
+    base = lit_plane.radiance(_load("plane_disk_light"), points, UP)
+    assert not np.allclose(lit_plane.radiance(load_plane_scene(wrong), 1e3 * points, UP), base, rtol=1e-3)
