@@ -1,6 +1,6 @@
 """A second, independent reading of the scenes that have a closed-form image: one plane (and at most one
-sphere resting on it), point lights and a constant emitter, seen through Mitsuba's perspective camera with a
-box filter.
+sphere resting on it), point lights and a constant emitter, or one plane under one area light
+(harness/closed_forms/lit_plane.py), seen through Mitsuba's perspective camera with a box filter.
 
 Written apart from the C++ loader on purpose, so a mistake there cannot hide here.
 """
@@ -43,13 +43,18 @@ class PlaneScene:
     environment: np.ndarray
     far_clip: float = 1e4
     sphere: Sphere | None = None  # resting on the plane (checked by analytic_sphere)
+    #: The emitting shapes (harness/closed_forms/area_lights.py), checked by lit_plane.check_lit.
+    area_lights: tuple = ()
     #: Which surface the points handed to a closed form lie on ("floor" or "sphere"); set per call.
     surface: str = "floor"
 
     @property
     def kind(self) -> str:
-        """"plane" (a lone plane) or "sphere_floor" (a sphere resting on it): what a closed form must cover."""
-        return "plane" if self.sphere is None else "sphere_floor"
+        """"plane" (a lone plane), "sphere_floor" (a sphere resting on it) or "lit_plane" (a plane under an area
+        light): what a closed form must cover."""
+        if self.sphere is not None:
+            return "sphere_floor"
+        return "lit_plane" if self.area_lights else "plane"
 
 
 def _numbers(text: str) -> np.ndarray:
@@ -210,13 +215,14 @@ def _read_plane_scene(path: str | Path, params: dict[str, str] | None) -> PlaneS
         raise NotAnalytic(f"closed forms cover the whole film through a centred pinhole, not {framing[0]}")
     if (_prop(sensor, "string", "fov_axis") is not None) and _prop(sensor, "string", "fov_axis").get("value") != "x":
         raise NotAnalytic("fov_axis other than x")
-    shapes = root.findall("shape")
+    emitting = [s for s in root.findall("shape") if s.find("emitter") is not None]
+    shapes = [s for s in root.findall("shape") if s.find("emitter") is None]
     planes = [s for s in shapes if s.get("type") == "rectangle"]
     spheres = [s for s in shapes if s.get("type") == "sphere"]
     if not planes or len(spheres) > 1 or len(shapes) != len(planes) + len(spheres):
         raise NotAnalytic("the scene must be one rectangle (or rectangles tiling one), with at most one sphere")
-    if any(s.find("emitter") is not None for s in shapes):
-        raise NotAnalytic("an emitting shape")
+    if emitting and root.findall("emitter"):
+        raise NotAnalytic("area lights beside other emitters")
     bsdfs = {b.get("id"): b for b in root.findall("bsdf")}
     plane, rho = _tiled_plane(planes, bsdfs)
     far = _prop(sensor, "float", "far_clip")
@@ -228,7 +234,7 @@ def _read_plane_scene(path: str | Path, params: dict[str, str] | None) -> PlaneS
             lights.append((_triple(_prop(e, "point", "position")), _color(e, "intensity", 1.0)))
         elif e.get("type") == "constant":
             env = _color(e, "radiance", 1.0)
-    return PlaneScene(
+    scene = PlaneScene(
         origin=cam[:3, 3], to_world=cam[:3, :3] / np.linalg.norm(cam[:3, :3], axis=0),
         tan_half_x=float(np.tan(np.radians(float(_prop(sensor, "float", "fov").get("value"))) / 2)),
         width=int(_prop(film, "integer", "width").get("value")),
@@ -237,3 +243,12 @@ def _read_plane_scene(path: str | Path, params: dict[str, str] | None) -> PlaneS
         plane=plane, reflectance=rho, lights=lights, environment=env,
         far_clip=float(far.get("value")) if far is not None else 1e4,
         sphere=_sphere(spheres[0], bsdfs) if spheres else None)
+    if emitting:
+        from harness.closed_forms import lit_plane  # it reads PlaneScene: imported here, not at the top
+
+        for shape in emitting:
+            if shape.find("emitter").get("type") != "area":
+                raise NotAnalytic(f"a shape's {shape.find('emitter').get('type')} emitter")
+        scene.area_lights = tuple(lit_plane.area_light(s, _color(s.find("emitter"), "radiance", 1.0)) for s in emitting)
+        lit_plane.check_lit(scene)
+    return scene

@@ -1,0 +1,124 @@
+"""Writes the Cornell box as Cornell University's Program of Computer Graphics measured it ("Cornell Box Data",
+graphics.cornell.edu/online/box/data.html): cornell_measured.xml beside this script and its meshes in
+cornell_measured/, one OBJ per object, the published vertices in millimetres.
+
+What is taken from the published data: every vertex of the walls and the two blocks, the light's rectangle
+(x 213..343, z 227..332), the camera (at 278 273 -800 looking along +z, up +y, focal length 35 mm on a
+25 x 25 mm film: a 39.3077 degree field of view). What the data gives as spectra is written as RGB:
+  - reflectances: the RGB renditions of Cornell's white, red and green that scenes/cornell.xml uses;
+  - the light's radiance: the published emission spectrum (0 at 400 nm, 8 at 500, 15.6 at 600, 18.4 at 700)
+    read at 650, 550 and 450 nm, linearly between its samples: (17, 11.8, 4).
+The liberties taken: the light is lowered from the ceiling's 548.8 to 548.7, so the two do not overlap; each
+face is wound so that its normal faces into the room (walls) or out of its block, whatever the order of the
+published corners; faces are split into two triangles each and keep their flat normal (face_normals); the
+square film is $res wide (default 256) so the harness validates it at its own resolution (-D res=128).
+
+Run: .venv/bin/python scenes/real/make_cornell_measured.py   (the output is committed; never edit it by hand)
+"""
+from pathlib import Path
+
+import numpy as np
+
+#: The published quads (x, y, z in mm), each object's faces in turn.
+WALLS = {
+    "floor": [[[552.8, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 559.2], [549.6, 0.0, 559.2]]],
+    "ceiling": [[[556.0, 548.8, 0.0], [556.0, 548.8, 559.2], [0.0, 548.8, 559.2], [0.0, 548.8, 0.0]]],
+    "back_wall": [[[549.6, 0.0, 559.2], [0.0, 0.0, 559.2], [0.0, 548.8, 559.2], [556.0, 548.8, 559.2]]],
+    "right_wall": [[[0.0, 0.0, 559.2], [0.0, 0.0, 0.0], [0.0, 548.8, 0.0], [0.0, 548.8, 559.2]]],
+    "left_wall": [[[552.8, 0.0, 0.0], [549.6, 0.0, 559.2], [556.0, 548.8, 559.2], [556.0, 548.8, 0.0]]],
+}
+BLOCKS = {
+    "short_block": [
+        [[130.0, 165.0, 65.0], [82.0, 165.0, 225.0], [240.0, 165.0, 272.0], [290.0, 165.0, 114.0]],
+        [[290.0, 0.0, 114.0], [290.0, 165.0, 114.0], [240.0, 165.0, 272.0], [240.0, 0.0, 272.0]],
+        [[130.0, 0.0, 65.0], [130.0, 165.0, 65.0], [290.0, 165.0, 114.0], [290.0, 0.0, 114.0]],
+        [[82.0, 0.0, 225.0], [82.0, 165.0, 225.0], [130.0, 165.0, 65.0], [130.0, 0.0, 65.0]],
+        [[240.0, 0.0, 272.0], [240.0, 165.0, 272.0], [82.0, 165.0, 225.0], [82.0, 0.0, 225.0]],
+    ],
+    "tall_block": [
+        [[423.0, 330.0, 247.0], [265.0, 330.0, 296.0], [314.0, 330.0, 456.0], [472.0, 330.0, 406.0]],
+        [[423.0, 0.0, 247.0], [423.0, 330.0, 247.0], [472.0, 330.0, 406.0], [472.0, 0.0, 406.0]],
+        [[472.0, 0.0, 406.0], [472.0, 330.0, 406.0], [314.0, 330.0, 456.0], [314.0, 0.0, 456.0]],
+        [[314.0, 0.0, 456.0], [314.0, 330.0, 456.0], [265.0, 330.0, 296.0], [265.0, 0.0, 296.0]],
+        [[265.0, 0.0, 296.0], [265.0, 330.0, 296.0], [423.0, 330.0, 247.0], [423.0, 0.0, 247.0]],
+    ],
+}
+MATERIAL = {"floor": "white", "ceiling": "white", "back_wall": "white", "right_wall": "green", "left_wall": "red",
+            "short_block": "white", "tall_block": "white"}
+REFLECTANCE = {"white": "0.725, 0.71, 0.68", "red": "0.63, 0.065, 0.05", "green": "0.14, 0.45, 0.091"}
+#: The light's rectangle on the ceiling (x and z ranges, mm), its height lowered by 0.1 mm, and its radiance.
+LIGHT_X, LIGHT_Z, LIGHT_Y = (213.0, 343.0), (227.0, 332.0), 548.7
+LIGHT_RADIANCE = "17, 11.8, 4"
+ROOM_CENTRE = np.array([278.0, 274.4, 279.6])
+
+
+def facing(quad: list, towards: bool, point: np.ndarray) -> np.ndarray:
+    """The quad's corners in the order whose normal (right-handed) faces towards `point` (or away from it)."""
+    q = np.array(quad)
+    normal = np.cross(q[1] - q[0], q[2] - q[0])
+    inwards = normal @ (point - q.mean(axis=0)) > 0
+    return q if inwards == towards else q[::-1]
+
+
+def obj_text(name: str, quads: list[np.ndarray]) -> str:
+    """Flat triangles: four vertices of its own per face, two triangles each."""
+    lines = [f"# {name} of the Cornell box, Cornell's measured vertices in mm (scenes/real/make_cornell_measured.py)"]
+    for i, q in enumerate(quads):
+        lines += [f"v {x:g} {y:g} {z:g}" for x, y, z in q]
+        base = 4 * i + 1
+        lines += [f"f {base} {base + 1} {base + 2}", f"f {base} {base + 2} {base + 3}"]
+    return "\n".join(lines) + "\n"
+
+
+def scene_text(objects: list[str]) -> str:
+    cx, cz = sum(LIGHT_X) / 2, sum(LIGHT_Z) / 2
+    hx, hz = (LIGHT_X[1] - LIGHT_X[0]) / 2, (LIGHT_Z[1] - LIGHT_Z[0]) / 2
+    # The unit rectangle (normal +z) scaled to the light, turned by 90 degrees about x (normal -y: down, its local
+    # y along +z), at the light's centre.
+    light = f"{hx:g} 0 0 {cx:g}  0 0 -1 {LIGHT_Y:g}  0 {hz:g} 0 {cz:g}  0 0 0 1"
+    out = ["<!-- Generated by scenes/real/make_cornell_measured.py from Cornell University's published Cornell Box "
+           "Data; do not edit by hand. -->",
+           '<scene version="3.0.0">',
+           '    <default name="res" value="256"/>',
+           '    <integrator type="direct"/>']
+    for name, value in REFLECTANCE.items():
+        out += [f'    <bsdf type="diffuse" id="{name}">', f'        <rgb name="reflectance" value="{value}"/>',
+                "    </bsdf>"]
+    for name in objects:
+        out += [f'    <shape type="obj" id="{name}">',
+                f'        <string name="filename" value="cornell_measured/{name}.obj"/>',
+                '        <boolean name="face_normals" value="true"/>',
+                f'        <ref id="{MATERIAL[name]}"/>', "    </shape>"]
+    out += ['    <shape type="rectangle" id="light">', '        <transform name="to_world">',
+            f'            <matrix value="{light}"/>', "        </transform>", '        <ref id="white"/>',
+            '        <emitter type="area">', f'            <rgb name="radiance" value="{LIGHT_RADIANCE}"/>',
+            "        </emitter>", "    </shape>",
+            '    <sensor type="perspective">',
+            '        <float name="fov" value="39.3077"/>',
+            '        <transform name="to_world">',
+            '            <lookat origin="278, 273, -800" target="278, 273, 0" up="0, 1, 0"/>',
+            "        </transform>",
+            '        <sampler type="independent">', '            <integer name="sample_count" value="64"/>',
+            "        </sampler>",
+            '        <film type="hdrfilm">', '            <integer name="width" value="$res"/>',
+            '            <integer name="height" value="$res"/>', '            <rfilter type="box"/>', "        </film>",
+            "    </sensor>", "</scene>"]
+    return "\n".join(out) + "\n"
+
+
+def main():
+    here = Path(__file__).resolve().parent
+    meshes = here / "cornell_measured"
+    meshes.mkdir(exist_ok=True)
+    for name, quads in WALLS.items():
+        (meshes / f"{name}.obj").write_text(obj_text(name, [facing(q, True, ROOM_CENTRE) for q in quads]))
+    for name, quads in BLOCKS.items():
+        centre = np.array([v for q in quads for v in q]).mean(axis=0)
+        (meshes / f"{name}.obj").write_text(obj_text(name, [facing(q, False, centre) for q in quads]))
+    out = here / "cornell_measured.xml"
+    out.write_text(scene_text([*WALLS, *BLOCKS]))
+    print(out)
+
+
+if __name__ == "__main__":
+    main()
