@@ -9,6 +9,8 @@ from pathlib import Path
 
 import pytest
 
+from tests.helpers.registered_integrators import PRODUCT
+
 ROOT = Path(__file__).resolve().parents[2]
 TEST_MODULE = ROOT / "build" / "python-test"
 TEST_RENDER = ROOT / "build" / "render_with_test_integrators"
@@ -32,7 +34,7 @@ def test_integrators_lists_albedo_with_its_entry():
     assert res.returncode == 0, res.stderr
     row = next(line for line in res.stdout.splitlines() if line.strip().startswith("albedo"))
     assert "tests/plugins/integrators/albedo.py" in row and "aov(aovs=albedo:albedo)" in row, res.stdout
-    for name in ("normals", "simple", "ao"):
+    for name in PRODUCT:
         assert any(line.strip().startswith(name) for line in res.stdout.splitlines())
     assert "no harness entry" not in res.stdout
 

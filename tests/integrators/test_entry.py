@@ -12,6 +12,7 @@ from harness.images.suite import (INTEGRATORS, OUR_SPP, REFERENCE_SPP, ImageCase
                                   select_cases)
 from harness.integrators import entries, match
 from harness.report.integrator_table import integrators_table
+from tests.helpers.registered_integrators import PRODUCT
 
 ROOT = Path(__file__).resolve().parents[2]
 CORNELL_BOX = ROOT / "scenes" / "real" / "cornell_box.xml"
@@ -19,7 +20,7 @@ EXTRA = '''from harness.integrators.entry import IntegratorEntry
 ENTRY = IntegratorEntry(name="{name}", tested_spp=2, reference_spp=8)
 '''
 #: The integrators of this repository's renderer (Engine.integrators).
-RENDERER = ("normals", "simple", "ao")
+RENDERER = tuple(PRODUCT)
 
 
 @pytest.fixture
@@ -29,20 +30,22 @@ def extra_folder(tmp_path, monkeypatch):
     return tmp_path
 
 
-def test_the_product_has_exactly_normals_simple_and_ao():
-    assert set(entries()) == {"normals", "simple", "ao"}
+def test_every_integrator_of_the_product_has_its_entry_and_no_other():
+    assert set(entries()) == set(RENDERER) >= {"normals", "simple", "ao"}
     from harness.engines.registry import engine_integrators
     assert set(engine_integrators("mcval")) == set(RENDERER)
     m = match(engine_integrators("mcval"))
     assert [e.name for e in m.entries] and m.without_entry == ()
-    assert {e.source for e in m.entries} == {f"harness/integrators/{n}.py" for n in ("normals", "simple", "ao")}
+    assert {e.source for e in m.entries} == {f"harness/integrators/{n}.py" for n in RENDERER}
 
 
 def test_suite_views_are_the_entries_budgets():
     assert INTEGRATORS[0] == "normals"  # first on every scene: its failure notes a camera or geometry mismatch
-    assert set(INTEGRATORS) == {"normals", "simple", "ao"} and len(INTEGRATORS) == 3
-    assert dict(OUR_SPP) == {"normals": 16, "simple": 32, "ao": 32}
-    assert dict(REFERENCE_SPP) == {"normals": 64, "simple": 256, "ao": 256}
+    assert set(INTEGRATORS) == set(RENDERER) and len(INTEGRATORS) == len(RENDERER)
+    assert dict(OUR_SPP) == {name: entries()[name].tested_spp for name in RENDERER}
+    assert {name: OUR_SPP[name] for name in ("normals", "simple", "ao")} == {"normals": 16, "simple": 32, "ao": 32}
+    assert {name: REFERENCE_SPP[name] for name in ("normals", "simple", "ao")} == {"normals": 64, "simple": 256,
+                                                                                 "ao": 256}
 
 
 def test_an_entry_from_the_path_is_found_and_an_error_without_a_renderer_integrator(extra_folder):

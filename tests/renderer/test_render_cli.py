@@ -7,6 +7,8 @@ import numpy as np
 import OpenEXR
 import pytest
 
+from tests.helpers.registered_integrators import PRODUCT, name_list
+
 ROOT = Path(__file__).resolve().parents[2]
 SCENES = sorted(p for p in (ROOT / "scenes").glob("*.xml") if not p.name.startswith("."))
 RENDER = shutil.which("render") or str(ROOT / "build" / "render")
@@ -16,7 +18,7 @@ def run(*args, cwd=None):
     return subprocess.run([RENDER, *map(str, args)], capture_output=True, text=True, cwd=cwd)
 
 
-@pytest.mark.parametrize("integrator", ["normals", "simple", "ao"])
+@pytest.mark.parametrize("integrator", PRODUCT)
 @pytest.mark.parametrize("scene", SCENES, ids=lambda p: p.stem)
 def test_every_scene_and_integrator_writes_a_valid_exr(scene, integrator, tmp_path):
     from harness.integrators import entry
@@ -77,7 +79,7 @@ def test_python_module_renders_numpy_arrays():
     assert out["batches"].shape == (2, 16, 16, 3)
     assert np.allclose(out["mean"], out["batches"].mean(axis=0), rtol=1e-5, atol=1e-7)
     assert out["stats"]["shadow_rays"] > 0
-    with pytest.raises(ValueError, match="expected ao, normals or simple"):
+    with pytest.raises(ValueError, match=f"expected {name_list(PRODUCT)}"):
         mcval_renderer.render(str(SCENES[0]), integrator="path")
 
 
