@@ -67,3 +67,9 @@ OUTLIER_LEVEL = 1e-6
 #: A comparison that cannot find a relative bias of the image mean this large half of the time (at its noise
 #: and level) is INCONCLUSIVE, never a PASS: it says the samples per pixel that would decide it.
 INCONCLUSIVE_BIAS = 0.05
+#: The strategy check (harness.comparison.strategies) compares blocks of this many pixels a side, not pixels: one
+#: strategy's samples can be so heavy-tailed at the suite's budget (BSDF sampling of a small light: most of a
+#: pixel's batches never hit it) that Welch's t on K batch values is far too liberal per pixel.
+STRATEGY_BLOCK = 8
+#: Side, in blocks, of the strategy check's middle scale (32 x 32 pixels).
+STRATEGY_TILE = 4
