@@ -8,7 +8,8 @@
 Null triples are synthetic (tools/strategy_triples.py, 32x32, 8 batches of 32 samples) or Mitsuba's renders
 (tools/strategy_renders.py). For each nominal level: the triples with any rejection (the false-alarm rate, with
 its Clopper-Pearson interval, simultaneous at 95 % over the levels), and those where a strategy was named.
-Power: each strategy's batches scaled by 1 + b (the whole image), b on a grid, over the first
+Power: each strategy's batches scaled by 1 + b (the whole image; then by the twins' shapes,
+tools/strategy_triples.py), b on a grid, over the first
 `--power-replications` null triples, at the suite's level (SIGNIFICANCE): the fraction where that strategy is
 named, and the smallest b named 90 % of the time.
 """
@@ -25,11 +26,14 @@ from harness.comparison.strategies import STRATEGIES, compare_strategies
 from harness.statistics.calibration_rates import CALIBRATION_LEVELS, rates
 from harness.statistics.constants import POWER_TARGET, SIGNIFICANCE
 from tools.strategy_renders import OUT
-from tools.strategy_triples import null_triple, planted
+from tools.strategy_triples import AREA_MEASURE, DOUBLE_COUNT, UNIFORM, null_triple, planted
 
 Triple = dict[str, np.ndarray]
+#: The planted biases: each strategy's whole image scaled alike, then the twins' shapes (a light pdf left in area
+#: measure, MIS weights that double count where both pdfs are alike).
+PLANTS = (("ems", UNIFORM), ("mats", UNIFORM), ("mis", UNIFORM), ("ems", AREA_MEASURE), ("mis", DOUBLE_COUNT))
 #: Relative biases tried for the power figures.
-BIASES = (0.005, 0.01, 0.02, 0.03, 0.05, 0.075, 0.1, 0.15, 0.2, 0.3, 0.5)
+BIASES = (0.005, 0.01, 0.015, 0.02, 0.025, 0.03, 0.035, 0.04, 0.05, 0.075, 0.1, 0.15, 0.2, 0.3, 0.5)
 SYNTHETIC_SPP = 32
 
 
@@ -60,17 +64,18 @@ def null_rates(triples: list[Triple], spp: int) -> list[str]:
 
 def power(triples: list[Triple], spp: int) -> list[str]:
     lines = []
-    for strategy in STRATEGIES:
+    for strategy, shape in PLANTS:
         found = []
         for b in BIASES:
-            named = sum(compare_strategies(planted(t, strategy, b), alpha=SIGNIFICANCE, spp=spp, power=False).odd
-                        == strategy for t in triples)
+            named = sum(compare_strategies(planted(t, strategy, b, shape), alpha=SIGNIFICANCE, spp=spp,
+                                           power=False).odd == strategy for t in triples)
             found.append(named / len(triples))
             if found[-1] >= POWER_TARGET:
                 break
         curve = ", ".join(f"{b:g}: {f:.2f}" for b, f in zip(BIASES, found))
         smallest = next((f"{b:g}" for b, f in zip(BIASES, found) if f >= POWER_TARGET), f"> {BIASES[-1]:g}")
-        lines.append(f"  {strategy:<4} named {POWER_TARGET:.0%} of the time from b = {smallest} ({curve})")
+        lines.append(f"  {strategy:<4} x (1 + b {shape.__name__.removesuffix('_shape')}) named {POWER_TARGET:.0%} "
+                     f"of the time from b = {smallest} ({curve})")
     return lines
 
 
@@ -79,7 +84,7 @@ def report(name: str, triples: list[Triple], spp: int, replications: int) -> Non
     print(f"{name}: {len(triples)} null triples, {k} batches of {spp} samples, {w}x{h}", flush=True)
     for line in null_rates(triples, spp):
         print(line, flush=True)
-    print(f"  power at level {SIGNIFICANCE:g} over {min(replications, len(triples))} triples (whole image x 1 + b):")
+    print(f"  power at level {SIGNIFICANCE:g} over {min(replications, len(triples))} triples:")
     for line in power(triples[:replications], spp):
         print(line, flush=True)
 

@@ -13,7 +13,8 @@ such K values rejected every one of 200 null triples of Mitsuba's Cornell box at
 The family-wise level `alpha` is split over the three comparisons by Sidak (each at 1 - (1 - alpha)^(1/3));
 within a comparison it is split over its scales as everywhere else. A correct renderer is then called anything
 but "agree" at most `alpha` of the time: the three comparisons share renders, and Sidak's bound holds for such
-positively dependent tests (and Bonferroni's, a hair larger, always). The strategies draw different
+positively dependent two-sided tests of normal statistics (Bonferroni's, a hair larger, always); the
+calibration (docs/statistics.md) measures it. The strategies draw different
 estimators, so their relative noise is reported, never judged, and all three are rendered at one budget (the
 sample floor would otherwise predict one strategy's noise from another's).
 
