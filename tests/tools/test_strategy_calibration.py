@@ -1,7 +1,7 @@
 """The strategy calibration script's figures: null rates with their intervals, and the power line."""
-
 from tools import strategy_calibration as cal
 from tools.strategy_triples import UNIFORM
+
 
 def test_null_rates_give_a_line_per_level():
     lines = cal.null_rates(list(cal.synthetic(4)), cal.SYNTHETIC_SPP)
