@@ -62,30 +62,32 @@ def null_rates(triples: list[Triple], spp: int) -> list[str]:
     return lines
 
 
-def power(triples: list[Triple], spp: int) -> list[str]:
+def power(triples: list[Triple], spp: int, biases: tuple[float, ...] | None = None) -> list[str]:
+    biases = BIASES if biases is None else biases
     lines = []
     for strategy, shape in PLANTS:
         found = []
-        for b in BIASES:
+        for b in biases:
             named = sum(compare_strategies(planted(t, strategy, b, shape), alpha=SIGNIFICANCE, spp=spp,
                                            power=False).odd == strategy for t in triples)
             found.append(named / len(triples))
             if found[-1] >= POWER_TARGET:
                 break
-        curve = ", ".join(f"{b:g}: {f:.2f}" for b, f in zip(BIASES, found))
-        smallest = next((f"{b:g}" for b, f in zip(BIASES, found) if f >= POWER_TARGET), f"> {BIASES[-1]:g}")
+        curve = ", ".join(f"{b:g}: {f:.2f}" for b, f in zip(biases, found))
+        smallest = next((f"{b:g}" for b, f in zip(biases, found) if f >= POWER_TARGET), f"> {biases[-1]:g}")
         lines.append(f"  {strategy:<4} x (1 + b {shape.__name__.removesuffix('_shape')}) named {POWER_TARGET:.0%} "
                      f"of the time from b = {smallest} ({curve})")
     return lines
 
 
-def report(name: str, triples: list[Triple], spp: int, replications: int) -> None:
+def report(name: str, triples: list[Triple], spp: int, replications: int,
+           biases: tuple[float, ...] | None = None) -> None:
     k, h, w, _ = triples[0]["ems"].shape
     print(f"{name}: {len(triples)} null triples, {k} batches of {spp} samples, {w}x{h}", flush=True)
     for line in null_rates(triples, spp):
         print(line, flush=True)
     print(f"  power at level {SIGNIFICANCE:g} over {min(replications, len(triples))} triples:")
-    for line in power(triples[:replications], spp):
+    for line in power(triples[:replications], spp, biases):
         print(line, flush=True)
 
 
@@ -95,11 +97,16 @@ def main() -> None:
                         f"every {OUT}/strategies-*.npz)")
     parser.add_argument("--triples", type=int, default=200, help="null triples per set (default 200)")
     parser.add_argument("--power-replications", type=int, default=100, help="triples per planted bias (default 100)")
+    parser.add_argument("--no-synthetic", action="store_true", help="measure the stored renders only")
+    parser.add_argument("--biases", type=lambda text: tuple(map(float, text.split(","))), default=BIASES,
+                        help="relative biases tried, comma-separated, ascending (default: a grid from 0.005 to 0.5)")
     args = parser.parse_args()
-    report("synthetic", list(synthetic(args.triples)), SYNTHETIC_SPP, args.power_replications)
-    for path in args.files or sorted(OUT.glob("strategies-*.npz")):
+    if not args.no_synthetic:
+        report("synthetic", list(synthetic(args.triples)), SYNTHETIC_SPP, args.power_replications, args.biases)
+    stored_sets = [p for p in sorted(OUT.glob("strategies-*.npz")) if not p.name.endswith(".partial.npz")]
+    for path in args.files or stored_sets:
         spp = int(path.stem.rsplit("-", 1)[1])
-        report(path.name, list(stored(path, args.triples)), spp, args.power_replications)
+        report(path.name, list(stored(path, args.triples)), spp, args.power_replications, args.biases)
 
 
 if __name__ == "__main__":

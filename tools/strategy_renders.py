@@ -80,7 +80,9 @@ def main() -> None:
     finally:
         child.close()
     target = path(args.res, args.spp, args.out)
-    np.savez_compressed(target, **data)
+    partial = target.with_name(target.stem + ".partial.npz")  # renamed once whole: a reader never sees half a file
+    np.savez_compressed(partial, **data)
+    partial.replace(target)
     print(f"wrote {target}")
 
 
