@@ -4,11 +4,12 @@ compared with each other by the mean test (`compare_summaries`), pairwise, and t
 the other two is named. No reference is needed: a wrong light pdf biases "ems" alone, a wrong BSDF pdf "mats"
 alone, MIS weights that do not sum to one "mis" alone.
 
-The renders are compared in blocks of STRATEGY_BLOCK x STRATEGY_BLOCK pixels (each block's mean per batch; the
-scales are then blocks, tiles of STRATEGY_TILE x STRATEGY_TILE blocks, and the image): BSDF sampling of a small
-light is so heavy-tailed at the suite's budget that most of a pixel's K batches never hit it, and Welch's t on
-such K values rejected every one of 200 null triples of Mitsuba's Cornell box at the pixel scale. A block holds
-64 pixels' samples, and a strategy's bias (a pdf, a weight) spans many blocks.
+The renders are compared in square blocks of pixels (each block's mean per batch; the scales are then blocks,
+tiles of STRATEGY_TILE x STRATEGY_TILE blocks, and the image), STRATEGY_BLOCK pixels a side or more, so that
+the image holds at most STRATEGY_GRID blocks a side: BSDF sampling of a small light is so heavy-tailed at the
+suite's budget that most of a pixel's K batches never hit it, and Welch's t on such K values rejected every one
+of 200 null triples of Mitsuba's Cornell box at the pixel scale; more, smaller blocks are each tested at a more
+extreme level, deeper in that tail. A strategy's bias (a pdf, a weight) spans many blocks.
 
 The family-wise level `alpha` is split over the three comparisons by Sidak (each at 1 - (1 - alpha)^(1/3));
 within a comparison it is split over its scales as everywhere else. A correct renderer is then called anything
@@ -44,7 +45,7 @@ from harness.comparison.compare import compare_summaries
 from harness.comparison.outcome import Comparison
 from harness.comparison.summary import Summary, summarize, tile_means
 from harness.statistics.independence import batch_dependence
-from harness.statistics.constants import SIGNIFICANCE, STRATEGY_BLOCK, STRATEGY_TILE, sidak_level
+from harness.statistics.constants import SIGNIFICANCE, STRATEGY_BLOCK, STRATEGY_GRID, STRATEGY_TILE, sidak_level
 
 #: The three estimators of direct lighting, in the order their comparisons are made and reported.
 STRATEGIES = ("ems", "mats", "mis")
@@ -131,6 +132,12 @@ def _batches(name: str, render: Render) -> np.ndarray:
     return b
 
 
+def block_side(height: int, width: int) -> int:
+    """The side of the blocks compared: STRATEGY_BLOCK pixels, or more where the image would hold more than
+    STRATEGY_GRID blocks a side (16 at 128 x 128)."""
+    return max(STRATEGY_BLOCK, -(-max(height, width) // STRATEGY_GRID))
+
+
 def _block_summary(batches: np.ndarray, block: int, tile: int) -> Summary:
     """The Summary of the batches' `block` x `block` means, keeping what blocks would hide: each block's smallest
     pixel value (a negative pixel among positive ones), and whether the batches are independent, judged on
@@ -160,11 +167,12 @@ def _spp(renders: Mapping[str, Render], spp: int | None) -> int | None:
 
 
 def compare_strategies(renders: Mapping[str, Render], *, alpha: float = SIGNIFICANCE, spp: int | None = None,
-                       block: int = STRATEGY_BLOCK, tile: int = STRATEGY_TILE, power: bool = True,
+                       block: int | None = None, tile: int = STRATEGY_TILE, power: bool = True,
                        metrics: bool = False) -> StrategyCheck:
     """Compare the renders of STRATEGIES ("ems", "mats", "mis": each (K, H, W, 3) batches, or a render whose
     `batches` are at hand, harness.engines.base.RenderResult) pairwise at the family-wise level `alpha`, in
-    blocks of `block` pixels a side and tiles of `tile` blocks, and name the one that differs.
+    blocks of `block` pixels a side (None: `block_side`) and tiles of `tile` blocks, and name the one that
+    differs.
 
     `spp`: the samples per pixel of each batch, one count for all three (None: the renders' own, or unknown);
     with it each comparison reports the strategies' relative noise where its blocks make tiles enough (never a
@@ -183,6 +191,8 @@ def compare_strategies(renders: Mapping[str, Render], *, alpha: float = SIGNIFIC
     if len({b.shape[1:] for b in batches.values()}) > 1:
         raise ValueError("the strategies' images differ in size: "
                          + ", ".join(f"{n} {b.shape[2]}x{b.shape[1]}" for n, b in batches.items()))
+    h, w = next(iter(batches.values())).shape[1:3]
+    block = block_side(h, w) if block is None else block
     summaries = {name: _block_summary(b, block, tile) for name, b in batches.items()}
     samples = None if budget is None else budget * block * block  # per block and batch (fewer at the edges: alike)
     pair_level = sidak_level(alpha, 3)

@@ -5,7 +5,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from harness.comparison.strategies import STRATEGIES, StrategyPair, compare_strategies, read_pattern
+from harness.comparison.strategies import (STRATEGIES, StrategyPair, block_side, compare_strategies,
+                                          read_pattern)
 from harness.engines.base import RenderResult
 from harness.statistics.calibration_rates import rates
 from tools.strategy_triples import AREA_MEASURE, DOUBLE_COUNT, HITS, UNIFORM, null_triple, planted
@@ -97,6 +98,11 @@ def test_blocks_keep_a_heavy_tailed_strategy_from_false_alarms(seed):
     triple = null_triple(np.random.default_rng(40 + seed), 32, spp=SPP, hits=(0.002, 0.01))
     assert compare_strategies(triple, spp=SPP, block=1).odd == "mats"
     assert not compare_strategies(triple, spp=SPP).disagree  # too few hits to resolve 5 %: INCONCLUSIVE
+
+
+def test_blocks_are_eight_pixels_or_an_eighth_of_the_image():
+    assert [block_side(n, n) for n in (16, 32, 64, 128, 256)] == [8, 8, 8, 16, 32]
+    assert block_side(128, 96) == block_side(96, 128) == 16
 
 
 def test_a_negative_pixel_is_not_averaged_away_in_its_block():
