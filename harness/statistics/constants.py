@@ -67,3 +67,13 @@ OUTLIER_LEVEL = 1e-6
 #: A comparison that cannot find a relative bias of the image mean this large half of the time (at its noise
 #: and level) is INCONCLUSIVE, never a PASS: it says the samples per pixel that would decide it.
 INCONCLUSIVE_BIAS = 0.05
+#: The strategy check (harness.comparison.strategies) compares blocks of at least this many pixels a side, not
+#: pixels: one strategy's samples can be so heavy-tailed at the suite's budget (BSDF sampling of a small light:
+#: most of a pixel's batches never hit it) that Welch's t on K batch values is far too liberal per pixel.
+STRATEGY_BLOCK = 8
+#: ... and at most this many blocks a side: more blocks test each at a more extreme level, deeper in the tail
+#: of the heavy-tailed strategy (8-pixel blocks of a 128 x 128 Cornell box called a correct renderer's BSDF
+#: sampling different in half of 200 null triples; 16-pixel blocks, 8 a side, did not).
+STRATEGY_GRID = 8
+#: Side, in blocks, of the strategy check's middle scale (32 x 32 pixels).
+STRATEGY_TILE = 4
