@@ -111,8 +111,11 @@ def evaluate(case: ImageCase, tested: RenderResult | RenderFailure | None,
     summary = summarize(tested.batches)
     signed = entry(case.integrator).signed
     # The closed form draws the tested estimator (harness/engines/analytic.py: the same camera rays, each shaded
-    # exactly or by the entry's `sample`); the reference engine does where the caller says so.
-    same = {name: r.source == CLOSED_FORM or (name == reference and reference_draws_estimator)
+    # exactly or by the entry's `sample`) unless it knows the mean only; the reference engine does where the
+    # caller says so.
+    form = entry(case.integrator).analytic
+    exact_draws = form is None or form.draws_estimator
+    same = {name: (r.source == CLOSED_FORM and exact_draws) or (name == reference and reference_draws_estimator)
             for name, r in refs.items()}
     comparisons = {name: compare_summaries(summary, r.summary, alpha, signed=signed, samples=(tested.spp, r.spp),
                                            same_estimator=same[name])

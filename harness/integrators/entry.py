@@ -37,6 +37,11 @@ class AnalyticForm:
     #: contribution is rare, all K batches of the tested engine can miss it; only a reference with the
     #: estimator's own noise lets the comparison's sample floor (harness.statistics.welch.sample_floor) see that.
     sample: Sample | None = None
+    #: Whether its camera samples draw the integrator's own estimator (shaded exactly where that estimator is
+    #: noiseless per camera ray, or by `sample`), so that the tested engine's noise must match it too. False:
+    #: it knows the image's mean only (the noise of direct's emitter and BSDF samples is not modelled), and its
+    #: comparison judges the mean, not the noise.
+    draws_estimator: bool = True
 
 
 #: Rewrites that leave every integrator's image unchanged, or rotated (harness/invariance/variants.py).
