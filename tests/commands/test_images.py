@@ -12,6 +12,7 @@ import pytest
 import harness.images.references as refs
 from harness.cli import main
 from harness.images.suite import ImageCase, select_cases
+from tests.helpers.registered_integrators import PRODUCT
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 
@@ -34,7 +35,7 @@ def test_references_are_reused_only_while_their_provenance_matches(mitsuba, tmp_
 
 def test_select_cases():
     assert [c.key for c in select_cases(["cornell:ao"])] == ["cornell:ao"]
-    assert {c.integrator for c in select_cases(["plane_point"])} == {"normals", "simple", "ao"}
+    assert {c.integrator for c in select_cases(["plane_point"])} == set(PRODUCT)
     with pytest.raises(ValueError, match="unknown scene"):
         select_cases(["atlantis"])
 
@@ -53,7 +54,7 @@ def test_images_command_writes_results_and_junit(image_run):
     data = json.loads((run / "results.json").read_text())
     assert data["pass"] is True
     entries = {(e["scene"], e["integrator"]): e for e in data["images"]}
-    assert set(entries) == {("plane_point", i) for i in ("normals", "simple", "ao")} | {("cornell", "normals")}
+    assert set(entries) == {("plane_point", i) for i in PRODUCT} | {("cornell", "normals")}
     e = entries[("plane_point", "simple")]
     assert {"integrator", "scene", "pass", "tests", "metrics", "seconds"} <= set(e)
     assert set(e["tests"]) == {"mitsuba", "analytic"}  # the closed form is a second reference
@@ -61,7 +62,7 @@ def test_images_command_writes_results_and_junit(image_run):
     assert {"mse", "rmse", "relmse", "smape", "psnr", "ssim", "flip_mean", "flip_p95", "ciede2000_mean",
             "mean_ratio"} <= set(e["metrics"])
     suites = ET.parse(run / "junit.xml").getroot()
-    assert sum(int(s.get("tests")) for s in suites) == 4
+    assert sum(int(s.get("tests")) for s in suites) == len(PRODUCT) + 1  # plane_point under each, cornell:normals
     assert not any(s.get("failures") != "0" for s in suites)
 
 

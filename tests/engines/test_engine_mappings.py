@@ -4,6 +4,7 @@ from pathlib import Path
 
 from harness.engines.base import Engine
 from harness.engines.command import CommandEngine
+from tests.helpers.registered_integrators import PRODUCT
 
 ROOT = Path(__file__).resolve().parents[2]
 CORNELL = ROOT / "scenes" / "cornell.xml"
@@ -35,7 +36,7 @@ def test_an_engine_file_maps_by_its_integrators_table(tmp_path):
 
 
 def test_our_renderer_lists_its_registry(ours):
-    assert set(ours.integrators) == {"normals", "simple", "ao"}
+    assert set(ours.integrators) == set(PRODUCT)
 
 
 def test_mitsuba_says_its_plugin_and_where_its_estimator_is_ours(mitsuba, tmp_path):

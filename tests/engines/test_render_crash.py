@@ -7,6 +7,7 @@ import pytest
 
 from harness.cli import main
 from tests.helpers.render_wrappers import write_wrapper
+from tests.helpers.registered_integrators import PRODUCT
 
 
 def _run(tmp_path, monkeypatch, capsys, behaviour: str, target: str, timeout: str = "60") -> tuple[int, dict, str]:
@@ -24,7 +25,7 @@ def _check(code: int, results: dict, failed: str, reason: str, run, printed: str
     assert code == 1
     assert results["pass"] is False
     entries = {e["integrator"]: e for e in results["images"]}
-    assert set(entries) == {"normals", "simple", "ao"}  # the other cases still ran
+    assert set(entries) == set(PRODUCT)  # the other cases still ran
     bad = entries.pop(failed)
     assert bad["pass"] is False and bad["tests"] == {}
     assert bad["error"].startswith("mcval render: ") and reason in bad["error"]

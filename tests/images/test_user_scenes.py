@@ -9,6 +9,7 @@ import pytest
 from harness.images.suite import SCENES_DIR, USER, select_cases
 from harness.images.user_scenes import prepare_scenes, scene_files, scene_names
 from harness.invariance.suite import select
+from tests.helpers.registered_integrators import PRODUCT
 
 
 def _scene(folder, name="ball", source="sphere_plane.xml"):
@@ -87,7 +88,7 @@ def test_user_scenes_replace_the_suite_or_join_it(tmp_path):
     user = prepare_scenes([_scene(tmp_path / "in", "ball")], tmp_path / "cache", 128)
     cases = select_cases(None, user=user)
     assert {c.scene for c in cases} == {"ball"} and all(c.group == USER for c in cases)
-    assert {c.integrator for c in cases} == {"normals", "simple", "ao"}
+    assert {c.integrator for c in cases} == set(PRODUCT)
     both = select_cases(None, user=user, with_suite=True)
     assert {"ball", "cornell"} <= {c.scene for c in both}
     clash = prepare_scenes([_scene(tmp_path / "in2", "cornell")], tmp_path / "cache", 128)
