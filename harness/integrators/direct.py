@@ -1,0 +1,32 @@
+"""direct: light from every emitter at the first hit, by emitter sampling, BSDF sampling and multiple importance
+sampling between them (Mitsuba 3's `direct`)."""
+import xml.etree.ElementTree as ET
+
+from harness.closed_forms import lit_plane
+from harness.integrators.entry import AnalyticForm, IntegratorEntry
+
+#: The emitters it reads: delta lights, the constant environment and area emitters on shapes.
+EMITTERS = ("point", "spot", "directional", "constant", "area")
+
+
+def has_emitter(root: ET.Element) -> str | None:
+    """A requirement: an emitter direct reads (without one its image is black, which proves nothing)."""
+    return None if any(e.get("type") in EMITTERS for e in root.iter("emitter")) else "no emitter"
+
+
+ENTRY = IntegratorEntry(
+    name="direct",
+    # Emitter and BSDF samples on every camera sample: noisier than simple, whose estimate per camera ray is exact.
+    tested_spp=64,
+    reference_spp=256,
+    emitters=EMITTERS,
+    # Mitsuba's defaults: shading_samples = 1 of each strategy.
+    parameters=(("integer", "emitter_samples", "1"), ("integer", "bsdf_samples", "1")),
+    analytic=AnalyticForm("rho/pi * E under one rectangle, disk or sphere light (Lambert's polygon formula, the "
+                          "disk's off-axis form factor, pi L (r/d)^2 cos)", lit_plane.radiance,
+                          scenes=("lit_plane",), draws_estimator=False),
+    requirements=(("an emitter", has_emitter),),
+    # Linear in the light only: where the camera sees an area light, its pixels keep their radiance when every
+    # reflectance is scaled.
+    linear_in=("light",),
+)
