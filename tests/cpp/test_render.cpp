@@ -49,6 +49,8 @@ TEST(Render, EverySceneAndIntegratorIsFinite) {
         if (entry.path().extension() != ".xml" || entry.path().filename().string()[0] == '.') continue;
         const SceneDescription scene = loadScene(entry.path().string(), {{"res", "32"}});
         for (const std::string &integrator : integratorNames()) {  // the test build's too
+            // A scene lit only by an area light has no image under simple: its loader refuses it there.
+            if (findIntegrator(integrator)->use.needsPointLight && scene.pointLights.empty()) continue;
             RenderOptions options;
             options.spp = 2;
             options.batches = 2;
