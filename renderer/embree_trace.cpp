@@ -69,6 +69,7 @@ __attribute__((always_inline)) inline void EmbreeScene::fillHit(const Ray &ray, 
     const float w = 1.f - u - v;
     hit.p = w * tri.p0 + u * tri.p1 + v * tri.p2;
     hit.ng = tri.ng;
+    hit.offsetFloor = hitOffsetFloor(m_offsetFloor, tri.p0, tri.p1, tri.p2, w, u, v, tri.ng);
     if (m_firstNormals[geom] == kFlat) {
         hit.ns = hit.ng;
     } else {
@@ -104,6 +105,8 @@ MCVAL_HOT void EmbreeScene::fillHits(const RTCRayHit16 &rh, int count, HitPacket
         hits.py[i] = ((tri.p0.y * w) + (tri.p1.y * u)) + (tri.p2.y * v);
         hits.pz[i] = ((tri.p0.z * w) + (tri.p1.z * u)) + (tri.p2.z * v);
         hits.gx[i] = tri.ng.x; hits.gy[i] = tri.ng.y; hits.gz[i] = tri.ng.z;
+        // The zero record (no hit, or an exact shape) bounds nothing: the scene's floor.
+        hits.offsetFloor[i] = hitOffsetFloor(m_offsetFloor, tri.p0, tri.p1, tri.p2, w, u, v, tri.ng);
         const float nx = ((n3.n0.x * w) + (n3.n1.x * u)) + (n3.n2.x * v);
         const float ny = ((n3.n0.y * w) + (n3.n1.y * u)) + (n3.n2.y * v);
         const float nz = ((n3.n0.z * w) + (n3.n1.z * u)) + (n3.n2.z * v);
@@ -120,7 +123,6 @@ MCVAL_HOT void EmbreeScene::fillHits(const RTCRayHit16 &rh, int count, HitPacket
         spheres += found & !mesh & (h.geomID[i] < m_firstDisk);
         others += found & (h.geomID[i] >= m_firstDisk);
     }
-    hits.offsetFloor = m_offsetFloor;
     hits.emitterOf = m_emitterOf.data();
     if (spheres != 0) fillSphereHits(rh, hits);
     if (others != 0) fillDiskCylinderHits(rh, hits);

@@ -21,7 +21,7 @@ struct HitPacket {
     alignas(64) float nx[kPacketSize], ny[kPacketSize], nz[kPacketSize];     ///< Hit::ns
     alignas(64) uint32_t geom[kPacketSize], prim[kPacketSize];
     alignas(64) int found[kPacketSize];
-    float offsetFloor = 0.f;  ///< Hit::offsetFloor, the same for every hit of a scene
+    alignas(64) float offsetFloor[kPacketSize];  ///< Hit::offsetFloor: the scene's, or a triangle hit's own bound
     /// Hit::emitter by geometry id (the scene's table, which its trace sets), read by hit(i) only: the SIMD
     /// loops that do not ask for emitters pay nothing for them. nullptr: the lanes' own, as setHit gave them.
     const int *emitterOf = nullptr;
@@ -43,7 +43,7 @@ struct HitPacket {
         h.ns = {nx[i], ny[i], nz[i]};
         h.geom = geom[i];
         h.prim = prim[i];
-        h.offsetFloor = offsetFloor;
+        h.offsetFloor = offsetFloor[i];
         h.emitter = !found[i] ? -1 : emitterOf ? emitterOf[geom[i]] : emitter[i];
         return h;
     }
@@ -61,13 +61,13 @@ struct HitPacket {
         nx[i] = h.ns.x; ny[i] = h.ns.y; nz[i] = h.ns.z;
         geom[i] = h.geom;
         prim[i] = h.prim;
-        offsetFloor = h.offsetFloor;
+        offsetFloor[i] = h.offsetFloor;
         emitter[i] = h.emitter;
         found[i] = 1;
     }
     /// Lane i without a hit: zeros.
     void clearHit(int i) {
-        t[i] = px[i] = py[i] = pz[i] = gx[i] = gy[i] = gz[i] = nx[i] = ny[i] = nz[i] = 0.f;
+        t[i] = px[i] = py[i] = pz[i] = gx[i] = gy[i] = gz[i] = nx[i] = ny[i] = nz[i] = offsetFloor[i] = 0.f;
         geom[i] = prim[i] = 0;
         emitter[i] = -1;
         found[i] = 0;
@@ -77,7 +77,7 @@ struct HitPacket {
     bool front(int i) const { return (found[i] != 0) & (nx[i] * dx[i] + ny[i] * dy[i] + nz[i] * dz[i] < 0.f); }
     /// The origin of a ray leaving lane i's hit toward d (ray.h's spawnOrigin).
     Vec3f spawnOrigin(int i, const Vec3f &d) const {
-        return mcval::spawnOrigin({px[i], py[i], pz[i]}, {gx[i], gy[i], gz[i]}, offsetFloor, d);
+        return mcval::spawnOrigin({px[i], py[i], pz[i]}, {gx[i], gy[i], gz[i]}, offsetFloor[i], d);
     }
 };
 

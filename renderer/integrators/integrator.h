@@ -75,4 +75,25 @@ inline Ray spawnRay(const Hit &hit, const Vec3f &d, float tfar) {
     return r;
 }
 
+/// How much of its length a shadow ray toward a point stops short of it, so that the surface the point
+/// lies on (an emitter) does not block it.
+constexpr float kShadowShortening = 1e-4f;
+
+/// A shadow ray from `hit` to the point `target`: aimed from its offset origin, not from hit.p. The
+/// offset grows with |p| (256 ulps: 5e-4 at 20 from the origin), so a ray aimed from hit.p and moved off
+/// would end that far beside the target, past an emitter it should stop short of, whatever the scene's
+/// placement; aimed from the origin it ends kShadowShortening of its length before the target.
+inline Ray spawnRayTo(const Hit &hit, const Vec3f &target) {
+    Ray r;
+    r.o = spawnOrigin(hit, target - hit.p);
+    const Vec3f toTarget = target - r.o;
+    const float dist = norm(toTarget);
+    // A target on the origin itself: an empty ray (nothing between), never a NaN direction for Embree.
+    const bool apart = dist > 0.f;
+    r.d = apart ? toTarget / dist : hit.ng;
+    r.tnear = 0.f;
+    r.tfar = apart ? dist * (1.f - kShadowShortening) : 0.f;
+    return r;
+}
+
 }  // namespace mcval
