@@ -6,7 +6,8 @@ A corpus case is a folder of tests/fuzz/corpus/ holding scene.xml (and the mesh
 files it names), `integrator` (the integrator to run), and `expect`: `image`, or
 `error: <fragment>` for an error message that must contain the fragment. Each runs
 in a scratch copy beside a FIFO, a folder, mesh.obj and mesh.ply, as the fuzzer's
-variants do. The shipped scenes must give a finite image. Exits 1 on any finding
+variants do. The shipped scenes must give a finite image (or the refusal their
+integrator's entry foresees). Exits 1 on any finding
 or unmet expectation; `make sanitize` runs it with the ASan/UBSan build.
 """
 from __future__ import annotations
@@ -21,13 +22,22 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from fuzz_scenes import ROOT, add_special_files  # noqa: E402
 from outcome import judge  # noqa: E402
 
+sys.path.insert(0, str(ROOT))
+from harness.integrators import entry  # noqa: E402
+from tests.helpers.registered_integrators import PRODUCT  # noqa: E402
+
 CORPUS = Path(__file__).resolve().parent / "corpus"
-INTEGRATORS = ("normals", "simple", "ao")
+
+
+def _expected(scene: Path, integrator: str) -> str:
+    """An image, or the refusal the integrator's entry foresees (simple on a plane lit by an area light)."""
+    why = entry(integrator).not_applicable(scene)
+    return f"error: {why}" if why else "image"
 
 
 def shipped_cases() -> list[tuple[str, Path, str, str]]:
-    """(name, scene folder, integrator, expectation) for every scene of scenes/."""
-    return [(f"{p.stem}:{i}", p, i, "image") for p in sorted((ROOT / "scenes").glob("*.xml")) for i in INTEGRATORS]
+    """(name, scene folder, integrator, expectation) for every scene of scenes/ and every integrator."""
+    return [(f"{p.stem}:{i}", p, i, _expected(p, i)) for p in sorted((ROOT / "scenes").glob("*.xml")) for i in PRODUCT]
 
 
 def corpus_cases(corpus: Path = CORPUS) -> list[tuple[str, Path, str, str]]:
