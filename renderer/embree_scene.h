@@ -63,6 +63,10 @@ public:
     explicit EmbreeScene(const std::vector<Mesh> &meshes, const std::vector<Sphere> &spheres = {},
                          const std::vector<Disk> &disks = {}, const std::vector<Cylinder> &cylinders = {},
                          const BsdfList &bsdfs = {});
+    /// Temporary meshes would die before the scene that traces them.
+    explicit EmbreeScene(std::vector<Mesh> &&meshes, const std::vector<Sphere> &spheres = {},
+                         const std::vector<Disk> &disks = {}, const std::vector<Cylinder> &cylinders = {},
+                         const BsdfList &bsdfs = {}) = delete;
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene &) = delete;
     EmbreeScene &operator=(const EmbreeScene &) = delete;

@@ -97,7 +97,8 @@ TEST(TurnedFloor, EveryRayLeavesFromAboveTheFloor) {
     for (const float degrees : {0.f, 37.f, 90.f})
         EXPECT_EQ(originsUnderTheFloor(degrees, [](const Hit &hit) { return hit.offsetFloor; }), 0) << degrees;
     // The planted twin: the scene's floor alone (from the occluder's size) leaves origins under the turned floor.
-    const EmbreeScene reference(turnedFloor(0.f));
+    const std::vector<Mesh> upright = turnedFloor(0.f);  // the scene keeps a reference to its meshes
+    const EmbreeScene reference(upright);
     Ray down;
     down.o = {0.f, 1.f, 0.f};
     down.d = {0.f, -1.f, 0.f};
