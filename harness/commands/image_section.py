@@ -41,9 +41,9 @@ def _budgeted(cases, ours, reference, target: float, seed: int):
     import dataclasses
 
     from harness.images.budget import plan_budget
-    from harness.images.run import case_seed, closed_forms, comparison_level
+    from harness.images.run import case_seed, closed_forms, comparison_level, strategy_checks
 
-    alpha = comparison_level(cases, closed_forms(cases))
+    alpha = comparison_level(cases, closed_forms(cases), strategy_checks(cases, ours))
     budgets, planned = [], []
     for case in cases:
         if case.problem:

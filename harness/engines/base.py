@@ -129,6 +129,13 @@ class Engine(ABC):
         (harness.comparison.independence_check, variance_check). False unless the engine knows it does."""
         return False
 
+    def reads_integrator_parameters(self, integrator: str) -> bool:
+        """Whether it renders `integrator` with the values that a scene file's own <integrator> of that type gives
+        its parameters (the entry's `parameters`: direct's emitter_samples and bsdf_samples). Then a suite asks
+        for one of the integrator's settings (its strategies: harness/images/strategy_renders.py) by writing
+        it into a copy of the scene. False unless the engine knows it does."""
+        return False
+
     def renders_exactly(self, spp: int) -> bool:
         """Whether a render asked for `spp` samples per pixel takes exactly that many (a sampler may round)."""
         return True

@@ -13,6 +13,7 @@ from harness.engines.base import Engine, RenderResult, WarpFunctions
 from harness.engines.mitsuba_integrators import mitsuba_mapping
 from harness.engines.mitsuba_scene import load_scene
 from harness.engines.mitsuba_worker import render_in_worker
+from harness.integrators import entry
 
 DEFAULT_VARIANT = "llvm_ad_rgb"
 #: The sampler plugins of Mitsuba 3 an engine can be told to render with.
@@ -90,6 +91,12 @@ class MitsubaEngine(Engine):
 
     def draws_same_estimator(self, scene: Path, integrator: str) -> bool:
         return mitsuba_mapping(integrator).draws_same_estimator(scene)
+
+    def reads_integrator_parameters(self, integrator: str) -> bool:
+        """Its plugin of the integrator's name takes the file's values of the entry's parameters
+        (MitsubaMapping.file_values); a plugin of another name is given set values."""
+        names = {name for _, name, _ in entry(integrator).parameters}
+        return bool(names) and names <= set(mitsuba_mapping(integrator).file_values)
 
     def __reduce__(self):
         # To a worker as its arguments: each worker process loads Mitsuba, sets the variant and JIT-compiles

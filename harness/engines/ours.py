@@ -44,6 +44,10 @@ class OurEngine(Engine):
                                "integrator registry; run `make build`")
         return tuple(self._m.integrators())
 
+    def reads_integrator_parameters(self, integrator: str) -> bool:
+        """The loader reads the file's <integrator> where its type is the integrator asked for."""
+        return integrator in self.integrators
+
     def __reduce__(self):
         # To a worker as its arguments: the module and the default binary are the worker's own.
         return OurEngine, (self.binary, self.timeout, self.sampler, self.in_process)

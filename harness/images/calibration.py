@@ -19,7 +19,7 @@ from harness.engines.base import Engine
 from harness.comparison.compare import SCALES
 from harness.images.null_task import BIASES, KINDS, NullJob, null_comparison
 from harness.images.references import RESOLUTION
-from harness.images.run import closed_forms, comparison_level
+from harness.images.run import closed_forms, comparison_level, strategy_checks
 from harness.images.suite import ImageCase, select_cases
 from harness.statistics.calibration_rates import CALIBRATION_CONFIDENCE, CALIBRATION_LEVELS, Rate, clopper_pearson
 from harness.statistics.constants import OUTLIER_LEVEL, sidak_level
@@ -43,10 +43,10 @@ PARTS = (*SCALES, "variance", "firefly", "outlier", "whole")
 POWER = 0.9
 
 
-def validation_alpha() -> float:
-    """The per-comparison level of a default `validate`."""
+def validation_alpha(tested: Engine) -> float:
+    """The per-comparison level of a default `validate` of `tested`."""
     cases = select_cases(None)
-    return comparison_level(cases, closed_forms(cases))
+    return comparison_level(cases, closed_forms(cases), strategy_checks(cases, tested))
 
 
 def _nominal(part: str, level: float) -> float:
@@ -140,7 +140,7 @@ def calibrate_images(test: Engine, reference: Engine, per_kind: int, seed: int =
     from harness.images.case_task import share_scene_bundles
 
     executor = executor or SerialExecutor()
-    alpha = validation_alpha()
+    alpha = validation_alpha(test)
     jobs = [NullJob(kind, _case(CASES[kind][i % len(CASES[kind])]), 1_000_003 * seed + 2 * (i + per_kind * k),
                     resolution, alpha, test, reference)
             for k, kind in enumerate(KINDS) for i in range(per_kind)]

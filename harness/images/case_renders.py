@@ -6,6 +6,7 @@ from __future__ import annotations
 from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import Engine, RenderResult
 from harness.images.references import Reference, render_params, render_reference
+from harness.images.strategy_renders import strategy_file, strategy_seed
 from harness.images.suite import ImageCase
 from harness.statistics.constants import IMAGE_BATCHES
 
@@ -40,6 +41,14 @@ class CaseRenders:
     def closed_form(self, case: ImageCase, seed: int) -> RenderResult:
         """The closed form's batches of `case` (AnalyticEngine), beside the tested render at `seed`."""
         return AnalyticEngine().render(*closed_form_args(case, seed, render_params(case)))
+
+    def strategy(self, case: ImageCase, strategy: str, seed: int) -> RenderResult:
+        """The tested engine's K batches of `case` with its integrator set to `strategy` (one of the entry's
+        `strategies`), beside the case's render at `seed` (harness/images/strategy_renders.py)."""
+        _, integrator, spp, batches, _, params = render_args(case, seed, render_params(case))
+        with strategy_file(self.tested_engine, case, strategy) as scene:
+            return self.tested_engine.render(str(scene), integrator, spp, batches, strategy_seed(seed, strategy, case),
+                                             params)
 
     def close(self) -> None:
         """End what the strategy started and no case asked for (nothing here)."""

@@ -36,6 +36,10 @@ class CaseJob:
     renders: CaseRenders
     #: A reference image (--reference-image) in place of the reference engine's render.
     reference_image: ReferenceImage | None = None
+    #: Whether the tested engine's strategies of the integrator are rendered and compared; where not, why
+    #: (harness/images/strategy_renders.py: not_judged), for the report.
+    strategies: bool = False
+    strategies_skipped: str = ""
 
 def draws_our_estimator(case: ImageCase, reference: Engine) -> bool:
     """Whether the reference engine draws the case's estimator, sample for sample, as it says
@@ -93,7 +97,8 @@ def _run_case_job(job: CaseJob, bundle: Bundle | None = None):
                                 job.run_seed)
     else:
         result = run_case(case, job.renders, seed=job.seed, alpha=job.alpha, run_seed=job.run_seed,
-                          closed_form=job.closed_form, on_message=messages.append)
+                          closed_form=job.closed_form, strategies=job.strategies,
+                          strategies_skipped=job.strategies_skipped, on_message=messages.append)
     result.case = job.case
     if result.tested is not None and (not result.failed or result.error is not None):
         result.tested = result.tested.light()  # a failed comparison keeps its batches for results/<run>/images/
@@ -108,15 +113,18 @@ def reference_task(case: ImageCase, engine: Engine, bundle: Bundle | None = None
 
 
 def run_case(case: ImageCase, renders: CaseRenders, *, seed: int, alpha: float, run_seed: int, closed_form: bool,
+             strategies: bool = False, strategies_skipped: str = "",
              on_message: Callable[[str], None] | None = None) -> ImageResult:
     """One case: its renders from `renders` (the reference engine's, the tested engine's at `seed`, the closed
-    form's where `closed_form`), judged by evaluate() at `alpha`."""
-    got = gather(case, renders, seed=seed, closed_form=closed_form, on_message=on_message)
+    form's where `closed_form`, the tested engine's strategies where `strategies`), judged by evaluate() at
+    `alpha`."""
+    got = gather(case, renders, seed=seed, closed_form=closed_form, strategies=strategies, on_message=on_message)
     reference = renders.reference_engine.name
     judged = not case.problem and isinstance(got.references.get(reference), Reference)
     decision = evaluate(case, got.tested, got.references, alpha=alpha, reference=reference,
                         reference_draws_estimator=judged and draws_our_estimator(case, renders.reference_engine),
-                        constants=scene_constants(case.path) if judged else {})
+                        constants=scene_constants(case.path) if judged else {}, strategies=got.strategies,
+                        strategies_skipped=strategies_skipped)
     return ImageResult(case=case, decision=decision, tested=got.tested_render,
                        tested_engine=renders.tested_engine.name, references=got.rendered_references,
                        reference_source=got.source, seed=seed, alpha=alpha, run_seed=run_seed)

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from harness.comparison.outcome import Comparison
+from harness.comparison.strategies import StrategyCheck
 from harness.foreign_text import foreign
 from harness.images.oracle import Finding
 
@@ -34,6 +35,10 @@ class CaseVerdict:
     reference_problem: str | None = None
     #: For an INCONCLUSIVE case: the samples per pixel that would decide it, or why none would (one line).
     decisive_budget: str = ""
+    #: The tested engine's strategies of the integrator against each other (harness/comparison/strategies.py):
+    #: any disagreement fails the case; None where they were not compared, `strategies_skipped` saying why.
+    strategies: StrategyCheck | None = None
+    strategies_skipped: str = ""
 
     def __post_init__(self) -> None:
         if self.verdict not in VERDICTS:
@@ -60,8 +65,12 @@ class CaseVerdict:
 
     @property
     def failures(self) -> str:
-        """Each failed comparison's reason, one line ("against mitsuba: ...; against analytic: ...")."""
-        return "; ".join(f"against {n}: {c.reason}" for n, c in self.comparisons.items() if not c.passed)
+        """Each failed comparison's reason, then the strategy check's where the strategies disagree, one line
+        ("against mitsuba: ...; against analytic: ...; strategies DIFFERS: ems differs from ...")."""
+        failed = [f"against {n}: {c.reason}" for n, c in self.comparisons.items() if not c.passed]
+        if self.strategies is not None and self.strategies.disagree:
+            failed.append(f"strategies {self.strategies.verdict}: {self.strategies.reason}")
+        return "; ".join(failed)
 
     @property
     def why(self) -> str:

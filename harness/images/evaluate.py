@@ -19,6 +19,7 @@ from harness.comparison.cause import named_cause
 from harness.comparison.compare import compare_summaries
 from harness.comparison.mismatch import diagnose
 from harness.comparison.outcome import Comparison
+from harness.comparison.strategies import StrategyCheck, compare_strategies
 from harness.comparison.summary import Summary, summarize
 from harness.engines.base import RenderResult
 from harness.foreign_text import one_line
@@ -89,9 +90,17 @@ def _first_failure(tested: RenderResult | RenderFailure | None,
     return next((r for r in order if isinstance(r, RenderFailure)), None)
 
 
+def _strategy_check(strategies: Mapping[str, RenderResult | RenderFailure] | None,
+                    alpha: float) -> StrategyCheck | None:
+    """The tested engine's strategies compared with each other at `alpha` (None: not rendered)."""
+    return compare_strategies(strategies, alpha=alpha) if strategies else None
+
+
 def evaluate(case: ImageCase, tested: RenderResult | RenderFailure | None,
              references: Mapping[str, Reference | RenderFailure], *, alpha: float, reference: str,
-             reference_draws_estimator: bool = False, constants: Mapping[str, float] | None = None) -> CaseVerdict:
+             reference_draws_estimator: bool = False, constants: Mapping[str, float] | None = None,
+             strategies: Mapping[str, RenderResult | RenderFailure] | None = None,
+             strategies_skipped: str = "") -> CaseVerdict:
     """The verdict of `case` from its renders.
 
     `tested`: the tested engine's batches, or why they failed (None: not rendered, because a render before it
@@ -99,10 +108,14 @@ def evaluate(case: ImageCase, tested: RenderResult | RenderFailure | None,
     the closed form's (its `source` is CLOSED_FORM), or why each failed. `alpha`: the level of each
     comparison. `reference_draws_estimator`: the reference engine draws the tested estimator sample for
     sample (the closed form always does), so that its noise is judged too. `constants`: the scene's values a
-    factor between the images may be (harness/images/scene_constants.py), for a failure's named cause."""
+    factor between the images may be (harness/images/scene_constants.py), for a failure's named cause.
+    `strategies`: the tested engine's renders of the integrator's strategies (harness/images/strategy_renders.py),
+    or why one failed; compared with each other at `alpha`, any disagreement fails the case.
+    `strategies_skipped`: why they were not rendered, for the report."""
     if case.problem:  # a --scene file no engine can be given (what its preparation refused)
         return render_failure(case, case.problem)
-    failed = _first_failure(tested, references, reference)
+    failed = _first_failure(tested, references, reference) or next(
+        (r for r in (strategies or {}).values() if isinstance(r, RenderFailure)), None)
     if failed is not None:
         return render_failure(case, failed.reason, failed.output)
     if not isinstance(tested, RenderResult) or reference not in references:
@@ -123,15 +136,17 @@ def evaluate(case: ImageCase, tested: RenderResult | RenderFailure | None,
     closed_form = next((name for name, r in refs.items() if r.source == CLOSED_FORM), "")
     finding = overrule(comparisons, summary, {name: r.summary for name, r in refs.items()}, alpha, signed,
                        {name: r.spp for name, r in refs.items()}, reference, closed_form)
-    verdict = _decided(comparisons, finding, None)
+    check = _strategy_check(strategies, alpha)
+    verdict = "FAIL" if check is not None and check.disagree else _decided(comparisons, finding, None)
     note, budget = None, ""
-    if verdict == "FAIL":
-        first = next(name for name, c in comparisons.items() if not c.passed)
+    first = next((name for name, c in comparisons.items() if not c.passed), None)
+    if verdict == "FAIL" and first is not None:
         note = named_cause(summary, refs[first].summary, signed, dict(constants or {}))
     if verdict == "INCONCLUSIVE":
         ref = refs[reference]
         budget = decisive_budget(summary, tested.spp, ref.summary, ref.spp, alpha, signed, same[reference])
-    return CaseVerdict(verdict=verdict, comparisons=comparisons, finding=finding, note=note, decisive_budget=budget)
+    return CaseVerdict(verdict=verdict, comparisons=comparisons, finding=finding, note=note, decisive_budget=budget,
+                       strategies=check, strategies_skipped=strategies_skipped)
 
 
 def against_image(case: ImageCase, tested: RenderResult, test: Summary, reference: Summary, *, alpha: float,

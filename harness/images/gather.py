@@ -13,7 +13,9 @@ from harness.engines.base import RenderFailed, RenderResult
 from harness.images.case_renders import CaseRenders
 from harness.images.evaluate import RenderFailure
 from harness.images.references import CLOSED_FORM, Reference, load_reference
+from harness.images.strategy_renders import default_strategy
 from harness.images.suite import USER, ImageCase
+from harness.integrators import entry
 
 @dataclass(kw_only=True)
 class GatheredRenders:
@@ -23,6 +25,8 @@ class GatheredRenders:
     tested: RenderResult | RenderFailure | None = None
     references: dict[str, Reference | RenderFailure] = field(default_factory=dict)
     source: str = "none"
+    #: The tested engine's renders of the integrator's strategies by name, or the failure that ended them.
+    strategies: dict[str, RenderResult | RenderFailure] = field(default_factory=dict)
 
     @property
     def tested_render(self) -> RenderResult | None:
@@ -50,11 +54,28 @@ def failure_of(stage: str, e: Exception, output: bool = True) -> RenderFailure:
                          output=e.output if output and isinstance(e, RenderFailed) else "")
 
 
-def gather(case: ImageCase, renders: CaseRenders, *, seed: int, closed_form: bool,
+def _strategies(case: ImageCase, renders: CaseRenders, seed: int,
+                tested: RenderResult) -> dict[str, RenderResult | RenderFailure]:
+    """The tested engine's render of each strategy of the case's integrator (the case's own render where it is
+    one), up to the first that fails."""
+    engine = renders.tested_engine
+    own = default_strategy(case, engine.scene_file(case.path))
+    out: dict[str, RenderResult | RenderFailure] = {}
+    for name, _ in entry(case.integrator).strategies.settings:
+        try:
+            out[name] = tested if name == own else renders.strategy(case, name, seed)
+        except Exception as e:
+            out[name] = failure_of(f"{engine.name} render of the {name} strategy", e)
+            break
+    return out
+
+
+def gather(case: ImageCase, renders: CaseRenders, *, seed: int, closed_form: bool, strategies: bool = False,
            on_message: Callable[[str], None] | None = None) -> GatheredRenders:
     """The renders of `case` (none for a case with a `problem`): the reference engine's stored reference or,
-    without one, its render now; the tested engine's batches at `seed`; the closed form's where `closed_form`.
-    `on_message` hears that a reference is rendered now."""
+    without one, its render now; the tested engine's batches at `seed`; the closed form's where `closed_form`;
+    the tested engine's strategies of the integrator where `strategies`. `on_message` hears that a reference is
+    rendered now."""
     out = GatheredRenders()
     if case.problem:  # a --scene file no engine can be given (what its preparation refused)
         return out
@@ -88,12 +109,16 @@ def gather(case: ImageCase, renders: CaseRenders, *, seed: int, closed_form: boo
         out.source = f"rendered now ({out.source})"
     out.references[name] = reference
     out.tested = out.tested or tested()
-    if isinstance(out.tested, RenderFailure) or not closed_form:
+    if isinstance(out.tested, RenderFailure):
         return out
-    try:
-        exact = renders.closed_form(case, seed)
-    except Exception as e:
-        out.references[AnalyticEngine.name] = failure_of("closed form", e, output=False)
-        return out
-    out.references[AnalyticEngine.name] = Reference(summarize(exact.batches), exact.spp, exact.seconds, CLOSED_FORM)
+    if closed_form:
+        try:
+            exact = renders.closed_form(case, seed)
+        except Exception as e:
+            out.references[AnalyticEngine.name] = failure_of("closed form", e, output=False)
+            return out
+        out.references[AnalyticEngine.name] = Reference(summarize(exact.batches), exact.spp, exact.seconds,
+                                                        CLOSED_FORM)
+    if strategies:
+        out.strategies = _strategies(case, renders, seed, out.tested)
     return out

@@ -8,6 +8,7 @@ from functools import cached_property
 import numpy as np
 
 from harness.comparison.compare import Comparison
+from harness.comparison.strategies import StrategyCheck
 from harness.engines.base import RenderResult
 from harness.images.case_verdict import CaseVerdict
 from harness.images.oracle import Finding
@@ -77,6 +78,17 @@ class ImageResult:
         return self.decision.reference_problem
 
     @property
+    def strategies(self) -> StrategyCheck | None:
+        return self.decision.strategies
+
+    def _strategies_json(self) -> dict:
+        """The strategy check's block: its verdict, the strategy it names and its three comparisons, or why it
+        did not run (nothing for an integrator without strategies)."""
+        if self.strategies is not None:
+            return {"strategies": self.strategies.to_json()}
+        return {"strategies": {"skipped": self.decision.strategies_skipped}} if self.decision.strategies_skipped else {}
+
+    @property
     def failures(self) -> str:
         return self.decision.failures
 
@@ -111,7 +123,7 @@ class ImageResult:
             "image_mean": batch_means.mean(axis=0).tolist(),
             "image_mean_se": (batch_means.std(axis=0, ddof=1) / np.sqrt(len(batch_means))).tolist(),
             "idiff": self.idiff, "finding": self.finding.to_json() if self.finding else None, **self._source(),
-            **self._reference_fit(),
+            **self._reference_fit(), **self._strategies_json(),
         }
 
     def _reference_fit(self) -> dict:

@@ -15,6 +15,7 @@ from harness.images.references import RESOLUTION
 from harness.images.render_ahead import RendersAhead
 from harness.images.reference_image import ReferenceImage
 from harness.images.result import ImageResult
+from harness.images.strategy_renders import not_judged
 from harness.images.suite import ImageCase
 from harness.statistics.constants import SIGNIFICANCE, sidak_level
 
@@ -37,9 +38,23 @@ def _supports(case: ImageCase, params: dict[str, str]) -> bool:
         return False
 
 
-def comparison_level(cases: list[ImageCase], has_closed_form: dict[ImageCase, bool]) -> float:
-    """The per-comparison level of a run of `cases`: its Sidak share of the family-wise SIGNIFICANCE."""
-    return sidak_level(SIGNIFICANCE, len(cases) + sum(has_closed_form.values()))
+def strategy_checks(cases: list[ImageCase], tested: Engine) -> dict[ImageCase, str | None]:
+    """Per case, None where the tested engine's strategies of its integrator are compared, else why not
+    ("no strategies" for an integrator without)."""
+    return {c: not_judged(c, tested) for c in cases}
+
+
+def comparison_level(cases: list[ImageCase], has_closed_form: dict[ImageCase, bool],
+                     strategies: dict[ImageCase, str | None] | None = None) -> float:
+    """The per-comparison level of a run of `cases`: its Sidak share of the family-wise SIGNIFICANCE, each
+    case's comparison with the reference engine, with a closed form and its strategy check counted."""
+    checks = sum(why is None for why in (strategies or {}).values())
+    return sidak_level(SIGNIFICANCE, len(cases) + sum(has_closed_form.values()) + checks)
+
+
+def _skipped(why: str | None) -> str:
+    """What the report says of a case whose strategies are not compared ("" where there are none to compare)."""
+    return "" if why in (None, "no strategies") else why
 
 
 def run_images(cases: list[ImageCase], tested: Engine, reference: Engine, seed: int = 0,
@@ -54,7 +69,8 @@ def run_images(cases: list[ImageCase], tested: Engine, reference: Engine, seed: 
     run goes on."""
     executor = executor or SerialExecutor()
     has_closed_form = closed_forms(cases) if reference_image is None else dict.fromkeys(cases, False)
-    alpha = comparison_level(cases, has_closed_form)
+    strategies = strategy_checks(cases, tested) if reference_image is None else dict.fromkeys(cases, "no strategies")
+    alpha = comparison_level(cases, has_closed_form, strategies)
     bundles = share_scene_bundles(executor, cases, (tested, reference))
     seeds = [case_seed(c, seed) for c in cases]
     # Run here, one case after another, the tested render of the next case and the closed forms overlap the
@@ -65,7 +81,8 @@ def run_images(cases: list[ImageCase], tested: Engine, reference: Engine, seed: 
         renders = CaseRenders(tested, reference)
     tasks = [Task(case.key, run_case_job,
                   (CaseJob(case=case, seed=s, alpha=alpha, run_seed=seed, closed_form=has_closed_form[case],
-                           renders=renders, reference_image=reference_image),
+                           renders=renders, reference_image=reference_image, strategies=strategies[case] is None,
+                           strategies_skipped=_skipped(strategies[case])),
                    bundles.get(case.scene)))
              for case, s in zip(cases, seeds)]
     try:

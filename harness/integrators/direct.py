@@ -3,15 +3,34 @@ sampling between them (Mitsuba 3's `direct`)."""
 import xml.etree.ElementTree as ET
 
 from harness.closed_forms import lit_plane
-from harness.integrators.entry import AnalyticForm, IntegratorEntry
+from harness.integrators.entry import AnalyticForm, IntegratorEntry, Strategies
 
 #: The emitters it reads: delta lights, the constant environment and area emitters on shapes.
 EMITTERS = ("point", "spot", "directional", "constant", "area")
+#: Those that sit at a point or along a direction: no BSDF sample finds them.
+DELTA_EMITTERS = ("point", "spot", "directional")
 
 
 def has_emitter(root: ET.Element) -> str | None:
     """A requirement: an emitter direct reads (without one its image is black, which proves nothing)."""
     return None if any(e.get("type") in EMITTERS for e in root.iter("emitter")) else "no emitter"
+
+
+def strategies_agree(root: ET.Element) -> str | None:
+    """Where emitter sampling alone, BSDF sampling alone and MIS estimate one image: a delta light's light
+    reaches emitter samples only."""
+    delta = sorted({e.get("type") for e in root.iter("emitter") if e.get("type") in DELTA_EMITTERS})
+    return f"{' and '.join(delta)} lights, which BSDF sampling never finds" if delta else None
+
+
+def _samples(emitter: int, bsdf: int) -> tuple:
+    return (("integer", "emitter_samples", str(emitter)), ("integer", "bsdf_samples", str(bsdf)))
+
+
+#: Emitter sampling alone ("ems"), BSDF sampling alone ("mats"), both with MIS ("mis"): Nori's direct_ems,
+#: direct_mats and direct_mis.
+STRATEGIES = Strategies(settings=(("ems", _samples(1, 0)), ("mats", _samples(0, 1)), ("mis", _samples(1, 1))),
+                        applies=strategies_agree)
 
 
 ENTRY = IntegratorEntry(
@@ -26,6 +45,7 @@ ENTRY = IntegratorEntry(
                           "disk's off-axis form factor, pi L (r/d)^2 cos)", lit_plane.radiance,
                           scenes=("lit_plane",), draws_estimator=False),
     requirements=(("an emitter", has_emitter),),
+    strategies=STRATEGIES,
     # Linear in the light only: where the camera sees an area light, its pixels keep their radiance when every
     # reflectance is scaled.
     linear_in=("light",),

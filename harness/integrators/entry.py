@@ -44,6 +44,19 @@ class AnalyticForm:
     draws_estimator: bool = True
 
 
+@dataclass(frozen=True)
+class Strategies:
+    """Settings of the integrator that estimate one image with different estimators (direct: emitter sampling
+    alone, BSDF sampling alone, both with MIS), which the image suite renders with the engine under test and
+    compares with each other (harness/comparison/strategies.py): the one that differs is named."""
+
+    #: (strategy, the parameters that select it, as in the scene's <integrator>), in the order compared.
+    settings: tuple[tuple[str, tuple[Parameter, ...]], ...]
+    #: applies(scene root, its includes inlined) -> None where every setting estimates the same image of the
+    #: scene, else why not ("point lights, which BSDF sampling never finds").
+    applies: Requirement
+
+
 #: Rewrites that leave every integrator's image unchanged, or rotated (harness/invariance/variants.py).
 GEOMETRIC_INVARIANCES = ("scale", "rotate", "translate")
 
@@ -68,6 +81,8 @@ class IntegratorEntry:
     same_image_as: str | None = None
     analytic: AnalyticForm | None = None
     requirements: tuple[tuple[str, Requirement], ...] = ()  # (summary, check)
+    #: Its settings that estimate one image with different estimators, compared with each other; None: none.
+    strategies: Strategies | None = None
     #: Its image may be negative (a normal's components): comparisons test no sign, maps use a signed scale.
     signed: bool = False
     #: A noiseless image of the camera and geometry alone (normals): run first on each scene, and its failure

@@ -120,7 +120,24 @@ def entry_html(r: ImageResult, run: dict | None = None) -> str:
                       f"<td>{_seconds(ref.seconds, k)}</td></tr>"
                       for k in ("load", "build", "first", "render", "total"))
             + "</table></div>")
+    parts.append(_strategies_html(r))
     return "".join(parts)
+
+
+def _strategies_html(r: ImageResult) -> str:
+    """The strategy check: its verdict and reason, and each pair's scales (or why it did not run)."""
+    check = r.strategies
+    if check is None:
+        skipped = r.decision.strategies_skipped
+        return f"<p class='meta'>strategies not compared: {_esc(skipped)}</p>" if skipped else ""
+    verdict = "FAIL" if check.disagree else "PASS" if check.verdict == "AGREE" else "INCONCLUSIVE"
+    rows = "".join(f"<tr><td>{_esc(p.first)} vs {_esc(p.second)}</td>"
+                   + "".join(f"<td>{s.min_p:.2g} (level {s.level:.2g})</td>" for s in p.comparison.scales)
+                   + f"<td>{_verdict(p.comparison.verdict)}</td></tr>" for p in check.pairs)
+    scales = "".join(f"<th>{_esc(s.scale)}: min p</th>" for s in check.pairs[0].comparison.scales)
+    return (f"<p>strategies of {_esc(r.engine)} ({check.verdict}{', ' + _esc(check.odd) + ' differs' if check.odd else ''}): "
+            f"{_verdict(verdict)} {_esc(check.reason)}</p>"
+            f"<table><tr><th>pair</th>{scales}<th></th></tr>{rows}</table>")
 
 
 def _regression_html(regression: list[dict] | None, baseline: str | None) -> str:

@@ -37,7 +37,19 @@ def _cell(result: ImageResult) -> str:
     if not all(c.no_outlier for c in result.comparisons.values()):
         return "[bold red]FAIL[/] a batch stands apart"
     failed = sorted({s for c in result.comparisons.values() for s in c.failed_checks})
-    return f"[bold red]FAIL[/] {','.join(failed)}"
+    return f"[bold red]FAIL[/] {','.join(failed)}".rstrip()
+
+
+def _strategies_cell(result: ImageResult) -> str:
+    """The strategy check beside the verdict: "ems differs", "strategies agree", ... ("" where it did not run)."""
+    check = result.strategies
+    if check is None:
+        return ""
+    if check.verdict == "DIFFERS":
+        return f" [bold red]{check.odd} differs[/]"
+    if check.disagree:
+        return " [bold red]strategies disagree[/]"
+    return " strategies agree" if check.verdict == "AGREE" else " [yellow]strategies inconclusive[/]"
 
 
 def image_table(results: list[ImageResult], alpha: float) -> Table:
@@ -56,7 +68,7 @@ def image_table(results: list[ImageResult], alpha: float) -> Table:
             table.add_row(r.case.scene, r.case.integrator, "[bold red]FAIL[/] render failed", "—", "—", "—", "—", idiff_short(r.idiff),
                           f"{r.tested.seconds['total']:.2f}" if r.tested else "—", "—")
             continue
-        verdicts = _cell(r) + (" (+exact)" if len(r.comparisons) > 1 else "")
+        verdicts = _cell(r) + (" (+exact)" if len(r.comparisons) > 1 else "") + _strategies_cell(r)
         table.add_row(r.case.scene, r.case.integrator, verdicts, f"{m.metrics['mean_ratio']:.4f}",
                       f"{m.metrics['relmse']:.1e}", f"{m.metrics['flip_mean']:.3f}", f"{m.detectable_bias:.1e}", idiff_short(r.idiff),
                       f"{r.tested.seconds['total']:.2f}", f"{next(iter(r.references.values())).seconds.get('total', 0):.2f}")
@@ -72,4 +84,6 @@ def image_table(results: list[ImageResult], alpha: float) -> Table:
                 found.setdefault(c.independence.summary, []).append(name)
         for summary, names in found.items():
             table.caption += f"\n{escape(r.case.key)} (against {', '.join(names)}): {escape(summary)}"
+        if r.strategies is not None and r.strategies.verdict != "AGREE":
+            table.caption += f"\n{escape(r.case.key)} strategies {r.strategies.verdict}: {escape(r.strategies.reason)}"
     return table
