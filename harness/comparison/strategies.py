@@ -25,12 +25,14 @@ Verdicts:
 - INCONCLUSIVE: a pattern that names no single strategy (one comparison rejects alone: a bias that only the
   quieter pair resolves; all three reject: more than one strategy is wrong), or no rejection where some pair
   could not have found the bias it must resolve. `disagree` tells the first kind, which is no pass, from the
-  second.
+  second. Where all three reject, the two strategies nearest each other are `suspects` when they share a part
+  (ems and mis the light's sampling, mats and mis the BSDF's): a light pdf left in area measure biases MIS too,
+  which weighs a small light's samples by nearly 1, so "ems" alone is never the odd one there.
 
 Public API::
 
     check = compare_strategies({"ems": a, "mats": b, "mis": c}, alpha=0.01, spp=32)   # (K, H, W, 3) or renders
-    check.verdict, check.odd, check.reason, check.pairs, check.to_json()
+    check.verdict, check.odd, check.suspects, check.reason, check.pairs, check.to_json()
 """
 from __future__ import annotations
 
@@ -53,6 +55,13 @@ STRATEGIES = ("ems", "mats", "mis")
 SUSPECTS = {"ems": "the light's sampling or its pdf (a pdf left in area measure?)",
             "mats": "the BSDF's sampling or its pdf",
             "mis": "the MIS weights (the two strategies agree without them: weights that do not sum to one?)"}
+
+#: Two strategies that both differ from the third, and less from each other, share their defect: what they share.
+SHARED = {frozenset(("ems", "mis")): "the light's sampling or its pdf, which ems and mis share (MIS weighs its light "
+                                     "samples the more, the smaller the light)",
+          frozenset(("mats", "mis")): "the BSDF's sampling or its pdf, which mats and mis share"}
+#: The nearest pair is named only where each other pair is at least this many times as far apart.
+NEAREST_MARGIN = 2.0
 
 
 class Batches(Protocol):
@@ -106,6 +115,9 @@ class StrategyCheck:
     odd: str | None
     #: Why, in one line.
     reason: str
+    #: The strategies a disagreement points at: the odd one (DIFFERS), or where every pair disagrees the two
+    #: that differ less from each other than from the third, when they share a part (SHARED); else none.
+    suspects: tuple[str, ...] = ()
 
     @property
     def disagree(self) -> bool:
@@ -117,7 +129,8 @@ class StrategyCheck:
         return next(p for p in self.pairs if set(p.names) == {a, b})
 
     def to_json(self) -> dict:
-        return {"verdict": self.verdict, "odd": self.odd, "reason": self.reason, "disagree": self.disagree,
+        return {"verdict": self.verdict, "odd": self.odd, "suspects": list(self.suspects), "reason": self.reason,
+                "disagree": self.disagree,
                 "level": self.level, "pair_level": self.pair_level, "pairs": [p.to_json() for p in self.pairs]}
 
 
@@ -200,7 +213,31 @@ def compare_strategies(renders: Mapping[str, Render], *, alpha: float = SIGNIFIC
         summaries[a], summaries[b], pair_level, samples=(samples, samples), metrics=metrics, power=power,
         tile_power=False)) for a, b in combinations(STRATEGIES, 2))
     verdict, odd, reason = read_pattern(pairs, alpha, pair_level)
-    return StrategyCheck(pairs=pairs, level=alpha, pair_level=pair_level, verdict=verdict, odd=odd, reason=reason)
+    suspects: tuple[str, ...] = (odd,) if odd else ()
+    if all(p.rejects for p in pairs):
+        suspects, why = nearest_pair({name: s.image.mean for name, s in summaries.items()})
+        reason += why
+    return StrategyCheck(pairs=pairs, level=alpha, pair_level=pair_level, verdict=verdict, odd=odd, reason=reason,
+                         suspects=suspects)
+
+
+def nearest_pair(means: Mapping[str, np.ndarray]) -> tuple[tuple[str, ...], str]:
+    """Where every pair disagrees (two strategies or more are wrong): the two whose image means (`means`, by
+    strategy) are nearest each other, with what they share, when each other pair is NEAREST_MARGIN times as
+    far apart and they share a part (SHARED): both are suspects, a defect of that part. ((), "") otherwise.
+    A reading of the figures, not a test: the verdict stays INCONCLUSIVE."""
+    def apart(a: str, b: str) -> float:
+        ma, mb = np.asarray(means[a], np.float64), np.asarray(means[b], np.float64)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return float(np.nanmean(np.abs(ma - mb) / (0.5 * (np.abs(ma) + np.abs(mb)))))
+    distances = sorted((apart(a, b), (a, b)) for a, b in combinations(STRATEGIES, 2))
+    (near, pair), rest = distances[0], distances[1:]
+    shared = SHARED.get(frozenset(pair))
+    if shared is None or not np.isfinite(near) or any(not d >= NEAREST_MARGIN * near for d, _ in rest):
+        return (), ""
+    (third,) = set(STRATEGIES) - set(pair)
+    return pair, (f"; {pair[0]} and {pair[1]} are nearest each other (image means {near:.2%} apart, {third} "
+                  f"{min(d for d, _ in rest):.0%} or more from both): suspect {shared}")
 
 
 def read_pattern(pairs: tuple[StrategyPair, ...], alpha: float, pair_level: float) -> tuple[str, str | None, str]:

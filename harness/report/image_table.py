@@ -48,7 +48,8 @@ def _strategies_cell(result: ImageResult) -> str:
     if check.verdict == "DIFFERS":
         return f" [bold red]{check.odd} differs[/]"
     if check.disagree:
-        return " [bold red]strategies disagree[/]"
+        return f" [bold red]{' and '.join(check.suspects)} differ[/]" if check.suspects else \
+            " [bold red]strategies disagree[/]"
     return " strategies agree" if check.verdict == "AGREE" else " [yellow]strategies inconclusive[/]"
 
 

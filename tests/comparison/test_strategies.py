@@ -58,6 +58,25 @@ def test_two_biased_strategies_name_none():
     assert check.reason.startswith("every pair disagrees: more than one strategy differs")
 
 
+def test_two_strategies_wrong_alike_are_suspected_by_the_part_they_share():
+    """A light pdf left in area measure biases MIS too where it weighs the light's samples by nearly 1: ems and
+    mis are then both wrong, alike, and the check points at the light's sampling; mats and mis alike, at the
+    BSDF's. Two strategies wrong in opposite directions leave no pair nearest: no suspects."""
+    light = compare_strategies(planted(planted(_triple(11), "ems", 3.0, AREA_MEASURE), "mis", 2.9, AREA_MEASURE),
+                               spp=SPP)
+    assert light.verdict == "INCONCLUSIVE" and light.odd is None and light.suspects == ("ems", "mis")
+    assert "suspect the light's sampling or its pdf, which ems and mis share" in light.reason
+    bsdf = compare_strategies(planted(planted(_triple(12), "mats", 0.5), "mis", 0.45), spp=SPP)
+    assert bsdf.suspects == ("mats", "mis") and "the BSDF's sampling" in bsdf.reason
+    apart = compare_strategies(planted(planted(_triple(4), "ems", 0.3), "mats", -0.3), spp=SPP)
+    assert apart.disagree and apart.suspects == () and "nearest" not in apart.reason
+
+
+def test_a_named_strategy_is_the_only_suspect():
+    check = compare_strategies(planted(_triple(13), "mats", 0.3), spp=SPP)
+    assert check.odd == "mats" and check.suspects == ("mats",) and check.to_json()["suspects"] == ["mats"]
+
+
 def _pairs(rejecting: set[tuple[str, str]], inconclusive: str = "") -> tuple[StrategyPair, ...]:
     def outcome(names):
         rejects = names in rejecting

@@ -38,7 +38,8 @@ std::vector<std::string> linkedIntegrators() {
     std::vector<fs::path> files;
     for (const auto &entry : fs::directory_iterator(root / "renderer" / "integrators"))
         if (entry.path().extension() == ".cpp") files.push_back(entry.path());
-    for (const char *own : {"albedo_integrator.cpp", "ao_uniform_integrator.cpp", "test_emitter_loader.cpp"})
+    for (const char *own : {"albedo_integrator.cpp", "ao_uniform_integrator.cpp", "direct_twins_integrator.cpp",
+                            "test_emitter_loader.cpp"})
         files.push_back(root / "tests" / "cpp" / own);
     std::vector<std::string> names = registeredIn(files);
     std::sort(names.begin(), names.end());

@@ -17,7 +17,8 @@ def _names(files) -> list[str]:
 PRODUCT = _names(sorted((ROOT / "renderer" / "integrators").glob("*.cpp")))
 #: The test build's: the product's and those of tests/cpp/ linked into it (render_with_test_integrators).
 TEST_BUILD = sorted(PRODUCT + _names(ROOT / "tests" / "cpp" / f for f in ("albedo_integrator.cpp",
-                                                                         "ao_uniform_integrator.cpp")))
+                                                                         "ao_uniform_integrator.cpp",
+                                                                         "direct_twins_integrator.cpp")))
 
 
 def name_list(names: list[str]) -> str:
