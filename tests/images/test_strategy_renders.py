@@ -71,3 +71,15 @@ def test_each_strategy_has_a_seed_of_its_own():
     case = ImageCase("plane_rect_light", "direct")
     seeds = [strategy_seed(7, name, case) for name in ("ems", "mats", "mis")]
     assert len({7, *seeds}) == 4
+
+
+def test_each_strategy_check_is_one_more_member_of_the_runs_family():
+    from harness.images.run import comparison_level, strategy_checks
+    from harness.statistics.constants import SIGNIFICANCE, sidak_level
+
+    cases = [ImageCase("plane_rect_light", "direct"), ImageCase("plane_rect_light", "ao"), ImageCase("cornell", "direct")]
+    checks = strategy_checks(cases, Reader())
+    assert [why is None for why in checks.values()] == [True, False, False]
+    assert comparison_level(cases, dict.fromkeys(cases, False), checks) == sidak_level(SIGNIFICANCE, 4)
+    assert comparison_level(cases, dict.fromkeys(cases, False), strategy_checks(cases, Reader(reads=False))) == \
+        sidak_level(SIGNIFICANCE, 3)
