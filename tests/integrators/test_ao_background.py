@@ -76,7 +76,7 @@ def test_mitsubas_mapping_and_an_engine_files_scene_keep_the_files_value(tmp_pat
 
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
-def test_ours_and_mitsuba_agree_with_the_environment_shown(mcval, mitsuba, tmp_path, seed):
+def test_mcval_and_mitsuba_agree_with_the_environment_shown(mcval, mitsuba, tmp_path, seed):
     scene = _scene(tmp_path, SHOWN)
     reference = mitsuba.render(scene, "ao", SPP, K, 100 + seed).batches
     assert np.allclose(reference[:, :8], L_ENV)

@@ -43,7 +43,7 @@ def _variant(tmp_path, scene: Path, old: str, new: str) -> Path:
 
 
 @pytest.mark.parametrize("scene", [DISK_CYLINDER, ORTHOGRAPHIC], ids=lambda p: p.stem)
-def test_ours_agrees_with_mitsuba(mcval, references, scene):
+def test_mcval_agrees_with_mitsuba(mcval, references, scene):
     mcval_batches = _mcval(mcval, scene)
     assert (mcval_batches != 0).any(axis=-1).mean() > 0.3  # the shapes fill a good part of the view
     assert compare_batches(mcval_batches, references[scene], signed=True).passed

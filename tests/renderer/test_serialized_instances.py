@@ -54,7 +54,7 @@ def _render(engine, scene, seed):
     return engine.render(scene, "normals", SPP, K, seed).batches
 
 
-def test_ours_and_mitsuba_agree(mcval, mitsuba, tmp_path):
+def test_mcval_and_mitsuba_agree(mcval, mitsuba, tmp_path):
     scene = _scene(tmp_path)
     test, reference = _render(mcval, scene, 1), _render(mitsuba, scene, 101)
     assert (np.abs(test).sum(axis=-1) > 0).mean() > 0.2  # the shapes fill a good part of the view
