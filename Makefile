@@ -21,7 +21,7 @@ TEST_JOBS ?= 2
 SANITIZE_BUILD := build-sanitize
 FUZZ_RUNS ?= 2000
 FUZZ_SEED ?= 1
-# The campaign of `images --scene` (harness, Mitsuba and ours together; tests/fuzz/fuzz_images.py).
+# The campaign of `images --scene` (harness, Mitsuba and mcval together; tests/fuzz/fuzz_images.py).
 FUZZ_IMAGE_RUNS ?= 2000
 FUZZ_IMAGE_SEED ?= 4104
 

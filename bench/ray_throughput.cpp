@@ -117,27 +117,27 @@ int main(int argc, char **argv) {
     std::printf("%s: %dx%d, %d spp, %zu triangles; medians of %d runs\n", scenePath.c_str(), scene.film.width,
                 scene.film.height, spp, [&] { size_t n = 0; for (const Mesh &m : scene.meshes) n += m.indices.size() / 3; return n; }(),
                 repeats);
-    std::printf("%-10s %14s %14s %8s\n", "integrator", "ours Mrays/s", "raw Mrays/s", "ratio");
+    std::printf("%-10s %14s %14s %8s\n", "integrator", "renderer Mrays/s", "raw Mrays/s", "ratio");
     std::string json = "{\n  \"scene\": \"" + scenePath + "\",\n  \"spp\": " + std::to_string(spp) + ",\n  \"integrators\": {";
     bool first = true;
     for (const char *name : {"normals", "simple", "ao"}) {
         RenderOptions options;
         options.spp = spp;
         options.integrator = name;
-        std::vector<double> ours, raw;
+        std::vector<double> rendered, raw;
         uint64_t rayCount = 0;
         for (int r = 0; r < repeats; ++r) {
             const RenderOutput out = render(scene, options);
             rayCount = out.stats.cameraRays + out.stats.shadowRays;
-            ours.push_back(double(rayCount) / out.stats.renderSeconds);
+            rendered.push_back(double(rayCount) / out.stats.renderSeconds);
         }
         const RaySet rays = collectRays(scene, embree, name, spp, aoSamples);
         const double rawCount = double(rays.closest.size() + rays.occlusion.size());
         for (int r = 0; r < repeats; ++r) raw.push_back(rawCount / traceRaw(embree, rays, spp, std::string(name) == "simple"));
-        const double o = median(ours), w = median(raw);
+        const double o = median(rendered), w = median(raw);
         std::printf("%-10s %14.2f %14.2f %8.2f   (%llu rays; raw set %.0f)\n", name, o / 1e6, w / 1e6, o / w,
                     static_cast<unsigned long long>(rayCount), rawCount);
-        json += std::string(first ? "" : ",") + "\n    \"" + name + "\": {\"ours_rays_per_second\": " + std::to_string(o) +
+        json += std::string(first ? "" : ",") + "\n    \"" + name + "\": {\"renderer_rays_per_second\": " + std::to_string(o) +
                 ", \"raw_rays_per_second\": " + std::to_string(w) + ", \"ratio\": " + std::to_string(o / w) + "}";
         first = false;
     }

@@ -8,9 +8,9 @@ os.environ.pop("COLUMNS", None)
 
 
 @pytest.fixture(scope="session")
-def ours():
-    from harness.engines.ours import OurEngine
-    return OurEngine()
+def mcval():
+    from harness.engines.mcval import McvalEngine
+    return McvalEngine()
 
 
 @pytest.fixture(scope="session")

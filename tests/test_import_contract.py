@@ -37,7 +37,7 @@ def test_the_package_as_it_is_keeps_the_contract(clean_copy):
 
 
 @pytest.mark.parametrize("module, planted", [
-    ("bench/ladder.py", "from harness.engines.ours import OurEngine"),
+    ("bench/ladder.py", "from harness.engines.mcval import McvalEngine"),
     ("integrators/registry.py", "from harness.native import renderer_module"),
     ("images/suite.py", "import harness.engines.mitsuba_scene"),
     ("invariance/cell.py", "from harness.engines.nori import to_nori"),

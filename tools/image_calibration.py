@@ -23,7 +23,7 @@ from scipy import stats as sps
 
 from harness.comparison.compare import SCALES, compare_summaries
 from harness.comparison.summary import summarize
-from harness.images.suite import OUR_SPP
+from harness.images.suite import TESTED_SPP
 from harness.statistics.constants import TILE_SIZE
 
 NULLS = Path(__file__).resolve().parent.parent / "results" / "calibration"
@@ -148,7 +148,7 @@ def main(argv: list[str]) -> None:
         for case in cases:
             mine = render_pairs(path, case)
             integrator = case.split(":")[1]
-            samples = (OUR_SPP[integrator], OUR_SPP[integrator])  # as tools/null_renders.py makes them
+            samples = (TESTED_SPP[integrator], TESTED_SPP[integrator])  # as tools/null_renders.py makes them
             for alpha in totals:
                 rates = null_rates(mine, alpha, samples)
                 totals[alpha].append(rates)

@@ -6,7 +6,7 @@ scenes/pa3/sphere/sphere_ao.xml with its ref/sphere_ao.exr at commit 425187e).
 
     .venv/bin/python -m tools.nori_reference SCENE.xml NORI.exr [--abs] [--spp 16]
 
---abs compares |ours| (Nori's tutorial normals integrator writes |n|). Prints both image means, the mean and
+--abs compares |mcval's| (Nori's tutorial normals integrator writes |n|). Prints both image means, the mean and
 largest difference of 16 x 16-pixel block means, and the same for our image mirrored left to right (a
 handedness check: it must be far larger)."""
 from __future__ import annotations
@@ -36,7 +36,7 @@ def main(argv: list[str] | None = None) -> int:
     q = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     q.add_argument("scene", type=Path)
     q.add_argument("reference", type=Path)
-    q.add_argument("--abs", action="store_true", help="compare |ours| (Nori's normals integrator writes |n|)")
+    q.add_argument("--abs", action="store_true", help="compare |mcval's| (Nori's normals integrator writes |n|)")
     q.add_argument("--spp", type=int, default=16)
     args = q.parse_args(argv)
     root = nori_to_mitsuba(args.scene.read_text(), args.scene)
@@ -48,12 +48,12 @@ def main(argv: list[str] | None = None) -> int:
         mitsuba = Path(tmp) / "scene.xml"
         mitsuba.write_text(ET.tostring(root, encoding="unicode"))
         render = Path(sys.executable).parent / "render"
-        subprocess.run([str(render), str(mitsuba), "-o", f"{tmp}/ours.exr", "-q"], check=True)
-        ours, _ = read_image(Path(tmp) / "ours.exr")
+        subprocess.run([str(render), str(mitsuba), "-o", f"{tmp}/mcval.exr", "-q"], check=True)
+        mcval, _ = read_image(Path(tmp) / "mcval.exr")
     theirs, _ = read_image(args.reference)
-    ours = np.abs(ours) if args.abs else ours
-    print(f"image mean: ours {ours.mean():.6g}, Nori's {theirs.mean():.6g}")
-    for label, image in (("as rendered", ours), ("mirrored", ours[:, ::-1])):
+    mcval = np.abs(mcval) if args.abs else mcval
+    print(f"image mean: mcval {mcval.mean():.6g}, Nori's {theirs.mean():.6g}")
+    for label, image in (("as rendered", mcval), ("mirrored", mcval[:, ::-1])):
         d = np.abs(block_means(image) - block_means(theirs))
         print(f"{label}: block means differ by {d.mean():.3g} on average, {d.max():.3g} at most")
     return 0

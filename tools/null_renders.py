@@ -19,7 +19,7 @@ import numpy as np
 from rich.progress import Progress
 
 import mcval_renderer
-from harness.images.suite import OUR_SPP
+from harness.images.suite import TESTED_SPP
 from harness.images.references import REFERENCE_BATCHES
 from harness.statistics.constants import IMAGE_BATCHES
 
@@ -36,8 +36,8 @@ def render_pair(scene: Path, integrator: str, pair: int, res: int,
         out = mcval_renderer.render(str(scene), spp=spp, seed=s, batches=batches, integrator=integrator, params=params)
         return np.asarray(out["batches"], np.float32)
 
-    return (side(OUR_SPP[integrator], IMAGE_BATCHES, seed),
-            side(reference_spp or OUR_SPP[integrator], REFERENCE_BATCHES, seed + 1))
+    return (side(TESTED_SPP[integrator], IMAGE_BATCHES, seed),
+            side(reference_spp or TESTED_SPP[integrator], REFERENCE_BATCHES, seed + 1))
 
 
 def main() -> None:

@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 import harness.comparison.compare as compare
-from harness.images.suite import OUR_SPP
+from harness.images.suite import TESTED_SPP
 from harness.statistics.constants import sidak_level
 from harness.statistics.welch import moderate, sample_floor, welch_p_values
 from tools.image_calibration import NULLS, SYNTHETIC_SAMPLES, render_pairs, synthetic_pairs
@@ -73,7 +73,7 @@ def main(argv: list[str]) -> None:
     sets = [("synthetic Gaussian", [draw() for _ in range(400)], SYNTHETIC_SAMPLES)]
     for path in [Path(a) for a in argv] if argv else sorted(NULLS.glob("nulls-*.npz")):
         for case in sorted({key.rsplit(":", 2)[0] for key in np.load(path).files}):
-            spp = OUR_SPP[case.split(":")[1]]
+            spp = TESTED_SPP[case.split(":")[1]]
             sets.append((case, render_pairs(path, case), (spp, spp)))
     for name, pairs, samples in sets:
         cells = "  ".join(f"{rule} {' / '.join(f'{r:.3f}' for r in rates)}"

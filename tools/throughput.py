@@ -1,4 +1,4 @@
-"""The side-by-side render throughput table alone: ours (in process and in its worker) and Mitsuba as shipped on
+"""The side-by-side render throughput table alone: the tested engine (in process and in its worker) and the reference as shipped on
 the four cases of harness/bench/throughput.py, interleaved run by run.
 
     .venv/bin/python -m tools.throughput [runs] [sampler]
@@ -34,6 +34,6 @@ if __name__ == "__main__":
     reference = make_engine("mitsuba-native", sampler=MITSUBA_SAMPLER.get(sampler, sampler))
     print(table([measure(*case, tested, reference, worker, runs=runs, sampler=sampler) for case in CASES]))
     print(f"Render time only, each timed render after a pause and an untimed one of the same engine; medians of {runs} "
-          "runs; reference/tested: the median of the per-round ratios; worker: ours in its render --serve worker, as "
+          "runs; reference/tested: the median of the per-round ratios; worker: the tested engine in its render --serve worker, as "
           f"images and validate run it (wall clock less load and BVH); sampler {sampler} "
           f"(Mitsuba: {MITSUBA_SAMPLER.get(sampler, sampler)}); rays/s from our ray count for both.")

@@ -100,7 +100,7 @@ def run_ladder(engine: Engine, case: ImageCase, reference: Reference, seed: int,
                runs: int = RUNS, on_step: Callable[[str], None] | None = None) -> Curve:
     """Render `case` at every step of the ladder, `runs` times each, one job at a time. A step's runs
     are rendered back to back and their errors computed after them: FLIP's OpenMP threads and the
-    cache they sweep, between two renders, slowed ours by 20-40 % at 128^2 (32 spp: 5.8 ms back to
+    cache they sweep, between two renders, slowed mcval's renders by 20-40 % at 128^2 (32 spp: 5.8 ms back to
     back, 7-10 ms with FLIP between), which timed the harness rather than the engine."""
     params = {"res": str(RESOLUTION)}
     signed = entry(case.integrator).signed

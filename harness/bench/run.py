@@ -63,7 +63,7 @@ class CaseBench:
     def comparison(self, sampler: str | None, tested: str | None = None, other: str | None = None) -> dict:
         """Efficiency of the tested engine over `other`: both with `sampler` (the engine comparison), or each
         with its most efficient stratified sampler (sampler None: what a user gets), over the steps both
-        rendered. Names the curves compared (keys "ours" and "reference" in results.json)."""
+        rendered. Names the curves compared (keys "tested" and "reference" in results.json)."""
         tested, other = tested or self.tested, other or self.reference
         a, b = self._pick(tested, sampler), self._pick(other, sampler)
         ratio = float("nan")
@@ -72,8 +72,8 @@ class CaseBench:
             ratio = self.curves[a].efficiency(common) / self.curves[b].efficiency(common)
         # An engine not run with that sampler has no curve: its NaN is not a lack of signal.
         missing = [name for name, label in ((tested, a), (other, b)) if not label]
-        return {"ratio": ratio, "ours": a, "reference": b, "missing": missing,
-                "ours_sampler": _sampler_of(a), "reference_sampler": _sampler_of(b)}
+        return {"ratio": ratio, "tested": a, "reference": b, "missing": missing,
+                "tested_sampler": _sampler_of(a), "reference_sampler": _sampler_of(b)}
 
     def efficiency_ratio(self, tested: str | None = None, other: str | None = None) -> float:
         """The like-for-like ratio (both engines with SAME_SAMPLER)."""

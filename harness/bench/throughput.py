@@ -4,7 +4,7 @@ timed render follows a pause and then an untimed one of the same engine), median
 per-sample cost from convergence.
 
 The tested engine is timed as the bench renders it (in this process where it can) and, where it renders in
-another process when not asked otherwise (ours: its `render --serve` worker), there too (WORKER): the call's wall
+another process when not asked otherwise (mcval's: its `render --serve` worker), there too (WORKER): the call's wall
 clock less the scene load and BVH build it reports, so with the request, the images written and read, and the
 thread pool's wake-up.
 
@@ -87,7 +87,7 @@ def measure(scene_name: str, integrator: str, res: int, spp: int, tested: Engine
     rays = None
     for run in range(1, runs + 1):
         # Each engine's timed render follows a pause longer than either engine keeps its threads spinning
-        # after a render (ours 100 ms), then an untimed render of its own: so it meets neither the other
+        # after a render (mcval's 100 ms), then an untimed render of its own: so it meets neither the other
         # engine's threads still spinning nor its own asleep (waking a worker thread costs this machine
         # several ms, a third of a 128² render). Both engines are treated alike.
         time.sleep(QUIET_SECONDS)

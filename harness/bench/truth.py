@@ -1,7 +1,7 @@
 """What the benchmark measures each engine's error against. Where physics gives the image (a closed form:
 a lone plane, a sphere resting on a floor), the analytic engine's render decides; elsewhere the stored
 Mitsuba reference. A biased reference would otherwise count its own bias as the other engine's error:
-at the 1e-3 scale Mitsuba breaks the sphere's closed form, and ours, which holds it, would converge to
+at the 1e-3 scale Mitsuba breaks the sphere's closed form, and an engine that holds it would converge to
 Mitsuba's bias instead of to zero."""
 from __future__ import annotations
 

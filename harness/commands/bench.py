@@ -34,7 +34,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--max-spp", type=int, default=256, help="top of the ladder 1, 2, 4, ... (default 256)")
     p.add_argument("--same-sampler", action="store_true",
                    help="only the engine comparison: every engine with the independent sampler (by default each "
-                        "also runs its stratified samplers: ours sobol, Mitsuba ldsampler and multijitter, and the "
+                        "also runs its stratified samplers: mcval sobol, Mitsuba ldsampler and multijitter, and the "
                         "tested engine's samplers' convergence slopes are measured)")
     p.add_argument("--runs", type=int, default=3, help="independent runs per step (default 3)")
     p.add_argument("--rays-json", type=Path, help="figures written by build/bench_rays --json, to include")
@@ -80,7 +80,7 @@ def _measure(args, cases, engines, reference, ladder):
         if args.throughput_runs > 0:
             from harness.bench.throughput import CASES, measure
             tested = make_engine(tested_name, sampler=SAME_SAMPLER, in_process=True)
-            # The tested engine as `images` runs it, where that is in another process (ours: its worker).
+            # The tested engine as `images` runs it, where that is in another process (mcval's: its worker).
             worker = make_engine(tested_name, sampler=SAME_SAMPLER)
             worker = worker if worker.renders_elsewhere and not tested.renders_elsewhere else None
             compared = make_engine(compared_name, sampler=SAME_SAMPLER)

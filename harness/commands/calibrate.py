@@ -23,8 +23,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.description = (
         "Measure, not assume, how often each statistical check rejects when nothing is wrong. Warps: every "
         "correct warp of the matrix at many seeds (chi-square, homogeneity with Mitsuba). Images: null "
-        "comparisons (ours against ours at independent seeds, Mitsuba against Mitsuba, ours against the closed "
-        "form) per scale and for the whole comparison, and the smallest whole-image and 8x8-tile biases found "
+        "comparisons (the tested engine against itself at independent seeds, Mitsuba against Mitsuba, the "
+        "tested engine against the closed form) per scale and for the whole comparison, and the smallest whole-image and 8x8-tile biases found "
         "90 %% of the time. Each rate with an exact interval beside the nominal level. Writes calibration.html "
         "and calibration.json (blocks with `comparisons` and `false_alarm_rate`); results/calibration-latest "
         "points at the newest. Exits 1 if a rate lies above its nominal level beyond its interval (the check "
@@ -78,7 +78,7 @@ def _calibrate(args, run_dir: Path, executor) -> tuple[list[Tally], dict, str]:
     from harness.commands.warp_section import warp_engine
 
     warps, images = (args.warps or not args.images), (args.images or not args.warps)
-    ours = make_engine(args.engine)
+    tested = make_engine(args.engine)
     warp_source = warp_engine(args) if warps else None
     if warps and not warp_source.has_warps:
         if args.warps:
@@ -87,13 +87,13 @@ def _calibrate(args, run_dir: Path, executor) -> tuple[list[Tally], dict, str]:
         warps = False
     reference = None if args.no_mitsuba else make_engine(args.reference)
     payload: dict = {"run": run_dir.name}
-    meta: dict = {"engine": ours.version(), "reference": reference.version() if reference else "none"}
+    meta: dict = {"engine": tested.version(), "reference": reference.version() if reference else "none"}
     tallies, sections = [], []
     if images:
         if reference is None:
             raise ValueError("--images needs Mitsuba (its null comparisons include Mitsuba against itself): "
                              "drop --no-mitsuba")
-        cal_images = _calibrate_images(args, ours, reference, executor)
+        cal_images = _calibrate_images(args, tested, reference, executor)
         payload["images"] = cal_images
         sections = image_calibration_sections(cal_images)
         meta.update({"image comparisons": cal_images["comparisons"], "image seconds": round(cal_images["seconds"], 1),
@@ -116,14 +116,14 @@ def _calibrate(args, run_dir: Path, executor) -> tuple[list[Tally], dict, str]:
     return tallies, payload, page
 
 
-def _calibrate_warps(args, ours, reference, executor):
+def _calibrate_warps(args, tested, reference, executor):
     from harness.report.calibration_table import calibration_table
     from harness.warps.calibration import calibrate_warps
     from harness.warps.suite import select
 
     specs = select(args.only)
     with task_progress("calibrate warps", executor) as show:
-        cal = calibrate_warps(ours, reference, specs, args.seeds, args.samples, executor, show)
+        cal = calibrate_warps(tested, reference, specs, args.seeds, args.samples, executor, show)
     console.print(calibration_table(cal))
     for line in cal.failed:
         console.print(f"[red]failed[/] {line}")
@@ -131,12 +131,12 @@ def _calibrate_warps(args, ours, reference, executor):
     return cal
 
 
-def _calibrate_images(args, ours, reference, executor) -> dict:
+def _calibrate_images(args, tested, reference, executor) -> dict:
     from harness.images.calibration import calibrate_images
     from harness.report.calibration_table import image_calibration_table
 
     with task_progress("calibrate images", executor) as show:
-        cal = calibrate_images(ours, reference, args.comparisons, args.seed, executor, show)
+        cal = calibrate_images(tested, reference, args.comparisons, args.seed, executor, show)
     where = executor.description
     out = {**cal.to_json(), "ran_on": where}
     console.print(image_calibration_table(out))

@@ -35,7 +35,7 @@ def _print_regression(payload: dict) -> None:
             console.print(f"[yellow]changed[/] {entry['scene']}:{entry['integrator']}: {'; '.join(entry['flags'])}")
 
 
-def _budgeted(cases, ours, reference, target: float, seed: int):
+def _budgeted(cases, tested, reference, target: float, seed: int):
     """The cases with the samples per pixel that find `target` 90 % of the time (harness/images/budget.py), and
     the budgets; each printed, with the whole run's rendering time, before anything is rendered."""
     import dataclasses
@@ -43,14 +43,14 @@ def _budgeted(cases, ours, reference, target: float, seed: int):
     from harness.images.budget import plan_budget
     from harness.images.run import case_seed, closed_forms, comparison_level, strategy_checks
 
-    alpha = comparison_level(cases, closed_forms(cases), strategy_checks(cases, ours))
+    alpha = comparison_level(cases, closed_forms(cases), strategy_checks(cases, tested))
     budgets, planned = [], []
     for case in cases:
         if case.problem:
             planned.append(case)
             continue
         try:
-            budget = plan_budget(case, ours, reference, target, alpha, case_seed(case, seed) + 1)
+            budget = plan_budget(case, tested, reference, target, alpha, case_seed(case, seed) + 1)
         except Exception as e:  # the case itself fails in the run, with its own line
             err.print(f"{escape(case.key)}: no budget planned ({escape(foreign(f'{type(e).__name__}: {e}', LINE_LIMIT))}); "
                       "it keeps its default", soft_wrap=True, highlight=False)
@@ -114,13 +114,13 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
     from harness.report.image_outputs import write_image_outputs
     from harness.report.image_table import image_table
 
-    ours, reference = make_engine(args.engine), make_engine(args.reference, variant=args.variant)
+    tested, reference = make_engine(args.engine), make_engine(args.reference, variant=args.variant)
     budgets = []
     if getattr(args, "detect_bias", None) and reference_image(args) is None:
-        cases, budgets = _budgeted(cases, ours, reference, args.detect_bias, args.seed)
+        cases, budgets = _budgeted(cases, tested, reference, args.detect_bias, args.seed)
     start = time.perf_counter()
     with task_progress("images", executor) as show:
-        results, alpha = run_images(cases, ours, reference, args.seed, on_status=show,
+        results, alpha = run_images(cases, tested, reference, args.seed, on_status=show,
                                     on_message=_print_message,
                                     executor=executor, reference_image=reference_image(args))
         where = executor.description
@@ -134,11 +134,11 @@ def run_image_section(args, cases, run_dir: Path, warps: dict | None, baseline: 
         if r.reference_fit is not None:
             console.print(f"{escape(r.case.key)}: {escape(r.reference_fit.summary)}", soft_wrap=True)
     # An integrator the tested engine renders that the harness has no entry for (in our renderer's registry).
-    for name in (n for n in ours.integrators or () if n not in entries()):
+    for name in (n for n in tested.integrators or () if n not in entries()):
         console.print(f"[yellow]{escape(name)}[/]: no harness entry (not validated; see `mcval "
                       "integrators`)")
     run = invocation(args)
-    meta = {**engine_meta("engine", ours), **engine_meta("reference", reference), "seed": args.seed,
+    meta = {**engine_meta("engine", tested), **engine_meta("reference", reference), "seed": args.seed,
             "image seconds": round(seconds, 1), "ran on": where}
     if budgets:
         meta["budgets (--detect-bias)"] = "; ".join(b.line for b in budgets)

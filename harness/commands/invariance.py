@@ -13,7 +13,7 @@ from harness.verdict import Verdict, run_verdict
 NAME = "invariance"
 HELP = "metamorphic checks: each engine against itself under physical transformations"
 DESCRIPTION = """\
-Render each scene and a rewritten copy of it with each engine (ours, then Mitsuba 3) as independent
+Render each scene and a rewritten copy of it with each engine (the tested one, then the reference) as independent
 batches, and compare the copy's image, mapped back by what physics says, with the original's by the
 image suite's Welch tests (pixel, tile, image). No reference image is involved. The rewrites
 (harness/invariance/rewrite.py) apply to any scene file:

@@ -64,10 +64,10 @@ def run_invariance_section(args, only, run_dir: Path, executor, engines=None) ->
         console.print(f"[yellow]finding[/] {escape(line)}", soft_wrap=True)
     for line in payload["float32_limits"]:
         console.print(f"[cyan]float32[/] {escape(line)}", soft_wrap=True)
-    ours = [c for c in cells if c.engine == gating]
-    beyond = sum(c.status == "float32" for c in ours)
-    unjudged = len(ours) - tally.judged
-    console.print(f"{tally.passed - beyond} of {len(ours)} invariance checks of {gating} pass"
+    tested = [c for c in cells if c.engine == gating]
+    beyond = sum(c.status == "float32" for c in tested)
+    unjudged = len(tested) - tally.judged
+    console.print(f"{tally.passed - beyond} of {len(tested)} invariance checks of {gating} pass"
                   + (f", {beyond} broke only where float32 cannot represent the scene" if beyond else "")
                   + (f", {unjudged} not judged" if unjudged else "") + f", in {seconds:.1f} s.")
     for line in failure_lines(cells, gating):
@@ -75,7 +75,7 @@ def run_invariance_section(args, only, run_dir: Path, executor, engines=None) ->
     for line in not_judged_lines(cells, gating):
         console.print(f"[yellow]not judged[/] {escape(line)}", soft_wrap=True)
     run = invocation(args)
-    for c in (c for c in ours if c.status == "fail"):
+    for c in (c for c in tested if c.status == "fail"):
         console.print("  reproduce: " + escape(reproduce_line("invariance", ["--only", c.case.key, c.invariance],
                                                               args.seed, run, sources.get(c.case.scene, ""))),
                       soft_wrap=True)

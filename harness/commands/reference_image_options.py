@@ -41,7 +41,7 @@ def chosen_image_case(args: argparse.Namespace, cases: list) -> list:
     if getattr(args, "reference_image", None) is None:
         return cases
     own = [c for c in cases if c.integrator == _file_integrator(c.path)]
-    if len(cases) > 1 and len(own) == 1:  # the file names one of ours (a Nori file's, as translated)
+    if len(cases) > 1 and len(own) == 1:  # the file names one of mcval's (a Nori file's, as translated)
         return own
     if len(cases) != 1:
         keys = ", ".join(c.key for c in cases) or "none"

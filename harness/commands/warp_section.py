@@ -27,7 +27,7 @@ def warp_engine(args):
 
 def available_specs(engine, specs) -> tuple[list, list[str]]:
     """The specs `engine` can be checked on, and one line for each it cannot (a sampler without its pdf).
-    A warp an optional engine (a user's library) lacks is left out; one ours lacks stays, and fails."""
+    A warp an optional engine (a user's library) lacks is left out; one the tested engine lacks stays, and fails."""
     from harness.engines.python_child import ChildFailed
     from harness.engines.warp_library import WarpUnavailable
 
@@ -56,9 +56,9 @@ def run_warp_section(args, specs, run_dir: Path) -> tuple[bool, dict]:
     from harness.report.warp_table import warp_table
     from harness.warps.suite import run_matrix
 
-    ours = warp_engine(args)
+    tested = warp_engine(args)
     asked_for = specs
-    specs, problems = available_specs(ours, specs)
+    specs, problems = available_specs(tested, specs)
     for line in problems:
         console.print(f"[red]FAIL[/] {escape(line)}", soft_wrap=True)
     reference = None if getattr(args, "no_mitsuba", False) else make_engine(args.reference)
@@ -66,10 +66,10 @@ def run_warp_section(args, specs, run_dir: Path) -> tuple[bool, dict]:
     start = time.perf_counter()
     with progress_bar("warps") as progress:
         task = progress.add_task("", total=len(specs))
-        results, level = run_matrix(ours, reference, specs, seed=args.seed, samples=samples,
+        results, level = run_matrix(tested, reference, specs, seed=args.seed, samples=samples,
                                     on_progress=lambda s: progress.update(task, advance=1, description=s.key))
     seconds = time.perf_counter() - start
-    meta = {"engine": ours.version(), "reference": reference.version() if reference else "none",
+    meta = {"engine": tested.version(), "reference": reference.version() if reference else "none",
             "samples per warp": samples, "seed": args.seed, "seconds": round(seconds, 2),
             "machine": f"{platform.machine()}, {platform.system()} {platform.release()}"}
     nothing = None
@@ -77,7 +77,7 @@ def run_warp_section(args, specs, run_dir: Path) -> tuple[bool, dict]:
         console.print(warp_table(results, level))
     else:
         asked = ", ".join(dict.fromkeys(spec.name for spec in asked_for))
-        nothing = f"{ours.name} exports none of the warps asked for ({asked})"
+        nothing = f"{tested.name} exports none of the warps asked for ({asked})"
         console.print(f"[red]No warp judged[/]: {escape(nothing)}")
     paths = write_warp_outputs(run_dir, specs, results, level, meta, args.seed, invocation(args))
     failed = [r for r in results if not r.passed]

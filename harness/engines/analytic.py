@@ -49,8 +49,9 @@ class AnalyticEngine(Engine):
 
     @staticmethod
     def samples_for(integrator: str, spp: int) -> int:
-        """Samples per pixel to render where ours renders `spp`: four times as many where the closed form is
-        sampled (its noise then predicts what ours may miss), as many where it is noiseless per ray."""
+        """Samples per pixel to render where the tested engine renders `spp`: four times as many where the closed
+        form is sampled (its noise then predicts what the tested engine may miss), as many where it is noiseless per
+        ray."""
         return 4 * spp if entry(integrator).analytic.sample is not None else spp
 
     def version(self) -> str:

@@ -101,9 +101,9 @@ class Engine(ABC):
     pass_spp: int | None = None
     #: Whether it has warps at all (an engine file's renderer has none: give --warp-library for its warps).
     has_warps: bool = True
-    #: Whether its warps' throughput must clear the floor (ours), or is only reported (a user's code).
+    #: Whether its warps' throughput must clear the floor (mcval's), or is only reported (a user's code).
     throughput_judged: bool = True
-    #: Whether a warp it lacks is left out of the matrix (a user's library) rather than failed (ours).
+    #: Whether a warp it lacks is left out of the matrix (a user's library) rather than failed (mcval's).
     warps_optional: bool = False
     #: The integrators (mcval's names) it renders; None: every integrator the harness has an entry for.
     integrators: tuple[str, ...] | None = None

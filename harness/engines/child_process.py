@@ -79,7 +79,7 @@ def end_marked(token: str) -> int:
                 proc.kill()
                 ended += 1
         except (psutil.NoSuchProcess, psutil.AccessDenied, psutil.ZombieProcess):
-            pass  # gone meanwhile, or not ours to read
+            pass  # gone meanwhile, or not this process's to read
     return ended
 
 

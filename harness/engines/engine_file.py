@@ -158,10 +158,11 @@ def read_engine_file(path: str | Path) -> EngineFile:
         raise error("integrators", "[integrators] must map mcval's integrators to this renderer's names")
     from harness.integrators import entries
     known = entries()
-    for ours, theirs in integrators.items():
-        if ours not in known:
-            raise error(ours, f"integrators: {ours!r} is not an integrator of mcval (it has {', '.join(known)})")
+    for integrator, theirs in integrators.items():
+        if integrator not in known:
+            raise error(integrator, f"integrators: {integrator!r} is not an integrator of mcval "
+                                    f"(it has {', '.join(known)})")
         if not isinstance(theirs, str) or not theirs:
-            raise error(ours, f"integrators.{ours} must be the renderer's name for it, a string")
+            raise error(integrator, f"integrators.{integrator} must be the renderer's name for it, a string")
     return EngineFile(path, name, command, dict(integrators), tuple(version), scene_format, jobs,
                       None if timeout is None else float(timeout))

@@ -127,7 +127,7 @@ class MitsubaEngine(Engine):
         return f"mitsuba {self._mi.__version__} ({self.variant}), drjit {self._dr.__version__}{tight}"
 
     def _activate(self):
-        """Mitsuba's variant is process-wide: make sure ours is the one in force."""
+        """Mitsuba's variant is process-wide: make sure this engine's is the one in force."""
         if self._mi.variant() != self.variant:
             self._mi.set_variant(self.variant)
         return self._mi

@@ -13,7 +13,7 @@ from harness.engines.xml_lines import remove_keeping_lines
 
 def scene_bounds(text: str, variant: str = DEFAULT_VARIANT) -> tuple[tuple[float, ...], tuple[float, ...]] | None:
     """(min, max) of the scene `text` (Mitsuba 3 XML, file names absolute) as Mitsuba loads it, or None for a
-    scene without shapes. Its integrators and samplers are left out (ours have names Mitsuba lacks; neither
+    scene without shapes. Its integrators and samplers are left out (mcval's have names Mitsuba lacks; neither
     moves a shape). RuntimeError with Mitsuba's message if it cannot load the scene, RenderFailed (a
     RuntimeError) if loading it crashes or hangs Mitsuba."""
     return call_in_worker((variant, None, False), f"{__name__}:bounds_here", (text,), "while loading the scene")

@@ -1,8 +1,8 @@
 """Our scene files, made into Mitsuba scenes: each integrator mapped onto its Mitsuba equivalent
 (harness/engines/mitsuba_integrators.py): the <integrator> replaced (keeping the file's `hide_emitters`),
 and removed what our loader skips for that integrator (emitter types, area emitters inside shapes), a constant
-emitter added where ours assumes one.
-A sampler Mitsuba does not have (ours: `sobol`) becomes its closest one (MITSUBA_SAMPLER).
+emitter added where mcval's integrator assumes one.
+A sampler Mitsuba does not have (mcval's `sobol`) becomes its closest one (MITSUBA_SAMPLER).
 
 The film stores float32 (Mitsuba's hdrfilm default is float16). Nothing is written into the scene's folder.
 """

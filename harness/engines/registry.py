@@ -34,9 +34,9 @@ class EngineEntry:
     source: str = field(default="", compare=False)  # the file it was read from
 
 
-def _ours(options: dict[str, Any]) -> Engine:
-    from harness.engines.ours import OurEngine
-    return OurEngine(sampler=options.get("sampler"), in_process=options.get("in_process", False))
+def _mcval(options: dict[str, Any]) -> Engine:
+    from harness.engines.mcval import McvalEngine
+    return McvalEngine(sampler=options.get("sampler"), in_process=options.get("in_process", False))
 
 
 def _mitsuba(variant: str | None, native: bool = False) -> Callable[[dict[str, Any]], Engine]:
@@ -53,7 +53,7 @@ def _analytic(options: dict[str, Any]) -> Engine:
 
 
 BUILT_IN = (
-    EngineEntry("mcval", _ours, "this repository's renderer (`render` as a child process, warps in process)"),
+    EngineEntry("mcval", _mcval, "this repository's renderer (`render` as a child process, warps in process)"),
     EngineEntry("mitsuba", _mitsuba(None), "Mitsuba 3 from PyPI (--variant, default llvm_ad_rgb); its direct "
                 "integrator with the ray offset at its limit (mcval_direct)"),
     EngineEntry("mitsuba-native", _mitsuba(None, native=True), "Mitsuba 3 with its own integrators and ray "

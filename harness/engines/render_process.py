@@ -26,7 +26,7 @@ from harness.project import PROJECT_ROOT as ROOT
 
 RENDER_ENV = "MCVAL_RENDER"
 TIMEOUT_ENV = "MCVAL_RENDER_TIMEOUT"
-#: Threads per render of ours (default: every core; the image does not depend on it); set for the workers
+#: Threads per render of mcval's renderer (default: every core; the image does not depend on it); set for the workers
 #: of an embedded cluster, which share this machine's cores.
 THREADS_ENV = "MCVAL_THREADS"
 #: Seconds every render is allowed, whatever its size.

@@ -12,7 +12,7 @@ from harness.engines.written_scene import written_scene
 Writer = Callable[[Path, dict[str, str], str, str, int], tuple[str, int, int, dict[str, str]]]
 
 
-def _mitsuba(path: Path, params: dict[str, str], ours: str, theirs: str,
+def _mitsuba(path: Path, params: dict[str, str], integrator: str, theirs: str,
              spp: int) -> tuple[str, int, int, dict[str, str]]:
     return (*written_scene(path, params, theirs, spp), {})
 

@@ -42,7 +42,7 @@ def _float32(a: np.ndarray, columns: int) -> np.ndarray:
 
 
 class WarpLibraryEngine(Engine):
-    """The warps a shared library exports. Its throughput is reported, not judged: the floor is for ours."""
+    """The warps a shared library exports. Its throughput is reported, not judged: the floor is for mcval's."""
 
     throughput_judged = False
     #: A warp the library does not export is left out of the matrix, not failed.

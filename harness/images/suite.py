@@ -49,7 +49,7 @@ class _Integrators(Sequence):
 
 
 class _Budget(Mapping):
-    """OUR_SPP / REFERENCE_SPP: one entry field by integrator name, read from the registry when used."""
+    """TESTED_SPP / REFERENCE_SPP: one entry field by integrator name, read from the registry when used."""
 
     def __init__(self, field: str) -> None:
         self._field = field
@@ -73,7 +73,7 @@ class _Budget(Mapping):
 
 INTEGRATORS = _Integrators()
 #: Samples per pixel per batch: the tested engine's in every run, the reference engine's for stored references.
-OUR_SPP = _Budget("tested_spp")
+TESTED_SPP = _Budget("tested_spp")
 REFERENCE_SPP = _Budget("reference_spp")
 
 
@@ -94,7 +94,7 @@ class ImageCase:
     #: What the preparation of a user's scene left out, one line each (a Nori file's own integrator), or ().
     notes: tuple[str, ...] = field(default=(), compare=False)
     #: Samples per pixel per batch of the tested engine's render where a budget chose them (--detect-bias);
-    #: None: the integrator's default (OUR_SPP).
+    #: None: the integrator's default (TESTED_SPP).
     spp: int | None = field(default=None, compare=False)
     #: The dialect of the user's scene file as given: "mitsuba", or "nori" (a reference image of it is Nori's).
     dialect: str = field(default="mitsuba", compare=False)
@@ -106,7 +106,7 @@ class ImageCase:
 
     @property
     def test_spp(self) -> int:
-        return self.spp or OUR_SPP[self.integrator]
+        return self.spp or TESTED_SPP[self.integrator]
 
     @property
     def key(self) -> str:

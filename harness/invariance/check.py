@@ -5,7 +5,7 @@ without signal leaves its cells inconclusive, and batches that are one image whe
 them (harness/invariance/signal.py).
 
 Our renderer breaking an invariance fails the suite; a reference engine breaking one is a finding, reported
-and stored, never a failure of ours.
+and stored, never a failure of the tested engine.
 """
 from __future__ import annotations
 

@@ -8,7 +8,7 @@ from harness.invariance.suite import suite_entries
 from harness.invariance.variants import INVARIANCES, TRANSLATION_REACH
 from harness.verdict import Tally, Verdict, run_verdict
 
-REFERENCE_NOTE = "A reference engine's break is a finding about it (BREAKS), never a failure of ours."
+REFERENCE_NOTE = "A reference engine's break is a finding about it (BREAKS), never a failure of the tested engine."
 
 
 def _variant_text(cell: Cell) -> str:
@@ -73,15 +73,16 @@ def float32_lines(cells: list[Cell]) -> list[str]:
 def invariance_tally(cells: list[Cell], engine: str, no_cells: str = "") -> Tally:
     """What the run judged of `engine`'s cells: passed (float32 breaks included), failed, and why the rest were
     not judged (or, `no_cells`, why there were none)."""
-    ours = [c for c in cells if c.engine == engine]
-    reasons = tuple(not_judged_lines(cells, engine)) if ours else (no_cells or "no case applies",)
-    return Tally(f"invariance cells of {engine}", sum(c.passed for c in ours), sum(c.status == "fail" for c in ours),
+    tested = [c for c in cells if c.engine == engine]
+    reasons = tuple(not_judged_lines(cells, engine)) if tested else (no_cells or "no case applies",)
+    return Tally(f"invariance cells of {engine}", sum(c.passed for c in tested), sum(c.status == "fail" for c in tested),
                  reasons)
 
 
 def invariance_payload(cells: list[Cell], alpha: float, engine: str, meta: dict, no_cells: str = "") -> dict:
-    """results.json's `invariance`: pass (ours only: something judged, nothing failed), what was judged, every
-    cell, the findings about the references. `no_cells`: why there are no cells, if there are none."""
+    """results.json's `invariance`: pass (the tested engine's cells only: something judged, nothing failed),
+    what was judged, every cell, the findings about the references. `no_cells`: why there are no cells, if
+    there are none."""
     tally = invariance_tally(cells, engine, no_cells)
     verdict, reason = run_verdict([tally])
     return {"pass": verdict is Verdict.PASS, "verdict": verdict.value, "verdict_reason": reason,

@@ -19,7 +19,7 @@ import numpy as np
 
 from harness.engines.scene_paths import absolute_paths
 
-#: Defaults of the properties a rewrite changes, in both loaders (ours: scene_loader.cpp; Mitsuba's plugins).
+#: Defaults of the properties a rewrite changes, in both loaders (mcval's: scene_loader.cpp; Mitsuba's plugins).
 NEAR_CLIP, FAR_CLIP = 1e-2, 1e4
 DEFAULT_REFLECTANCE = 0.5
 DEFAULT_EMISSION = 1.0

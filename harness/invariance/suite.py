@@ -1,7 +1,7 @@
 """Which scenes and integrators the invariance suite renders, and how `--only` narrows them.
 
 Every scene of the image suite (scenes/ and scenes/real/) with each integrator that applies to it, at 64x64
-and each integrator's own samples per pixel: ours take about 20 s on two cores (Mitsuba's about 30 s more,
+and each integrator's own samples per pixel: mcval's take about 20 s on two cores (Mitsuba's about 30 s more,
 where its stored cells do not apply), so `validate` can afford all of them.
 """
 from __future__ import annotations

@@ -23,7 +23,7 @@ def _best(b: CaseBench) -> str:
     best = b.comparison(None)
     if best["missing"]:
         return f"no {html.escape(' or '.join(best['missing']))} curve"
-    return f"{_f(best['ratio'])} ({html.escape(str(best['ours']))} / {html.escape(str(best['reference']))})"
+    return f"{_f(best['ratio'])} ({html.escape(str(best['tested']))} / {html.escape(str(best['reference']))})"
 
 
 def _same(b: CaseBench) -> str:
@@ -47,14 +47,15 @@ def _throughput_html(throughput: list[dict] | None) -> str:
         for t in throughput)
     return ("<p>Both engines in one process, the same scene file and sampler, render time only, each timed "
             "render after a pause and an untimed one of the same engine (so neither meets the other's threads still "
-            "spinning, nor its own asleep); medians of the runs, and Mitsuba over ours the median of the ratios "
-            "round by round (each round renders ours, ours in its worker, then Mitsuba). <em>In its worker</em> is ours as "
+            "spinning, nor its own asleep); medians of the runs, and the reference over the tested engine the median of "
+            "the ratios round by round (each round renders the tested engine, the tested engine in its worker, then the "
+            "reference). <em>In its worker</em> is the tested engine as "
             "<code>images</code> and <code>validate</code> run it: the <code>render --serve</code> call's wall clock "
-            "(the request, the images written and read) less the scene load and BVH build. Rays/s divide the rays ours traced, for both engines (Mitsuba's "
-            "direct traces about as many for simple; for ao it adds a BSDF-sampled ray per hit, its MIS).</p><table><tr><th>case</th><th>setting</th><th>ours s</th>"
-            "<th>Mitsuba s</th><th>Mitsuba/ours per sample</th><th>ours in its worker s</th><th>Mitsuba/worker</th>"
-            "<th>ours Msamples/s</th><th>Mitsuba Msamples/s</th>"
-            f"<th>ours Mrays/s</th><th>Mitsuba Mrays/s</th></tr>{rows}</table>")
+            "(the request, the images written and read) less the scene load and BVH build. Rays/s divide the rays the tested engine traced, for "
+            "both engines (Mitsuba's direct traces about as many for simple; for ao it adds a BSDF-sampled ray per hit, its MIS).</p><table><tr><th>case</th><th>setting</th><th>tested s</th>"
+            "<th>reference s</th><th>reference/tested per sample</th><th>tested in its worker s</th>"
+            "<th>reference/worker</th><th>tested Msamples/s</th><th>reference Msamples/s</th>"
+            f"<th>tested Mrays/s</th><th>reference Mrays/s</th></tr>{rows}</table>")
 
 
 def _slopes_html(slopes: dict | None) -> str:
@@ -87,15 +88,15 @@ def bench_html(benches: list[CaseBench], rays: dict | None, seed: dict | None, m
                         f"{_same(b)} with the same sampler, {_best(b)} best against best</h3>"
                         f"<p class='meta'>Errors against: {html.escape(b.truth)}. {html.escape(timing)}</p>"
                         + _img(convergence_png(b), f"convergence of {b.case.key}")
-                        + "<p>Equal time (the step of each engine closest to ours at 64 spp):</p>"
+                        + "<p>Equal time (the step of each engine closest to the tested engine's at 64 spp):</p>"
                         + _img(equal_time_png(b), f"equal-time images of {b.case.key}"))
     rays_html = "<p>No ray-throughput figures (run <code>make bench</code>).</p>"
     if rays:
-        rrows = "".join(f"<tr><td>{k}</td><td>{v['ours_rays_per_second'] / 1e6:.2f}</td>"
+        rrows = "".join(f"<tr><td>{k}</td><td>{v['renderer_rays_per_second'] / 1e6:.2f}</td>"
                         f"<td>{v['raw_rays_per_second'] / 1e6:.2f}</td><td>{v['ratio']:.2f}</td></tr>"
                         for k, v in rays["integrators"].items())
         rays_html = (f"<p>{html.escape(rays['scene'])}, {rays['spp']} spp; raw = Embree tracing the same rays "
-                     f"with no shading.</p><table><tr><th>integrator</th><th>ours Mrays/s</th><th>raw Mrays/s</th>"
+                     f"with no shading.</p><table><tr><th>integrator</th><th>renderer Mrays/s</th><th>raw Mrays/s</th>"
                      f"<th>ratio</th></tr>{rrows}</table>")
     seed_html = ""
     if seed:
@@ -103,7 +104,7 @@ def bench_html(benches: list[CaseBench], rays: dict | None, seed: dict | None, m
                         f"<td>{v['seconds']:.2f}</td><td>{_f(v.get('reference_seconds', float('nan')), '.2f')}</td></tr>"
                         for k, v in seed.items())
         seed_html = ("<h2>The seed document's settings</h2><table><tr><th>integrator</th><th>setting</th>"
-                     "<th>seed document (s)</th><th>ours, median (s)</th><th>Mitsuba llvm, median (s)</th></tr>"
+                     "<th>seed document (s)</th><th>tested, median (s)</th><th>reference, median (s)</th></tr>"
                      f"{srows}</table>")
     meta_html = "".join(f"<li>{html.escape(str(k))}: {html.escape(str(v))}</li>" for k, v in meta.items())
     return f"""<!DOCTYPE html>
@@ -114,7 +115,7 @@ Efficiency is 1 / (relMSE × seconds), the median over steps of 16 spp and more;
 both of its curves rendered (a sampler that rounds a sample count skips that step). Each engine runs with each of its
 samplers (curves labelled engine/sampler). "Same sampler" is the tested engine (the first) over the next one run
 (by default Mitsuba llvm_ad_rgb as shipped), both with independent samples: the engine comparison. "Best against
-best" pairs each engine's most efficient stratified sampler on the case (ours: Owen-scrambled Sobol; Mitsuba:
+best" pairs each engine's most efficient stratified sampler on the case (mcval's: Owen-scrambled Sobol; Mitsuba's:
 ldsampler or multijitter): what a user gets, named in the cell.
 Slopes near −1 mean an unbiased estimator converging at the usual rate; steeper ones come from stratified
 sampling; flatter ones are a finding (a bias against the reference). "Below ref. noise": the error fell below

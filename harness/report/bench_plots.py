@@ -54,10 +54,10 @@ def convergence_png(bench: CaseBench) -> bytes:
 
 def equal_time_png(bench: CaseBench) -> bytes:
     """Each engine's image at the ladder step closest to our renderer's time at 64 spp (or its nearest step)."""
-    ours = bench.curves.get(f"{bench.tested}/independent") or bench.curves.get(bench.tested)
+    tested = bench.curves.get(f"{bench.tested}/independent") or bench.curves.get(bench.tested)
     budget = None
-    if ours:
-        step = min(ours.steps, key=lambda s: abs(np.log2(s.spp / 64)))
+    if tested:
+        step = min(tested.steps, key=lambda s: abs(np.log2(s.spp / 64)))
         budget = float(np.median(step.seconds))
     names = list(bench.curves)
     fig, axes = plt.subplots(1, len(names) + 1, figsize=(3 * (len(names) + 1), 3.2), constrained_layout=True)

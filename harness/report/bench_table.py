@@ -27,7 +27,7 @@ def bench_table(benches, engines) -> Table:
         same, best = bch.comparison(SAME_SAMPLER), bch.comparison(None)
         ratio = same["ratio"]
         shown = _unmeasured(same) or f"[{'green' if ratio >= 1 else 'red'}]{ratio:.2f}[/]"
-        best_text = _unmeasured(best) or f"{best['ratio']:.2f} ({best['ours']} / {best['reference']})"
+        best_text = _unmeasured(best) or f"{best['ratio']:.2f} ({best['tested']} / {best['reference']})"
         table.add_row(bch.case.scene, bch.case.integrator, shown, best_text,
                       *[f"{c.fit('spp')[0]:.2f}" for c in bch.curves.values()])
     return table
@@ -46,7 +46,7 @@ def bench_lines(payload: dict) -> list[str]:
     for integrator, by_sampler in (payload["sampler_slopes"] or {}).get("slopes", {}).items():
         lines.append(f"MSE slope on cornell {integrator}: " + ", ".join(f"{k} {v:.2f}" for k, v in by_sampler.items()))
     for name, v in (payload["seed_comparison"] or {}).items():
-        mitsuba = f", Mitsuba {v['reference_seconds']:.2f} s" if "reference_seconds" in v else ""
-        lines.append(f"seed settings, {name}: ours {v['seconds']:.2f} s{mitsuba} (seed document "
+        reference = f", reference {v['reference_seconds']:.2f} s" if "reference_seconds" in v else ""
+        lines.append(f"seed settings, {name}: tested {v['seconds']:.2f} s{reference} (seed document "
                      f"{v['seed_seconds']} s)")
     return lines

@@ -19,7 +19,7 @@ def warp_heatmaps_png(observed: np.ndarray, expected: np.ndarray, reference: np.
     and the Pearson residual (O - E) / sqrt(E), which shows where a fit fails.
     """
     get_domain(domain)  # fail early on an unknown domain
-    counts = [("observed (ours)", observed), ("expected (pdf)", expected)]
+    counts = [("observed (tested)", observed), ("expected (pdf)", expected)]
     if reference is not None:
         counts.append(("observed (Mitsuba)", reference))
     # A pdf that is not finite somewhere expects inf or NaN counts: drawn at the top of the colour bar (NaN at 0).

@@ -55,7 +55,7 @@ def image_calibration_sections(cal: dict) -> list[str]:
     return [
         "<h2>Image comparisons: false-alarm rates</h2>",
         f"<p>{cal['comparisons']} null comparisons: two independent renders of one case by engines that must "
-        "agree (ours twice, Mitsuba twice, ours and the closed form). Each is compared at every level; the whole "
+        "agree (the tested engine twice, the reference twice, the tested engine and the closed form). Each is compared at every level; the whole "
         "comparison rejects when any scale does, a scale at its Sidak share of the level. Intervals are exact and "
         f"simultaneous at 95 % over the table ({VERDICT_KEY}). Result: {verdict}.</p>",
         _rates_table(cal["blocks"]),
@@ -66,7 +66,7 @@ def image_calibration_sections(cal: dict) -> list[str]:
         p_value_histograms([("image scale, min over channels", p)], columns=1),
         "<h2>Power at the validation's level</h2>",
         f"<p>Per-comparison level {cal['power_level']:.3g} (a default <code>validate</code>'s). The smallest "
-        "planted relative bias found in 90 % of ours-against-ours comparisons: of the whole image (the image "
+        "planted relative bias found in 90 % of tested-against-tested comparisons: of the whole image (the image "
         "scale), and of one 8×8 tile (the tile scale).</p>",
         f"<table><tr><th>integrator</th><th>comparisons</th><th>whole image, 90 %</th><th>one tile, 90 %</th></tr>"
         f"{power_rows}</table>",

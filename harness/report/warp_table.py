@@ -75,5 +75,5 @@ def warp_table(results: list[WarpResult], level: float) -> Table:
     table.caption = ("green pass, yellow pass with warnings (listed in warps.html), red fail. χ² p, smp≈tgt, smp≈mi: "
                      "p-values; ∫pdf: integral; bad: domain violations; pdf≈tgt, pdf≈mi: max rel. diff; tgt: the "
                      "closed form the warp's name promises (n/a: a name mcval does not know); NaN: NaN/Inf on "
-                     "hard inputs in [0,1); M/s: ours (Mitsuba, ours ÷ Mitsuba: median of interleaved pairs); " + POWER_CAPTION)
+                     "hard inputs in [0,1); M/s: tested (reference, tested ÷ reference: median of interleaved pairs); " + POWER_CAPTION)
     return table

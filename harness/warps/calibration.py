@@ -85,10 +85,10 @@ class WarpCalibration:
                 "warps": [e.to_json() for e in self.entries]}
 
 
-def null_p_values(spec: WarpSpec, ours: Engine, reference: Engine | None, seeds: range,
+def null_p_values(spec: WarpSpec, tested: Engine, reference: Engine | None, seeds: range,
                   samples: int = WARP_SAMPLES, on_seed: Callable[[], None] | None = None) -> dict[str, np.ndarray]:
     """p-values of each statistical check of `spec` at every seed (the matrix's cells and tests)."""
-    functions = ours.warp(spec.name, spec.alpha)
+    functions = tested.warp(spec.name, spec.alpha)
     ref = reference.warp(spec.name, spec.alpha) if reference is not None else None
     dom = get_domain(spec.domain)
     draws = lambda f, rng: wc.as_points(f.sample(rng.random((samples, 2))), samples, "sample")  # noqa: E731
@@ -123,14 +123,14 @@ def null_p_values(spec: WarpSpec, ours: Engine, reference: Engine | None, seeds:
     return {k: np.asarray(v) for k, v in out.items()}
 
 
-def calibrate_warps(ours: Engine, reference: Engine | None, specs: list[WarpSpec], seeds: int = 200,
+def calibrate_warps(tested: Engine, reference: Engine | None, specs: list[WarpSpec], seeds: int = 200,
                     samples: int = WARP_SAMPLES, executor: Executor | None = None,
                     on_status: Callable[[Status], None] | None = None) -> WarpCalibration:
     """Every spec at `seeds` seeds, one task per spec on `executor` (serial by default); rates per warp and
     check, and pooled per check over the warps."""
     executor = executor or SerialExecutor()
     start = time.perf_counter()
-    outcomes = executor.run([Task(f"warp {spec.key}", null_p_values, (spec, ours, reference, range(seeds), samples))
+    outcomes = executor.run([Task(f"warp {spec.key}", null_p_values, (spec, tested, reference, range(seeds), samples))
                              for spec in specs], on_status)
     p_values = {spec.key: o.value for spec, o in zip(specs, outcomes) if o.ok}
     failed = [f"{spec.key}: {o.error}" for spec, o in zip(specs, outcomes) if not o.ok]

@@ -132,15 +132,15 @@ def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "
     if points.shape[1] != dom.dim:
         raise ValueError(f"sample returned {points.shape[1]}D points; the {domain} domain is {dom.dim}D")
     inside = dom.inside(points)
-    ours = points[inside]
+    tested = points[inside]
     # Samples that never reach a histogram: outside the domain, and of those NaN/Inf.
     lost = (int(np.count_nonzero(~inside)), int(np.count_nonzero(~np.all(np.isfinite(points), axis=1))))
     ref_points = None if reference is None else wc.as_points(
         reference.sample(np.random.default_rng([seed, 1]).random((samples, 2))), samples, "reference sample")
-    quantum = sample_quantum(*((ours,) if ref_points is None else (ours, ref_points)))
+    quantum = sample_quantum(*((tested,) if ref_points is None else (tested, ref_points)))
     bins, cells = wc.equal_probability_cells(dom, pdf, samples, quantum)
-    param = dom.to_param(ours)
-    observed = wc.histogram(dom, ours, bins, param)
+    param = dom.to_param(tested)
+    observed = wc.histogram(dom, tested, bins, param)
 
     checks = {
         "chi2": wc.chi2_check(observed, cells.values, lost[0], bins, lost[1]),
@@ -148,7 +148,7 @@ def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "
         "domain": wc.domain_check(dom, points, pdf, rng, u, getattr(sample, "input_dtype", np.float64)),
     }
     by_name = (judged_by_own_pdf(name) if target is None else
-               target_checks(dom, target, pdf, ours, param, lost, samples, quantum, (bins, observed)))
+               target_checks(dom, target, pdf, tested, param, lost, samples, quantum, (bins, observed)))
     checks.update(by_name.checks)
     reference_observed = None
     if reference is None:
@@ -157,7 +157,7 @@ def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "
     else:
         ref_inside = ref_points[dom.inside(ref_points)]
         # Where our samples are missing (NaN, outside), the reference's own show where its mass is.
-        probe = np.concatenate([ours[:PDF_PROBES], ref_inside[:max(PDF_PROBES - len(ours), 0)]])
+        probe = np.concatenate([tested[:PDF_PROBES], ref_inside[:max(PDF_PROBES - len(tested), 0)]])
         checks["pdf_vs_mitsuba"] = pdf_agreement_check(np.concatenate([probe, wc.parameter_grid(dom)]), pdf,
                                                           reference.pdf, "the reference pdf")
         reference_observed = wc.histogram(dom, ref_inside, bins)

@@ -34,18 +34,18 @@ def _rounding_sensitivity(points: np.ndarray, pdf: Pdf) -> np.ndarray:
 CONSTANT_SHARE = 0.99
 
 
-def _constant_factor(ours: np.ndarray, ref: np.ndarray, slack: np.ndarray) -> tuple[float, int, int] | None:
-    """(c, n, m): ours = c * ref at n of the m probe points where the reference is above PDF_ABSOLUTE_FLOOR (within
+def _constant_factor(tested: np.ndarray, ref: np.ndarray, slack: np.ndarray) -> tuple[float, int, int] | None:
+    """(c, n, m): tested = c * ref at n of the m probe points where the reference is above PDF_ABSOLUTE_FLOOR (within
     PDF_RELATIVE_TOLERANCE and c times the reference's rounding slack), n at least CONSTANT_SHARE of m; None if
     the two differ by more than a constant."""
     seen = ref > PDF_ABSOLUTE_FLOOR
-    ours, ref, slack = ours[seen], ref[seen], slack[seen]
-    if not len(ours):
+    tested, ref, slack = tested[seen], ref[seen], slack[seen]
+    if not len(tested):
         return None
     with np.errstate(invalid="ignore", over="ignore"):
-        c = float(np.median(ours / ref))
-        agree = int(np.count_nonzero(np.abs(ours - c * ref) - c * slack <= PDF_RELATIVE_TOLERANCE * c * ref))
-    return (c, agree, len(ours)) if np.isfinite(c) and c > 0 and agree >= CONSTANT_SHARE * len(ours) else None
+        c = float(np.median(tested / ref))
+        agree = int(np.count_nonzero(np.abs(tested - c * ref) - c * slack <= PDF_RELATIVE_TOLERANCE * c * ref))
+    return (c, agree, len(tested)) if np.isfinite(c) and c > 0 and agree >= CONSTANT_SHARE * len(tested) else None
 
 
 def pdf_agreement_check(points: np.ndarray, pdf: Pdf, reference_pdf: Pdf, reference: str = "the reference") -> CheckResult:
@@ -64,13 +64,13 @@ def pdf_agreement_check(points: np.ndarray, pdf: Pdf, reference_pdf: Pdf, refere
         return not_judged(f"{reference} is 0 at all {len(points)} probe points", statistical=False,
                           points=0, tolerance=PDF_RELATIVE_TOLERANCE)
     points, ref = points[inside], ref[inside]
-    ours = as_values(pdf(points), len(points), "pdf")
+    tested = as_values(pdf(points), len(points), "pdf")
     slack = 2.0 * _rounding_sensitivity(points, reference_pdf)
     with np.errstate(invalid="ignore", over="ignore"):  # an infinite pdf is a difference of inf, not a warning
-        diff = np.maximum(np.abs(ours - ref) - PDF_ABSOLUTE_FLOOR, 0.0)
+        diff = np.maximum(np.abs(tested - ref) - PDF_ABSOLUTE_FLOOR, 0.0)
         excess = diff - slack
-        rel = np.where(np.isfinite(ours), np.maximum(excess, 0.0) / ref, np.inf)
-        raw = float(np.max(np.where(np.isfinite(ours), diff / ref, np.inf), initial=0.0))
+        rel = np.where(np.isfinite(tested), np.maximum(excess, 0.0) / ref, np.inf)
+        raw = float(np.max(np.where(np.isfinite(tested), diff / ref, np.inf), initial=0.0))
     worst = float(np.max(rel, initial=0.0))
     ok = worst <= PDF_RELATIVE_TOLERANCE
     needed_slack = int(np.count_nonzero((diff > PDF_RELATIVE_TOLERANCE * ref)
@@ -83,9 +83,9 @@ def pdf_agreement_check(points: np.ndarray, pdf: Pdf, reference_pdf: Pdf, refere
     if not ok:
         k = int(np.argmax(rel))
         detail["worst_point"] = points[k].tolist()
-        detail["worst_values"] = [float(ours[k]), float(ref[k])]
-        summary += f", at ({', '.join(f'{x:.4g}' for x in points[k])}): {ours[k]:.4g} where {reference} is {ref[k]:.4g}"
-        constant = _constant_factor(ours, ref, slack)
+        detail["worst_values"] = [float(tested[k]), float(ref[k])]
+        summary += f", at ({', '.join(f'{x:.4g}' for x in points[k])}): {tested[k]:.4g} where {reference} is {ref[k]:.4g}"
+        constant = _constant_factor(tested, ref, slack)
         if constant is not None:
             factor, agree, probes = constant
             detail["ratio"] = factor

@@ -11,7 +11,7 @@ rows in s.
 * chi2, "mass_moved": the sampler moves a fraction delta of all samples from one half into the other
   (proportionally to p on both sides); the pdf is right.
 * samples_vs_mitsuba, "mass_moved": the same sampler defect, found by the homogeneity test of N samples of
-  ours against N of the reference.
+  the tested engine against N of the reference.
 * samples_vs_target, "mass_moved": the same sampler defect, found by the chi-square against the target's cells
   (the chi2 case, with the target's cell probabilities).
 

@@ -70,33 +70,33 @@ def spec_seed(spec: WarpSpec, seed: int) -> int:
     return int(np.random.SeedSequence([zlib.crc32(spec.key.encode()), seed]).generate_state(1, np.uint64)[0] >> 1)
 
 
-def check_spec(spec: WarpSpec, ours: Engine, reference: Engine | None, seed: int, samples: int) -> WarpResult:
+def check_spec(spec: WarpSpec, tested: Engine, reference: Engine | None, seed: int, samples: int) -> WarpResult:
     """Every check of one spec: our warp against its pdf and against the reference engine's. A warp in a
     process of its own (a user's library) that crashes, exits or hangs fails alone, with that one line."""
     try:
-        return _check_spec(spec, ours, reference, seed, samples)
+        return _check_spec(spec, tested, reference, seed, samples)
     except ChildFailed as e:
         return failed_warp(spec.name, spec.params, spec.domain, spec_seed(spec, seed), e.reason)
 
 
-def _check_spec(spec: WarpSpec, ours: Engine, reference: Engine | None, seed: int, samples: int) -> WarpResult:
-    functions = ours.warp(spec.name, spec.alpha)
+def _check_spec(spec: WarpSpec, tested: Engine, reference: Engine | None, seed: int, samples: int) -> WarpResult:
+    functions = tested.warp(spec.name, spec.alpha)
     if functions is None:
-        raise RuntimeError(f"engine {ours.name} has no warp {spec.name}")
+        raise RuntimeError(f"engine {tested.name} has no warp {spec.name}")
     ref = reference.warp(spec.name, spec.alpha) if reference is not None else None
     variants = None
     if spec.alpha is not None:
         variants = {}
         for a in HARD_ALPHAS:
-            f = ours.warp(spec.name, a)
+            f = tested.warp(spec.name, a)
             variants[f"alpha={a:.3g}"] = (f.sample, f.pdf)
     return evaluate_warp(functions.sample, functions.pdf, spec.domain, name=spec.name, params=spec.params,
                          seed=spec_seed(spec, seed), samples=samples, reference=ref,
                          target=target_for(spec.name, spec.alpha), native_run=functions.native_run,
-                         hard_variants=variants, judge_throughput=ours.throughput_judged)
+                         hard_variants=variants, judge_throughput=tested.throughput_judged)
 
 
-def run_matrix(ours: Engine, reference: Engine | None, specs: list[WarpSpec], seed: int = 0,
+def run_matrix(tested: Engine, reference: Engine | None, specs: list[WarpSpec], seed: int = 0,
                samples: int = WARP_SAMPLES,
                on_progress: Callable[[WarpSpec], None] | None = None,
                power_cache: Path | None = POWER_CACHE) -> tuple[list[WarpResult], float]:
@@ -107,7 +107,7 @@ def run_matrix(ours: Engine, reference: Engine | None, specs: list[WarpSpec], se
     """
     results = []
     for spec in specs:
-        results.append(check_spec(spec, ours, reference, seed, samples))
+        results.append(check_spec(spec, tested, reference, seed, samples))
         if on_progress:
             on_progress(spec)
     level = decide(results, SIGNIFICANCE)

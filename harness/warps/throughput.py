@@ -1,4 +1,4 @@
-"""A warp's throughput: samples per second, ours beside the reference's, timed in alternation."""
+"""A warp's throughput: samples per second, the tested engine's beside the reference's, timed in alternation."""
 from __future__ import annotations
 
 import time
@@ -23,15 +23,15 @@ def throughput_check(sample: Sampler, native_run, reference: WarpFunctions | Non
     """
     if native_run is None:
         u = np.random.default_rng(1).random((n, 2))
-        ours = lambda: sample(u)  # noqa: E731
+        tested = lambda: sample(u)  # noqa: E731
     else:
-        ours = native_run(n)
+        tested = native_run(n)
     if reference is None:
-        rate = measure_rate(ours, n)
+        rate = measure_rate(tested, n)
     else:
-        # Interleaved, ours then the reference's, the ratio taken per pair: on a shared machine back-to-back
-        # medians of one engine and then the other swing with the load.
-        rate, ref_rate, ratio = measure_rates_interleaved(ours, reference.native_run(n), n)
+        # Interleaved, the tested engine's then the reference's, the ratio taken per pair: on a shared machine
+        # back-to-back medians of one engine and then the other swing with the load.
+        rate, ref_rate, ratio = measure_rates_interleaved(tested, reference.native_run(n), n)
     details: dict[str, Any] = {"samples_per_second": rate}
     summary = f"{rate / 1e6:.0f} M/s"
     if reference is not None:
@@ -44,8 +44,8 @@ def throughput_check(sample: Sampler, native_run, reference: WarpFunctions | Non
 
 
 #: Seconds each engine warms up before a timed call: its thread pool and the cores reach their steady rate only
-#: after some milliseconds of work (one untimed call was not enough: ours read half its rate after a pause), and
-#: Mitsuba's pool spins for some 30 ms after a call, so a shorter warm-up would time ours on one core.
+#: after some milliseconds of work (one untimed call was not enough: a call read half its rate after a pause), and
+#: Mitsuba's pool spins for some 30 ms after a call, so a shorter warm-up would time the tested engine on one core.
 WARM_SECONDS = 0.03
 
 
@@ -57,21 +57,21 @@ def _warm_up(call: Callable[[], Any], seconds: float) -> None:
         call()
 
 
-def measure_rates_interleaved(ours: Callable[[], Any], reference: Callable[[], Any], n: int,
+def measure_rates_interleaved(tested: Callable[[], Any], reference: Callable[[], Any], n: int,
                               pairs: int = 5, warm: float = WARM_SECONDS) -> tuple[float, float, float]:
-    """Samples per second of two calls that warp n samples each, timed in alternation (ours, reference, ours,
+    """Samples per second of two calls that warp n samples each, timed in alternation (tested, reference, tested,
     ...), each timed call straight after `warm` seconds of untimed calls of its own (its threads awake and
-    the other's quiet, its arrays cached): the median rate of each, and the median over the pairs of ours'
-    rate over the reference's, in which the machine's drift between the two runs of a pair cancels."""
-    t_ours, t_ref = [], []
+    the other's quiet, its arrays cached): the median rate of each, and the median over the pairs of the tested
+    call's rate over the reference's, in which the machine's drift between the two runs of a pair cancels."""
+    t_tested, t_ref = [], []
     for _ in range(pairs):
-        for call, times in ((ours, t_ours), (reference, t_ref)):
+        for call, times in ((tested, t_tested), (reference, t_ref)):
             _warm_up(call, warm)
             start = time.perf_counter()
             call()
             times.append(time.perf_counter() - start)
-    ratios = np.array(t_ref) / np.array(t_ours)
-    return n / float(np.median(t_ours)), n / float(np.median(t_ref)), float(np.median(ratios))
+    ratios = np.array(t_ref) / np.array(t_tested)
+    return n / float(np.median(t_tested)), n / float(np.median(t_ref)), float(np.median(ratios))
 
 
 def measure_rate(sample: Callable[[], Any], n: int, repeats: int = 5) -> float:

@@ -43,10 +43,10 @@ def test_bench_command_writes_speed_entries(tmp_path):
     labels = {"mcval/independent", "mcval/sobol", "mitsuba/independent", "mitsuba/ldsampler", "mitsuba/multijitter"}
     assert set(entry["slope"]) == set(entry["seconds"]) == labels
     same = entry["efficiency_ratio_same_sampler"]
-    assert (same["ours"], same["reference"]) == ("mcval/independent", "mitsuba/independent")
+    assert (same["tested"], same["reference"]) == ("mcval/independent", "mitsuba/independent")
     assert same["ratio"] == entry["efficiency_ratio"]
     best = entry["efficiency_ratio_best"]
-    assert best["ours"] in labels and best["reference"] in labels and best["ratio"] > 0
+    assert best["tested"] in labels and best["reference"] in labels and best["ratio"] > 0
     page = (tmp_path / "bench-latest" / "bench.html").read_text()
     assert page.count("<img") == 2 and "best against best" in page and "Sampler convergence" in page
     slopes = data["sampler_slopes"]["slopes"]
@@ -65,10 +65,10 @@ def test_same_sampler_and_best_against_best_pick_their_curves():
                       best={"mcval": ("sobol",), "mitsuba": ("ldsampler", "multijitter")})
     same, best = bench.comparison("independent"), bench.comparison(None)
     assert same.pop("missing") == [] and best.pop("missing") == []
-    assert same == pytest.approx({"ratio": 2.0, "ours": "mcval/independent", "reference": "mitsuba/independent",
-                                  "ours_sampler": "independent", "reference_sampler": "independent"})
-    assert best == pytest.approx({"ratio": 2.0, "ours": "mcval/sobol", "reference": "mitsuba/ldsampler",
-                                  "ours_sampler": "sobol", "reference_sampler": "ldsampler"})
+    assert same == pytest.approx({"ratio": 2.0, "tested": "mcval/independent", "reference": "mitsuba/independent",
+                                  "tested_sampler": "independent", "reference_sampler": "independent"})
+    assert best == pytest.approx({"ratio": 2.0, "tested": "mcval/sobol", "reference": "mitsuba/ldsampler",
+                                  "tested_sampler": "sobol", "reference_sampler": "ldsampler"})
     assert bench.efficiency_ratio() == pytest.approx(2.0)
     # Best against best picks among the stratified samplers, even where independent did better.
     bench.curves["mitsuba/independent"] = curve("c", 0.1, 0.01)  # 1000
@@ -101,11 +101,11 @@ def test_ratios_compare_the_steps_both_curves_rendered():
 
 
 def test_our_engine_in_process_renders_the_same_bits_as_the_child_process():
-    """The bench renders ours in process (warm threads, as Mitsuba's); the images must be the child's."""
-    from harness.engines.ours import OurEngine
+    """The bench renders mcval in process (warm threads, as Mitsuba's); the images must be the child's."""
+    from harness.engines.mcval import McvalEngine
     for batches in (1, 3):
-        child = OurEngine(sampler="independent").render("scenes/cornell.xml", "ao", 16, batches, 7, {"res": "32"})
-        inner = OurEngine(sampler="independent", in_process=True).render("scenes/cornell.xml", "ao", 16, batches, 7,
+        child = McvalEngine(sampler="independent").render("scenes/cornell.xml", "ao", 16, batches, 7, {"res": "32"})
+        inner = McvalEngine(sampler="independent", in_process=True).render("scenes/cornell.xml", "ao", 16, batches, 7,
                                                                         {"res": "32"})
         assert inner.batches.shape == child.batches.shape == (batches, 32, 32, 3)
         assert np.array_equal(inner.batches, child.batches)

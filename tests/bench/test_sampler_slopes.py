@@ -6,7 +6,7 @@ from harness.bench.sampler_slopes import INDEPENDENT_BOUNDS, SOBOL_BELOW, mse_sl
 
 
 @pytest.mark.parametrize("integrator", ["simple", "ao"])
-def test_independent_converges_at_the_monte_carlo_rate_and_sobol_faster(ours, integrator):
+def test_independent_converges_at_the_monte_carlo_rate_and_sobol_faster(mcval, integrator):
     from harness.engines.registry import make_engine
     from harness.images.suite import SCENES_DIR
     scene = str(SCENES_DIR / "cornell.xml")

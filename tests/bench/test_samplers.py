@@ -28,4 +28,4 @@ def test_mitsuba_renders_with_the_sampler_it_is_given(tmp_path):
     with pytest.raises(RuntimeError, match="declares no <sampler>"):
         MitsubaEngine(sampler="ldsampler").render(str(bare), "simple", 4, 1, 0, {"res": "8"})
     with pytest.raises(ValueError, match="unknown Mitsuba sampler 'sobol'"):
-        MitsubaEngine(sampler="sobol")  # ours; Mitsuba's closest is ldsampler
+        MitsubaEngine(sampler="sobol")  # mcval; Mitsuba's closest is ldsampler

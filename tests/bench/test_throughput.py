@@ -2,7 +2,7 @@
 the table shows it."""
 
 
-def test_throughput_times_both_engines_on_one_case(ours):
+def test_throughput_times_both_engines_on_one_case(mcval):
     from harness.bench.throughput import measure
     from harness.engines.registry import make_engine
     from tools.throughput import table

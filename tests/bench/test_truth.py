@@ -6,7 +6,7 @@ import pytest
 from harness.bench.ladder import relmse
 from harness.bench.truth import bench_truth
 from harness.engines.mitsuba import MitsubaEngine
-from harness.engines.ours import OurEngine
+from harness.engines.mcval import McvalEngine
 from harness.images.references import RESOLUTION, load_reference, render_reference
 from harness.images.suite import ImageCase
 
@@ -26,7 +26,7 @@ def _errors(case: ImageCase, mitsuba) -> tuple[float, float]:
     truth, label = bench_truth(case, mitsuba, spp=16)
     assert label.startswith("closed form")
     stored = load_reference(case, mitsuba)[0] or render_reference(case, mitsuba)
-    image = OurEngine().render(str(case.path), case.integrator, 64, 1, 5, {"res": str(RESOLUTION)}).batches[0]
+    image = McvalEngine().render(str(case.path), case.integrator, 64, 1, 5, {"res": str(RESOLUTION)}).batches[0]
     return relmse(image, truth), relmse(image, stored)
 
 

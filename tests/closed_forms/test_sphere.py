@@ -176,9 +176,9 @@ def test_engine_against_brute_force_monte_carlo(integrator, scale):
     # On the sphere lit and unlit, on the floor beside it, on the shadow's two edges, far away, in the shadow.
     for row, col in [(4, 12), (12, 16), (16, 26), (21, 9), (19, 23), (0, 0), (26, 20)]:
         mean, se = _brute_force_pixel(s, integrator, row, col, 60_000, rng)
-        ours = image[:, row, col, 2]
-        se_engine = ours.std(ddof=1) / np.sqrt(len(ours))
+        mcval = image[:, row, col, 2]
+        se_engine = mcval.std(ddof=1) / np.sqrt(len(mcval))
         # All of the engine's batches can miss a far floor pixel's rare occlusion (ao): its SE is then at least
         # what the brute force's per-sample spread predicts for the engine's 4 x 256 samples.
         se_engine = max(se_engine, se * np.sqrt(60_000 / (4 * 256)))
-        assert abs(ours.mean() - mean) < 5 * np.hypot(se, se_engine) + 1e-6, (row, col)
+        assert abs(mcval.mean() - mean) < 5 * np.hypot(se, se_engine) + 1e-6, (row, col)

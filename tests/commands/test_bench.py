@@ -8,7 +8,7 @@ from tests.helpers.registered_integrators import PRODUCT
 
 
 def test_an_engine_with_no_benchmarked_integrator_measures_nothing(tmp_path, capsys):
-    engine = write_engine(tmp_path, "ours", integrators=("normals",))
+    engine = write_engine(tmp_path, "faithful", integrators=("normals",))
     out = tmp_path / "results"
     assert main(["bench", "--engines", str(engine), "--out", str(out)]) == 3
     (run,) = [p for p in out.iterdir() if p.is_dir()]

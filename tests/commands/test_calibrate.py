@@ -6,13 +6,13 @@ import pytest
 
 from harness.cli import main
 from harness.engines.mitsuba import MitsubaEngine
-from harness.engines.ours import OurEngine
+from harness.engines.mcval import McvalEngine
 from harness.images.calibration import calibrate_images
 
 
-class _Scaled(OurEngine):
-    """Our renderer with every image scaled by `factor`: a known-wrong twin (ours against the closed
-    form then disagrees; ours against itself still agrees)."""
+class _Scaled(McvalEngine):
+    """Our renderer with every image scaled by `factor`: a known-wrong twin (mcval against the closed
+    form then disagrees; mcval against itself still agrees)."""
 
     def __init__(self, factor: float) -> None:
         super().__init__()
@@ -32,7 +32,7 @@ def mitsuba():
 @pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1])
 def test_null_comparisons_are_within_their_intervals(mitsuba, seed):
-    cal = calibrate_images(OurEngine(), mitsuba, per_kind=3, seed=seed, resolution=64)
+    cal = calibrate_images(McvalEngine(), mitsuba, per_kind=3, seed=seed, resolution=64)
     assert not cal.failed and len(cal.results) == 9
     assert cal.within, [b for b in cal.blocks() if not b["within"]]
     assert cal.sound and cal.to_json()["pass"]

@@ -1,5 +1,5 @@
 """A failure's first line names its cause: a renderer that leaves out a scene's reflectance (its image twice
-the reference's), one off by pi; a reference image that holds |n| where ours is signed (and, for a scene in
+the reference's), one off by pi; a reference image that holds |n| where mcval is signed (and, for a scene in
 Nori's dialect, whose normals integrator writes |n|, the comparison is made that way and passes)."""
 import json
 import math
@@ -54,10 +54,10 @@ def test_a_reference_of_absolute_normals_is_named_and_nori_scenes_are_compared_s
     (scene,) = prepare_scenes([nori / "tilted.xml"], tmp_path / "cache", 32)
     assert scene.dialect == "nori"
     k, spp = 8, 64
-    ours = make_engine("mcval").render(str(scene.prepared), "normals", spp, k, 77, {"res": "32"}).mean
-    assert ours.min() < 0
+    mcval = make_engine("mcval").render(str(scene.prepared), "normals", spp, k, 77, {"res": "32"}).mean
+    assert mcval.min() < 0
     image = tmp_path / "nori_normals.exr"
-    write_layers(image, {"RGB": np.abs(ours)})
+    write_layers(image, {"RGB": np.abs(mcval)})
     # The same scene written in Mitsuba's dialect: nothing says the image holds |n|, and the failure says so.
     mitsuba = tmp_path / "mitsuba"
     mitsuba.mkdir()

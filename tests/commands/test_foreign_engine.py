@@ -19,7 +19,7 @@ def _results(out):
 
 
 def test_an_engine_file_is_named_in_every_output(tmp_path, capsys):
-    engine = write_engine(tmp_path, "ours", name="wrapped")
+    engine = write_engine(tmp_path, "faithful", name="wrapped")
     out = tmp_path / "results"
     assert main(["images", "--engine", str(engine), "--only", "plane_point:simple", "--out", str(out)]) == 0
     results = _results(out)
@@ -72,7 +72,7 @@ def test_a_scene_of_ones_own_is_validated_and_its_folder_left_alone(tmp_path, ca
     assert code == 0
     (case,) = _results(out)["images"]
     assert case["scene"] == "sphere_plane" and case["scene_file"] == str(folder / "sphere_plane.xml")
-    assert case["pass"] and case["reference"].startswith("rendered now")  # never a stored reference of ours
+    assert case["pass"] and case["reference"].startswith("rendered now")  # never a stored reference of mcval's
     assert (out / ".scenes").is_dir()
 
 
@@ -84,13 +84,13 @@ def test_tables_take_their_width_from_columns(monkeypatch):
 
 
 def test_an_engine_file_is_benchmarked_against_the_reference(tmp_path):
-    engine = write_engine(tmp_path, "ours", name="wrapped")
+    engine = write_engine(tmp_path, "faithful", name="wrapped")
     out = tmp_path / "results"
     assert main(["bench", "--engines", str(engine), "mitsuba", "--only", "plane_point:simple", "--same-sampler",
                  "--max-spp", "2", "--runs", "1", "--throughput-runs", "0", "--seed-runs", "0",
                  "--out", str(out)]) == 0
     (case,) = _results(out)["speed"]
-    assert case["efficiency_ratio_same_sampler"]["ours"] == "wrapped/independent"
+    assert case["efficiency_ratio_same_sampler"]["tested"] == "wrapped/independent"
     assert case["efficiency_ratio_same_sampler"]["reference"] == "mitsuba/independent"
 
 

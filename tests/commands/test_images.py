@@ -101,18 +101,18 @@ def test_report_renders_in_headless_chromium(image_run, tmp_path):
     assert green > 1e-4
 
 
-def test_a_failing_comparison_leaves_its_data(tmp_path, ours, mitsuba, monkeypatch):
+def test_a_failing_comparison_leaves_its_data(tmp_path, mcval, mitsuba, monkeypatch):
     """A renderer that is 2% too bright fails, and the run keeps the arrays that show where."""
-    import harness.engines.ours as ours_module
+    import harness.engines.mcval as mcval_module
 
-    original = ours_module.OurEngine.render
+    original = mcval_module.McvalEngine.render
 
     def too_bright(self, *args, **kwargs):
         result = original(self, *args, **kwargs)
         result.batches = result.batches * 1.02
         return result
 
-    monkeypatch.setattr(ours_module.OurEngine, "render", too_bright)
+    monkeypatch.setattr(mcval_module.McvalEngine, "render", too_bright)
     assert main(["images", "--only", "plane_point:simple", "--out", str(tmp_path)]) == 1
     run = (tmp_path / "latest").resolve()
     data = json.loads((run / "results.json").read_text())
@@ -129,13 +129,13 @@ def test_a_run_with_no_case_to_judge_exits_3_and_says_why(tmp_path, capsys):
     from tests.helpers.foreign_renderers import write_engine
     from harness.images.suite import REAL_SCENES_DIR
 
-    engine = write_engine(tmp_path, "ours", integrators=("simple",))
+    engine = write_engine(tmp_path, "faithful", integrators=("simple",))
     out = tmp_path / "results"
     assert main(["images", "--engine", str(engine), "--scene", str(REAL_SCENES_DIR / "cornell_box.xml"),
                  "--out", str(out)]) == 3
     payload = json.loads((out / "latest" / "results.json").read_text())
     assert not payload["pass"] and payload["verdict"] == "NOTHING JUDGED"
-    assert payload["verdict_reason"] == ("nothing was judged: image cases: no case of the engine ours (it renders "
+    assert payload["verdict_reason"] == ("nothing was judged: image cases: no case of the engine faithful (it renders "
                                          "simple) applies to the scenes: cornell_box:simple: no point light")
     assert f"FAIL {payload['verdict_reason']}" in capsys.readouterr().out
 
@@ -148,14 +148,14 @@ def test_scenes_that_crash_or_hang_mitsuba_fail_their_own_cases_and_the_run_goes
     monkeypatch.setenv(TIMEOUT_ENV, "3")  # the good scene first: its worker's compilation is in its limit
     scenes = misbehaving_scenes(tmp_path)
     # Our renderer refuses the crashing file's mesh and the hanging file's filter, and a file the tested engine
-    # refuses costs no reference render: ours renders the good file in their place, so that Mitsuba is given them.
-    from harness.engines.ours import OurEngine
-    render = OurEngine.render
+    # refuses costs no reference render: mcval renders the good file in their place, so that Mitsuba is given them.
+    from harness.engines.mcval import McvalEngine
+    render = McvalEngine.render
 
     def good_in_place_of_crash(self, scene, *args, **kwargs):
         return render(self, str(scenes["good"]) if Path(scene).name in ("crash.xml", "hang.xml") else scene, *args, **kwargs)
 
-    monkeypatch.setattr(OurEngine, "render", good_in_place_of_crash)
+    monkeypatch.setattr(McvalEngine, "render", good_in_place_of_crash)
     out = tmp_path / "results"
     code = main(["images", *(a for name in ("good", "crash", "hang") for a in ("--scene", str(scenes[name]))),
                  "--only", "simple", "--resolution", "8", "--out", str(out)])

@@ -36,7 +36,7 @@ def test_images_without_signal_are_inconclusive_and_a_run_of_them_fails(tmp_path
     assert not any(c["pass"] for c in cases.values())
     assert cases["from_behind"]["inconclusive"].startswith("no signal: both images are 0 everywhere")
     assert "above the 5% it must resolve" in cases["speck"]["inconclusive"]
-    assert "spp" in cases["speck"]["inconclusive"]  # what would decide it, or why no budget of ours would
+    assert "spp" in cases["speck"]["inconclusive"]  # what would decide it, or why no budget of mcval's would
     for case in cases.values():
         assert all(test["independence"]["pass"] for test in case["tests"].values())
     skipped = list(ET.parse(out / "latest" / "junit.xml").iter("skipped"))

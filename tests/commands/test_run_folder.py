@@ -4,7 +4,7 @@ import json
 import os
 
 from harness.cli import main
-from harness.engines.ours import OurEngine
+from harness.engines.mcval import McvalEngine
 from harness.results import latest_run, new_run_dir
 
 CASE = ["images", "--only", "plane_point:normals"]
@@ -27,7 +27,7 @@ def test_an_interrupted_run_leaves_latest_at_the_previous_complete_run(tmp_path,
         raise KeyboardInterrupt
 
     with monkeypatch.context() as m:
-        m.setattr(OurEngine, "render", interrupt)
+        m.setattr(McvalEngine, "render", interrupt)
         capsys.readouterr()
         assert main([*CASE, "--out", str(out)]) == 130
     message = capsys.readouterr().err.strip().splitlines()[-1]

@@ -41,26 +41,26 @@ def fmt(v) -> str:
     return ", ".join(f"{x:.9g}" for x in v)
 
 
-def render(ours, scene, integrator, seed):
-    return ours.render(str(scene), integrator, SPP, K, seed, PARAMS).batches
+def render(mcval, scene, integrator, seed):
+    return mcval.render(str(scene), integrator, SPP, K, seed, PARAMS).batches
 
 
 @pytest.fixture(scope="module")
-def baseline(ours):
-    return {i: render(ours, SPHERE, i, 1) for i in ("normals", "simple", "ao")}
+def baseline(mcval):
+    return {i: render(mcval, SPHERE, i, 1) for i in ("normals", "simple", "ao")}
 
 
-def test_scaled_images_fail(ours, baseline):
+def test_scaled_images_fail(mcval, baseline):
     # A null pair passes 99 % of the time (2 false alarms in 180 pairs of this scene, measured); seeds 1
     # and 2 are one of the other 1 %, so the test image is seed 3.
-    test = render(ours, SPHERE, "simple", 3)
+    test = render(mcval, SPHERE, "simple", 3)
     assert compare_batches(test, baseline["simple"]).passed
     for factor in (np.pi, 1.02):
         result = compare_batches(test * factor, baseline["simple"])
         assert not result.passed and "image" in result.failed_scales, factor
 
 
-def test_camera_shifted_half_a_pixel_fails(ours, baseline, tmp_path):
+def test_camera_shifted_half_a_pixel_fails(mcval, baseline, tmp_path):
     def shift(root):
         la = lookat(root)
         o, t = vec(la.get("origin")), vec(la.get("target"))
@@ -73,26 +73,26 @@ def test_camera_shifted_half_a_pixel_fails(ours, baseline, tmp_path):
         la.set("target", fmt(t + half_pixel * left))
     scene = variant(tmp_path, shift)
     for integrator in ("normals", "simple"):
-        assert not compare_batches(render(ours, scene, integrator, 2), baseline[integrator],
+        assert not compare_batches(render(mcval, scene, integrator, 2), baseline[integrator],
                                    signed=integrator == "normals").passed, integrator
 
 
-def test_fov_off_by_half_a_degree_fails(ours, baseline, tmp_path):
+def test_fov_off_by_half_a_degree_fails(mcval, baseline, tmp_path):
     def widen(root):
         fov = next(e for e in root.iter("float") if e.get("name") == "fov")
         fov.set("value", str(float(fov.get("value")) + 0.5))
     scene = variant(tmp_path, widen)
-    assert not compare_batches(render(ours, scene, "normals", 2), baseline["normals"], signed=True).passed
+    assert not compare_batches(render(mcval, scene, "normals", 2), baseline["normals"], signed=True).passed
 
 
-def test_point_light_moved_by_one_percent_fails(ours, baseline, tmp_path):
+def test_point_light_moved_by_one_percent_fails(mcval, baseline, tmp_path):
     def move(root):
         pos = next(e for e in root.iter("point") if e.get("name") == "position")
         p = vec(pos.get("value"))
         centre = np.array([0.0, 1.0, 0.0])  # the sphere's centre
         pos.set("value", fmt(p + np.array([0.01 * np.linalg.norm(p - centre), 0, 0])))
     scene = variant(tmp_path, move)
-    assert not compare_batches(render(ours, scene, "simple", 2), baseline["simple"]).passed
+    assert not compare_batches(render(mcval, scene, "simple", 2), baseline["simple"]).passed
 
 
 def test_ao_with_an_extra_bounce_fails(mitsuba, baseline, tmp_path):
@@ -115,18 +115,18 @@ def test_ao_with_an_extra_bounce_fails(mitsuba, baseline, tmp_path):
 
 
 @pytest.mark.slow
-def test_independent_runs_of_one_engine_pass(ours):
+def test_independent_runs_of_one_engine_pass(mcval):
     """20 seed pairs: false alarms must be consistent with alpha = 0.01 (at most 2 of 20: P < 0.001)."""
     failures = 0
     for seed in range(20):
-        a = render(ours, SPHERE, "simple", 100 + 2 * seed)
-        b = render(ours, SPHERE, "simple", 101 + 2 * seed)
+        a = render(mcval, SPHERE, "simple", 100 + 2 * seed)
+        b = render(mcval, SPHERE, "simple", 101 + 2 * seed)
         failures += not compare_batches(a, b).passed
     assert failures <= sps.binom.isf(0.001, 20, 0.01)
 
 
-def test_detectable_bias_is_reported_and_detected(ours, baseline):
-    test = render(ours, SPHERE, "simple", 3)
+def test_detectable_bias_is_reported_and_detected(mcval, baseline):
+    test = render(mcval, SPHERE, "simple", 3)
     result = compare_batches(test, baseline["simple"])
     bias = result.detectable_bias
     assert 0 < bias < 0.02

@@ -21,19 +21,19 @@ H = W = 32
 pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
 
 
-def render(ours, integrator: str, seed: int) -> np.ndarray:
-    return ours.render(str(SPHERE), integrator, SPP, K, seed, PARAMS).batches.astype(np.float64)
+def render(mcval, integrator: str, seed: int) -> np.ndarray:
+    return mcval.render(str(SPHERE), integrator, SPP, K, seed, PARAMS).batches.astype(np.float64)
 
 
 @pytest.fixture(scope="module")
-def simple(ours):
+def simple(mcval):
     """Two independent renders of one scene: the known-good twin."""
-    return render(ours, "simple", 11), render(ours, "simple", 12)
+    return render(mcval, "simple", 11), render(mcval, "simple", 12)
 
 
 @pytest.fixture(scope="module")
-def normals(ours):
-    return render(ours, "normals", 11), render(ours, "normals", 12)
+def normals(mcval):
+    return render(mcval, "normals", 11), render(mcval, "normals", 12)
 
 
 def damage(batches: np.ndarray, value: float, where: str) -> tuple[np.ndarray, int]:
@@ -52,9 +52,9 @@ def damage(batches: np.ndarray, value: float, where: str) -> tuple[np.ndarray, i
     return out, H * W
 
 
-def test_clean_pairs_pass_at_several_seeds(ours, simple):
+def test_clean_pairs_pass_at_several_seeds(mcval, simple):
     for seed in (21, 23, 25):
-        result = compare_batches(render(ours, "simple", seed), render(ours, "simple", seed + 1))
+        result = compare_batches(render(mcval, "simple", seed), render(mcval, "simple", seed + 1))
         assert result.passed and result.finite.passed, (seed, result.failed_checks)
     result = compare_batches(*simple)
     assert result.passed
@@ -141,12 +141,12 @@ def test_a_negative_variance_in_a_summary_fails(simple):
     assert not result.passed and result.finite.reference.negative == 1
 
 
-def test_a_render_with_one_nan_pixel_fails_the_image_run_path(ours):
+def test_a_render_with_one_nan_pixel_fails_the_image_run_path(mcval):
     """What image_run does with our batches (summarize, then compare_summaries): one NaN sample value
     in one batch of a real render fails."""
     scene = str(SCENES / "plane_point.xml")
-    mine = ours.render(scene, "simple", SPP, K, 5, PARAMS).batches
-    reference = ours.render(scene, "simple", SPP, K, 6, PARAMS).batches
+    mine = mcval.render(scene, "simple", SPP, K, 5, PARAMS).batches
+    reference = mcval.render(scene, "simple", SPP, K, 6, PARAMS).batches
     assert compare_summaries(summarize(mine), summarize(reference)).passed
     mine = mine.copy()
     mine[3, 16, 9, 0] *= np.nan
@@ -163,10 +163,10 @@ def test_a_render_with_one_nan_pixel_fails_the_image_run_path(ours):
 
 def test_a_nan_render_fails_in_every_output(tmp_path, monkeypatch, capsys):
     """Through the command line: results.json, junit.xml, report.html and the terminal table all say why."""
-    import harness.engines.ours as ours_module
+    import harness.engines.mcval as mcval_module
     from harness.cli import main
 
-    original = ours_module.OurEngine.render
+    original = mcval_module.McvalEngine.render
 
     def one_nan(self, *args, **kwargs):
         result = original(self, *args, **kwargs)
@@ -174,7 +174,7 @@ def test_a_nan_render_fails_in_every_output(tmp_path, monkeypatch, capsys):
         result.batches[1, 5, 9, :] = np.nan
         return result
 
-    monkeypatch.setattr(ours_module.OurEngine, "render", one_nan)
+    monkeypatch.setattr(mcval_module.McvalEngine, "render", one_nan)
     assert main(["images", "--only", "plane_point:normals", "--out", str(tmp_path)]) == 1
     expected = "non-finite pixels: 1 in the test image"
     terminal = " ".join(capsys.readouterr().out.split())

@@ -17,13 +17,13 @@ ALPHA = 1.7e-4  # a default validate's per-comparison level
 
 @pytest.fixture(scope="module")
 def renders():
-    ours, mitsuba = make_engine("mcval"), make_engine("mitsuba")
+    mcval, mitsuba = make_engine("mcval"), make_engine("mitsuba")
     out = {}
     for key in CASES:
         case = ImageCase(*key.split(":"))
         reference, _ = load_reference(case, mitsuba)
         for seed in SEEDS:
-            mine = ours.render(str(case.path), case.integrator, 32, 8, 100 + seed, render_params(case))
+            mine = mcval.render(str(case.path), case.integrator, 32, 8, 100 + seed, render_params(case))
             out[key, seed] = (mine.batches.astype(np.float64), mine.spp, reference)
     return out
 

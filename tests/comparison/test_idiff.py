@@ -82,6 +82,6 @@ def test_verdict_matches_the_idiff_binary(tmp_path, case, expected):
            "-warn", str(t["warn"]), "-warnpercent", str(t["warnpercent"]), str(tmp_path / "a.exr"), str(tmp_path / "b.exr")]
     res = subprocess.run(cmd, capture_output=True, text=True)
     theirs = {0: "PASS", 1: "WARN", 2: "FAIL"}[res.returncode]
-    ours = idiff(a, b, t)["verdict"]
-    assert ours == theirs, res.stdout
-    assert ours == expected
+    mcval = idiff(a, b, t)["verdict"]
+    assert mcval == theirs, res.stdout
+    assert mcval == expected

@@ -6,44 +6,44 @@ from pathlib import Path
 import pytest
 
 from harness.engines.mitsuba import MitsubaEngine
-from harness.engines.ours import OurEngine
+from harness.engines.mcval import McvalEngine
 from harness.comparison.compare import compare_summaries
 from harness.comparison.summary import summarize
 from harness.comparison.idiff import idiff
 from harness.images.references import load_reference
 from harness.images.run import case_seed, run_images
-from harness.images.suite import OUR_SPP, ImageCase
+from harness.images.suite import TESTED_SPP, ImageCase
 from harness.invariance.rewrite import rewrite
 from harness.statistics.constants import IMAGE_BATCHES
 
 
 @pytest.fixture(scope="module")
 def engines():
-    return OurEngine(), MitsubaEngine()
+    return McvalEngine(), MitsubaEngine()
 
 
-def test_noisy_but_correct_cornell_box_ao_fails_idiff_and_passes_ours(engines):
+def test_noisy_but_correct_cornell_box_ao_fails_idiff_and_passes_mcval(engines):
     """Mitsuba's own Cornell box under ao at the validation budget (32 spp x 8 batches) against the stored
     reference: about half the pixels differ by more than 0.004 (Monte Carlo noise, no bias: the image
     means agree to 2e-4), so idiff fails; our test, which knows the noise, passes."""
-    ours, mitsuba = engines
-    (result,), _ = run_images([ImageCase("cornell_box", "ao", group="real")], ours, mitsuba, seed=0)
+    mcval, mitsuba = engines
+    (result,), _ = run_images([ImageCase("cornell_box", "ao", group="real")], mcval, mitsuba, seed=0)
     assert result.passed, result.comparisons["mitsuba"].failed_scales
     assert result.idiff["verdict"] == "FAIL"
     assert result.idiff["fail_percent_of_pixels"] > 10
 
 
-def test_two_percent_bias_passes_idiff_and_fails_ours(engines, tmp_path):
+def test_two_percent_bias_passes_idiff_and_fails_mcval(engines, tmp_path):
     """plane_point under simple, with our floor's reflectance 2 % too high (0.51 for 0.5). The image's
     largest value is 0.199, so no pixel moves by more than 0.00398, under idiff's 0.004: idiff passes.
     Our test rejects it at every scale (the unbiased render passes: checked first)."""
-    ours, mitsuba = engines
+    mcval, mitsuba = engines
     case = ImageCase("plane_point", "simple")
     reference, _ = load_reference(case, mitsuba)
     assert reference is not None
 
     def compare(scene: Path):
-        mine = ours.render(str(scene), case.integrator, OUR_SPP[case.integrator], IMAGE_BATCHES, case_seed(case, 0))
+        mine = mcval.render(str(scene), case.integrator, TESTED_SPP[case.integrator], IMAGE_BATCHES, case_seed(case, 0))
         comparison = compare_summaries(summarize(mine.batches), reference.summary, samples=(mine.spp, reference.spp))
         return comparison, idiff(mine.batches.mean(axis=0), reference.summary.mean_image)
 

@@ -49,5 +49,5 @@ def test_noise_alone_gets_no_diagnosis(seed):
 
 def test_a_change_no_transform_explains_gets_none():
     other = _scene()
-    other[10:30, 60:90] = 0.95  # a shape that is not in ours
+    other[10:30, 60:90] = 0.95  # a shape that is not in mcval's
     assert diagnose(_scene(), other) is None

@@ -31,17 +31,17 @@ def _failure(tmp_path, behaviour: str, **kwargs) -> RenderFailed:
 
 
 def test_a_good_renderer_gives_independent_batches_of_the_asked_size(tmp_path):
-    result = _render(tmp_path, "ours", batches=3)
-    assert result.batches.shape == (3, 8, 8, 3) and result.engine == "ours"
+    result = _render(tmp_path, "faithful", batches=3)
+    assert result.batches.shape == (3, 8, 8, 3) and result.engine == "faithful"
     assert not np.array_equal(result.batches[0], result.batches[1])  # distinct seeds per call
     assert result.seconds["render"] > 0 and result.seconds["total"] >= result.seconds["render"] * 0.5
     assert len({call_seed(7, k) for k in range(64)}) == 64 and all(0 <= call_seed(s, 3) < 2**31 for s in (0, 2**40))
 
 
 def test_jobs_run_calls_at_once_with_the_same_images(tmp_path):
-    one = _render(tmp_path, "ours", batches=4)
+    one = _render(tmp_path, "faithful", batches=4)
     (tmp_path / "two").mkdir()
-    both = _render(tmp_path / "two", "ours", batches=4, extra="jobs = 2\n")
+    both = _render(tmp_path / "two", "faithful", batches=4, extra="jobs = 2\n")
     assert np.array_equal(one.batches, both.batches)
 
 
@@ -78,7 +78,7 @@ def test_a_renderer_printing_without_end_is_ended(tmp_path, monkeypatch):
 
 
 def test_an_integrator_not_in_the_table_fails_the_render(tmp_path):
-    path = write_engine(tmp_path, "ours")
+    path = write_engine(tmp_path, "faithful")
     path.write_text(path.read_text().replace('ao = "ao"\n', ""))
     with pytest.raises(RenderFailed, match="has no integrator for ao"):
         CommandEngine.from_path(path).render(SCENE, "ao", 4, 1, 0, PARAMS)
@@ -119,7 +119,7 @@ DIRTY = b"v1 \x00\x01\x1b[31m\x7f \xff\xfe \xed\xa0\x80 end"
 
 def test_a_version_of_100_mb_and_control_characters_is_bounded_and_safe(tmp_path):
     _script(tmp_path / "ver.py", f"sys.stdout.buffer.write({DIRTY!r} + b'x' * 100_000_000 + b'\\nsecond line\\n')")
-    engine = CommandEngine.from_path(write_engine(tmp_path, "ours", extra='version = ["{here}/ver.py"]\n'))
+    engine = CommandEngine.from_path(write_engine(tmp_path, "faithful", extra='version = ["{here}/ver.py"]\n'))
     version = engine.describe()["version"]
     assert version.startswith("v1 \\x00\\x01\\x1b[31m\\x7f \ufffd\ufffd") and len(version) < 5000, version[:200]
     assert "more characters]" in version and "second line" not in version

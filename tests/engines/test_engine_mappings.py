@@ -35,11 +35,11 @@ def test_an_engine_file_maps_by_its_integrators_table(tmp_path):
     assert not engine.draws_same_estimator(CORNELL, "ao")
 
 
-def test_our_renderer_lists_its_registry(ours):
-    assert set(ours.integrators) == set(PRODUCT)
+def test_our_renderer_lists_its_registry(mcval):
+    assert set(mcval.integrators) == set(PRODUCT)
 
 
-def test_mitsuba_says_its_plugin_and_where_its_estimator_is_ours(mitsuba, tmp_path):
+def test_mitsuba_says_its_plugin_and_where_its_estimator_is_mcval(mitsuba, tmp_path):
     assert mitsuba.integrator_mapping("simple").startswith("direct(emitter_samples=1, bsdf_samples=0)")
     assert mitsuba.draws_same_estimator(CORNELL, "simple")
     two = tmp_path / "two_lights.xml"

@@ -15,7 +15,7 @@ pytestmark = pytest.mark.mitsuba
 
 #: Mitsuba's own offset, (1 + max|p|) * 1500 float epsilons, in mcval_direct's terms.
 MITSUBA_OFFSET = {"offset_epsilons": 1500.0, "offset_floor": 1.0}
-#: The height of the slot between the floor and its cover: below Mitsuba's offset, far above ours.
+#: The height of the slot between the floor and its cover: below Mitsuba's offset, far above mcval's.
 GAP = 5e-5
 
 

@@ -71,7 +71,7 @@ def test_emitters_no_integrator_uses_are_removed_as_our_loader_skips_them():
 
 @pytest.mark.parametrize("integrator", ["simple", "ao", "normals"])
 def test_area_emitters_in_shapes_leave_mitsubas_copy_where_our_loader_skips_them(integrator):
-    """Ours skips an area emitter inside a shape under each of these integrators (point lights only, or none):
+    """mcval skips an area emitter inside a shape under each of these integrators (point lights only, or none):
     Mitsuba's copy drops it too, and keeps its shape."""
     import xml.etree.ElementTree as ET
 

@@ -1,5 +1,5 @@
 """The engine registry: the only map from an engine's name to the engine. A test-only engine
-(tests/plugins/engines/ours_in_process.py, found through MCVAL_ENGINE_PATH) goes through every suite with no
+(tests/plugins/engines/mcval_in_process.py, found through MCVAL_ENGINE_PATH) goes through every suite with no
 edit of the harness; an unknown name is one clear error."""
 import json
 from pathlib import Path
@@ -34,8 +34,8 @@ def test_an_unknown_engine_is_refused_with_the_known_ones(tmp_path, harness, cap
 def test_an_engine_file_is_found_on_the_engine_path(monkeypatch):
     monkeypatch.setenv("MCVAL_ENGINE_PATH", str(PLUGINS))
     found = engine_entries()
-    assert found["ours-in-process"].source.endswith("ours_in_process.py")
-    assert make_engine("ours-in-process").name == "ours-in-process"
+    assert found["mcval-in-process"].source.endswith("mcval_in_process.py")
+    assert make_engine("mcval-in-process").name == "mcval-in-process"
 
 
 def test_an_engine_file_without_an_engine_entry_is_an_error(tmp_path, monkeypatch):
@@ -47,32 +47,32 @@ def test_an_engine_file_without_an_engine_entry_is_an_error(tmp_path, monkeypatc
 
 def test_the_reference_engine_maps_its_own_scene_files():
     from harness.engines.mitsuba import MitsubaEngine
-    from harness.engines.ours import OurEngine
+    from harness.engines.mcval import McvalEngine
 
     far = ROOT / "scenes" / "far_from_origin.xml"
     assert MitsubaEngine.scene_file(MitsubaEngine.__new__(MitsubaEngine), far).name == "sphere_plane.xml"
-    assert OurEngine.scene_file(OurEngine.__new__(OurEngine), far) == far
+    assert McvalEngine.scene_file(McvalEngine.__new__(McvalEngine), far) == far
 
 
 @pytest.mark.slow
 @pytest.mark.mitsuba
 def test_the_test_engine_goes_through_images_and_invariances(tmp_path, harness):
-    assert harness("images", "--engine", "ours-in-process", "--only", "plane_point:simple", "--out", str(tmp_path)) == 0
+    assert harness("images", "--engine", "mcval-in-process", "--only", "plane_point:simple", "--out", str(tmp_path)) == 0
     [case] = results(tmp_path)["images"]
-    assert case["engine"] == "ours-in-process" and case["pass"]
-    assert set(case["seconds"]) == {"ours-in-process", "mitsuba", "analytic"}
-    assert harness("invariance", "--engine", "ours-in-process", "--only", "plane_point:simple", "scale", "light",
+    assert case["engine"] == "mcval-in-process" and case["pass"]
+    assert set(case["seconds"]) == {"mcval-in-process", "mitsuba", "analytic"}
+    assert harness("invariance", "--engine", "mcval-in-process", "--only", "plane_point:simple", "scale", "light",
                    "--out", str(tmp_path)) == 0
     data = results(tmp_path)["invariance"]
-    assert data["gating_engine"] == "ours-in-process"
-    assert {c["engine"] for c in data["cells"]} == {"ours-in-process", "mitsuba"}
+    assert data["gating_engine"] == "mcval-in-process"
+    assert {c["engine"] for c in data["cells"]} == {"mcval-in-process", "mitsuba"}
 
 
 @pytest.mark.slow
 def test_the_test_engine_goes_through_warps_and_calibrate(tmp_path, harness):
-    assert harness("warps", "--engine", "ours-in-process", "--only", "tent", "--no-mitsuba", "--out", str(tmp_path)) == 0
+    assert harness("warps", "--engine", "mcval-in-process", "--only", "tent", "--no-mitsuba", "--out", str(tmp_path)) == 0
     assert results(tmp_path)["warps"][0]["pass"]
-    assert harness("calibrate", "--engine", "ours-in-process", "--warps", "--only", "tent", "--seeds", "4",
+    assert harness("calibrate", "--engine", "mcval-in-process", "--warps", "--only", "tent", "--seeds", "4",
                    "--no-mitsuba", "--out", str(tmp_path)) == 0
     cal = json.loads(((tmp_path / "calibration-latest").resolve() / "calibration.json").read_text())
     assert "in process" in cal["meta"]["engine"]
@@ -81,9 +81,9 @@ def test_the_test_engine_goes_through_warps_and_calibrate(tmp_path, harness):
 @pytest.mark.slow
 @pytest.mark.mitsuba
 def test_the_test_engine_is_benchmarked_against_the_reference(tmp_path, harness):
-    assert harness("bench", "--engines", "ours-in-process", "mitsuba", "--only", "cornell:simple",
+    assert harness("bench", "--engines", "mcval-in-process", "mitsuba", "--only", "cornell:simple",
                    "--same-sampler", "--max-spp", "2", "--runs", "2", "--throughput-runs", "0", "--seed-runs", "0",
                    "--out", str(tmp_path)) == 0
     [case] = results(tmp_path)["speed"]
-    assert case["efficiency_ratio_same_sampler"]["ours"] == "ours-in-process/independent"
+    assert case["efficiency_ratio_same_sampler"]["tested"] == "mcval-in-process/independent"
     assert case["efficiency_ratio_same_sampler"]["reference"] == "mitsuba/independent"

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from harness.engines.base import RenderFailed
-from harness.engines.ours import OurEngine
+from harness.engines.mcval import McvalEngine
 from harness.engines.render_process import BASE_TIMEOUT, default_timeout
 from tests.helpers.render_wrappers import write_wrapper
 
@@ -18,7 +18,7 @@ PARAMS = {"res": "24"}
 
 def test_child_process_render_is_bit_identical_to_the_module():
     import mcval_renderer
-    mine = OurEngine().render(SCENE, "simple", 4, 3, 4242, PARAMS)
+    mine = McvalEngine().render(SCENE, "simple", 4, 3, 4242, PARAMS)
     module = mcval_renderer.render(SCENE, spp=4, seed=4242, batches=3, integrator="simple", params=PARAMS)
     assert mine.batches.dtype == np.float32 and mine.batches.shape == (3, 24, 24, 3)
     assert np.array_equal(mine.batches, module["batches"])
@@ -28,7 +28,7 @@ def test_child_process_render_is_bit_identical_to_the_module():
 
 def test_one_batch_comes_from_the_mean_layer():
     import mcval_renderer
-    mine = OurEngine().render(SCENE, "ao", 2, 1, 7, PARAMS)
+    mine = McvalEngine().render(SCENE, "ao", 2, 1, 7, PARAMS)
     module = mcval_renderer.render(SCENE, spp=2, seed=7, batches=1, integrator="ao", params=PARAMS)
     assert np.array_equal(mine.batches, module["batches"])
 
@@ -38,20 +38,20 @@ def test_a_scene_error_names_the_status_and_the_message(tmp_path):
     scene.write_text('<scene version="3.0.0">\n  <sensor type="perspective"><float name="fov" value="4O"/>'
                      "</sensor>\n</scene>\n")
     with pytest.raises(RenderFailed) as e:
-        OurEngine().render(str(scene), "ao", 1, 2, 0)
+        McvalEngine().render(str(scene), "ao", 1, 2, 0)
     assert e.value.reason.startswith("exited with status 1: error: ")
     assert 'expected a number, got "4O"' in e.value.reason and "\n" not in e.value.reason
 
 
 def test_a_segfault_names_the_signal(tmp_path):
-    engine = OurEngine(binary=write_wrapper(tmp_path, "segfault", "ao"))
+    engine = McvalEngine(binary=write_wrapper(tmp_path, "segfault", "ao"))
     with pytest.raises(RenderFailed, match=r"^killed by signal SIGSEGV \(11\)$"):
         engine.render(SCENE, "ao", 1, 2, 0, PARAMS)
     assert engine.render(SCENE, "simple", 1, 2, 0, PARAMS).batches.shape == (2, 24, 24, 3)
 
 
 def test_a_kill_mid_render_names_the_signal(tmp_path):
-    engine = OurEngine(binary=write_wrapper(tmp_path, "kill", "ao"), timeout=60)
+    engine = McvalEngine(binary=write_wrapper(tmp_path, "kill", "ao"), timeout=60)
     with pytest.raises(RenderFailed, match=r"^killed by signal SIGKILL \(9\)$"):
         engine.render(SCENE, "ao", 1, 2, 0, PARAMS)
 
@@ -61,19 +61,19 @@ def test_a_hang_ends_at_the_timeout(tmp_path, monkeypatch):
     monkeypatch.setenv("MCVAL_RENDER_TIMEOUT", "1.5")
     start = time.perf_counter()
     with pytest.raises(RenderFailed, match=r"^timed out after 1.5 s$"):
-        OurEngine().render(SCENE, "ao", 1, 2, 0, PARAMS)
+        McvalEngine().render(SCENE, "ao", 1, 2, 0, PARAMS)
     assert time.perf_counter() - start < 10
 
 
 def test_a_render_that_writes_nothing_fails(tmp_path):
-    engine = OurEngine(binary=write_wrapper(tmp_path, "no_image", "ao"))
+    engine = McvalEngine(binary=write_wrapper(tmp_path, "no_image", "ao"))
     with pytest.raises(RenderFailed, match="^wrote no image$"):
         engine.render(SCENE, "ao", 1, 2, 0, PARAMS)
 
 
 def test_a_missing_binary_is_a_clear_error(tmp_path):
     with pytest.raises(RuntimeError, match="MCVAL_RENDER") as e:
-        OurEngine(binary=tmp_path / "nothing").render(SCENE, "ao", 1, 2, 0, PARAMS)
+        McvalEngine(binary=tmp_path / "nothing").render(SCENE, "ao", 1, 2, 0, PARAMS)
     assert not isinstance(e.value, RenderFailed)
 
 
@@ -90,7 +90,7 @@ def test_a_relative_render_binary_works(monkeypatch):
     temporary folder, still finds it."""
     monkeypatch.chdir(ROOT)
     monkeypatch.setenv("MCVAL_RENDER", "build/render")
-    mine = OurEngine().render(SCENE, "normals", 1, 2, 3, PARAMS)
+    mine = McvalEngine().render(SCENE, "normals", 1, 2, 3, PARAMS)
     assert mine.batches.shape == (2, 24, 24, 3)
 
 

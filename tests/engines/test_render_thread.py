@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from harness.engines.base import RenderFailed
-from harness.engines.ours import OurEngine
+from harness.engines.mcval import McvalEngine
 from harness.engines.render_thread import RenderThread
 from tests.helpers.render_wrappers import write_wrapper
 
@@ -15,7 +15,7 @@ SCENE = Path(__file__).resolve().parents[2] / "scenes" / "plane_point.xml"
 
 
 def test_closing_ends_a_hung_render_at_once(tmp_path):
-    engine = OurEngine(binary=write_wrapper(tmp_path, "hang", "normals"), timeout=600)
+    engine = McvalEngine(binary=write_wrapper(tmp_path, "hang", "normals"), timeout=600)
     thread = RenderThread()
     future = thread.submit(engine.render, str(SCENE), "normals", 1, 1, 0, {"res": "8"})
     time.sleep(1.0)  # the hung render is running by now
@@ -28,7 +28,7 @@ def test_closing_ends_a_hung_render_at_once(tmp_path):
 
 def test_a_render_run_to_its_end_is_its_result():
     with RenderThread() as thread:
-        out = thread.submit(OurEngine().render, str(SCENE), "normals", 1, 2, 0, {"res": "8"}).result()
+        out = thread.submit(McvalEngine().render, str(SCENE), "normals", 1, 2, 0, {"res": "8"}).result()
     assert out.batches.shape == (2, 8, 8, 3)
 
 
@@ -57,7 +57,7 @@ def test_workers_start_from_a_thread_while_another_sets_variables(tmp_path):
         with RenderThread() as thread:
             for _ in range(40):
                 try:
-                    thread.submit(OurEngine().render, str(SCENE), "normals", 1, 1, 0, {"res": "4"}).result()
+                    thread.submit(McvalEngine().render, str(SCENE), "normals", 1, 1, 0, {"res": "4"}).result()
                 except RenderFailed as e:
                     errors.append(e.reason)
                 close_workers()  # the next render starts a worker again

@@ -8,7 +8,7 @@ import pytest
 
 from harness.engines import render_worker
 from harness.engines.base import RenderFailed
-from harness.engines.ours import OurEngine
+from harness.engines.mcval import McvalEngine
 from harness.engines.render_process import render_binary
 from harness.engines.render_worker import frame_request
 from tests.helpers.render_wrappers import write_wrapper
@@ -24,7 +24,7 @@ def idle_pids(binary: Path) -> list[int]:
 
 def test_renders_reuse_one_worker_and_match_the_module():
     import mcval_renderer
-    engine = OurEngine()
+    engine = McvalEngine()
     first = engine.render(SCENE, "ao", 2, 2, 5, PARAMS)
     pids = idle_pids(render_binary())
     second = engine.render(SCENE, "ao", 2, 2, 5, PARAMS)
@@ -35,7 +35,7 @@ def test_renders_reuse_one_worker_and_match_the_module():
 
 def test_a_crash_fails_one_render_and_the_next_gets_a_new_worker(tmp_path):
     wrapper = write_wrapper(tmp_path, "segfault", "ao")
-    engine = OurEngine(binary=wrapper)
+    engine = McvalEngine(binary=wrapper)
     engine.render(SCENE, "simple", 1, 2, 0, PARAMS)
     before = idle_pids(wrapper)
     with pytest.raises(RenderFailed, match=r"^killed by signal SIGSEGV \(11\)$"):
@@ -50,7 +50,7 @@ def test_a_scene_error_keeps_the_worker_and_names_only_its_own_output(tmp_path):
     bad = tmp_path / "bad.xml"
     bad.write_text('<scene version="3.0.0">\n  <sensor type="perspective"><float name="fov" value="4O"/>'
                    "</sensor>\n</scene>\n")
-    engine = OurEngine()
+    engine = McvalEngine()
     engine.render(SCENE, "normals", 1, 2, 0, PARAMS)
     pids = idle_pids(render_binary())
     for _ in range(2):
@@ -64,10 +64,10 @@ def test_a_scene_error_keeps_the_worker_and_names_only_its_own_output(tmp_path):
 def test_a_rebuilt_binary_gets_a_worker_of_its_own(tmp_path):
     import os
     wrapper = write_wrapper(tmp_path, "hang", "no-such-argument")
-    OurEngine(binary=wrapper).render(SCENE, "normals", 1, 2, 0, PARAMS)
+    McvalEngine(binary=wrapper).render(SCENE, "normals", 1, 2, 0, PARAMS)
     old = render_worker._key(wrapper)
     os.utime(wrapper, ns=(0, 12345))  # as a rebuild changes it
-    OurEngine(binary=wrapper).render(SCENE, "normals", 1, 2, 0, PARAMS)
+    McvalEngine(binary=wrapper).render(SCENE, "normals", 1, 2, 0, PARAMS)
     assert render_worker._key(wrapper) != old and len(render_worker._idle[render_worker._key(wrapper)]) == 1
 
 
@@ -77,7 +77,7 @@ def test_any_argument_reaches_the_renderer(tmp_path):
     folder.mkdir()
     scene = folder / "cornell.xml"
     scene.write_text(Path(SCENE).read_text().replace('filename="', f'filename="{ROOT / "scenes"}/'))
-    out = OurEngine().render(str(scene), "normals", 1, 2, 0, PARAMS)
+    out = McvalEngine().render(str(scene), "normals", 1, 2, 0, PARAMS)
     assert out.batches.shape == (2, 16, 16, 3) and np.isfinite(out.batches).all()
 
 
@@ -120,7 +120,7 @@ def test_a_binary_without_serve_renders_one_process_per_render(tmp_path):
     script.chmod(0o755)
     import mcval_renderer
     for _ in range(2):
-        out = OurEngine(binary=script).render(SCENE, "ao", 2, 2, 9, PARAMS)
+        out = McvalEngine(binary=script).render(SCENE, "ao", 2, 2, 9, PARAMS)
         module = mcval_renderer.render(SCENE, spp=2, seed=9, batches=2, integrator="ao", params=PARAMS)
         assert np.array_equal(out.batches, module["batches"])
     assert "did not start as a render worker" in render_worker._no_serve[render_worker._key(script)]
@@ -131,7 +131,7 @@ def test_a_worker_killed_while_idle_is_replaced_without_failing_a_render():
     import os
     import signal
     import time
-    engine = OurEngine()
+    engine = McvalEngine()
     engine.render(SCENE, "normals", 1, 2, 0, PARAMS)
     (pid,) = idle_pids(render_binary())
     os.kill(pid, signal.SIGKILL)
@@ -144,7 +144,7 @@ def test_a_real_worker_killed_mid_render_fails_that_render_and_the_next_gets_a_n
     import os
     import signal
     import threading
-    engine = OurEngine(timeout=120)
+    engine = McvalEngine(timeout=120)
     engine.render(SCENE, "normals", 1, 2, 0, PARAMS)
     (pid,) = idle_pids(render_binary())
     threading.Timer(0.5, os.kill, (pid, signal.SIGKILL)).start()

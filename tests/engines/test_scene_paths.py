@@ -52,10 +52,10 @@ def test_what_leads_nowhere_is_one_line_naming_the_file(tmp_path, body, message)
     assert str(main) in str(raised.value) and "\n" not in str(raised.value)
 
 
-def test_both_engines_render_a_scene_that_includes_its_camera(tmp_path, ours, mitsuba):
+def test_both_engines_render_a_scene_that_includes_its_camera(tmp_path, mcval, mitsuba):
     from harness.images.user_scenes import prepare_scenes
     (scene,) = prepare_scenes([_tree(tmp_path)], tmp_path / "cache", 16)
-    mine = ours.render(str(scene.prepared), "normals", 1, 1, 0, {"res": "16"})
+    mine = mcval.render(str(scene.prepared), "normals", 1, 1, 0, {"res": "16"})
     theirs = mitsuba.render(str(scene.prepared), "normals", 1, 1, 0, {"res": "16"})
     assert mine.batches.shape == theirs.batches.shape == (1, 16, 16, 3)
     assert (abs(mine.batches).sum(axis=-1) > 0).mean() > 0.2  # the ball and the rectangle are in view

@@ -29,12 +29,16 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
+ROOT = Path(__file__).resolve().parents[2]
+sys.path[:0] = [str(Path(__file__).resolve().parent), str(ROOT / "tests" / "helpers")]
+from light_seeds import LIGHT_SEEDS  # noqa: E402
 from mutate import mutate_bytes, mutate_obj, mutate_ply, mutate_xml  # noqa: E402
 from outcome import FINDINGS, OUTCOMES, judge, render_command  # noqa: E402
+from registered_integrators import PRODUCT  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[2]
-INTEGRATORS = ("normals", "simple", "ao")
+#: Every integrator the renderer registers; a seed whose file sets up `direct` is rendered with it more often.
+INTEGRATORS = tuple(PRODUCT)
+DIRECT_SEED_SHARE = 0.4
 #: A small OBJ (a tetrahedron with normals and texture coordinates) and a scene that uses it.
 OBJ_MESH = b"""# tetrahedron
 v 0 0 0
@@ -93,15 +97,15 @@ SERIALIZED_SCENE = b"""<scene version="3.0.0">
 </scene>
 """
 FILENAME_RE = re.compile(rb'name="filename"\s+value="([^"]*)"')
-#: Scenes beside the suite's that hold what the suite's do not (disks, cylinders, an orthographic sensor).
-EXTRA_SEED_DIRS = (ROOT / "tests" / "renderer" / "scenes",)
+#: Scenes beside the suite's that hold what the suite's do not (disks, cylinders, an orthographic sensor, OBJ
+#: meshes lit by an area emitter).
+EXTRA_SEED_DIRS = (ROOT / "tests" / "renderer" / "scenes", ROOT / "scenes" / "real")
 
 
 def _serialized_mesh() -> bytes:
     """Two shapes (version 4): a sphere with normals and a pyramid without."""
     import tempfile
 
-    sys.path.insert(0, str(ROOT / "tests" / "helpers"))
     from serialized_files import pyramid, uv_sphere, write_serialized
 
     with tempfile.TemporaryDirectory() as tmp:
@@ -135,14 +139,17 @@ def load_seeds() -> list[Seed]:
         seeds.append(Seed(path.stem, xml, meshes, 0.15 if big else 1.0))  # large meshes load slowly
     seeds.append(Seed("obj_tetrahedron", OBJ_SCENE, {"mesh.obj": OBJ_MESH}, 1.5))
     seeds.append(Seed("serialized_instances", SERIALIZED_SCENE, {"mesh.serialized": _serialized_mesh()}, 1.5))
+    seeds += [Seed(name, xml, {"mesh.obj": OBJ_MESH}, 2.0) for name, xml in LIGHT_SEEDS]
     return seeds
 
 
 def add_special_files(folder: Path) -> None:
-    """What mutated file names point at: a FIFO, a folder, a small OBJ and a PLY."""
+    """What mutated file names point at: a FIFO, a folder, a small OBJ (unless a reproducer brings its own) and
+    a PLY."""
     os.mkfifo(folder / "FIFO")
     (folder / "DIR").mkdir()
-    (folder / "mesh.obj").write_bytes(OBJ_MESH)
+    if not (folder / "mesh.obj").exists():
+        (folder / "mesh.obj").write_bytes(OBJ_MESH)
     (folder / "mesh.ply").symlink_to(ROOT / "scenes/meshes/sphere.ply")
 
 
@@ -160,6 +167,8 @@ def make_variant(index: int, campaign_seed: int, seeds: list[Seed], work: Path) 
     rng = random.Random(f"{campaign_seed}:{index}")
     seed = rng.choices(seeds, weights=[s.weight for s in seeds])[0]
     integrator = rng.choice(INTEGRATORS)
+    if b'<integrator type="direct"' in seed.xml and rng.random() < DIRECT_SEED_SHARE:
+        integrator = "direct"  # so that the file's parameters of direct are read
     folder = work / f"v{index}"
     shutil.rmtree(folder, ignore_errors=True)
     (folder / "meshes").mkdir(parents=True)
@@ -199,8 +208,14 @@ def save_finding(v: Variant, render: Path, outcome: str, detail: str, save: Path
     """Copy the variant (meshes resolved) into save/<outcome>-<index>/ with a note on how to reproduce it."""
     dest = save / f"{outcome}-{v.index}"
     shutil.rmtree(dest, ignore_errors=True)
-    shutil.copytree(v.folder, dest, symlinks=False,
-                    ignore=shutil.ignore_patterns("FIFO", "DIR", "mesh.obj", "mesh.ply", "out.exr"))
+    special = shutil.ignore_patterns("FIFO", "DIR", "mesh.ply", "out.exr")
+
+    def ignore(folder: str, names: list[str]) -> set[str]:
+        # mesh.obj is replay's own unless the variant mutated it (a seed's mesh).
+        unchanged = folder == str(v.folder) and (v.folder / "mesh.obj").read_bytes() == OBJ_MESH
+        return special(folder, names) | ({"mesh.obj"} if unchanged else set())
+
+    shutil.copytree(v.folder, dest, symlinks=False, ignore=ignore)
     cmd = " ".join(render_command(Path("build/render"), dest / "scene.xml", v.integrator, dest / "out.exr"))
     (dest / "integrator").write_text(v.integrator + "\n")
     (dest / "README.txt").write_text(f"{outcome}: {detail}\nseed scene {v.seed}, mutation {v.mutation}, "
@@ -229,6 +244,7 @@ def main(argv: list[str] | None = None) -> int:
     counts: Counter[str] = Counter()
     findings: list[dict] = []
     by_mutation: Counter[tuple[str, str]] = Counter()
+    by_integrator: Counter[tuple[str, str]] = Counter()
     start = time.perf_counter()
 
     def one(index: int) -> None:
@@ -236,6 +252,7 @@ def main(argv: list[str] | None = None) -> int:
         outcome, detail = run_variant(args.render.resolve(), v, args.timeout)
         counts[outcome] += 1
         by_mutation[(v.mutation.split("+")[0], outcome)] += 1
+        by_integrator[(v.integrator, outcome)] += 1
         if outcome in FINDINGS:
             dest = save_finding(v, args.render, outcome, detail, args.save)
             findings.append({"index": index, "outcome": outcome, "detail": detail, "seed_scene": v.seed,
@@ -256,12 +273,15 @@ def main(argv: list[str] | None = None) -> int:
     print("| outcome | count |\n|---|---|")
     for outcome in OUTCOMES:
         print(f"| {outcome} | {counts[outcome]} |")
+    print("\n" + ", ".join(f"{i}: {by_integrator[(i, 'image')]} images, {by_integrator[(i, 'error')]} errors"
+                            for i in INTEGRATORS))
     print(f"\n{args.runs} variants (seed {args.seed}) in {seconds:.0f} s with {args.render}; "
           f"{len(findings)} findings{' saved under ' + str(args.save) if findings else ''}")
     if args.json:
         args.json.write_text(json.dumps({"runs": args.runs, "seed": args.seed, "seconds": round(seconds, 1),
                                          "render": str(args.render), "outcomes": dict(counts),
                                          "by_mutation": {f"{m}:{o}": n for (m, o), n in sorted(by_mutation.items())},
+                                         "by_integrator": {f"{i}:{o}": n for (i, o), n in sorted(by_integrator.items())},
                                          "findings": findings}, indent=2) + "\n")
     return 1 if findings else 0
 

@@ -2,7 +2,8 @@
 
 Each mutation is a small, plausible damage a user or a broken exporter could
 make: a number replaced by an extreme or non-finite value, an element dropped,
-duplicated or retyped, a file truncated or its bytes flipped, a PLY header that
+duplicated or retyped, an emitter, a BSDF or direct's parameters damaged
+(mutate_lights.py), a file truncated or its bytes flipped, a PLY header that
 lies about its counts or types, a mesh path that names a FIFO, a folder or
 nothing. Given the same `random.Random`, a mutation is the same every time.
 """
@@ -11,21 +12,29 @@ from __future__ import annotations
 import random
 import re
 import struct
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # also when imported as tests.fuzz.mutate
+from mutate_lights import mutate_light  # noqa: E402
 
 #: Values a number is replaced by: non-finite, extreme, boundary and malformed.
 NUMBERS = ["nan", "NaN", "-nan", "inf", "-inf", "Infinity", "1e39", "-1e39", "3.4e38", "1e30", "-1e30", "1e20",
            "1e-45", "1e-30", "0", "-0", "-1", "1", "0.5", "2", "180", "360", "1e6", "2147483647", "-2147483648",
            "4294967296", "9999999999999", "0x1p3", "1,2", "1 2 3 4", "", " ", "abc", "$missing", "1e", "--1",
            "16384", "16385", "100000", "1024", "1025", "0.01", "0.049", "4.01", "179.95", "1e15", "1.1e15"]
-#: Types an element's type attribute is changed to: ours, Mitsuba's that we lack, nonsense.
-TYPES = ["point", "constant", "area", "spot", "obj", "ply", "rectangle", "cube", "sphere", "disk", "cylinder",
-         "serialized", "diffuse", "conductor", "box", "gaussian", "tent", "independent", "stratified", "multijitter",
-         "perspective", "orthographic", "hdrfilm", "normals", "simple", "ao", "path", "direct", "", "$missing"]
+#: Types an element's type attribute is changed to: mcval's, Mitsuba's that we lack, nonsense.
+TYPES = ["point", "constant", "area", "spot", "directional", "envmap", "projector", "twosided", "obj", "ply",
+         "rectangle", "cube", "sphere", "disk", "cylinder", "serialized", "diffuse", "conductor", "box", "gaussian",
+         "tent", "independent", "stratified", "multijitter", "perspective", "orthographic", "hdrfilm", "normals",
+         "simple", "ao", "path", "direct", "", "$missing"]
 #: Mesh file names that must be refused cleanly (the driver creates FIFO, DIR and BIG in the work folder).
 FILENAMES = ["/dev/zero", "/dev/null", "/dev/urandom", "FIFO", "DIR", "missing.ply", "x" * 5000 + ".ply",
              "../" * 40 + "etc/passwd", "", ".", "meshes", "meshes/sphere.ply/..", "mesh.obj", "mesh.ply"]
 #: Snippets inserted at a random element boundary.
-SNIPPETS = ['<shape type="cube"/>', '<emitter type="point"/>', '<emitter type="constant"/>',
+SNIPPETS = ['<shape type="cube"/>', '<emitter type="point"/>', '<emitter type="constant"/>', '<emitter type="spot"/>',
+            '<emitter type="directional"/>', '<emitter type="area"/>', '<bsdf type="twosided"/>',
+            '<integrator type="direct"><integer name="emitter_samples" value="0"/></integrator>',
             '<float name="fov" value="30"/>', '<transform name="to_world"><scale value="0"/></transform>',
             '<integrator type="ao"><integer name="samples" value="1024"/></integrator>', '<bsdf type="diffuse"/>',
             '<sensor type="perspective"><float name="fov" value="30"/></sensor>', '<ref id="nothing"/>',
@@ -113,7 +122,7 @@ def mutate_bytes(rng: random.Random, data: bytes) -> bytes:
 def mutate_xml(rng: random.Random, xml: bytes) -> tuple[bytes, str]:
     """One to three mutations of a scene file; returns the bytes and what was done."""
     ops = [("number", mutate_number, 0.45), ("type", mutate_type, 0.12), ("filename", mutate_filename, 0.08),
-           ("element", mutate_element, 0.2), ("bytes", mutate_bytes, 0.15)]
+           ("element", mutate_element, 0.2), ("bytes", mutate_bytes, 0.15), ("light", mutate_light, 0.25)]
     done = []
     for _ in range(rng.choice((1, 1, 1, 2, 3))):
         name, op, _ = rng.choices(ops, weights=[w for *_, w in ops])[0]

@@ -11,8 +11,12 @@ from tests.helpers.render_wrappers import REAL_RENDER, write_wrapper
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import fuzz_scenes  # noqa: E402
+import mutate_lights  # noqa: E402
 import replay  # noqa: E402
+from light_seeds import DELTA_SCENE  # noqa: E402
 from outcome import judge  # noqa: E402
+
+from tests.helpers.registered_integrators import PRODUCT  # noqa: E402
 
 SCENE = Path(__file__).resolve().parents[2] / "scenes" / "plane_point.xml"
 
@@ -33,6 +37,21 @@ def test_variants_are_the_same_for_the_same_seed(tmp_path):
         files = sorted(p.relative_to(a.folder) for p in a.folder.rglob("*") if p.is_file() and not p.is_symlink())
         for f in files:
             assert (a.folder / f).read_bytes() == (b.folder / f).read_bytes(), f
+
+
+def test_the_variants_render_under_every_integrator_and_damage_the_lights(tmp_path):
+    seeds = fuzz_scenes.load_seeds()
+    variants = [fuzz_scenes.make_variant(i, 5, seeds, tmp_path) for i in range(300)]
+    assert {v.integrator for v in variants} == set(PRODUCT)
+    assert any(v.integrator == "direct" and "light" in v.mutation for v in variants)
+
+
+@pytest.mark.parametrize("name, mutation", [(name, op) for name, op, _ in mutate_lights.MUTATIONS])
+def test_each_light_mutation_changes_a_scene_that_has_what_it_damages(name, mutation):
+    import random
+    changed = {mutation(random.Random(k), DELTA_SCENE) for k in range(20)}
+    assert None not in changed and DELTA_SCENE not in changed, name
+    assert mutation(random.Random(7), DELTA_SCENE) == mutation(random.Random(7), DELTA_SCENE)
 
 
 @pytest.mark.parametrize("behaviour, outcome", [("segfault", "signal"), ("hang", "hang"), ("no_image", "bad-image"),

@@ -3,10 +3,10 @@ from __future__ import annotations
 
 import os
 
-from harness.engines.ours import OurEngine
+from harness.engines.mcval import McvalEngine
 
 
-class DiesOn(OurEngine):
+class DiesOn(McvalEngine):
     """Our renderer, except that rendering `integrator` ends the whole process at once, as a crash of an
     engine that renders inside the worker (Mitsuba) would."""
 

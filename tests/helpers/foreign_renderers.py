@@ -1,4 +1,4 @@
-"""Engine files for renderers that are not ours, written into a test's folder: each calls a small Python
+"""Engine files for renderers other than mcval's, written into a test's folder: each calls a small Python
 script that renders through our `render` binary (one batch, as an engine file's renderer renders), or
 misbehaves in one named way instead."""
 from __future__ import annotations
@@ -31,7 +31,7 @@ def shape(channels=3):
 
 #: What each renderer does.
 BEHAVIOURS = {
-    "ours": "render()",
+    "faithful": "render()",
     # Renders every call with one seed of its own, whatever it is given: K copies of one image.
     "fixed_seed": "seed = '7'; render()",
     # Uses the seed modulo 4: of a case's 8 calls, the last 4 repeat the first 4 (see call_seed).

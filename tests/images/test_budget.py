@@ -20,13 +20,13 @@ def cornell_ao():
 
 
 def test_a_half_percent_bias_is_found_about_90_percent_of_the_time(cornell_ao):
-    case, ours, mitsuba = cornell_ao
-    budget = plan_budget(case, ours, mitsuba, 0.005, ALPHA, seed=12345)
+    case, mcval, mitsuba = cornell_ao
+    budget = plan_budget(case, mcval, mitsuba, 0.005, ALPHA, seed=12345)
     assert budget.spp is not None and budget.planned_bias <= 0.005 < budget.pilot_bias * 2
     reference, _ = load_reference(case, mitsuba)
     found, runs = 0, 100
     for i in range(runs):
-        batches = ours.render(str(case.path), "ao", budget.spp, budget.batches, 60_000 + i, render_params(case)).batches
+        batches = mcval.render(str(case.path), "ao", budget.spp, budget.batches, 60_000 + i, render_params(case)).batches
         c = compare_summaries(summarize(batches * 1.005), reference.summary, ALPHA, samples=(budget.spp, reference.spp),
                               metrics=False, power=False, same_estimator=True)
         found += not c.scales[2].passed  # the image scale: the bias the budget is for
@@ -34,8 +34,8 @@ def test_a_half_percent_bias_is_found_about_90_percent_of_the_time(cornell_ao):
 
 
 def test_a_target_below_the_references_noise_is_refused_with_the_reason(cornell_ao):
-    case, ours, mitsuba = cornell_ao
-    budget = plan_budget(case, ours, mitsuba, 1e-6, ALPHA, seed=1)
+    case, mcval, mitsuba = cornell_ao
+    budget = plan_budget(case, mcval, mitsuba, 1e-6, ALPHA, seed=1)
     assert budget.spp is None and "the reference's own noise" in budget.reason and budget.line.startswith("cornell:ao")
 
 

@@ -61,9 +61,9 @@ RENDER_RUNS = 60
 
 @pytest.mark.slow
 def test_real_null_renders_reject_at_about_the_stated_level(crevice_nulls):
-    from harness.images.suite import OUR_SPP
+    from harness.images.suite import TESTED_SPP
 
-    samples = (OUR_SPP["ao"], OUR_SPP["ao"])
+    samples = (TESTED_SPP["ao"], TESTED_SPP["ao"])
     rates = null_rates([(a.astype(np.float64), b.astype(np.float64)) for a, b in crevice_nulls], 0.3, samples)
     lo, hi = acceptance(0.3, RENDER_RUNS)
     assert lo <= rates.rate() <= hi, rates
@@ -75,9 +75,9 @@ def test_real_null_renders_reject_at_about_the_stated_level(crevice_nulls):
 def test_detectable_biases_are_found_about_half_of_the_time_on_real_renders(crevice_nulls):
     """Planted (the image, then one random tile, scaled by 1 + b) into the next pair; 60 runs, so the
     bounds are 0.5 widened by its binomial spread."""
-    from harness.images.suite import OUR_SPP
+    from harness.images.suite import TESTED_SPP
 
-    samples = (OUR_SPP["ao"], OUR_SPP["ao"])
+    samples = (TESTED_SPP["ao"], TESTED_SPP["ao"])
     pairs = [(a.astype(np.float64), b.astype(np.float64)) for a, b in crevice_nulls]
     lo, hi = acceptance(0.5, RENDER_RUNS, tail=0.01)
     shifted = iter(pairs[1:] + pairs[:1])

@@ -11,7 +11,7 @@ def test_mitsubas_parse_and_instantiation_errors_name_the_users_line():
                       LINES) == "[parser.cpp:1718] in U.xml:12: failed to instantiate"
 
 
-def test_ours_names_the_users_line_and_an_unknown_line_stays_the_copys():
+def test_mcval_names_the_users_line_and_an_unknown_line_stays_the_copys():
     assert name_lines("error: /c/C.xml:2: <foo>: unexpected", "/c/C.xml", "U.xml", LINES) == \
         "error: U.xml:5: <foo>: unexpected"
     assert name_lines("error: /c/C.xml:40: x (line 40, col 1)", "/c/C.xml", "U.xml", LINES) == \

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import pytest
 
-from harness.engines.ours import OurEngine
+from harness.engines.mcval import McvalEngine
 from harness.images.run import run_images
 from harness.images.suite import select_cases
 
@@ -29,7 +29,7 @@ SPP = 16
 TWINS = ("direct_area_pdf", "direct_double_mis", "direct_no_cosine")
 
 
-class TwinEngine(OurEngine):
+class TwinEngine(McvalEngine):
     """Our renderer's test build rendering `twin` wherever the harness asks for direct (None: direct itself).
     A scene copy whose <integrator> is direct (a strategy's settings) is given to the twin retyped, beside
     it, so that the twin reads those settings as direct would."""
@@ -54,7 +54,7 @@ class TwinEngine(OurEngine):
 
 @pytest.fixture(scope="module")
 def results(mitsuba):
-    """The case's result per twin (and "direct" for ours), rendered at SPP samples per pixel with seed 0."""
+    """The case's result per twin (and "direct" for the correct integrator), rendered at SPP samples per pixel with seed 0."""
     (case,) = [dataclasses.replace(c, spp=SPP) for c in select_cases([f"{SCENE}:direct"])]
     out = {}
     for twin in (None, *TWINS):
@@ -69,11 +69,11 @@ def _ratio(result, reference: str) -> float:
 
 
 def test_our_direct_passes_and_its_strategies_agree(results):
-    ours = results["direct"]
-    assert ours.verdict == "PASS", ours.why
-    assert set(ours.comparisons) == {"mitsuba", "analytic"} and all(c.passed for c in ours.comparisons.values())
-    assert ours.strategies.verdict == "AGREE" and not ours.strategies.disagree, ours.strategies.reason
-    assert ours.to_json()["strategies"]["verdict"] == "AGREE"
+    correct = results["direct"]
+    assert correct.verdict == "PASS", correct.why
+    assert set(correct.comparisons) == {"mitsuba", "analytic"} and all(c.passed for c in correct.comparisons.values())
+    assert correct.strategies.verdict == "AGREE" and not correct.strategies.disagree, correct.strategies.reason
+    assert correct.to_json()["strategies"]["verdict"] == "AGREE"
 
 
 @pytest.mark.parametrize("twin, low, high", [("direct_area_pdf", 5.0, 9.0), ("direct_double_mis", 1.9, 2.1),

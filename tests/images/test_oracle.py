@@ -1,5 +1,5 @@
 """The sphere resting on a floor against our renderer: known-wrong closed forms are rejected and the right
-one passes at several seeds; and the closed form decides between ours and a reference (harness/images/oracle.py)."""
+one passes at several seeds; and the closed form decides between mcval and a reference (harness/images/oracle.py)."""
 import dataclasses
 
 import numpy as np
@@ -22,9 +22,9 @@ SEEDS = (1, 2, 3)
 
 
 @pytest.fixture(scope="module")
-def our_renders(ours):
-    """Ours at three seeds, per integrator. A render that fails is a failure of this test, not a skip."""
-    return {(i, seed): ours.render(SCENE, i, 32, 8, seed, PARAMS).batches
+def our_renders(mcval):
+    """mcval at three seeds, per integrator. A render that fails is a failure of this test, not a skip."""
+    return {(i, seed): mcval.render(SCENE, i, 32, 8, seed, PARAMS).batches
             for i in ("ao", "simple") for seed in SEEDS}
 
 

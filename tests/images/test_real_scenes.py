@@ -167,17 +167,17 @@ def test_the_written_cornell_box_is_mitsubas_own():
     """Mitsuba loads the written XML into the same shapes (bounding boxes) and emitter as mi.cornell_box()."""
     import mitsuba as mi
     mi.set_variant("scalar_rgb")
-    ours, theirs = mi.load_file(str(CORNELL)), mi.load_dict(mi.cornell_box())
+    mcval, theirs = mi.load_file(str(CORNELL)), mi.load_dict(mi.cornell_box())
 
     def boxes(s):
         return sorted((sh.id(), tuple(sh.bbox().min), tuple(sh.bbox().max)) for sh in s.shapes())
 
-    a, b = boxes(ours), boxes(theirs)
+    a, b = boxes(mcval), boxes(theirs)
     assert [x[0] for x in a] == [x[0] for x in b]
     np.testing.assert_allclose(np.array([x[1] + x[2] for x in a]), np.array([x[1] + x[2] for x in b]), atol=1e-6)
-    assert len(ours.emitters()) == len(theirs.emitters()) == 1
-    assert list(ours.sensors()[0].film().size()) == list(theirs.sensors()[0].film().size())
-    assert str(ours.sensors()[0]) == str(theirs.sensors()[0])
+    assert len(mcval.emitters()) == len(theirs.emitters()) == 1
+    assert list(mcval.sensors()[0].film().size()) == list(theirs.sensors()[0].film().size())
+    assert str(mcval.sensors()[0]) == str(theirs.sensors()[0])
 
 
 def test_float16_holds_the_float32_image(tmp_path):

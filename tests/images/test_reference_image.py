@@ -17,9 +17,9 @@ CASE = ImageCase("sphere_plane", "ao")
 
 
 @pytest.fixture(scope="module")
-def made(ours):
+def made(mcval):
     """Our ao of sphere_plane at RES, K batches of SPP samples: the mean image of K * SPP samples."""
-    return ours.render(str(CASE.path), "ao", SPP, K, 12345, {"res": str(RES)}).mean
+    return mcval.render(str(CASE.path), "ao", SPP, K, 12345, {"res": str(RES)}).mean
 
 
 def _image(tmp_path, pixels, name="ref.exr"):
@@ -28,42 +28,42 @@ def _image(tmp_path, pixels, name="ref.exr"):
     return path
 
 
-def _run(ours, path, spp, noise="stated", seed=3):
-    return run_image_case(CASE, ours, ReferenceImage(path, spp, noise), seed, 0.01, 0)
+def _run(mcval, path, spp, noise="stated", seed=3):
+    return run_image_case(CASE, mcval, ReferenceImage(path, spp, noise), seed, 0.01, 0)
 
 
 @pytest.mark.parametrize("seed", [3, 4, 5])
-def test_an_image_of_the_stated_count_passes(ours, made, tmp_path, seed):
-    result = _run(ours, _image(tmp_path, made), K * SPP, seed=seed)
+def test_an_image_of_the_stated_count_passes(mcval, made, tmp_path, seed):
+    result = _run(mcval, _image(tmp_path, made), K * SPP, seed=seed)
     assert result.error is None and result.reference_fit.fits, result.reference_fit.summary
     assert result.passed, result.comparisons["image"].failed_checks
     assert json.loads(json.dumps(result.to_json()))["reference_fit"]["fits"] is True
 
 
-def test_a_biased_image_fails(ours, made, tmp_path):
-    result = _run(ours, _image(tmp_path, 1.03 * made), K * SPP)
+def test_a_biased_image_fails(mcval, made, tmp_path):
+    result = _run(mcval, _image(tmp_path, 1.03 * made), K * SPP)
     assert result.reference_problem is None
     assert not result.passed and result.comparisons["image"].failed_checks
 
 
-def test_a_stated_count_far_too_small_is_reported_and_does_not_pass(ours, made, tmp_path):
-    result = _run(ours, _image(tmp_path, made), K * SPP // 16)
+def test_a_stated_count_far_too_small_is_reported_and_does_not_pass(mcval, made, tmp_path):
+    result = _run(mcval, _image(tmp_path, made), K * SPP // 16)
     assert not result.reference_fit.fits
     assert "does not fit its stated 64 spp" in result.reference_problem
     assert not result.passed
-    measured = _run(ours, _image(tmp_path, made), K * SPP // 16, noise="measured")
+    measured = _run(mcval, _image(tmp_path, made), K * SPP // 16, noise="measured")
     assert measured.reference_problem is None and measured.passed
 
 
-def test_an_image_of_another_size_fails_with_both_sizes(ours, made, tmp_path):
-    result = _run(ours, _image(tmp_path, made[:, :-4]), K * SPP)
+def test_an_image_of_another_size_fails_with_both_sizes(mcval, made, tmp_path):
+    result = _run(mcval, _image(tmp_path, made[:, :-4]), K * SPP)
     assert not result.passed and "28x32 pixels, the render 28x28" in result.error
 
 
-def test_an_image_with_a_nan_fails(ours, made, tmp_path):
+def test_an_image_with_a_nan_fails(mcval, made, tmp_path):
     bad = made.copy()
     bad[3, 4, 1] = np.nan
-    result = _run(ours, _image(tmp_path, bad), K * SPP)
+    result = _run(mcval, _image(tmp_path, bad), K * SPP)
     assert not result.passed and "NaN or infinite" in result.error
 
 

@@ -1,6 +1,6 @@
 """A reference image that another renderer made: Mitsuba's mean image of N samples, given as
 --reference-image, is accepted for our correct renderer over several seeds (its noise fits N, though
-Mitsuba's estimators are not ours), and the same image 2 % too bright is rejected."""
+Mitsuba's estimators are not mcval's), and the same image 2 % too bright is rejected."""
 import pytest
 
 from harness.exr import write_layers
@@ -21,22 +21,22 @@ def made(request, mitsuba, tmp_path_factory):
     return case, image, tmp_path_factory.mktemp("ref")
 
 
-def _run(ours, case, image, folder, seed, name="ref.exr"):
+def _run(mcval, case, image, folder, seed, name="ref.exr"):
     write_layers(folder / name, {"RGB": image})
-    return run_image_case(case, ours, ReferenceImage(folder / name, BATCHES * SPP), seed, 0.01, 0)
+    return run_image_case(case, mcval, ReferenceImage(folder / name, BATCHES * SPP), seed, 0.01, 0)
 
 
 @pytest.mark.parametrize("seed", [1, 2])
-def test_mitsubas_image_is_accepted(ours, made, seed):
+def test_mitsubas_image_is_accepted(mcval, made, seed):
     case, image, folder = made
-    result = _run(ours, case, image, folder, seed)
+    result = _run(mcval, case, image, folder, seed)
     assert result.reference_problem is None, result.reference_problem
     assert result.passed, result.comparisons["image"].failed_checks
 
 
-def test_mitsubas_image_two_percent_too_bright_is_rejected(ours, made):
+def test_mitsubas_image_two_percent_too_bright_is_rejected(mcval, made):
     case, image, folder = made
     if case.integrator == "normals":  # a signed image: 2 % of a normal is no radiance bias
         image = image + 0.02
-    result = _run(ours, case, 1.02 * image if case.integrator != "normals" else image, folder, 1, "biased.exr")
+    result = _run(mcval, case, 1.02 * image if case.integrator != "normals" else image, folder, 1, "biased.exr")
     assert not result.passed

@@ -154,7 +154,7 @@ def test_mitsubas_error_on_a_sensorless_file_names_the_files_line(tmp_path):
 @pytest.mark.mitsuba
 def test_both_engines_render_a_sensorless_file_from_the_same_camera(tmp_path):
     from harness.engines.mitsuba import MitsubaEngine
-    from harness.engines.ours import OurEngine
+    from harness.engines.mcval import McvalEngine
     from harness.images.case_renders import CaseRenders
     from harness.images.case_task import CaseJob, run_case_job
     from harness.images.suite import select_cases
@@ -166,6 +166,6 @@ def test_both_engines_render_a_sensorless_file_from_the_same_camera(tmp_path):
     assert not scene.problem and len(scene.notes) == 1
     (case,) = select_cases(["bare:normals"], user=[scene])
     result, _ = run_case_job(CaseJob(case=case, seed=1, alpha=0.01, run_seed=0, closed_form=False,
-                                          renders=CaseRenders(OurEngine(), MitsubaEngine())))
+                                          renders=CaseRenders(McvalEngine(), MitsubaEngine())))
     assert result.error is None and result.passed, result.error
     assert result.tested.mean.shape == (24, 32, 3) and (abs(result.tested.mean).sum(axis=-1) > 0).mean() > 0.1

@@ -40,8 +40,8 @@ def test_the_reasons_a_case_does_not():
         "the strategies see different light: point lights, which BSDF sampling never finds"
 
 
-def test_our_engine_and_mitsuba_read_directs_parameters_from_the_file(ours, mitsuba):
-    assert ours.reads_integrator_parameters("direct")
+def test_mcval_and_mitsuba_read_directs_parameters_from_the_file(mcval, mitsuba):
+    assert mcval.reads_integrator_parameters("direct")
     assert mitsuba.reads_integrator_parameters("direct")
     assert not mitsuba.reads_integrator_parameters("ao")  # set values: direct with bsdf_samples 1
 

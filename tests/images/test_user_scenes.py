@@ -57,12 +57,12 @@ def test_a_scene_renders_at_the_resolution_asked_for(tmp_path):
     from harness.images.case_renders import CaseRenders
     from harness.images.case_task import CaseJob, run_case_job
     from harness.engines.mitsuba import MitsubaEngine
-    from harness.engines.ours import OurEngine
+    from harness.engines.mcval import McvalEngine
 
     (scene,) = prepare_scenes([_scene(tmp_path / "in", source="plane_point.xml")], tmp_path / "cache", 40)
     (case,) = select_cases(["ball:normals"], user=[scene])
     result, _ = run_case_job(CaseJob(case=case, seed=1, alpha=0.01, run_seed=0, closed_form=False,
-                                          renders=CaseRenders(OurEngine(), MitsubaEngine())))
+                                          renders=CaseRenders(McvalEngine(), MitsubaEngine())))
     assert result.error is None, result.error
     assert result.tested.mean.shape == (40, 40, 3) and result.passed
 
@@ -129,7 +129,7 @@ def test_a_nori_file_is_prepared_as_mitsubas_and_one_without_a_translation_carri
     sizes = {e.get("name"): e.get("value") for e in root.find("sensor/film") if e.get("name") in ("width", "height")}
     assert sizes == {"width": "$res", "height": "48"}
     assert bad.problem.startswith(f"{folder / 'bad.xml'}:4: <camera type=\"thinlens\">")
-    # An integrator of Nori's that none of ours computes is left out with a note; the scene still renders.
+    # An integrator of Nori's that none of mcval's computes is left out with a note; the scene still renders.
     assert noted.problem == "" and len(noted.notes) == 1
     assert noted.notes[0].startswith(f"{folder / 'noted.xml'}:2: <integrator type=\"whitted\">: not compared")
     (noted_case,) = select_cases(["noted:normals"], user=[bad, good, noted])

@@ -1,6 +1,6 @@
 """The known-wrong twin of the variance test: ambient occlusion sampled uniformly on the hemisphere and weighted
 by 2 cos (the test build's ao_uniform, in place of ao) has ao's mean, so every scale of the mean test passes it;
-against Mitsuba drawing the cosine-weighted estimator it fails on its variance alone. Ours passes."""
+against Mitsuba drawing the cosine-weighted estimator it fails on its variance alone. mcval passes."""
 import json
 
 from harness.cli import main

@@ -42,15 +42,15 @@ NESTED = ('<integrator type="moment"><integrator type="path"><boolean name="hide
           '</integrator></integrator>')
 
 
-def _ours(ours, scene, seed=1):
-    return ours.render(scene, "ao", SPP, K, seed).batches
+def _mcval(mcval, scene, seed=1):
+    return mcval.render(scene, "ao", SPP, K, seed).batches
 
 
 @pytest.mark.parametrize("integrator", [SHOWN, NESTED, '<integrator type="ao">'
                                         '<boolean name="hide_emitters" value="false"/></integrator>'],
                          ids=["path", "nested in moment", "ao"])
-def test_an_escaping_camera_ray_sees_the_environment_when_the_file_says_so(ours, tmp_path, integrator):
-    image = _ours(ours, _scene(tmp_path, integrator))
+def test_an_escaping_camera_ray_sees_the_environment_when_the_file_says_so(mcval, tmp_path, integrator):
+    image = _mcval(mcval, _scene(tmp_path, integrator))
     sky = image[:, :8]  # the upper third looks above the horizon
     np.testing.assert_array_equal(sky, L_ENV * np.ones_like(sky))
     floor = image[:, -6:]
@@ -59,8 +59,8 @@ def test_an_escaping_camera_ray_sees_the_environment_when_the_file_says_so(ours,
 
 @pytest.mark.parametrize("integrator", ['<integrator type="path"/>', '<integrator type="ao"/>', ""],
                          ids=["path without it", "ao without it", "none"])
-def test_without_hide_emitters_it_is_black(ours, tmp_path, integrator):
-    assert (_ours(ours, _scene(tmp_path, integrator))[:, :8] == 0).all()
+def test_without_hide_emitters_it_is_black(mcval, tmp_path, integrator):
+    assert (_mcval(mcval, _scene(tmp_path, integrator))[:, :8] == 0).all()
 
 
 def test_mitsubas_mapping_and_an_engine_files_scene_keep_the_files_value(tmp_path):
@@ -76,13 +76,13 @@ def test_mitsubas_mapping_and_an_engine_files_scene_keep_the_files_value(tmp_pat
 
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
-def test_ours_and_mitsuba_agree_with_the_environment_shown(ours, mitsuba, tmp_path, seed):
+def test_mcval_and_mitsuba_agree_with_the_environment_shown(mcval, mitsuba, tmp_path, seed):
     scene = _scene(tmp_path, SHOWN)
     reference = mitsuba.render(scene, "ao", SPP, K, 100 + seed).batches
     assert np.allclose(reference[:, :8], L_ENV)
-    assert compare_batches(_ours(ours, scene, seed), reference).passed
+    assert compare_batches(_mcval(mcval, scene, seed), reference).passed
 
 
-def test_a_hidden_environment_against_a_shown_one_fails(ours, mitsuba, tmp_path):
+def test_a_hidden_environment_against_a_shown_one_fails(mcval, mitsuba, tmp_path):
     reference = mitsuba.render(_scene(tmp_path, SHOWN), "ao", SPP, K, 7).batches
-    assert not compare_batches(_ours(ours, _scene(tmp_path, '<integrator type="path"/>')), reference).passed
+    assert not compare_batches(_mcval(mcval, _scene(tmp_path, '<integrator type="path"/>')), reference).passed

@@ -8,7 +8,7 @@ import pytest
 import harness.integrators.registry as registry
 from harness.engines.mitsuba_integrators import mitsuba_mapping
 from harness.engines.mitsuba_scene import mitsuba_xml
-from harness.images.suite import (INTEGRATORS, OUR_SPP, REFERENCE_SPP, ImageCase, not_applicable_cases,
+from harness.images.suite import (INTEGRATORS, REFERENCE_SPP, TESTED_SPP, ImageCase, not_applicable_cases,
                                   select_cases)
 from harness.integrators import entries, match
 from harness.report.integrator_table import integrators_table
@@ -42,8 +42,8 @@ def test_every_integrator_of_the_product_has_its_entry_and_no_other():
 def test_suite_views_are_the_entries_budgets():
     assert INTEGRATORS[0] == "normals"  # first on every scene: its failure notes a camera or geometry mismatch
     assert set(INTEGRATORS) == set(RENDERER) and len(INTEGRATORS) == len(RENDERER)
-    assert dict(OUR_SPP) == {name: entries()[name].tested_spp for name in RENDERER}
-    assert {name: OUR_SPP[name] for name in ("normals", "simple", "ao")} == {"normals": 16, "simple": 32, "ao": 32}
+    assert dict(TESTED_SPP) == {name: entries()[name].tested_spp for name in RENDERER}
+    assert {name: TESTED_SPP[name] for name in ("normals", "simple", "ao")} == {"normals": 16, "simple": 32, "ao": 32}
     assert {name: REFERENCE_SPP[name] for name in ("normals", "simple", "ao")} == {"normals": 64, "simple": 256,
                                                                                  "ao": 256}
 

@@ -25,14 +25,14 @@ class LightTwin(Engine):
     name = "light-twin"
 
     def __init__(self) -> None:
-        from harness.engines.ours import OurEngine
-        self._ours = OurEngine()
+        from harness.engines.mcval import McvalEngine
+        self._mcval = McvalEngine()
 
     def version(self) -> str:
-        return "ours x1.02 under doubled lights"
+        return "mcval x1.02 under doubled lights"
 
     def render(self, scene, integrator, spp, batches, seed, params=None) -> RenderResult:
-        out = self._ours.render(scene, integrator, spp, batches, seed, params)
+        out = self._mcval.render(scene, integrator, spp, batches, seed, params)
         if ".light." in Path(scene).name:
             out.batches = out.batches * np.float32(1.02)
         return out
@@ -43,17 +43,17 @@ def _cases(*keys: str) -> list[InvarianceCase]:
 
 
 def test_a_two_percent_light_error_is_caught():
-    from harness.engines.ours import OurEngine
+    from harness.engines.mcval import McvalEngine
 
     invariances = [invariance("light"), invariance("reflectance")]
-    cells, _ = run_invariances([OurEngine(), LightTwin()], _cases("plane_point:simple", "sphere_plane:ao"),
+    cells, _ = run_invariances([McvalEngine(), LightTwin()], _cases("plane_point:simple", "sphere_plane:ao"),
                                invariances, seed=3)
     twin = {(c.invariance, c.case.key): c for c in cells if c.engine == "light-twin"}
     for key in ("plane_point:simple", "sphere_plane:ao"):
         assert not twin["light", key].passed
         assert twin["light", key].worst_ratio == pytest.approx(1.02, abs=0.005)
         assert twin["reflectance", key].passed
-    # The twin as a reference: its breaks are findings, and the run passes on ours.
+    # The twin as a reference: its breaks are findings, and the run passes on mcval.
     payload = invariance_payload(cells, 1e-3, "mcval", {})
     assert payload["pass"] and len(payload["findings"]) == 2
     assert payload["findings"][0].startswith("reference light-twin breaks light on plane_point:simple")
@@ -64,21 +64,21 @@ def test_a_two_percent_light_error_is_caught():
 @pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_our_renderer_keeps_the_invariances(seed):
-    from harness.engines.ours import OurEngine
+    from harness.engines.mcval import McvalEngine
 
     cases = _cases("plane_point:simple", "plane_point:ao", "sphere_plane:simple", "sphere_plane:normals")
     names = ["rotate", "translate", "light", "reflectance"]
-    cells, _ = run_invariances([OurEngine()], cases, [invariance(n) for n in names], seed=seed)
+    cells, _ = run_invariances([McvalEngine()], cases, [invariance(n) for n in names], seed=seed)
     assert cells and all(c.passed for c in cells), [(c.case.key, c.invariance, c.worst_ratio) for c in cells
                                                     if not c.passed]
 
 
 def test_rotated_normals_are_rotated_back():
     """Without the rotation back, a rotated scene's normals image differs: the check must know it."""
-    from harness.engines.ours import OurEngine
+    from harness.engines.mcval import McvalEngine
 
     rotate = invariance("rotate")
-    cells, _ = run_invariances([OurEngine()], _cases("sphere_plane:normals"), [rotate], seed=5)
+    cells, _ = run_invariances([McvalEngine()], _cases("sphere_plane:normals"), [rotate], seed=5)
     assert cells[0].passed
     variant = rotate.variants[0]
     n = np.array([[[[0.0, 1.0, 0.0]]]])
@@ -141,16 +141,16 @@ def test_a_scene_that_cannot_be_rendered_fails_its_cells_with_why(tmp_path):
 
 
 class Elsewhere(Engine):
-    """Ours, said to render in another process (renders overlap the comparisons), failing where told: the
-    base when `fail_base`, a variant whose file name holds `fail`. It counts its renders. Named as ours, so
-    that it draws ours' seeds."""
+    """mcval, said to render in another process (renders overlap the comparisons), failing where told: the
+    base when `fail_base`, a variant whose file name holds `fail`. It counts its renders. Named as mcval, so
+    that it draws mcval's seeds."""
 
     name = "mcval"
     renders_elsewhere = True
 
     def __init__(self, fail_base: bool = False, fail: str = "") -> None:
-        from harness.engines.ours import OurEngine
-        self._ours, self.fail_base, self.fail, self.rendered = OurEngine(), fail_base, fail, []
+        from harness.engines.mcval import McvalEngine
+        self._mcval, self.fail_base, self.fail, self.rendered = McvalEngine(), fail_base, fail, []
 
     def version(self) -> str:
         return "elsewhere"
@@ -160,14 +160,14 @@ class Elsewhere(Engine):
         self.rendered.append(Path(scene).name)
         if (self.fail_base and "." not in Path(scene).stem) or (self.fail and self.fail in Path(scene).name):
             raise RenderFailed(f"told to fail on {Path(scene).name}")
-        return self._ours.render(scene, integrator, spp, batches, seed, params)
+        return self._mcval.render(scene, integrator, spp, batches, seed, params)
 
 
 def test_overlapped_renders_give_the_serial_cells_and_keep_failures_apart():
-    from harness.engines.ours import OurEngine
+    from harness.engines.mcval import McvalEngine
 
     cases, invariances = _cases("plane_point:simple"), [invariance("scale"), invariance("light")]
-    serial, _ = run_invariances([OurEngine(in_process=True)], cases, invariances, seed=2)
+    serial, _ = run_invariances([McvalEngine(in_process=True)], cases, invariances, seed=2)
     elsewhere = Elsewhere(fail="scale.1")
     overlapped, _ = run_invariances([elsewhere], cases, invariances, seed=2)
     assert elsewhere.rendered == ["plane_point.xml", "plane_point.scale.0.xml", "plane_point.scale.1.xml",

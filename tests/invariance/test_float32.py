@@ -30,7 +30,7 @@ def test_representable_rewrites_have_no_float32_limit(tmp_path):
         assert float32_limit(rewrite(SCENES / f"{scene}.xml", tmp_path / f"{scene}.xml", kind, value)) is None
 
 
-def test_a_small_disk_or_cylinder_moved_far_is_beyond_float32_as_our_loader_says(tmp_path, ours):
+def test_a_small_disk_or_cylinder_moved_far_is_beyond_float32_as_our_loader_says(tmp_path, mcval):
     """The same limit as our loader's (renderer/disk_cylinder_loader.cpp), read from the file: a 1e-3 disk
     or cylinder at 30 from the origin is beyond it, one of size 1 is not."""
     for shape in ('<shape type="disk"><transform name="to_world"><scale value="1e-3, 2e-3, 1"/>'
@@ -47,7 +47,7 @@ def test_a_small_disk_or_cylinder_moved_far_is_beyond_float32_as_our_loader_says
             if beyond:
                 assert "largest coordinate 30" in why and "size 0.001" in why
             with pytest.raises(RenderFailed) if beyond else contextlib.nullcontext():
-                ours.render(str(scene), "normals", 1, 1, 0)
+                mcval.render(str(scene), "normals", 1, 1, 0)
 
 
 class RefusesTranslations(Engine):
@@ -56,24 +56,24 @@ class RefusesTranslations(Engine):
     name = "refuser"
 
     def __init__(self) -> None:
-        from harness.engines.ours import OurEngine
-        self._ours = OurEngine()
+        from harness.engines.mcval import McvalEngine
+        self._mcval = McvalEngine()
 
     def version(self) -> str:
-        return "ours, refusing translations"
+        return "mcval, refusing translations"
 
     def render(self, scene, integrator, spp, batches, seed, params=None) -> RenderResult:
         if ".translate." in Path(scene).name:
             raise RenderFailed("error: float32 could not place points on it")
-        return self._ours.render(scene, integrator, spp, batches, seed, params)
+        return self._mcval.render(scene, integrator, spp, batches, seed, params)
 
 
 def test_the_milli_sphere_translation_is_float32_but_a_refused_representable_scene_fails():
-    from harness.engines.ours import OurEngine
+    from harness.engines.mcval import McvalEngine
 
     cases = [InvarianceCase(SCENES / "sphere_floor_milli.xml", "ao", 8, 24),
              InvarianceCase(SCENES / "plane_point.xml", "simple", 8, 24)]
-    cells, _ = run_invariances([OurEngine(), RefusesTranslations()], cases, [invariance("translate")], seed=1)
+    cells, _ = run_invariances([McvalEngine(), RefusesTranslations()], cases, [invariance("translate")], seed=1)
     found = {(c.engine, c.case.key): c for c in cells}
     milli = found["mcval", "sphere_floor_milli:ao"]
     assert milli.passed and milli.status == "float32" and milli.beyond_float32[0].error  # our loader refuses it

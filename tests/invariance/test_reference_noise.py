@@ -64,7 +64,7 @@ def test_independent_batches_and_a_noiseless_reference_pass():
 
 
 def test_where_mitsuba_draws_another_estimator_its_noise_is_no_evidence(tmp_path):
-    """simple with several point lights: Mitsuba's one emitter sample picks one, ours sums them all."""
+    """simple with several point lights: Mitsuba's one emitter sample picks one, mcval sums them all."""
     (tmp_path / "two_lights.xml").write_text('<scene version="3.0.0"><emitter type="point"/><emitter type="point"/>'
                                              "</scene>\n")
     case = InvarianceCase(tmp_path / "two_lights.xml", "simple", 32, SIZE)

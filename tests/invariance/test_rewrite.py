@@ -61,9 +61,9 @@ def test_rotation_is_unit_axis_and_maps_the_light(tmp_path):
 
 def test_rotation_matrix_is_mitsubas():
     mi = pytest.importorskip("harness.engines.mitsuba").load_mitsuba("scalar_rgb")
-    ours = rotation_matrix(ROTATION_AXIS, ROTATION_DEGREES)
+    mcval = rotation_matrix(ROTATION_AXIS, ROTATION_DEGREES)
     theirs = np.array(mi.ScalarTransform4f().rotate(list(ROTATION_AXIS), ROTATION_DEGREES).matrix)
-    np.testing.assert_allclose(ours, theirs, atol=1e-6)
+    np.testing.assert_allclose(mcval, theirs, atol=1e-6)
 
 
 def test_translation_moves_light_and_appends_step(tmp_path):
@@ -129,20 +129,20 @@ def test_unknown_emitters_are_refused(tmp_path):
 
 @pytest.mark.parametrize("variant", [v for inv in INVARIANCES for v in inv.variants], ids=lambda v: v.label)
 def test_both_engines_load_every_variant(tmp_path, variant):
-    from harness.engines.ours import OurEngine
+    from harness.engines.mcval import McvalEngine
     from harness.engines.mitsuba import MitsubaEngine
 
     path = rewrite(SCENES / "crevice.xml", tmp_path / "crevice.variant.xml", variant.kind, variant.value)
-    for engine in (OurEngine(), MitsubaEngine()):
+    for engine in (McvalEngine(), MitsubaEngine()):
         out = engine.render(str(path), "ao", 1, 2, 0, {"res": "8"})
         assert out.batches.shape == (2, 8, 8, 3) and np.isfinite(out.batches).all()
 
 
-def test_an_orthographic_camera_scales_with_the_scene(tmp_path, ours):
+def test_an_orthographic_camera_scales_with_the_scene(tmp_path, mcval):
     """Its to_world may scale, so S C scales its view; its rays' span far - near scales, near_clip stays. The
     normals image is then the same; conjugating it as a perspective camera would shrink the view by s."""
     scene = Path(__file__).resolve().parents[1] / "renderer" / "scenes" / "orthographic.xml"
-    before = ours.render(str(scene), "normals", 4, 1, 0).batches
+    before = mcval.render(str(scene), "normals", 4, 1, 0).batches
     for s in (1e-3, 1e3):
         root = ET.parse(rewrite(scene, tmp_path / f"ortho.{s:g}.xml", "scale", s)).getroot()
         sensor = root.find("sensor")
@@ -150,5 +150,5 @@ def test_an_orthographic_camera_scales_with_the_scene(tmp_path, ours):
         assert _steps(sensor)[0].tag == "scale" and _steps(sensor)[0].get("x") == "$scale"  # nothing prepended
         assert float(_prop(sensor, "near_clip").get("value")) == 0.5
         assert float(_prop(sensor, "far_clip").get("value")) == pytest.approx(0.5 + s * 49.5)
-        after = ours.render(str(tmp_path / f"ortho.{s:g}.xml"), "normals", 4, 1, 0).batches
+        after = mcval.render(str(tmp_path / f"ortho.{s:g}.xml"), "normals", 4, 1, 0).batches
         np.testing.assert_allclose(after, before, atol=1e-4)

@@ -20,15 +20,15 @@ def references(mitsuba):
             for scene in (DISK_CYLINDER, ORTHOGRAPHIC)}
 
 
-def _ours(ours, scene, params=None, seed=1):
-    return ours.render(str(scene), "normals", SPP, K, seed, params or {}).batches
+def _mcval(mcval, scene, params=None, seed=1):
+    return mcval.render(str(scene), "normals", SPP, K, seed, params or {}).batches
 
 
 @pytest.mark.parametrize("integrator", sorted(NOISY))
 @pytest.mark.parametrize("scene", [DISK_CYLINDER, ORTHOGRAPHIC], ids=lambda p: p.stem)
-def test_simple_and_ao_agree_with_mitsuba(ours, mitsuba, scene, integrator):
+def test_simple_and_ao_agree_with_mitsuba(mcval, mitsuba, scene, integrator):
     spp = NOISY[integrator]
-    test = ours.render(str(scene), integrator, spp, 8, 1).batches
+    test = mcval.render(str(scene), integrator, spp, 8, 1).batches
     reference = mitsuba.render(str(scene), integrator, spp, 8, 101).batches
     assert test.mean() > 0.01
     assert compare_batches(test, reference).passed
@@ -43,23 +43,23 @@ def _variant(tmp_path, scene: Path, old: str, new: str) -> Path:
 
 
 @pytest.mark.parametrize("scene", [DISK_CYLINDER, ORTHOGRAPHIC], ids=lambda p: p.stem)
-def test_ours_agrees_with_mitsuba(ours, references, scene):
-    ours_batches = _ours(ours, scene)
-    assert (ours_batches != 0).any(axis=-1).mean() > 0.3  # the shapes fill a good part of the view
-    assert compare_batches(ours_batches, references[scene], signed=True).passed
+def test_mcval_agrees_with_mitsuba(mcval, references, scene):
+    mcval_batches = _mcval(mcval, scene)
+    assert (mcval_batches != 0).any(axis=-1).mean() > 0.3  # the shapes fill a good part of the view
+    assert compare_batches(mcval_batches, references[scene], signed=True).passed
 
 
-def test_a_cylinder_with_its_normals_flipped_fails(ours, references, tmp_path):
+def test_a_cylinder_with_its_normals_flipped_fails(mcval, references, tmp_path):
     flipped = _variant(tmp_path, DISK_CYLINDER, '<float name="radius" value="0.45"/>',
                        '<float name="radius" value="0.45"/><boolean name="flip_normals" value="true"/>')
-    assert not compare_batches(_ours(ours, flipped), references[DISK_CYLINDER], signed=True).passed
+    assert not compare_batches(_mcval(mcval, flipped), references[DISK_CYLINDER], signed=True).passed
 
 
-def test_a_round_disk_for_a_stretched_one_fails(ours, references, tmp_path):
+def test_a_round_disk_for_a_stretched_one_fails(mcval, references, tmp_path):
     round_disk = _variant(tmp_path, DISK_CYLINDER, '<scale value="3, 2, 1"/>', '<scale value="3, 3, 1"/>')
-    assert not compare_batches(_ours(ours, round_disk), references[DISK_CYLINDER], signed=True).passed
+    assert not compare_batches(_mcval(mcval, round_disk), references[DISK_CYLINDER], signed=True).passed
 
 
-def test_an_orthographic_view_scaled_by_4_percent_fails(ours, references):
-    scaled = _ours(ours, ORTHOGRAPHIC, {"scale": "2.6"})
+def test_an_orthographic_view_scaled_by_4_percent_fails(mcval, references):
+    scaled = _mcval(mcval, ORTHOGRAPHIC, {"scale": "2.6"})
     assert not compare_batches(scaled, references[ORTHOGRAPHIC], signed=True).passed

@@ -54,9 +54,9 @@ def _render(engine, scene, seed):
     return engine.render(scene, "normals", SPP, K, seed).batches
 
 
-def test_ours_and_mitsuba_agree(ours, mitsuba, tmp_path):
+def test_mcval_and_mitsuba_agree(mcval, mitsuba, tmp_path):
     scene = _scene(tmp_path)
-    test, reference = _render(ours, scene, 1), _render(mitsuba, scene, 101)
+    test, reference = _render(mcval, scene, 1), _render(mitsuba, scene, 101)
     assert (np.abs(test).sum(axis=-1) > 0).mean() > 0.2  # the shapes fill a good part of the view
     assert compare_batches(test, reference, signed=True).passed
 
@@ -69,8 +69,8 @@ PLANTED = {
 
 
 @pytest.mark.parametrize("planted", PLANTED)
-def test_a_planted_difference_is_caught(ours, mitsuba, tmp_path, planted):
+def test_a_planted_difference_is_caught(mcval, mitsuba, tmp_path, planted):
     reference = _render(mitsuba, _scene(tmp_path), 101)
     (tmp_path / "wrong").mkdir()
     wrong = _scene(tmp_path / "wrong", **PLANTED[planted])
-    assert not compare_batches(_render(ours, wrong, 1), reference, signed=True).passed
+    assert not compare_batches(_render(mcval, wrong, 1), reference, signed=True).passed

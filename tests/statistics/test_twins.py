@@ -224,7 +224,7 @@ def test_efficiency_ratio_of_a_twice_slower_twin(seed):
     same = CaseBench(None, {"mcval": _noisy_curve("mcval", 0.4, 0.01, rng),
                             "mitsuba": _noisy_curve("mitsuba", 0.4, 0.01, rng)}, np.zeros(3))
     assert same.efficiency_ratio() == pytest.approx(1.0, rel=0.1)
-    # Ours twice as slow for the same error: half as efficient (an inverted ratio would say 2).
+    # The tested engine twice as slow for the same error: half as efficient (an inverted ratio would say 2).
     slow = CaseBench(None, {"mcval": _noisy_curve("mcval", 0.4, 0.02, rng),
                             "mitsuba": _noisy_curve("mitsuba", 0.4, 0.01, rng)}, np.zeros(3))
     assert slow.efficiency_ratio() == pytest.approx(0.5, rel=0.1)

@@ -27,7 +27,7 @@ def _gaussian(rng, sd, k, n):
 
 def _null_p(kind, i, rng, size=64):
     p = _occlusion_field(1000 + i, size)
-    if kind == "binary":  # ours (8 x 32 spp) against a reference of 16 x 256, as the image suite
+    if kind == "binary":  # mcval (8 x 32 spp) against a reference of 16 x 256, as the image suite
         return variance_ratio(_binary(rng, p, 8, 32), _binary(rng, p, 16, 256), (32, 256), 0.05).p_value
     sd = 0.1 + p
     return variance_ratio(_gaussian(rng, sd, 8, 32), _gaussian(rng, sd, 8, 32), (32, 32), 0.05).p_value

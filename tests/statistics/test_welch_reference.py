@@ -234,12 +234,12 @@ def test_goodness_of_fit_matches_scipy(seed, cells):
     n = 200 * cells
     observed = rng.multinomial(n, probs)
     expected = probs * n
-    ours = goodness_of_fit(observed, expected)
+    mcval = goodness_of_fit(observed, expected)
     ref = sps.chisquare(observed, expected)
-    assert ours.dof == cells - 1
-    assert ours.pooled_cells == 0
-    assert ours.statistic == pytest.approx(ref.statistic, rel=1e-10)
-    assert ours.p_value == pytest.approx(ref.pvalue, rel=1e-8)
+    assert mcval.dof == cells - 1
+    assert mcval.pooled_cells == 0
+    assert mcval.statistic == pytest.approx(ref.statistic, rel=1e-10)
+    assert mcval.p_value == pytest.approx(ref.pvalue, rel=1e-8)
 
 
 def test_goodness_of_fit_pools_small_cells_by_hand():
@@ -248,25 +248,25 @@ def test_goodness_of_fit_pools_small_cells_by_hand():
     # the cell expecting 5 exactly is not pooled.
     expected = np.array([40.0, 2.0, 30.0, 1.5, 5.0, 3.0, 18.5])
     observed = np.array([35, 6, 33, 4, 2, 1, 19])
-    ours = goodness_of_fit(observed, expected)
+    mcval = goodness_of_fit(observed, expected)
     merged_o = np.array([35, 33, 2, 19, 6 + 4 + 1])
     merged_e = np.array([40.0, 30.0, 5.0, 18.5, 6.5])
     ref = sps.chisquare(merged_o, merged_e)
-    assert ours.pooled_cells == 3
-    assert ours.dof == 4
-    assert ours.statistic == pytest.approx(ref.statistic, rel=1e-12)
-    assert ours.p_value == pytest.approx(ref.pvalue, rel=1e-10)
+    assert mcval.pooled_cells == 3
+    assert mcval.dof == 4
+    assert mcval.statistic == pytest.approx(ref.statistic, rel=1e-12)
+    assert mcval.p_value == pytest.approx(ref.pvalue, rel=1e-10)
 
 
 def test_goodness_of_fit_folds_a_too_small_pool_into_the_smallest_bin():
     # Pooled cells expect 1 + 2 = 3 < 5: folded into the smallest regular bin (expecting 7).
     expected = np.array([50.0, 1.0, 7.0, 2.0, 40.0])
     observed = np.array([52, 3, 4, 1, 40])
-    ours = goodness_of_fit(observed, expected)
+    mcval = goodness_of_fit(observed, expected)
     ref = sps.chisquare(np.array([52, 4 + 3 + 1, 40]), np.array([50.0, 10.0, 40.0]))
-    assert (ours.pooled_cells, ours.dof) == (2, 2)
-    assert ours.statistic == pytest.approx(ref.statistic, rel=1e-12)
-    assert ours.p_value == pytest.approx(ref.pvalue, rel=1e-10)
+    assert (mcval.pooled_cells, mcval.dof) == (2, 2)
+    assert mcval.statistic == pytest.approx(ref.statistic, rel=1e-12)
+    assert mcval.p_value == pytest.approx(ref.pvalue, rel=1e-10)
 
 
 def test_goodness_of_fit_batch_rows_match_scipy():
@@ -288,27 +288,27 @@ def test_homogeneity_matches_scipy_contingency(seed):
     probs /= probs.sum()
     a = rng.multinomial(10_000, probs)
     b = rng.multinomial(7_000, probs * (1 + 0.05 * (np.arange(30) % 2)) / np.sum(probs * (1 + 0.05 * (np.arange(30) % 2))))
-    ours = homogeneity(a, b)
+    mcval = homogeneity(a, b)
     stat, p, dof, _ = sps.chi2_contingency(np.stack([a, b]), correction=False)
-    assert ours.dof == dof == 29
-    assert ours.statistic == pytest.approx(stat, rel=1e-9)
-    assert ours.p_value == pytest.approx(p, rel=1e-7)
+    assert mcval.dof == dof == 29
+    assert mcval.statistic == pytest.approx(stat, rel=1e-9)
+    assert mcval.p_value == pytest.approx(p, rel=1e-7)
 
 
 def test_goodness_of_fit_pool_of_exactly_min_expected_stands_alone():
     expected = np.array([20.0, 2.0, 3.0, 30.0])  # the low cells expect exactly MIN_EXPECTED together
     observed = np.array([22, 4, 4, 25])
-    ours = goodness_of_fit(observed, expected)
+    mcval = goodness_of_fit(observed, expected)
     ref = sps.chisquare(np.array([22, 25, 8]), np.array([20.0, 30.0, 5.0]))
-    assert (ours.pooled_cells, ours.dof) == (2, 2)
-    assert ours.statistic == pytest.approx(ref.statistic, rel=1e-12)
+    assert (mcval.pooled_cells, mcval.dof) == (2, 2)
+    assert mcval.statistic == pytest.approx(ref.statistic, rel=1e-12)
 
 
 def test_goodness_of_fit_of_two_and_of_too_few_cells():
-    ours = goodness_of_fit(np.array([10, 14]), np.array([12.0, 12.0]))
+    mcval = goodness_of_fit(np.array([10, 14]), np.array([12.0, 12.0]))
     ref = sps.chisquare([10, 14], [12.0, 12.0])
-    assert ours.dof == 1
-    assert ours.p_value == pytest.approx(ref.pvalue, rel=1e-10)
+    assert mcval.dof == 1
+    assert mcval.p_value == pytest.approx(ref.pvalue, rel=1e-10)
     # One regular cell, or every cell too small to test: not judged (p NaN, dof 0), never a p-value that passes.
     for observed, expected in [([7, 0], [7.0, 0.0]), ([1, 0, 1], [1.0, 1.0, 1.0])]:
         res = goodness_of_fit(np.array(observed), np.array(expected))
@@ -326,13 +326,13 @@ def test_homogeneity_pools_small_cells_by_hand():
     a = np.array([400, 3, 300, 1, 250, 0])
     b = np.array([380, 2, 330, 1, 260, 4])
     # Cells 1, 3, 5 expect fewer than 5 in a row under the pooled distribution: merged into one column.
-    ours = homogeneity(a, b)
+    mcval = homogeneity(a, b)
     table = np.array([[400, 300, 250, 3 + 1 + 0], [380, 330, 260, 2 + 1 + 4]])
     stat, p, dof, _ = sps.chi2_contingency(table, correction=False)
-    assert (ours.pooled_cells, ours.dof) == (3, dof)
-    assert ours.statistic == pytest.approx(stat, rel=1e-10)
-    assert ours.p_value == pytest.approx(p, rel=1e-8)
-    assert isinstance(ours.pooled_cells, int)
+    assert (mcval.pooled_cells, mcval.dof) == (3, dof)
+    assert mcval.statistic == pytest.approx(stat, rel=1e-10)
+    assert mcval.p_value == pytest.approx(p, rel=1e-8)
+    assert isinstance(mcval.pooled_cells, int)
 
 
 def test_homogeneity_without_samples_on_one_side_is_not_judged():
@@ -392,14 +392,14 @@ def _curve(name, error_constant, seconds_per_spp):
 
 
 def test_efficiency_ratio_has_its_known_answer():
-    ours = _curve("mcval", 0.5, 0.01)       # efficiency 1 / (0.5 * 0.01) = 200
+    mcval = _curve("mcval", 0.5, 0.01)       # efficiency 1 / (0.5 * 0.01) = 200
     other = _curve("mitsuba", 2.0, 0.02)    # efficiency 1 / (2 * 0.02) = 25
-    assert ours.efficiency() == pytest.approx(200.0)
+    assert mcval.efficiency() == pytest.approx(200.0)
     assert other.efficiency() == pytest.approx(25.0)
-    bench = CaseBench(None, {"mcval": ours, "mitsuba": other}, np.zeros(3))
-    assert bench.efficiency_ratio() == pytest.approx(8.0)  # ours is 8x as efficient
+    bench = CaseBench(None, {"mcval": mcval, "mitsuba": other}, np.zeros(3))
+    assert bench.efficiency_ratio() == pytest.approx(8.0)  # mcval is 8x as efficient
     assert bench.efficiency_ratio("mitsuba", "mcval") == pytest.approx(1 / 8.0)
-    assert np.isnan(CaseBench(None, {"mcval": ours}, np.zeros(3)).efficiency_ratio())
+    assert np.isnan(CaseBench(None, {"mcval": mcval}, np.zeros(3)).efficiency_ratio())
 
 
 # --- regression report ------------------------------------------------------------------------------

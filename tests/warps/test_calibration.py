@@ -31,28 +31,28 @@ class _Wrong(Engine):
 
     name = "wrong"
 
-    def __init__(self, ours):
-        self._ours = ours
+    def __init__(self, mcval):
+        self._mcval = mcval
 
     def version(self) -> str:
         return "wrong disk"
 
     def warp(self, name, alpha=None):
-        f = self._ours.warp(name, alpha)
+        f = self._mcval.warp(name, alpha)
         return WarpFunctions(f.sample, lambda p: np.where((p ** 2).sum(1) <= 1, np.pi, 0.0), f.native_run)
 
 
-def test_a_wrong_pdf_rejects_at_every_seed(ours):
-    p = null_p_values(WarpSpec("square_to_uniform_disk", "disk"), _Wrong(ours), None, range(5), 100_000)
+def test_a_wrong_pdf_rejects_at_every_seed(mcval):
+    p = null_p_values(WarpSpec("square_to_uniform_disk", "disk"), _Wrong(mcval), None, range(5), 100_000)
     assert np.all(p["chi2"] < 1e-6)
 
 
 @pytest.mark.slow
-def test_correct_warps_are_calibrated(ours, mitsuba):
+def test_correct_warps_are_calibrated(mcval, mitsuba):
     """A short calibration (40 seeds, 100k samples) of three warps, with Mitsuba: every rate within."""
     specs = [WarpSpec("square_to_tent", "tent"), WarpSpec("square_to_cosine_hemisphere", "hemisphere"),
              WarpSpec("square_to_beckmann", "hemisphere", 0.05)]
-    cal = calibrate_warps(ours, mitsuba, specs, seeds=40, samples=100_000)
+    cal = calibrate_warps(mcval, mitsuba, specs, seeds=40, samples=100_000)
     assert cal.within, [(e.warp, e.check, [r.to_json() for r in e.rates]) for e in cal.entries if not e.within]
     assert {e.check for e in cal.pooled} == {"chi2", "samples_vs_target", "samples_vs_mitsuba"}
     assert all(len(e.p_values) == 40 for e in cal.entries)

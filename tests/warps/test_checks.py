@@ -10,8 +10,8 @@ from tests.helpers.wrong_warps import (WRONG, beckmann_pdf, beckmann_sample, cos
 
 @pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1, 2])
-def test_every_correct_warp_passes_every_check(ours, mitsuba, seed):
-    results, level = run_matrix(ours, mitsuba, list(SUITE), seed=seed)
+def test_every_correct_warp_passes_every_check(mcval, mitsuba, seed):
+    results, level = run_matrix(mcval, mitsuba, list(SUITE), seed=seed)
     failures = {r.label: {k: c.summary for k, c in r.checks.items() if c.passed is False}
                 for r in results if not r.passed}
     assert not failures
@@ -70,9 +70,9 @@ def test_domain_violations_are_counted():
     assert r.checks["domain"].details["pdf_nonzero_outside"] > 0
 
 
-def test_our_warps_disagreeing_with_mitsuba_are_caught(ours, mitsuba):
+def test_our_warps_disagreeing_with_mitsuba_are_caught(mcval, mitsuba):
     # Mitsuba's cosine sampler against the uniform-hemisphere distribution: the homogeneity test must fail.
-    uniform = ours.warp("square_to_uniform_hemisphere")
+    uniform = mcval.warp("square_to_uniform_hemisphere")
     cosine_ref = mitsuba.warp("square_to_cosine_hemisphere")
     r = check_warp(uniform.sample, uniform.pdf, "hemisphere", reference=cosine_ref)
     assert r.checks["samples_vs_mitsuba"].passed is False

@@ -155,8 +155,8 @@ def test_the_reported_defect_is_detected_and_a_quarter_of_it_is_not(uniform_powe
         assert _rate(make(x / 4)) <= 0.3
 
 
-def test_power_at_alpha_001_is_within_2x_of_alpha_03(ours, mitsuba, tmp_path):
-    results, level = run_matrix(ours, mitsuba, select(["beckmann:0.01", "beckmann:0.3"]),
+def test_power_at_alpha_001_is_within_2x_of_alpha_03(mcval, mitsuba, tmp_path):
+    results, level = run_matrix(mcval, mitsuba, select(["beckmann:0.01", "beckmann:0.3"]),
                                 power_cache=tmp_path / "power.json")
     eps = {r.params["alpha"]: r.checks["chi2"].details["power"][0]["detects_90"] for r in results}
     assert eps[0.01] <= 2 * eps[0.3]

@@ -43,8 +43,8 @@ def _agreement(sample, pdf, target):
 
 
 @pytest.mark.parametrize("spec", SUITE, ids=KEYS)
-def test_each_target_is_our_renderers_pdf(ours, spec):
-    f = ours.warp(spec.name, spec.alpha)
+def test_each_target_is_our_renderers_pdf(mcval, spec):
+    f = mcval.warp(spec.name, spec.alpha)
     check = _agreement(f.sample, f.pdf, target_for(spec.name, spec.alpha))
     assert check.passed, check.summary
 
@@ -53,7 +53,7 @@ def test_each_target_is_our_renderers_pdf(ours, spec):
                          ids=[k for k in KEYS if k != "uniform_square"])
 def test_each_target_is_mitsubas_pdf(mitsuba, spec):
     # Mitsuba's float32 Beckmann cancels in 1 - cos^2 near the pole: the closed form's sensitivity to one float32
-    # ulp of the point is the slack the check allows it, as pdf_vs_mitsuba allows ours.
+    # ulp of the point is the slack the check allows it, as pdf_vs_mitsuba allows mcval.
     f = mitsuba.warp(spec.name, spec.alpha)
     check = _agreement(f.sample, masked_to_domain(f.pdf, spec.domain), target_for(spec.name, spec.alpha))
     assert check.passed, check.summary

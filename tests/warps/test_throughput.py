@@ -26,20 +26,20 @@ def fake_warp(clock, calls, name, seconds):
 def test_alternates_with_a_warm_up_before_each_timed_call(monkeypatch):
     clock, calls = ScriptedClock(), []
     monkeypatch.setattr(wc.time, "perf_counter", clock)
-    ours = fake_warp(clock, calls, "ours", [9.0, 1.0] * 3)
+    tested = fake_warp(clock, calls, "tested", [9.0, 1.0] * 3)
     ref = fake_warp(clock, calls, "ref", [9.0, 2.0] * 3)
-    ours_rate, ref_rate, ratio = wc.measure_rates_interleaved(ours, ref, n=100, pairs=3, warm=5.0)
-    assert calls == ["ours", "ours", "ref", "ref"] * 3
-    assert (ours_rate, ref_rate, ratio) == (100.0, 50.0, 2.0)  # the warm-up calls (9 s) are not counted
+    tested_rate, ref_rate, ratio = wc.measure_rates_interleaved(tested, ref, n=100, pairs=3, warm=5.0)
+    assert calls == ["tested", "tested", "ref", "ref"] * 3
+    assert (tested_rate, ref_rate, ratio) == (100.0, 50.0, 2.0)  # the warm-up calls (9 s) are not counted
 
 
 def test_the_warm_up_repeats_calls_until_its_time_has_passed(monkeypatch):
     clock, calls = ScriptedClock(), []
     monkeypatch.setattr(wc.time, "perf_counter", clock)
-    ours = fake_warp(clock, calls, "ours", [1.0, 1.0, 1.0, 4.0])  # three warm-up calls fill 2.5 s, then the timed one
+    tested = fake_warp(clock, calls, "tested", [1.0, 1.0, 1.0, 4.0])  # three warm-up calls fill 2.5 s, then the timed one
     ref = fake_warp(clock, calls, "ref", [3.0, 8.0])
-    assert wc.measure_rates_interleaved(ours, ref, n=1, pairs=1, warm=2.5)[2] == 2.0
-    assert calls == ["ours"] * 4 + ["ref"] * 2
+    assert wc.measure_rates_interleaved(tested, ref, n=1, pairs=1, warm=2.5)[2] == 2.0
+    assert calls == ["tested"] * 4 + ["ref"] * 2
 
 
 def test_the_ratio_is_the_median_of_pairs_so_drift_cancels(monkeypatch):
@@ -47,15 +47,15 @@ def test_the_ratio_is_the_median_of_pairs_so_drift_cancels(monkeypatch):
     # while the ratio of the two medians of times would not be.
     clock, calls = ScriptedClock(), []
     monkeypatch.setattr(wc.time, "perf_counter", clock)
-    ours = fake_warp(clock, calls, "ours", [1.0, 1.0, 1.0, 10.0, 1.0, 1.5])
+    tested = fake_warp(clock, calls, "tested", [1.0, 1.0, 1.0, 10.0, 1.0, 1.5])
     ref = fake_warp(clock, calls, "ref", [1.0, 2.0, 1.0, 20.0, 1.0, 3.0])
-    _, _, ratio = wc.measure_rates_interleaved(ours, ref, n=1, pairs=3, warm=1.0)
+    _, _, ratio = wc.measure_rates_interleaved(tested, ref, n=1, pairs=3, warm=1.0)
     assert ratio == 2.0
 
 
 def test_a_slower_warp_reads_below_one(monkeypatch):
     clock, calls = ScriptedClock(), []
     monkeypatch.setattr(wc.time, "perf_counter", clock)
-    ours = fake_warp(clock, calls, "ours", [1.0, 4.0] * 5)
+    tested = fake_warp(clock, calls, "tested", [1.0, 4.0] * 5)
     ref = fake_warp(clock, calls, "ref", [1.0, 1.0] * 5)
-    assert wc.measure_rates_interleaved(ours, ref, n=1, pairs=5, warm=1.0)[2] == 0.25
+    assert wc.measure_rates_interleaved(tested, ref, n=1, pairs=5, warm=1.0)[2] == 0.25

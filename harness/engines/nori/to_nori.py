@@ -30,10 +30,10 @@ def _shape_albedo(doc: LinedXml, shape: ET.Element, named: dict[str, ET.Element]
     return write.reflectance(None, doc.fail)
 
 
-def _lights(doc: LinedXml, root: ET.Element, ours: str) -> list[Light]:
-    """The lights `ours` reads, as (element, position or [], RGB value): point lights (intensity) for simple,
-    constant environments (radiance, 1 where the scene has none, as mcval's ao assumes) for ao."""
-    kind = {"simple": "point", "ao": "constant"}.get(ours)
+def _lights(doc: LinedXml, root: ET.Element, mcval_integrator: str) -> list[Light]:
+    """The lights `mcval_integrator` reads, as (element, position or [], RGB value): point lights (intensity) for
+    simple, constant environments (radiance, 1 where the scene has none, as mcval's ao assumes) for ao."""
+    kind = {"simple": "point", "ao": "constant"}.get(mcval_integrator)
     found = [e for e in root if e.tag == "emitter" and e.get("type") == kind]
     if kind == "point":
         return [(e, write.point_position(e, doc.fail), write.color(write.prop(e, "intensity"), 1, doc.fail))
@@ -75,9 +75,10 @@ def _nori_ao(doc: LinedXml, lights: list[Light], albedos: list[list[float]]) -> 
                                          f"{triple_text([x * r for x, r in zip(a, radiance)])}")
 
 
-def mitsuba_to_nori(doc: LinedXml, ours: str, theirs: str, spp: int) -> tuple[ET.Element, int, int, dict[str, str]]:
+def mitsuba_to_nori(doc: LinedXml, mcval_integrator: str, theirs: str,
+                    spp: int) -> tuple[ET.Element, int, int, dict[str, str]]:
     """(Nori's scene, width, height, OBJ files to write beside it) for the Mitsuba scene `doc` (defaults and
-    paths resolved) rendered with mcval's integrator `ours`, called `theirs` by the Nori build."""
+    paths resolved) rendered with mcval's integrator `mcval_integrator`, called `theirs` by the Nori build."""
     root = doc.root
     for e in root:
         if e.tag not in TOP_LEVEL:
@@ -99,17 +100,17 @@ def mitsuba_to_nori(doc: LinedXml, ours: str, theirs: str, spp: int) -> tuple[ET
         mesh, extra = write.mesh(shape, index, albedos[-1], doc.fail)
         out.append(mesh)
         files.update(extra)
-    lights = _lights(doc, root, ours)
-    if ours == "simple" and theirs == "simple":
+    lights = _lights(doc, root, mcval_integrator)
+    if mcval_integrator == "simple" and theirs == "simple":
         _nori_simple(doc, root, integrator, lights, albedos)
-    elif ours == "ao" and theirs == "ao":
+    elif mcval_integrator == "ao" and theirs == "ao":
         _nori_ao(doc, lights, albedos)
-    elif ours == "simple":
+    elif mcval_integrator == "simple":
         for _, position, intensity in lights:  # Nori's point lights are given by their power: 4 pi I
             light = ET.SubElement(out, "emitter", type="point")
             ET.SubElement(light, "point", name="position", value=triple_text(position))
             light.append(write.color_element("power", [4 * math.pi * i for i in intensity]))
-    elif ours == "ao":
+    elif mcval_integrator == "ao":
         light = ET.SubElement(out, "emitter", type="distantdisk")
         light.append(write.color_element("radiance", lights[0][2]))
         ET.SubElement(light, "float", name="thetaA", value="180")
@@ -118,7 +119,7 @@ def mitsuba_to_nori(doc: LinedXml, ours: str, theirs: str, spp: int) -> tuple[ET
     return out, width, height, files
 
 
-def written_nori_scene(path: Path, params: dict[str, str], ours: str, theirs: str,
+def written_nori_scene(path: Path, params: dict[str, str], mcval_integrator: str, theirs: str,
                        spp: int) -> tuple[str, int, int, dict[str, str]]:
     """(the Nori XML text, width, height, OBJ files by name) of the suite's scene `path` for an engine file
     with scene_format = "nori"; `params` override the scene's <default>s (res sets width and height)."""
@@ -134,6 +135,6 @@ def written_nori_scene(path: Path, params: dict[str, str], ours: str, theirs: st
                 film.remove(e)
             for name in ("width", "height"):
                 ET.SubElement(film, "integer", name=name, value=number_text(int(params["res"])))
-    scene, width, height, files = mitsuba_to_nori(doc, ours, theirs, spp)
+    scene, width, height, files = mitsuba_to_nori(doc, mcval_integrator, theirs, spp)
     ET.indent(scene)
     return ET.tostring(scene, encoding="unicode") + "\n", width, height, files

@@ -103,9 +103,10 @@ def camera(sensor: ET.Element, fail: Fail) -> tuple[ET.Element, int, int]:
     if transform is not None:
         out.append(transform_to_nori(transform, fail))
     ET.SubElement(out, "float", name="fov", value=number_text(horizontal_fov(sensor, width, height, fail)))
-    for theirs, ours, default in (("nearClip", "near_clip", MITSUBA_NEAR_CLIP),
-                                  ("farClip", "far_clip", MITSUBA_FAR_CLIP)):
-        ET.SubElement(out, "float", name=theirs, value=number_text(number(prop(sensor, ours), default, fail)))
+    for nori_name, mitsuba_name, default in (("nearClip", "near_clip", MITSUBA_NEAR_CLIP),
+                                             ("farClip", "far_clip", MITSUBA_FAR_CLIP)):
+        value = number(prop(sensor, mitsuba_name), default, fail)
+        ET.SubElement(out, "float", name=nori_name, value=number_text(value))
     ET.SubElement(out, "integer", name="width", value=str(width))
     ET.SubElement(out, "integer", name="height", value=str(height))
     out.append(rfilter(film, fail))

@@ -126,14 +126,14 @@ def test_baked_normals_are_mitsubas(tmp_path, kind):
             f'{to_world}</shape>'
     _, _, _, files = write(tmp_path, shape)
     lines = files[f"{kind}_0.obj"].splitlines()
-    ours_p = np.array([[float(x) for x in line.split()[1:]] for line in lines if line.startswith("v ")])
-    ours_n = np.array([[float(x) for x in line.split()[1:]] for line in lines if line.startswith("vn ")])
+    mcval_p = np.array([[float(x) for x in line.split()[1:]] for line in lines if line.startswith("v ")])
+    mcval_n = np.array([[float(x) for x in line.split()[1:]] for line in lines if line.startswith("vn ")])
     params = mi.traverse(mi.load_string(f'<scene version="3.0.0">{shape}</scene>'))
     theirs_p = np.array(params["s.vertex_positions"]).reshape(-1, 3)
     theirs_n = np.array(params["s.vertex_normals"]).reshape(-1, 3)
-    order = [int(np.argmin(np.linalg.norm(ours_p - q, axis=1))) for q in theirs_p]
-    assert np.allclose(ours_p[order], theirs_p, atol=1e-5)
-    assert np.allclose(ours_n[order], theirs_n, atol=1e-5)
-    wrong = ours_n.copy()
+    order = [int(np.argmin(np.linalg.norm(mcval_p - q, axis=1))) for q in theirs_p]
+    assert np.allclose(mcval_p[order], theirs_p, atol=1e-5)
+    assert np.allclose(mcval_n[order], theirs_n, atol=1e-5)
+    wrong = mcval_n.copy()
     wrong[1] = [0, 0, 1]  # a wrong normal at one vertex is seen
     assert not np.allclose(wrong[order], theirs_n, atol=1e-5)

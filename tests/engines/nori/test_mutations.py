@@ -11,7 +11,7 @@ from harness.engines.nori.to_mitsuba import nori_to_mitsuba
 from harness.engines.nori.to_nori import written_nori_scene
 from harness.engines.nori.values import numbers
 from harness.images.suite import SCENES_DIR
-from tests.engines.nori.test_round_trip import EMITTERS, OURS, nori_file
+from tests.engines.nori.test_round_trip import EMITTERS, MCVAL_OF_NORI, nori_file
 from tests.fuzz.mutate import NUMBERS, TYPES
 
 RUNS = 150
@@ -62,9 +62,9 @@ def test_damaged_suite_scenes_are_written_for_nori_or_refused_in_one_line(tmp_pa
     path = tmp_path / source.name
     for _ in range(RUNS):
         path.write_text(damaged(good, rng))
-        ours = rng.choice(sorted(OURS.values()))
+        mcval = rng.choice(sorted(MCVAL_OF_NORI.values()))
         try:
-            text, *_ = written_nori_scene(path, {"res": "16"}, ours, rng.choice([ours, "direct"]), 2)
+            text, *_ = written_nori_scene(path, {"res": "16"}, mcval, rng.choice([mcval, "direct"]), 2)
             assert_finite(ET.fromstring(text))
         except (NoriSceneError, ValueError) as e:
             assert "\n" not in str(e) and str(path.parent) in str(e), str(e)

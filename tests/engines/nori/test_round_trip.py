@@ -1,6 +1,6 @@
 """Both directions together: Nori -> Mitsuba -> Nori -> Mitsuba gives the same scene, a Nori file of one's own
 renders in both engines through the harness and they agree, and an engine file with scene_format = "nori" (a
-stand-in Nori build, tests/helpers/nori_via_ours.py) passes the suite's scenes unless a defect is planted in it."""
+stand-in Nori build, tests/helpers/nori_via_mcval.py) passes the suite's scenes unless a defect is planted in it."""
 import json
 import sys
 import xml.etree.ElementTree as ET
@@ -42,7 +42,7 @@ EMITTERS = {"normals": "",
                       'value="100,100,100"/></emitter>',
             "direct_ems": '<emitter type="distantdisk"><color name="radiance" value="0.6,0.6,0.6"/><float '
                           'name="thetaA" value="180"/></emitter>'}
-OURS = {"normals": "normals", "direct": "simple", "direct_ems": "ao"}
+MCVAL_OF_NORI = {"normals": "normals", "direct": "simple", "direct_ems": "ao"}
 
 
 def nori_file(folder: Path, integrator: str = "normals", name: str = "quads") -> Path:
@@ -67,7 +67,7 @@ def test_mitsuba_to_nori_to_mitsuba_is_the_same_scene(tmp_path, integrator):
     mitsuba = nori_to_mitsuba(path.read_text(), path)
     first = tmp_path / "mitsuba.xml"
     first.write_text(ET.tostring(mitsuba, encoding="unicode"))
-    text, *_ = written_nori_scene(first, {}, OURS[integrator], integrator, 4)
+    text, *_ = written_nori_scene(first, {}, MCVAL_OF_NORI[integrator], integrator, 4)
     again = tmp_path / "again.xml"
     again.write_text(text)
     assert canonical(nori_to_mitsuba(text, again)) == canonical(nori_to_mitsuba(path.read_text(), path))
@@ -130,9 +130,9 @@ def test_a_nori_file_without_a_translation_fails_its_case_in_one_line(tmp_path):
 
 
 def _engine_file(tmp_path, *bug: str) -> Path:
-    words = [sys.executable, str(HELPERS / "nori_via_ours.py"), "{scene}", "{output}", "{seed}", *bug]
+    words = [sys.executable, str(HELPERS / "nori_via_mcval.py"), "{scene}", "{output}", "{seed}", *bug]
     toml = tmp_path / "nori.toml"
-    toml.write_text(f"name = \"nori-via-ours\"\ncommand = {json.dumps(words)}\nscene_format = \"nori\"\n"
+    toml.write_text(f"name = \"nori-via-mcval\"\ncommand = {json.dumps(words)}\nscene_format = \"nori\"\n"
                     "[integrators]\nnormals = \"normals\"\nsimple = \"direct_ems\"\nao = \"direct_ems\"\n")
     return toml
 

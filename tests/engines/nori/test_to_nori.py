@@ -13,11 +13,11 @@ from harness.images.suite import SCENES_DIR
 SENSOR = '<sensor type="perspective"><float name="fov" value="40"/></sensor>'
 
 
-def write(tmp_path, body="", sensor=SENSOR, ours="normals", theirs="normals", params=None):
+def write(tmp_path, body="", sensor=SENSOR, mcval="normals", theirs="normals", params=None):
     """(Nori's scene root, width, height, OBJ files) of a Mitsuba scene made of `sensor` and `body`."""
     path = tmp_path / "scene.xml"
     path.write_text(f'<scene version="3.0.0">\n{sensor}\n{body}\n</scene>\n')
-    text, width, height, files = written_nori_scene(path, params or {}, ours, theirs, 4)
+    text, width, height, files = written_nori_scene(path, params or {}, mcval, theirs, 4)
     return ET.fromstring(text), width, height, files
 
 
@@ -122,7 +122,7 @@ def test_the_reflectance_is_the_albedo_inline_or_by_reference(tmp_path):
 def test_point_lights_are_given_by_their_power_under_simple(tmp_path):
     body = '<emitter type="point"><point name="position" value="1, 2, 3"/><rgb name="intensity" value="2"/>' \
            '</emitter><emitter type="constant"/>'
-    root, *_ = write(tmp_path, body, ours="simple", theirs="direct")
+    root, *_ = write(tmp_path, body, mcval="simple", theirs="direct")
     (light,) = root.findall("emitter")
     assert light.get("type") == "point" and props(light)["position"] == "1, 2, 3"
     assert [float(v) for v in props(light)["power"].split(",")] == pytest.approx([8 * math.pi] * 3)
@@ -132,7 +132,7 @@ def test_point_lights_are_given_by_their_power_under_simple(tmp_path):
 
 def test_the_environment_is_a_full_sphere_distant_disk_under_ao(tmp_path):
     body = '<emitter type="constant"><rgb name="radiance" value="0.6"/></emitter><emitter type="point"/>'
-    root, *_ = write(tmp_path, body, ours="ao", theirs="direct_ems")
+    root, *_ = write(tmp_path, body, mcval="ao", theirs="direct_ems")
     (light,) = root.findall("emitter")
     assert light.get("type") == "distantdisk" and props(light) == {"radiance": "0.6, 0.6, 0.6", "thetaA": "180"}
     assert props(root.find("integrator")) == {"hide_emitters": "true"}  # mcval's ao: escaping rays are black
@@ -141,25 +141,25 @@ def test_the_environment_is_a_full_sphere_distant_disk_under_ao(tmp_path):
 def test_noris_own_simple_takes_the_light_and_the_common_albedo(tmp_path):
     body = '<emitter type="point"><point name="position" value="0, 1, 0"/><rgb name="intensity" value="2"/>' \
            '</emitter><shape type="cube"><bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf></shape>'
-    root, *_ = write(tmp_path, body, ours="simple", theirs="simple")
+    root, *_ = write(tmp_path, body, mcval="simple", theirs="simple")
     assert root.findall("emitter") == [] and props(root.find("integrator"))["position"] == "0, 1, 0"
     assert [float(v) for v in props(root.find("integrator"))["energy"].split(",")] == \
         pytest.approx([4 * math.pi] * 3)
     refused(tmp_path, "differ in reflectance", body=body + '<shape type="rectangle"/>'.replace(
-        "/>", '><bsdf type="diffuse"><rgb name="reflectance" value="0.2"/></bsdf></shape>'), ours="simple",
+        "/>", '><bsdf type="diffuse"><rgb name="reflectance" value="0.2"/></bsdf></shape>'), mcval="simple",
         theirs="simple")
-    refused(tmp_path, "one point light", body=body + body.split("<shape")[0], ours="simple", theirs="simple")
+    refused(tmp_path, "one point light", body=body + body.split("<shape")[0], mcval="simple", theirs="simple")
 
 
 def test_noris_own_ao_needs_reflectance_times_radiance_one(tmp_path):
     ok = '<emitter type="constant"><rgb name="radiance" value="2"/></emitter>' \
          '<shape type="cube"><bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf></shape>'
-    root, *_ = write(tmp_path, ok, ours="ao", theirs="ao")
+    root, *_ = write(tmp_path, ok, mcval="ao", theirs="ao")
     assert root.findall("emitter") == [] and props(root.find("integrator")) == {}
-    refused(tmp_path, "reflectance x radiance = 1", body=ok.replace('value="2"', 'value="1"'), ours="ao",
+    refused(tmp_path, "reflectance x radiance = 1", body=ok.replace('value="2"', 'value="1"'), mcval="ao",
             theirs="ao")
     refused(tmp_path, "shows nothing to a camera ray that escapes", body=ok + '<integrator type="path"><boolean '
-            'name="hide_emitters" value="false"/></integrator>', ours="ao", theirs="ao")
+            'name="hide_emitters" value="false"/></integrator>', mcval="ao", theirs="ao")
 
 
 def test_the_suites_flat_scenes_are_written_and_its_curved_ones_refused(tmp_path):

@@ -2,7 +2,7 @@
 harness/engines/nori/to_mitsuba.py, the other direction) and renders it with our renderer. With
 `--bug fov` its field of view is 5 % too wide, a planted camera defect the comparison must catch.
 
-usage: nori_via_ours.py SCENE OUTPUT SEED [--bug fov]"""
+usage: nori_via_mcval.py SCENE OUTPUT SEED [--bug fov]"""
 import subprocess
 import sys
 import xml.etree.ElementTree as ET

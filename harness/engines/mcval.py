@@ -12,8 +12,8 @@ from harness.engines.render_process import render_binary, run_render
 from harness.native import renderer_module
 
 
-class OurEngine(Engine):
-    """The C++ renderer under test.
+class McvalEngine(Engine):
+    """This repository's C++ renderer, the engine named mcval.
 
     binary: the `render` CLI (default: $MCVAL_RENDER, else build/render); timeout: seconds per render
     (default: $MCVAL_RENDER_TIMEOUT, else 600 s plus a share per sample, see render_process).
@@ -50,7 +50,7 @@ class OurEngine(Engine):
 
     def __reduce__(self):
         # To a worker as its arguments: the module and the default binary are the worker's own.
-        return OurEngine, (self.binary, self.timeout, self.sampler, self.in_process)
+        return McvalEngine, (self.binary, self.timeout, self.sampler, self.in_process)
 
     def version(self) -> str:
         return f"this repository's renderer (images: {self.binary or render_binary()} as a child process; " \
