@@ -55,11 +55,11 @@ def parse_args(argv):
     return a
 
 
-def scene_xml(path, width, height):
+def scene_xml(path, width, height, integrator):
     """The scene XML with the <integrator> and <sampler> removed (pyrender has
     its own) and the film size set to width x height, the stddev of the film's
-    gaussian reconstruction filter (None for a box filter), and direct's
-    parameters from the <integrator>."""
+    gaussian reconstruction filter (None for a box filter), and, for direct,
+    its parameters from the <integrator> (None for the others)."""
     try:
         root = ET.parse(path).getroot()
     except (OSError, ET.ParseError) as e:
@@ -67,7 +67,7 @@ def scene_xml(path, width, height):
     if root.tag != "scene":
         fail(f"{path}: the root element is <{root.tag}>, not <scene>")
     try:
-        settings = direct_settings(root.find("integrator"))
+        settings = direct_settings(root.find("integrator")) if integrator == "direct" else None
     except ValueError as e:
         fail(f"{path}: {e}")
     for el in root.findall("integrator"):
@@ -288,7 +288,7 @@ def main(argv):
         fail(f"cannot set Mitsuba variant llvm_ad_rgb: {e}")
     if args.threads > 0:
         dr.set_thread_count(args.threads)
-    xml, stddev, settings = scene_xml(args.scene, args.width, args.height)
+    xml, stddev, settings = scene_xml(args.scene, args.width, args.height, args.integrator)
     # Relative file names (meshes) resolve against the scene's folder.
     mi.file_resolver().prepend(os.path.dirname(os.path.abspath(args.scene)))
     try:

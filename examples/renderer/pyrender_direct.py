@@ -7,7 +7,7 @@ emitters they reach unless `hide_emitters`. Surfaces are Mitsuba's `diffuse`: rh
 the shading normal. Mitsuba traces the rays; the rest is numpy on arrays of shape (3, n).
 """
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -38,16 +38,16 @@ class Hits:
     shape: np.ndarray
     rho: np.ndarray
 
-    def subset(self, lane):
-        return Hits(*(getattr(self, f.name)[..., lane] for f in fields(self)))
-
     @classmethod
     def of(cls, si, mi, dr):
-        f64 = lambda v: np.array(v, dtype=np.float64)  # noqa: E731
-        frame = si.sh_frame
-        return cls(np.array(si.is_valid(), dtype=bool), f64(si.p), f64(si.n), f64(frame.s), f64(frame.t),
-                   f64(frame.n), f64(si.t), np.array(dr.reinterpret_array(mi.UInt32, si.shape)),
-                   f64(si.bsdf().eval_diffuse_reflectance(si, si.is_valid())))
+        frame, valid = si.sh_frame, si.is_valid()
+        values = [valid, si.p, si.n, frame.s, frame.t, frame.n, si.t, dr.reinterpret_array(mi.UInt32, si.shape),
+                  si.bsdf().eval_diffuse_reflectance(si, valid)]
+        dr.eval(*values)  # one kernel for all of them, not one per conversion
+        kinds = (bool, *[np.float64] * 6, None, np.float64)
+        valid, p, n, sh_s, sh_t, sh_n, t, shape, rho = (np.array(v, dtype=kind) for v, kind in zip(values, kinds))
+        # A miss has t = inf and p far away: 0 instead (no ray leaves it, and no arithmetic overflows).
+        return cls(valid, np.where(valid, p, 0.0), n, sh_s, sh_t, sh_n, np.where(valid, t, 0.0), shape, rho)
 
 
 def direct_settings(integrator):
@@ -106,8 +106,9 @@ class Tracer:
         blocked = self.scene.ray_test(self._ray(o, direction, maxt), self.mi.Bool(active))
         return active & ~np.array(blocked, dtype=bool)
 
-    def trace(self, hits, d):
-        si = self.scene.ray_intersect(self._ray(self.origin(hits, d), d))
+    def trace(self, hits, d, active):
+        """What rays from the hit points along d find (where `active`)."""
+        si = self.scene.ray_intersect(self._ray(self.origin(hits, d), d), self.mi.Bool(active))
         return Hits.of(si, self.mi, self.dr)
 
 
@@ -125,10 +126,21 @@ def cosine_hemisphere(hits, u):
     return hits.sh_s * (r * np.cos(phi)) + hits.sh_t * (r * np.sin(phi)) + hits.sh_n * z, z
 
 
+def light_sample(lights, which, x, u):
+    """Per lane, a sample of the light `which` names, from x: (d, dist, radiance, pdf, delta)."""
+    samples = [light.sample(x, u) for light in lights]
+    first = samples[0]
+    d, dist, radiance, pdf = first.d, first.dist, first.radiance, first.pdf
+    for i, s in enumerate(samples[1:], 1):
+        lane = which == i
+        d, dist, radiance, pdf = (np.where(lane, new, old) for new, old in
+                                  ((s.d, d), (s.dist, dist), (s.radiance, radiance), (s.pdf, pdf)))
+    return d, dist, radiance, pdf, np.array([light.delta for light in lights])[which]
+
+
 def direct(tracer, lights, ray_o, ray_d, hits, rng, settings, bug=None):
     """The radiance of each camera ray (3, n): `ray_o`, `ray_d` their origins and directions, `hits` what they
-    found. `bug`
-    "direct-no-cosine" plants a BSDF evaluated without the cosine at the surface."""
+    found. `bug` "direct-no-cosine" plants a BSDF evaluated without the cosine at the surface."""
     n = ray_d.shape[1]
     result = np.zeros((3, n))
     if not settings.hide_emitters:
@@ -142,28 +154,18 @@ def direct(tracer, lights, ray_o, ray_d, hits, rng, settings, bug=None):
 
     for _ in range(settings.emitter_samples):
         which = np.minimum((rng.random(n) * len(lights)).astype(int), len(lights) - 1)
-        u = rng.random((2, n))
-        for i, light in enumerate(lights):
-            lane = active & (which == i)
-            if not lane.any():
-                continue
-            s = light.sample(hits.p[:, lane], u[:, lane])
-            cos = dot(hits.sh_n[:, lane], s.d)
-            rho = hits.rho[:, lane]
-            bsdf = rho / math.pi * (np.where(cos > 0, 1.0, 0.0) if bug == "direct-no-cosine" else np.maximum(cos, 0))
-            with np.errstate(divide="ignore", invalid="ignore"):
-                value = np.where(s.pdf > 0, s.radiance / (s.pdf * pick), 0.0)
-            weight = 1.0 if s.delta else power_heuristic(s.pdf * pick * share_e,
-                                                          np.maximum(cos, 0) / math.pi * share_b)
-            seen = np.zeros(n, dtype=bool)
-            seen[lane] = (cos > 0) & (s.pdf > 0)
-            seen[lane] = tracer.visible(hits.subset(lane), s.d, s.dist, seen[lane])
-            result[:, lane] += np.where(seen[lane], bsdf * value * weight, 0.0) / settings.emitter_samples
+        d, dist, radiance, pdf, delta = light_sample(lights, which, hits.p, rng.random((2, n)))
+        cos = dot(hits.sh_n, d)
+        bsdf = hits.rho / math.pi * (np.where(cos > 0, 1.0, 0.0) if bug == "direct-no-cosine" else np.maximum(cos, 0))
+        value = np.where(pdf > 0, radiance / np.where(pdf > 0, pdf * pick, 1), 0.0)
+        weight = np.where(delta, 1.0, power_heuristic(pdf * pick * share_e, np.maximum(cos, 0) / math.pi * share_b))
+        seen = tracer.visible(hits, d, dist, active & (cos > 0) & (pdf > 0))
+        result += np.where(seen, bsdf * value * weight, 0.0) / settings.emitter_samples
 
     for _ in range(settings.bsdf_samples):
         d, cos = cosine_hemisphere(hits, rng.random((2, n)))
         bsdf_pdf = cos / math.pi
-        found = tracer.trace(hits, d)
+        found = tracer.trace(hits, d, active)
         for light_pdf, radiance in emitted(lights, hits.p, found, d):
             weight = power_heuristic(bsdf_pdf * share_b, light_pdf * pick * share_e)
             # The sample's value f / pdf is rho: the cosine and the 1/pi cancel.

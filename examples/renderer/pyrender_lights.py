@@ -102,7 +102,7 @@ class AreaLight:
         ray (uniform by area: dist^2 / (|cos_light| area))."""
         if self.area_measure:
             return np.full_like(dist, 1 / self.area)
-        with np.errstate(divide="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore"):  # 0 where cos_light is 0
             return np.where(cos_light != 0, dist**2 / (np.abs(cos_light) * self.area), 0.0)
 
     def arriving(self, x, hits, d):

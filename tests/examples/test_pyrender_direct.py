@@ -3,6 +3,7 @@ the suites a user runs: the lit planes against their closed forms (quick, at 16 
 the invariances and the bench (slow, at the suite's size); each planted mistake of a direct integrator (a light
 pdf left in area measure, a BSDF without its cosine) fails the image suite."""
 import json
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -50,6 +51,27 @@ def test_each_planted_direct_bug_fails_against_the_closed_form(tmp_path, bug):
     assert code == 1 and not entry["pass"] and entry["engine"] == f"pyrender-{bug}"
 
 
+CUBE_LIGHT = """<scene version="3.0.0">
+    <sensor type="perspective">
+        <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+    </sensor>
+    <shape type="cube"><emitter type="area"><rgb name="radiance" value="1"/></emitter></shape>
+</scene>
+"""
+
+
+def test_direct_refuses_a_light_it_does_not_model_in_one_line(tmp_path):
+    scene = tmp_path / "cube_light.xml"
+    scene.write_text(CUBE_LIGHT)
+    res = subprocess.run([str(EXAMPLE / "pyrender"), str(scene), "--integrator", "direct", "--spp", "1", "--seed", "0",
+                          "--width", "8", "--height", "8", "-o", str(tmp_path / "out.exr")],
+                         capture_output=True, text=True, timeout=300)
+    assert res.returncode == 1 and not (tmp_path / "out.exr").exists()
+    assert res.stderr.strip().splitlines() == [
+        f"pyrender: error: {scene}: direct does not render this scene: it has an area light on a Cube "
+        "(pyrender's direct samples area lights on Rectangle, Disk, Sphere only)"]
+
+
 @pytest.mark.slow
 @pytest.mark.mitsuba
 def test_direct_passes_against_mitsuba_and_the_closed_forms(tmp_path):
@@ -72,7 +94,7 @@ def test_direct_keeps_its_invariances(tmp_path):
 @pytest.mark.mitsuba
 def test_direct_is_benchmarked(tmp_path):
     code, results = _run(tmp_path, "bench", "--only", "plane_rect_light:direct", "--engines",
-                         str(_engine(tmp_path)), "mitsuba", "--max-spp", "2", "--runs", "2",
+                         str(_engine(tmp_path)), "mitsuba", "--same-sampler", "--max-spp", "2", "--runs", "2",
                          "--throughput-runs", "0", "--seed-runs", "0")
     assert code == 0, results
     [case] = results["speed"]
