@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """pyrender: a small Monte Carlo renderer for mcval's engine contract (docs/engines.md).
 
-Mitsuba 3 (variant llvm_ad_rgb) loads the scene and traces rays; the three
-integrators (normals, simple, ao), the pixel sampling, the random numbers and
-the image accumulation are pyrender's own, vectorised over pixels x samples.
+Mitsuba 3 (variant llvm_ad_rgb) loads the scene and traces rays; the four
+integrators (normals, simple, ao, and direct in pyrender_direct.py with its
+lights in pyrender_lights.py), the pixel sampling, the random numbers and the
+image accumulation are pyrender's own, vectorised over pixels x samples.
 
     pyrender.py SCENE --integrator NAME --spp N --seed S --width W --height H
                 -o OUT.exr [--threads T] [--bug NAME]
@@ -16,10 +17,14 @@ import sys
 import time
 import xml.etree.ElementTree as ET
 
+from pyrender_direct import Hits, Tracer, direct, direct_settings
+from pyrender_lights import LightError, scene_lights
+
 VERSION = "pyrender 0.1"
-INTEGRATORS = ("normals", "simple", "ao")
-BUGS = ("bright", "ao-uniform", "simple-no-cosine", "offset")
+INTEGRATORS = ("normals", "simple", "ao", "direct")
+BUGS = ("bright", "ao-uniform", "simple-no-cosine", "offset", "direct-no-cosine", "area-pdf")
 MAX_RAYS = 1 << 21          # camera rays traced at once (memory bound)
+MAX_RAYS_DIRECT = 1 << 18   # direct keeps a dozen float64 arrays per camera ray
 SPAWN_EPS = 1e-6            # relative offset of secondary rays (see spawn_origin)
 BUG_OFFSET = 1e-2           # the 'offset' bug's absolute spawn offset
 
@@ -50,16 +55,21 @@ def parse_args(argv):
     return a
 
 
-def scene_xml(path, width, height):
+def scene_xml(path, width, height, integrator):
     """The scene XML with the <integrator> and <sampler> removed (pyrender has
-    its own) and the film size set to width x height, and the stddev of the
-    film's gaussian reconstruction filter (None for a box filter)."""
+    its own) and the film size set to width x height, the stddev of the film's
+    gaussian reconstruction filter (None for a box filter), and, for direct,
+    its parameters from the <integrator> (None for the others)."""
     try:
         root = ET.parse(path).getroot()
     except (OSError, ET.ParseError) as e:
         fail(f"cannot read scene {path!r}: {e}")
     if root.tag != "scene":
         fail(f"{path}: the root element is <{root.tag}>, not <scene>")
+    try:
+        settings = direct_settings(root.find("integrator")) if integrator == "direct" else None
+    except ValueError as e:
+        fail(f"{path}: {e}")
     for el in root.findall("integrator"):
         root.remove(el)
     sensors = root.findall("sensor")
@@ -83,7 +93,7 @@ def scene_xml(path, width, height):
         stddev = 0.5 if el is None else float(el.get("value"))
     elif kind != "box":
         fail(f"{path}: unsupported reconstruction filter {kind!r} (box, gaussian)")
-    return ET.tostring(root, encoding="unicode"), stddev
+    return ET.tostring(root, encoding="unicode"), stddev, settings
 
 
 def rgb(value):
@@ -193,12 +203,37 @@ def splat(acc, wsum, value, px, py, sx, sy, w, h, stddev):
             wsum += np.bincount(target, weights=wt, minlength=w * h)
 
 
-def render(scene, args, rng, stddev):
+def direct_shader(scene, args, rng, settings):
+    """direct's value of camera rays (pyrender_direct.py), with the scene's lights."""
+    try:
+        lights = scene_lights(scene, mi, dr, area_measure=args.bug == "area-pdf")
+    except LightError as e:
+        fail(f"{args.scene}: direct does not render this scene: it has {e}")
+
+    def offset(p, t):  # spawn_origin's, in numpy
+        return np.full_like(t, BUG_OFFSET) if args.bug == "offset" else SPAWN_EPS * (np.max(np.abs(p), axis=0) + t)
+
+    tracer = Tracer(scene, mi, dr, offset)
+
+    def shade_direct(ray, si, n_rays):
+        if not lights:
+            return np.zeros((3, n_rays))
+        ray_o, ray_d = (np.array(v, dtype=np.float64) for v in (ray.o, ray.d))
+        return direct(tracer, lights, ray_o, ray_d, Hits.of(si, mi, dr), rng, settings, args.bug)
+    return shade_direct
+
+
+def render(scene, args, rng, stddev, settings):
     w, h, spp = args.width, args.height, args.spp
     sensor = scene.sensors()[0]
-    lights, env = emitters(scene)
+    if args.integrator == "direct":
+        shader, max_rays = direct_shader(scene, args, rng, settings), MAX_RAYS_DIRECT
+    else:
+        lights, env = emitters(scene)
+        shader, max_rays = (lambda ray, si, n_rays: shade(scene, lights, env, args.integrator, ray, si, rng,
+                                                          n_rays, args.bug)), MAX_RAYS
     npix = w * h
-    k_max = max(1, MAX_RAYS // npix)             # samples per pixel per pass
+    k_max = max(1, max_rays // npix)             # samples per pixel per pass
     acc, wsum = np.zeros((3, npix)), np.zeros(npix)
     done = 0
     while done < spp:
@@ -211,7 +246,7 @@ def render(scene, args, rng, stddev):
         pos = mi.Point2f(mi.Float((sx / w).astype(np.float32)), mi.Float((sy / h).astype(np.float32)))
         ray, _ = sensor.sample_ray(0.0, 0.5, pos, mi.Point2f(0.5))
         si = scene.ray_intersect(ray)
-        value = shade(scene, lights, env, args.integrator, ray, si, rng, n_rays, args.bug)
+        value = shader(ray, si, n_rays)
         splat(acc, wsum, np.array(value, dtype=np.float64), px, py, sx, sy, w, h, stddev)
         done += k
     img = (acc / np.maximum(wsum, 1e-300)).T.reshape(h, w, 3)
@@ -253,7 +288,7 @@ def main(argv):
         fail(f"cannot set Mitsuba variant llvm_ad_rgb: {e}")
     if args.threads > 0:
         dr.set_thread_count(args.threads)
-    xml, stddev = scene_xml(args.scene, args.width, args.height)
+    xml, stddev, settings = scene_xml(args.scene, args.width, args.height, args.integrator)
     # Relative file names (meshes) resolve against the scene's folder.
     mi.file_resolver().prepend(os.path.dirname(os.path.abspath(args.scene)))
     try:
@@ -261,7 +296,7 @@ def main(argv):
     except Exception as e:  # noqa: BLE001 - Mitsuba raises RuntimeError and others
         fail(f"cannot load scene {args.scene!r}: {e}")
     start = time.perf_counter()  # renderSeconds: rendering only, as docs/engines.md asks
-    img = render(scene, args, np.random.default_rng(args.seed), stddev)
+    img = render(scene, args, np.random.default_rng(args.seed), stddev, settings)
     write_exr(args.output, img, time.perf_counter() - start)
     return 0
 

@@ -1,0 +1,102 @@
+"""The example renderer's `direct` (examples/renderer/pyrender_direct.py), mapped by its engine file, through
+the suites a user runs: the lit planes against their closed forms (quick, at 16 pixels) and against Mitsuba,
+the invariances and the bench (slow, at the suite's size); each planted mistake of a direct integrator (a light
+pdf left in area measure, a BSDF without its cosine) fails the image suite."""
+import json
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from harness.cli import main
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "renderer"
+SCENES = Path(__file__).resolve().parents[2] / "scenes"
+
+
+def _engine(tmp_path, bug: str | None = None) -> Path:
+    """examples/renderer/pyrender.toml, two calls at once, with `--bug BUG` planted (a copy in tmp_path)."""
+    text = (EXAMPLE / "pyrender.toml").read_text().replace("{here}", str(EXAMPLE))
+    text = text.replace("jobs = 1", "jobs = 2")
+    if bug:
+        text = text.replace('name = "pyrender"', f'name = "pyrender-{bug}"')
+        text = text.replace('"-o", "{output}"]', f'"-o", "{{output}}", "--bug", "{bug}"]')
+    path = tmp_path / f"pyrender-{bug or 'correct'}.toml"
+    path.write_text(text)
+    return path
+
+
+def _run(tmp_path, *args: str) -> tuple[int, dict]:
+    out = tmp_path / "results"
+    code = main([*args, "--out", str(out)])
+    return code, json.loads((out / "latest" / "results.json").read_text())
+
+
+def _small(tmp_path, engine: Path, scene: str = "plane_rect_light") -> tuple[int, dict]:
+    """images of one lit plane under direct, 16 pixels wide, against its closed form alone."""
+    return _run(tmp_path, "images", "--engine", str(engine), "--scene", str(SCENES / f"{scene}.xml"),
+                "--resolution", "16", "--reference", "analytic", "--only", f"{scene}:direct")
+
+
+def test_direct_matches_the_closed_form_of_a_rectangle_light(tmp_path):
+    code, results = _small(tmp_path, _engine(tmp_path))
+    (entry,) = results["images"]
+    assert code == 0 and entry["pass"] and entry["engine"] == "pyrender", entry
+
+
+@pytest.mark.parametrize("bug", ["area-pdf", "direct-no-cosine"])
+def test_each_planted_direct_bug_fails_against_the_closed_form(tmp_path, bug):
+    code, results = _small(tmp_path, _engine(tmp_path, bug))
+    (entry,) = results["images"]
+    assert code == 1 and not entry["pass"] and entry["engine"] == f"pyrender-{bug}"
+
+
+CUBE_LIGHT = """<scene version="3.0.0">
+    <sensor type="perspective">
+        <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+    </sensor>
+    <shape type="cube"><emitter type="area"><rgb name="radiance" value="1"/></emitter></shape>
+</scene>
+"""
+
+
+def test_direct_refuses_a_light_it_does_not_model_in_one_line(tmp_path):
+    scene = tmp_path / "cube_light.xml"
+    scene.write_text(CUBE_LIGHT)
+    res = subprocess.run([str(EXAMPLE / "pyrender"), str(scene), "--integrator", "direct", "--spp", "1", "--seed", "0",
+                          "--width", "8", "--height", "8", "-o", str(tmp_path / "out.exr")],
+                         capture_output=True, text=True, timeout=300)
+    assert res.returncode == 1 and not (tmp_path / "out.exr").exists()
+    assert res.stderr.strip().splitlines() == [
+        f"pyrender: error: {scene}: direct does not render this scene: it has an area light on a Cube "
+        "(pyrender's direct samples area lights on Rectangle, Disk, Sphere only)"]
+
+
+@pytest.mark.slow
+@pytest.mark.mitsuba
+def test_direct_passes_against_mitsuba_and_the_closed_forms(tmp_path):
+    cases = [f"{scene}:direct" for scene in ("plane_rect_light", "plane_disk_light", "plane_sphere_light")]
+    code, results = _run(tmp_path, "images", "--engine", str(_engine(tmp_path)), "--only", *cases)
+    assert code == 0 and len(results["images"]) == 3
+    for entry in results["images"]:
+        assert entry["pass"] and set(entry["tests"]) == {"mitsuba", "analytic"}, entry
+
+
+@pytest.mark.slow
+def test_direct_keeps_its_invariances(tmp_path):
+    code, results = _run(tmp_path, "invariance", "--engine", str(_engine(tmp_path)), "--only",
+                         "plane_rect_light:direct", "light", "--no-mitsuba")
+    cells = results["invariance"]["cells"]
+    assert code == 0 and cells and all(c["pass"] and c["integrator"] == "direct" for c in cells), cells
+
+
+@pytest.mark.slow
+@pytest.mark.mitsuba
+def test_direct_is_benchmarked(tmp_path):
+    code, results = _run(tmp_path, "bench", "--only", "plane_rect_light:direct", "--engines",
+                         str(_engine(tmp_path)), "mitsuba", "--same-sampler", "--max-spp", "2", "--runs", "2",
+                         "--throughput-runs", "0", "--seed-runs", "0")
+    assert code == 0, results
+    [case] = results["speed"]
+    assert (case["scene"], case["integrator"]) == ("plane_rect_light", "direct")
+    assert set(case["efficiency"]) == {"pyrender/independent", "mitsuba/independent"}
