@@ -124,5 +124,9 @@ def run_ladder(engine: Engine, case: ImageCase, reference: Reference, seed: int,
         steps.append(step)
         if on_step:
             on_step(f"{engine.label or engine.name} {case.key} {spp} spp")
+    if first is None:
+        raise ValueError(f"{engine.label or engine.name} renders none of the ladder's sample counts "
+                         f"({', '.join(map(str, ladder))} spp) exactly: its sampler rounds them; "
+                         "--same-sampler gives both engines Mitsuba's independent sampler")
     timing = getattr(engine, "render_timing", "render seconds")
     return Curve(engine.label or engine.name, timing, steps, float(first), images)
