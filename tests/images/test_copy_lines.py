@@ -17,3 +17,14 @@ def test_mcval_names_the_users_line_and_an_unknown_line_stays_the_copys():
     assert name_lines("error: /c/C.xml:40: x (line 40, col 1)", "/c/C.xml", "U.xml", LINES) == \
         "error: /c/C.xml:40: x (line 40, col 1)"
     assert name_lines("a: 3", "", "U.xml", LINES) == "a: 3"
+
+
+def test_a_second_element_ours_names_in_the_copy_is_the_users_line_too():
+    reason = "error: /c/C.xml:2: <bsdf>: reads the reflectance, given here as a <ref> at line 3; ..."
+    assert name_lines(reason, "/c/C.xml", "U.xml", LINES) == \
+        "error: U.xml:5: <bsdf>: reads the reflectance, given here as a <ref> at line 9; ..."
+    # Only what is said of the copy: a line of another file (an <include>d one) stays as it is.
+    other = "error: /c/part.xml:2: <bsdf>: given here as a <ref> at line 3"
+    assert name_lines(other, "/c/C.xml", "U.xml", LINES) == other
+    assert name_lines("error: /c/C.xml:2: <ref> at line 40", "/c/C.xml", "U.xml", LINES) == \
+        "error: U.xml:5: <ref> at line 40"
