@@ -1,8 +1,9 @@
 """A stand-in for a student's Nori build, for the tests: it reads the Nori scene the harness wrote (through
 harness/engines/nori/to_mitsuba.py, the other direction) and renders it with our renderer. With
-`--bug fov` its field of view is 5 % too wide, a planted camera defect the comparison must catch.
+`--bug fov` its field of view is 5 % too wide, a planted camera defect the comparison must catch; with
+`--bug radiance` its area lights are 5 % too bright.
 
-usage: nori_via_mcval.py SCENE OUTPUT SEED [--bug fov]"""
+usage: nori_via_mcval.py SCENE OUTPUT SEED [--bug fov|radiance]"""
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -17,6 +18,10 @@ def main(scene: str, output: str, seed: str, *bug: str) -> int:
     if bug == ("--bug", "fov"):
         fov = next(e for e in root.iter("float") if e.get("name") == "fov")
         fov.set("value", str(1.05 * float(fov.get("value"))))
+    if bug == ("--bug", "radiance"):
+        for e in root.iter("emitter"):
+            radiance = next(c for c in e if c.get("name") == "radiance")
+            radiance.set("value", ", ".join(str(1.05 * float(v)) for v in radiance.get("value").split(",")))
     mitsuba = Path("mitsuba.xml").resolve()
     # Nori resolves mesh files against the scene's folder; the copy lives elsewhere, so name them absolutely.
     for e in root.iter("string"):

@@ -1,10 +1,10 @@
 """Which of mcval's integrators computes what a Nori integrator does (docs/engines.md#nori-scene-files), and
 how the translated scene must be lit for it. Nori's own assignment integrators ignore the BSDF (albedo 1):
 `simple` is one point light of power `energy` (intensity energy / 4 pi), `ao` an environment of radiance 1
-that camera rays do not see. Its direct-lighting integrators read the scene's emitters and the albedo: with
-point lights only they compute mcval's `simple`; with only a `distantdisk` that spans the whole sphere (thetaA
-180, a constant environment) they compute mcval's `ao`, and show that environment to escaping camera rays
-(Nori's sphere_ao reference image does)."""
+that camera rays do not see. Its direct-lighting integrators read the scene's emitters and the albedo:
+`direct_ems`, `direct_mats` and `direct_mis` are mcval's (and Mitsuba's) `direct` with one emitter sample, one
+BSDF sample, or one of each under MIS, and show the emitters to camera rays (Nori's sphere_ao reference shows
+its environment); `direct` (point lights, each summed exactly) is mcval's `simple`."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -13,13 +13,14 @@ from dataclasses import dataclass
 NO_EQUIVALENT = {
     "av": "average visibility samples the hemisphere uniformly along rays of a finite `length`; mcval's ao is "
           "cosine-weighted and its rays are unbounded",
-    "whitted": "it follows mirror and glass paths and samples area lights, which none of mcval's integrators do",
+    "whitted": "it follows mirror and glass paths, which none of mcval's integrators do",
     "path_mats": "path tracing adds indirect light, which none of mcval's integrators compute",
     "path_ems": "path tracing adds indirect light, which none of mcval's integrators compute",
     "path_mis": "path tracing adds indirect light, which none of mcval's integrators compute",
     "path": "path tracing adds indirect light, which none of mcval's integrators compute",
 }
-DIRECT = ("direct", "direct_ems", "direct_mats", "direct_mis")
+#: Nori's direct-lighting strategies as mcval's `direct`: (emitter_samples, bsdf_samples), one sample each.
+STRATEGIES = {"direct_ems": (1, 0), "direct_mats": (0, 1), "direct_mis": (1, 1)}
 
 
 @dataclass
@@ -33,6 +34,7 @@ class Mapping:
     unit_environment: bool = False    # its light is an environment of radiance 1
     hide_emitters: str | None = None  # kept on the written <integrator> (harness/engines/written_scene.py),
     #                                   unless the Nori integrator says otherwise (then it reads the boolean)
+    properties: tuple[tuple[str, str, str], ...] = ()  # (tag, name, value) on the written <integrator>
     why_not: str | None = None        # set: there is no mapping, and this is why
 
 
@@ -45,18 +47,20 @@ def map_integrator(kind: str, emitters: set[str]) -> Mapping:
         return Mapping("simple", albedo_one=True, own_lights_only=True, light_from_integrator=True)
     if kind == "ao":
         return Mapping("ao", albedo_one=True, own_lights_only=True, unit_environment=True)
-    if kind in DIRECT:
-        if "area" in emitters:
-            return Mapping("", why_not="area lights are lit by none of mcval's integrators (it models point "
-                                       "lights under simple and a constant environment under ao)")
-        if emitters == {"point"} and kind != "direct_mats":
-            return Mapping("simple")
-        if emitters == {"environment"} and kind != "direct":
-            return Mapping("ao", hide_emitters="false")
-        if emitters == {"point"}:
-            return Mapping("", why_not="BSDF sampling never reaches a point light: the image is black")
+    if kind in STRATEGIES:
         if not emitters:
             return Mapping("", why_not="the scene has no emitter")
-        return Mapping("", why_not=f"{kind} with {' and '.join(sorted(emitters))} emitters together is no single "
-                                   "integrator of mcval's (point lights: simple, a constant environment: ao)")
+        if kind == "direct_mats" and emitters == {"point"}:
+            return Mapping("", why_not="BSDF sampling never reaches a point light: the image is black")
+        emitter_samples, bsdf_samples = STRATEGIES[kind]
+        return Mapping("direct", hide_emitters="false",
+                       properties=(("integer", "emitter_samples", str(emitter_samples)),
+                                   ("integer", "bsdf_samples", str(bsdf_samples))))
+    if kind == "direct":
+        if emitters == {"point"}:
+            return Mapping("simple")
+        return Mapping("", why_not="Nori's direct sums its point lights exactly (mcval's simple) and reads no other "
+                                   "emitter; "
+                                   + ("the scene has no emitter" if not emitters else
+                                      f"this scene has {' and '.join(sorted(emitters - {'point'}))} emitters"))
     return Mapping("", why_not=NO_EQUIVALENT.get(kind, "Nori has no such integrator and mcval none of that name"))

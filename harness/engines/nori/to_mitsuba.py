@@ -83,7 +83,9 @@ def nori_to_mitsuba(text: str, path: Path, notes: list[str] | None = None) -> ET
                 raise r.fail(given, "hide_emitters is true or false")
     out = ET.Element("scene", version="3.0.0")
     written = ET.SubElement(out, "integrator", type=mapping.integrator)
-    if hide is not None and mapping.integrator == "ao":  # only ao shows an emitter to camera rays
+    for tag, name, value in mapping.properties:
+        ET.SubElement(written, tag, name=name, value=value)
+    if hide is not None and mapping.integrator in ("ao", "direct"):  # the integrators that show emitters
         ET.SubElement(written, "boolean", name="hide_emitters", value=hide)
     out.append(read.camera(r, _one(r, root, "camera", required=True),
                            read.sampler(r, _one(r, root, "sampler", required=False))))

@@ -8,6 +8,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 from harness.engines.nori import write_elements as write
+from harness.engines.nori.integrator_map import STRATEGIES
 from harness.engines.nori.lined_xml import LinedXml, parse_lined
 from harness.engines.nori.values import number_text, triple_text
 from harness.engines.scene_paths import absolute_paths
@@ -32,7 +33,15 @@ def _shape_albedo(doc: LinedXml, shape: ET.Element, named: dict[str, ET.Element]
 
 def _lights(doc: LinedXml, root: ET.Element, mcval_integrator: str) -> list[Light]:
     """The lights `mcval_integrator` reads, as (element, position or [], RGB value): point lights (intensity) for
-    simple, constant environments (radiance, 1 where the scene has none, as mcval's ao assumes) for ao."""
+    simple, constant environments (radiance, 1 where the scene has none, as mcval's ao assumes) for ao; for
+    direct, both (an area light is written inside its mesh)."""
+    if mcval_integrator == "direct":
+        for e in root:
+            if e.tag == "emitter" and e.get("type") not in ("point", "constant"):
+                raise doc.fail(e, "Nori's emitters are point, area (inside a mesh) and distantdisk (a constant "
+                                  "environment at thetaA 180); it has no counterpart of this one")
+        points, environments = _lights(doc, root, "simple"), _lights(doc, root, "ao")
+        return points + ([] if environments[0][0] is root else environments)
     kind = {"simple": "point", "ao": "constant"}.get(mcval_integrator)
     found = [e for e in root if e.tag == "emitter" and e.get("type") == kind]
     if kind == "point":
@@ -75,6 +84,29 @@ def _nori_ao(doc: LinedXml, lights: list[Light], albedos: list[list[float]]) -> 
                                          f"{triple_text([x * r for x, r in zip(a, radiance)])}")
 
 
+def _nori_direct(doc: LinedXml, theirs: str) -> str:
+    """The Nori integrator that draws the scene's own direct strategy, where the engine file names one of Nori's
+    three (direct_ems, direct_mats, direct_mis) and the file's <integrator type="direct"> sets its samples: no
+    BSDF sample is direct_ems, no emitter sample direct_mats, both direct_mis. Nori's take one of each; more
+    change the noise, not the image."""
+    integrator = next((e for e in doc.root if e.tag == "integrator" and e.get("type") == "direct"), None)
+    if theirs not in STRATEGIES or integrator is None:
+        return theirs
+    given = {e.get("name"): e for e in integrator if e.tag == "integer"}
+    if not {"emitter_samples", "bsdf_samples", "shading_samples"} & set(given):
+        return theirs
+    counts = []
+    for name in ("emitter_samples", "bsdf_samples"):
+        e = given.get(name, given.get("shading_samples"))
+        value = "1" if e is None else e.get("value", "").strip()
+        if not value.isdigit():
+            raise doc.fail(e, f"{e.get('name')} must be a whole number of samples, at least 0")
+        counts.append(int(value) > 0)
+    if not any(counts):
+        raise doc.fail(integrator, "direct needs at least one emitter or BSDF sample")
+    return next(kind for kind, (e, b) in STRATEGIES.items() if (e > 0, b > 0) == tuple(counts))
+
+
 def mitsuba_to_nori(doc: LinedXml, mcval_integrator: str, theirs: str,
                     spp: int) -> tuple[ET.Element, int, int, dict[str, str]]:
     """(Nori's scene, width, height, OBJ files to write beside it) for the Mitsuba scene `doc` (defaults and
@@ -89,7 +121,8 @@ def mitsuba_to_nori(doc: LinedXml, mcval_integrator: str, theirs: str,
     out = ET.Element("scene")
     sampler = ET.SubElement(out, "sampler", type="independent")
     ET.SubElement(sampler, "integer", name="sampleCount", value=str(spp))
-    integrator = ET.SubElement(out, "integrator", type=theirs)
+    written_type = _nori_direct(doc, theirs) if mcval_integrator == "direct" else theirs
+    integrator = ET.SubElement(out, "integrator", type=written_type)
     camera, width, height = write.camera(sensors[0], doc.fail)
     out.append(camera)
     named = {e.get("id"): e for e in root if e.tag == "bsdf" and e.get("id")}
@@ -98,6 +131,9 @@ def mitsuba_to_nori(doc: LinedXml, mcval_integrator: str, theirs: str,
     for index, shape in enumerate(e for e in root if e.tag == "shape"):
         albedos.append(_shape_albedo(doc, shape, named))
         mesh, extra = write.mesh(shape, index, albedos[-1], doc.fail)
+        radiance = write.area_radiance(shape, doc.fail) if mcval_integrator == "direct" else None
+        if radiance is not None:  # Nori's area light: inside the mesh that emits
+            ET.SubElement(mesh, "emitter", type="area").append(write.color_element("radiance", radiance))
         out.append(mesh)
         files.update(extra)
     lights = _lights(doc, root, mcval_integrator)
@@ -105,17 +141,19 @@ def mitsuba_to_nori(doc: LinedXml, mcval_integrator: str, theirs: str,
         _nori_simple(doc, root, integrator, lights, albedos)
     elif mcval_integrator == "ao" and theirs == "ao":
         _nori_ao(doc, lights, albedos)
-    elif mcval_integrator == "simple":
-        for _, position, intensity in lights:  # Nori's point lights are given by their power: 4 pi I
-            light = ET.SubElement(out, "emitter", type="point")
-            ET.SubElement(light, "point", name="position", value=triple_text(position))
-            light.append(write.color_element("power", [4 * math.pi * i for i in intensity]))
-    elif mcval_integrator == "ao":
-        light = ET.SubElement(out, "emitter", type="distantdisk")
-        light.append(write.color_element("radiance", lights[0][2]))
-        ET.SubElement(light, "float", name="thetaA", value="180")
-        hide = file_hide_emitters(root)
-        ET.SubElement(integrator, "boolean", name="hide_emitters", value=hide or "true")
+    else:
+        for _, position, value in lights:
+            if position:  # Nori's point lights are given by their power: 4 pi I
+                light = ET.SubElement(out, "emitter", type="point")
+                ET.SubElement(light, "point", name="position", value=triple_text(position))
+                light.append(write.color_element("power", [4 * math.pi * i for i in value]))
+            else:  # an environment of constant radiance: a distant disk over the whole sphere
+                light = ET.SubElement(out, "emitter", type="distantdisk")
+                light.append(write.color_element("radiance", value))
+                ET.SubElement(light, "float", name="thetaA", value="180")
+        if mcval_integrator in ("ao", "direct"):  # whether an escaping camera ray sees the environment (ao: not)
+            hide = file_hide_emitters(root) or ("true" if mcval_integrator == "ao" else "false")
+            ET.SubElement(integrator, "boolean", name="hide_emitters", value=hide)
     return out, width, height, files
 
 

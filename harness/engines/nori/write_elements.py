@@ -179,3 +179,13 @@ def point_position(emitter: ET.Element, fail: Fail) -> list[float]:
     if not steps:
         return [0.0, 0.0, 0.0]
     raise fail(emitter, "write the point light's place as position=\"x, y, z\" for Nori")
+
+
+def area_radiance(shape: ET.Element, fail: Fail) -> list[float] | None:
+    """The radiance of the shape's area emitter (Mitsuba's default 1), or None if it emits nothing."""
+    emitter = next((c for c in shape if c.tag == "emitter"), None)
+    if emitter is None:
+        return None
+    if emitter.get("type") != "area":
+        raise fail(emitter, "an emitter inside a shape is an area light (type=\"area\")")
+    return color(prop(emitter, "radiance"), 1, fail)

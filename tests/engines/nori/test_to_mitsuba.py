@@ -187,15 +187,48 @@ def test_a_full_sphere_distant_disk_is_a_constant_environment(tmp_path):
     assert root.find("emitter").get("type") == "constant" and props(root.find("emitter")) == \
         {"radiance": "0.6, 0.6, 0.6"}
     # direct_ems shows the environment to camera rays, as Nori's sphere_ao reference does.
-    assert root.find("integrator").get("type") == "ao" and props(root.find("integrator")) == {"hide_emitters": "false"}
+    assert root.find("integrator").get("type") == "direct" and props(root.find("integrator")) == \
+        {"emitter_samples": "1", "bsdf_samples": "0", "hide_emitters": "false"}
     hidden = translate(tmp_path, body, '<integrator type="direct_mis"><boolean name="hide_emitters" '
                                        'value="true"/></integrator>')
-    assert props(hidden.find("integrator")) == {"hide_emitters": "true"}
+    assert props(hidden.find("integrator"))["hide_emitters"] == "true"
     refused(tmp_path, "true or false", body=body, integrator='<integrator type="direct_mis"><boolean '
                                                           'name="hide_emitters" value="maybe"/></integrator>')
     root, _ = noted(tmp_path, "narrower than thetaA = 180", body=body.replace('"180"', '"30"'),
                     integrator='<integrator type="normals"/>')
     assert root.find("emitter") is None  # left out: only the file's own integrator would read it
+
+
+AREA_LIGHT = '<mesh type="obj"><string name="filename" value="quad.obj"/><emitter type="area"><color ' \
+             'name="radiance" value="4,5,6"/></emitter></mesh>'
+
+
+@pytest.mark.parametrize("kind, emitter_samples, bsdf_samples", [("direct_ems", "1", "0"), ("direct_mats", "0", "1"),
+                                                                  ("direct_mis", "1", "1")])
+def test_noris_direct_strategies_are_mitsubas_direct_with_their_samples(tmp_path, kind, emitter_samples,
+                                                                       bsdf_samples):
+    notes: list[str] = []
+    root = translate(tmp_path, AREA_LIGHT, f'<integrator type="{kind}"/>', notes=notes)
+    integrator = root.find("integrator")
+    assert integrator.get("type") == "direct" and props(integrator) == \
+        {"emitter_samples": emitter_samples, "bsdf_samples": bsdf_samples, "hide_emitters": "false"}
+    assert props(root.find("shape/emitter")) == {"radiance": "4, 5, 6"} and notes == []
+
+
+def test_direct_lighting_from_point_lights(tmp_path):
+    body = '<emitter type="point"><point name="position" value="0,1,2"/><color name="power" value="1,1,1"/>' \
+           '</emitter>'
+    # Nori's direct sums its point lights exactly: mcval's simple.
+    assert translate(tmp_path, body, '<integrator type="direct"/>').find("integrator").get("type") == "simple"
+    _, note = noted(tmp_path, "reads no other emitter; this scene has area emitters", body=body + AREA_LIGHT,
+                    integrator='<integrator type="direct"/>')
+    assert translate(tmp_path, body, '<integrator type="direct_ems"/>').find("integrator").get("type") == "direct"
+    root, _ = noted(tmp_path, "never reaches a point light", body=body, integrator='<integrator type="direct_mats"/>')
+    assert root.find("integrator").get("type") == "path" and root.find("emitter").get("type") == "point"
+    # With an area light too, BSDF sampling reaches that one, as Mitsuba's direct with bsdf_samples only does.
+    both = translate(tmp_path, body + AREA_LIGHT, '<integrator type="direct_mats"/>')
+    assert props(both.find("integrator"))["bsdf_samples"] == "1"
+    noted(tmp_path, "the scene has no emitter", integrator='<integrator type="direct_mis"/>')
 
 
 def test_noris_simple_integrator_is_one_point_light_of_energy_over_four_pi(tmp_path):
@@ -213,14 +246,6 @@ def test_noris_ao_is_pure_ambient_occlusion(tmp_path):
     root = translate(tmp_path, integrator='<integrator type="ao"/>')
     assert root.find("integrator").get("type") == "ao"
     assert [(e.get("type"), props(e)) for e in root.findall("emitter")] == [("constant", {"radiance": "1, 1, 1"})]
-
-
-def test_direct_lighting_from_point_lights_is_simple(tmp_path):
-    body = '<emitter type="point"><point name="position" value="0,1,2"/><color name="power" value="1,1,1"/>' \
-           '</emitter>'
-    assert translate(tmp_path, body, '<integrator type="direct"/>').find("integrator").get("type") == "simple"
-    root, _ = noted(tmp_path, "never reaches a point light", body=body, integrator='<integrator type="direct_mats"/>')
-    assert root.find("integrator").get("type") == "path" and root.find("emitter").get("type") == "point"
 
 
 @pytest.mark.parametrize("kind, why", [("av", "finite `length`"), ("whitted", "mirror and glass"),

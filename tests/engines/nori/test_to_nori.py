@@ -138,6 +138,52 @@ def test_the_environment_is_a_full_sphere_distant_disk_under_ao(tmp_path):
     assert props(root.find("integrator")) == {"hide_emitters": "true"}  # mcval's ao: escaping rays are black
 
 
+def test_direct_takes_point_lights_the_environment_and_area_lights_in_their_meshes(tmp_path):
+    body = '<emitter type="point"><point name="position" value="1, 2, 3"/><rgb name="intensity" value="2"/>' \
+           '</emitter><emitter type="constant"><rgb name="radiance" value="0.6"/></emitter>' \
+           '<shape type="rectangle"><emitter type="area"><rgb name="radiance" value="4, 5, 6"/></emitter></shape>' \
+           '<shape type="cube"/>'
+    root, *_ = write(tmp_path, body, mcval="direct", theirs="direct_mis")
+    assert root.find("integrator").get("type") == "direct_mis"
+    assert props(root.find("integrator")) == {"hide_emitters": "false"}  # Mitsuba's direct shows the emitters
+    point, disk = root.findall("emitter")
+    assert point.get("type") == "point" and [float(v) for v in props(point)["power"].split(",")] == \
+        pytest.approx([8 * math.pi] * 3)
+    assert disk.get("type") == "distantdisk" and props(disk) == {"radiance": "0.6, 0.6, 0.6", "thetaA": "180"}
+    lit, dark = root.findall("mesh")
+    assert props(lit.find("emitter")) == {"radiance": "4, 5, 6"} and dark.find("emitter") is None
+    # Under another integrator the area light is not written: none of the others reads it.
+    ao, *_ = write(tmp_path, body, mcval="ao", theirs="direct_ems")
+    assert ao.find("mesh/emitter") is None
+    refused(tmp_path, "Nori's emitters are point, area", body=body + '<emitter type="spot"/>', mcval="direct",
+            theirs="direct_mis")
+    hidden, *_ = write(tmp_path, body + '<integrator type="path"><boolean name="hide_emitters" value="true"/>'
+                                       '</integrator>', mcval="direct", theirs="direct_mis")
+    assert props(hidden.find("integrator")) == {"hide_emitters": "true"}
+
+
+@pytest.mark.parametrize("samples, theirs, written", [
+    ('<integer name="emitter_samples" value="1"/><integer name="bsdf_samples" value="0"/>', "direct_mis", "direct_ems"),
+    ('<integer name="emitter_samples" value="0"/><integer name="bsdf_samples" value="2"/>', "direct_ems", "direct_mats"),
+    ('<integer name="shading_samples" value="3"/>', "direct_ems", "direct_mis"),
+    ('<integer name="bsdf_samples" value="0"/>', "direct_mats", "direct_ems"),  # emitter_samples: 1 by default
+    ("", "direct_ems", "direct_ems"),  # no strategy set: the engine file's name
+    ('<integer name="bsdf_samples" value="0"/>', "my_direct", "my_direct"),  # not one of Nori's three
+])
+def test_the_scenes_own_direct_strategy_picks_noris_integrator(tmp_path, samples, theirs, written):
+    body = f'<integrator type="direct">{samples}</integrator><emitter type="point"/>'
+    root, *_ = write(tmp_path, body, mcval="direct", theirs=theirs)
+    assert root.find("integrator").get("type") == written
+
+
+def test_a_direct_integrator_without_samples_is_refused(tmp_path):
+    body = '<integrator type="direct"><integer name="emitter_samples" value="0"/><integer name="bsdf_samples" ' \
+           'value="0"/></integrator><emitter type="point"/>'
+    refused(tmp_path, "at least one emitter or BSDF sample", body=body, mcval="direct", theirs="direct_mis")
+    refused(tmp_path, "a whole number", body=body.replace('"0"/></integrator>', '"-1"/></integrator>'), mcval="direct",
+            theirs="direct_mis")
+
+
 def test_noris_own_simple_takes_the_light_and_the_common_albedo(tmp_path):
     body = '<emitter type="point"><point name="position" value="0, 1, 0"/><rgb name="intensity" value="2"/>' \
            '</emitter><shape type="cube"><bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf></shape>'
@@ -166,6 +212,10 @@ def test_the_suites_flat_scenes_are_written_and_its_curved_ones_refused(tmp_path
     for name in ("plane_point", "cornell", "backfaces", "grazing_light"):
         text, *_ = written_nori_scene(SCENES_DIR / f"{name}.xml", {"res": "16"}, "simple", "direct", 2)
         assert "<mesh" in text and 'type="point"' in text
+    for name in ("plane_rect_light", "real/cornell_box"):  # lit by a rectangle
+        text, *_ = written_nori_scene(SCENES_DIR / f"{name}.xml", {"res": "16", "integrator": "direct"}, "direct",
+                                      "direct_mis", 2)
+        assert '<emitter type="area">' in text
     with pytest.raises(NoriSceneError, match=r"sphere_floor_unit.xml:\d+: <shape type=\"sphere\""):
         written_nori_scene(SCENES_DIR / "sphere_floor_unit.xml", {"res": "16"}, "normals", "normals", 2)
 
