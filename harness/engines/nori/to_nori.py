@@ -104,7 +104,7 @@ def _nori_direct(doc: LinedXml, theirs: str) -> str:
         counts.append(int(value) > 0)
     if not any(counts):
         raise doc.fail(integrator, "direct needs at least one emitter or BSDF sample")
-    return next(kind for kind, (e, b) in STRATEGIES.items() if (e > 0, b > 0) == tuple(counts))
+    return next(kind for kind, samples in STRATEGIES.items() if tuple(n > 0 for n in samples) == tuple(counts))
 
 
 def mitsuba_to_nori(doc: LinedXml, mcval_integrator: str, theirs: str,
