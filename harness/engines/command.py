@@ -19,7 +19,7 @@ from harness.engines.base import Engine, RenderFailed, RenderResult
 from harness.engines.child_process import cancelled_by, current_cancel, run_child
 from harness.engines.engine_file import EngineFile, read_engine_file
 from harness.engines.render_process import THREADS_ENV, default_timeout
-from harness.engines.scene_writers import SCENE_WRITERS
+from harness.engines.scene_writers import READS_PARAMETERS, SCENE_WRITERS
 from harness.exr import ExrError, read_image
 from harness.foreign_text import FOREIGN_LIMIT, foreign
 
@@ -76,6 +76,12 @@ class CommandEngine(Engine):
         """Its engine file's `[integrators]` line: the <integrator type> its renderer reads, in its dialect."""
         theirs = self.file.integrators.get(integrator)
         return None if theirs is None else f'<integrator type="{theirs}"> ({self.file.scene_format} scene)'
+
+    def reads_integrator_parameters(self, integrator: str) -> bool:
+        """Where its dialect's writer hands the scene's own values of the integrator's parameters on: Nori's, for
+        direct mapped to one of Nori's direct_ems, direct_mats, direct_mis (the strategy those values select)."""
+        theirs = self.file.integrators.get(integrator)
+        return theirs is not None and READS_PARAMETERS[self.file.scene_format](integrator, theirs)
 
     @cached_property
     def _version_line(self) -> str:

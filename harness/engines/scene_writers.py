@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Callable
 
-from harness.engines.nori.to_nori import written_nori_scene
+from harness.engines.nori.to_nori import reads_direct_strategy, written_nori_scene
 from harness.engines.written_scene import written_scene
 
 Writer = Callable[[Path, dict[str, str], str, str, int], tuple[str, int, int, dict[str, str]]]
@@ -19,3 +19,10 @@ def _mitsuba(path: Path, params: dict[str, str], integrator: str, theirs: str,
 
 #: scene_format -> its writer; the first is the default.
 SCENE_WRITERS: dict[str, Writer] = {"mitsuba": _mitsuba, "nori": written_nori_scene}
+
+
+#: scene_format -> whether its writer passes the scene's own values of an integrator's parameters on, for
+#: (mcval's integrator, the renderer's name for it): Mitsuba's writer replaces the <integrator> with the name
+#: alone; Nori's writes the direct strategy the values select (nori/to_nori.py).
+READS_PARAMETERS: dict[str, Callable[[str, str], bool]] = {"mitsuba": lambda integrator, theirs: False,
+                                                           "nori": reads_direct_strategy}

@@ -84,6 +84,12 @@ def _nori_ao(doc: LinedXml, lights: list[Light], albedos: list[list[float]]) -> 
                                          f"{triple_text([x * r for x, r in zip(a, radiance)])}")
 
 
+def reads_direct_strategy(integrator: str, theirs: str) -> bool:
+    """Whether a Nori build that renders mcval's `integrator` as its `theirs` is given the direct strategy a
+    scene's own <integrator type="direct"> sets (_nori_direct): `theirs` is one of Nori's three."""
+    return integrator == "direct" and theirs in STRATEGIES
+
+
 def _nori_direct(doc: LinedXml, theirs: str) -> str:
     """The Nori integrator that draws the scene's own direct strategy, where the engine file names one of Nori's
     three (direct_ems, direct_mats, direct_mis) and the file's <integrator type="direct"> sets its samples: no
