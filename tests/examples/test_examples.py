@@ -7,20 +7,7 @@ from pathlib import Path
 import pytest
 
 from harness.cli import main
-
-EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "renderer"
-
-
-def _engine(tmp_path, bug: str | None = None) -> Path:
-    """examples/renderer/pyrender.toml, two calls at once, with `--bug BUG` planted (a copy in tmp_path)."""
-    text = (EXAMPLE / "pyrender.toml").read_text().replace("{here}", str(EXAMPLE))
-    text = text.replace("jobs = 1", "jobs = 2")
-    if bug:
-        text = text.replace('name = "pyrender"', f'name = "pyrender-{bug}"')
-        text = text.replace('"-o", "{output}"]', f'"-o", "{{output}}", "--bug", "{bug}"]')
-    path = tmp_path / f"pyrender-{bug or 'correct'}.toml"
-    path.write_text(text)
-    return path
+from tests.helpers.pyrender_engine import pyrender_engine
 
 
 def _run(tmp_path, command: str, engine: Path, only: list[str], seed: int = 0) -> tuple[int, dict]:
@@ -33,7 +20,7 @@ def _run(tmp_path, command: str, engine: Path, only: list[str], seed: int = 0) -
 @pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_the_example_renderer_passes(tmp_path, seed):
-    code, results = _run(tmp_path, "images", _engine(tmp_path), ["cornell:ao"], seed)
+    code, results = _run(tmp_path, "images", pyrender_engine(tmp_path), ["cornell:ao"], seed)
     assert code == 0 and [e["pass"] for e in results["images"]] == [True]
 
 
@@ -41,7 +28,7 @@ def test_the_example_renderer_passes(tmp_path, seed):
 @pytest.mark.parametrize("bug, case", [("bright", "plane_point:simple"), ("simple-no-cosine", "plane_point:simple"),
                                        ("ao-uniform", "cornell:ao")])
 def test_each_planted_bug_fails_the_image_suite(tmp_path, bug, case):
-    code, results = _run(tmp_path, "images", _engine(tmp_path, bug), [case])
+    code, results = _run(tmp_path, "images", pyrender_engine(tmp_path, bug), [case])
     (entry,) = results["images"]
     assert code == 1 and not entry["pass"] and entry["engine"] == f"pyrender-{bug}"
     assert not entry["tests"]["mitsuba"]["pass"]
@@ -49,7 +36,7 @@ def test_each_planted_bug_fails_the_image_suite(tmp_path, bug, case):
 
 @pytest.mark.slow
 def test_an_absolute_ray_offset_fails_the_scale_invariance(tmp_path, capsys):
-    engine = _engine(tmp_path, "offset")
+    engine = pyrender_engine(tmp_path, "offset")
     code, results = _run(tmp_path, "invariance", engine, ["sphere_plane:ao", "scale"])
     cells = results["invariance"]["cells"]
     assert code == 1 and any(c["invariance"] == "scale" and not c["pass"] for c in cells)

@@ -9,21 +9,9 @@ from pathlib import Path
 import pytest
 
 from harness.cli import main
+from tests.helpers.pyrender_engine import EXAMPLE, pyrender_engine
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "renderer"
 SCENES = Path(__file__).resolve().parents[2] / "scenes"
-
-
-def _engine(tmp_path, bug: str | None = None) -> Path:
-    """examples/renderer/pyrender.toml, two calls at once, with `--bug BUG` planted (a copy in tmp_path)."""
-    text = (EXAMPLE / "pyrender.toml").read_text().replace("{here}", str(EXAMPLE))
-    text = text.replace("jobs = 1", "jobs = 2")
-    if bug:
-        text = text.replace('name = "pyrender"', f'name = "pyrender-{bug}"')
-        text = text.replace('"-o", "{output}"]', f'"-o", "{{output}}", "--bug", "{bug}"]')
-    path = tmp_path / f"pyrender-{bug or 'correct'}.toml"
-    path.write_text(text)
-    return path
 
 
 def _run(tmp_path, *args: str) -> tuple[int, dict]:
@@ -39,14 +27,14 @@ def _small(tmp_path, engine: Path, scene: str = "plane_rect_light") -> tuple[int
 
 
 def test_direct_matches_the_closed_form_of_a_rectangle_light(tmp_path):
-    code, results = _small(tmp_path, _engine(tmp_path))
+    code, results = _small(tmp_path, pyrender_engine(tmp_path))
     (entry,) = results["images"]
     assert code == 0 and entry["pass"] and entry["engine"] == "pyrender", entry
 
 
 @pytest.mark.parametrize("bug", ["area-pdf", "direct-no-cosine"])
 def test_each_planted_direct_bug_fails_against_the_closed_form(tmp_path, bug):
-    code, results = _small(tmp_path, _engine(tmp_path, bug))
+    code, results = _small(tmp_path, pyrender_engine(tmp_path, bug))
     (entry,) = results["images"]
     assert code == 1 and not entry["pass"] and entry["engine"] == f"pyrender-{bug}"
 
@@ -76,7 +64,7 @@ def test_direct_refuses_a_light_it_does_not_model_in_one_line(tmp_path):
 @pytest.mark.mitsuba
 def test_direct_passes_against_mitsuba_and_the_closed_forms(tmp_path):
     cases = [f"{scene}:direct" for scene in ("plane_rect_light", "plane_disk_light", "plane_sphere_light")]
-    code, results = _run(tmp_path, "images", "--engine", str(_engine(tmp_path)), "--only", *cases)
+    code, results = _run(tmp_path, "images", "--engine", str(pyrender_engine(tmp_path)), "--only", *cases)
     assert code == 0 and len(results["images"]) == 3
     for entry in results["images"]:
         assert entry["pass"] and set(entry["tests"]) == {"mitsuba", "analytic"}, entry
@@ -84,7 +72,7 @@ def test_direct_passes_against_mitsuba_and_the_closed_forms(tmp_path):
 
 @pytest.mark.slow
 def test_direct_keeps_its_invariances(tmp_path):
-    code, results = _run(tmp_path, "invariance", "--engine", str(_engine(tmp_path)), "--only",
+    code, results = _run(tmp_path, "invariance", "--engine", str(pyrender_engine(tmp_path)), "--only",
                          "plane_rect_light:direct", "light", "--no-mitsuba")
     cells = results["invariance"]["cells"]
     assert code == 0 and cells and all(c["pass"] and c["integrator"] == "direct" for c in cells), cells
@@ -94,7 +82,7 @@ def test_direct_keeps_its_invariances(tmp_path):
 @pytest.mark.mitsuba
 def test_direct_is_benchmarked(tmp_path):
     code, results = _run(tmp_path, "bench", "--only", "plane_rect_light:direct", "--engines",
-                         str(_engine(tmp_path)), "mitsuba", "--same-sampler", "--max-spp", "2", "--runs", "2",
+                         str(pyrender_engine(tmp_path)), "mitsuba", "--same-sampler", "--max-spp", "2", "--runs", "2",
                          "--throughput-runs", "0", "--seed-runs", "0")
     assert code == 0, results
     [case] = results["speed"]
