@@ -129,6 +129,13 @@ class Engine(ABC):
         (harness.comparison.independence_check, variance_check). False unless the engine knows it does."""
         return False
 
+    def draws_integrator_estimator(self, integrator: str) -> bool:
+        """Whether, as the engine under test, it draws `integrator`'s own estimator (the one its entry defines, as
+        Mitsuba's plugin does): then a reference engine that draws it too judges its noise as well as its mean.
+        True unless the engine says it draws another estimator of the same image (an engine file's
+        `other_estimators`): a different, unbiased estimator has other noise, which is no defect."""
+        return True
+
     def reads_integrator_parameters(self, integrator: str) -> bool:
         """Whether it renders `integrator` with the values that a scene file's own <integrator> of that type gives
         its parameters (the entry's `parameters`: direct's emitter_samples and bsdf_samples). Then a suite asks

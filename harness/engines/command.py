@@ -77,6 +77,10 @@ class CommandEngine(Engine):
         theirs = self.file.integrators.get(integrator)
         return None if theirs is None else f'<integrator type="{theirs}"> ({self.file.scene_format} scene)'
 
+    def draws_integrator_estimator(self, integrator: str) -> bool:
+        """Unless its engine file lists `integrator` under other_estimators."""
+        return integrator not in self.file.other_estimators
+
     def reads_integrator_parameters(self, integrator: str) -> bool:
         """Where its dialect's writer hands the scene's own values of the integrator's parameters on: Nori's, for
         direct mapped to one of Nori's direct_ems, direct_mats, direct_mis (the strategy those values select)."""

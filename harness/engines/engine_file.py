@@ -15,7 +15,7 @@ from pathlib import Path
 #: The placeholders a command may hold, and the two it must.
 PLACEHOLDERS = ("scene", "output", "spp", "seed", "integrator", "width", "height", "threads", "here")
 REQUIRED_PLACEHOLDERS = ("scene", "output")
-KEYS = ("name", "command", "version", "scene_format", "jobs", "timeout", "integrators")
+KEYS = ("name", "command", "version", "scene_format", "jobs", "timeout", "integrators", "other_estimators")
 
 
 class EngineFileError(ValueError):
@@ -35,6 +35,9 @@ class EngineFile:
     scene_format: str = "mitsuba"
     jobs: int = 1
     timeout: float | None = None
+    #: mcval's integrators for which the renderer draws an estimator of its own (the same expected image, other
+    #: noise: a sphere light sampled by area, not by the cone it subtends). Only their images' means are judged.
+    other_estimators: frozenset[str] = frozenset()
 
     @property
     def here(self) -> Path:
@@ -159,10 +162,20 @@ def read_engine_file(path: str | Path) -> EngineFile:
     from harness.integrators import entries
     known = entries()
     for integrator, theirs in integrators.items():
+        if integrator in KEYS and integrator not in known:
+            raise error(integrator, f"{integrator} is read as a line of [integrators]: write it above that table "
+                                    "(TOML gives every key after a [table] line to the table)")
         if integrator not in known:
             raise error(integrator, f"integrators: {integrator!r} is not an integrator of mcval "
                                     f"(it has {', '.join(known)})")
         if not isinstance(theirs, str) or not theirs:
             raise error(integrator, f"integrators.{integrator} must be the renderer's name for it, a string")
+    other = data.get("other_estimators", [])
+    if not isinstance(other, list) or not all(isinstance(i, str) for i in other):
+        raise error("other_estimators", "other_estimators must be a list of mcval's integrators (e.g. [\"direct\"])")
+    for integrator in other:
+        if integrator not in integrators:
+            raise error("other_estimators", f"other_estimators: {integrator!r} is not in [integrators] (this "
+                                            f"renderer maps {', '.join(integrators)})")
     return EngineFile(path, name, command, dict(integrators), tuple(version), scene_format, jobs,
-                      None if timeout is None else float(timeout))
+                      None if timeout is None else float(timeout), frozenset(other))

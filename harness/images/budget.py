@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 from harness.comparison.summary import summarize
 from harness.engines.base import Engine
-from harness.images.case_task import draws_our_estimator
+from harness.images.case_task import draws_tested_estimator
 from harness.images.references import load_reference, render_params, render_reference
 from harness.images.suite import TESTED_SPP, ImageCase
 from harness.integrators import entry
@@ -65,7 +65,7 @@ def plan_budget(case: ImageCase, tested: Engine, reference: Engine, target: floa
     pilot = pooled(summarize(result.batches))
     reference_summary = pooled(ref.summary)
     signed = entry(case.integrator).signed
-    same = draws_our_estimator(case, reference)
+    same = draws_tested_estimator(case, tested, reference)
     found = smallest_spp(pilot, pilot_spp, reference_summary, ref.spp, target, alpha, signed, same)
     if found.spp is None:
         return Budget(case.key, target, pilot_spp, found.pilot_bias, found.planned_bias, None, IMAGE_BATCHES, 0.0,

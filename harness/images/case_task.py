@@ -41,10 +41,12 @@ class CaseJob:
     strategies: bool = False
     strategies_skipped: str = ""
 
-def draws_our_estimator(case: ImageCase, reference: Engine) -> bool:
-    """Whether the reference engine draws the case's estimator, sample for sample, as it says
-    (Engine.draws_same_estimator)."""
-    return reference.draws_same_estimator(case.path, case.integrator)
+def draws_tested_estimator(case: ImageCase, tested: Engine, reference: Engine) -> bool:
+    """Whether the reference engine draws the tested engine's estimator of the case, sample for sample: the tested
+    engine draws the integrator's own (Engine.draws_integrator_estimator) and the reference does so on the case's
+    scene (Engine.draws_same_estimator). Only then is the tested engine's noise judged against the reference's."""
+    return (tested.draws_integrator_estimator(case.integrator)
+            and reference.draws_same_estimator(case.path, case.integrator))
 
 
 def share_scene_bundles(executor, cases, engines: Sequence[Engine]) -> dict[str, object]:
@@ -122,7 +124,8 @@ def run_case(case: ImageCase, renders: CaseRenders, *, seed: int, alpha: float, 
     reference = renders.reference_engine.name
     judged = not case.problem and isinstance(got.references.get(reference), Reference)
     decision = evaluate(case, got.tested, got.references, alpha=alpha, reference=reference,
-                        reference_draws_estimator=judged and draws_our_estimator(case, renders.reference_engine),
+                        reference_draws_estimator=judged and draws_tested_estimator(
+                            case, renders.tested_engine, renders.reference_engine),
                         constants=scene_constants(case.path) if judged else {}, strategies=got.strategies,
                         strategies_skipped=strategies_skipped)
     return ImageResult(case=case, decision=decision, tested=got.tested_render,

@@ -16,16 +16,21 @@ from harness.invariance.cell import Cell
 def judge_against_references(cells: list[Cell], engines: Sequence[Engine]) -> None:
     """Set `dependence` on each cell whose base batches are one image where the base of the same case by one of
     `engines` that draws the integrator's estimator there (Engine.draws_same_estimator) varies widely; the
-    cells of such an engine are the evidence, not judged."""
+    cells of such an engine are the evidence, not judged, and neither are those of an engine that draws an
+    estimator of its own (Engine.draws_integrator_estimator), which may have no noise at all."""
     by_name = {e.name: e for e in engines}
 
     def draws(cell: Cell) -> bool:
         engine = by_name.get(cell.engine)
         return engine is not None and engine.draws_same_estimator(cell.case.scene, cell.case.integrator)
 
+    def own_estimator(cell: Cell) -> bool:  # one of its own, whose batches may well be noiseless
+        engine = by_name.get(cell.engine)
+        return engine is not None and not engine.draws_integrator_estimator(cell.case.integrator)
+
     references = [c for c in cells if c.base is not None and draws(c)]
     for cell in cells:
-        if cell.dependence or cell.base is None or not cell.base.alike or draws(cell):
+        if cell.dependence or cell.base is None or not cell.base.alike or draws(cell) or own_estimator(cell):
             continue
         for ref in (r for r in references if r.case.key == cell.case.key):
             side = SideIndependence(cell.base.dependence, ref.base.varying, cell.base.elements, judge_alike=True)

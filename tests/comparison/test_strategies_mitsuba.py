@@ -1,6 +1,5 @@
 """The strategy check on real renders: Mitsuba's `direct` on its Cornell box with emitter sampling alone, BSDF
 sampling alone (most of a pixel's batches miss the small light) and MIS agree; each planted bias is named."""
-import numpy as np
 import pytest
 
 from harness.comparison.strategies import compare_strategies

@@ -38,7 +38,7 @@ def test_a_good_file_reads_with_its_integrator_table_and_version(tmp_path):
 def test_an_unknown_key_names_its_line(tmp_path):
     message = _error(tmp_path, GOOD.replace('version =', 'verison ='))
     assert message.endswith(":3: unknown key 'verison' (an engine file has name, command, version, scene_format, "
-                            "jobs, timeout, integrators)")
+                            "jobs, timeout, integrators, other_estimators)")
 
 
 @pytest.mark.parametrize("placeholder", ["scene", "output"])
@@ -76,6 +76,28 @@ def test_a_program_that_is_not_executable_is_refused(tmp_path):
 def test_an_integrator_mcval_does_not_have_is_refused(tmp_path):
     message = _error(tmp_path, GOOD + 'path = "path"\n')
     assert ":6: integrators: 'path' is not an integrator of mcval" in message
+
+
+def test_other_estimators_says_which_integrators_are_judged_by_their_mean_only(tmp_path):
+    plain = make_engine(str(_file(tmp_path, GOOD)))
+    assert plain.file.other_estimators == frozenset() and plain.draws_integrator_estimator("ao")
+    engine = make_engine(str(_file(tmp_path, 'other_estimators = ["ao"]\n' + GOOD)))
+    assert engine.file.other_estimators == {"ao"} and not engine.draws_integrator_estimator("ao")
+
+
+@pytest.mark.parametrize("line, expected", [
+    ('other_estimators = "ao"\n', ":1: other_estimators must be a list of mcval's integrators"),
+    ('other_estimators = ["simple"]\n', ":1: other_estimators: 'simple' is not in [integrators] (this renderer "
+                                        "maps ao)"),
+])
+def test_other_estimators_must_list_mapped_integrators(tmp_path, line, expected):
+    assert expected in _error(tmp_path, line + GOOD)
+
+
+def test_a_top_level_key_written_below_the_integrator_table_is_said_to_belong_above_it(tmp_path):
+    message = _error(tmp_path, GOOD + 'other_estimators = ["ao"]\n')
+    assert message.endswith(":6: other_estimators is read as a line of [integrators]: write it above that table "
+                            "(TOML gives every key after a [table] line to the table)"), message
 
 
 def test_bad_toml_and_missing_keys_are_refused(tmp_path):

@@ -3,7 +3,6 @@ why the others do not; the scene copy that selects a strategy; the case's own re
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
-from pathlib import Path
 
 from harness.engines.base import Engine
 from harness.images.strategy_renders import default_strategy, not_judged, strategy_scene, strategy_seed

@@ -1,5 +1,6 @@
 """Base batches that are one image fail against a Mitsuba reference whose base of the same case, drawing the
-same estimator, varies; not where the reference is as noiseless, nor where its estimator is another."""
+same estimator, varies; not where the reference is as noiseless, nor where its estimator is another, nor where
+the engine says it draws an estimator of its own."""
 from __future__ import annotations
 
 import numpy as np
@@ -26,6 +27,9 @@ class _Named(Engine):
 
     def draws_same_estimator(self, scene, integrator) -> bool:
         return self.name == "mitsuba" and mitsuba_mapping(integrator).draws_same_estimator(scene)
+
+    def draws_integrator_estimator(self, integrator: str) -> bool:
+        return not self.name.startswith("own-")
 
 
 def _judge(cells: list[Cell]) -> None:
@@ -72,3 +76,11 @@ def test_where_mitsuba_draws_another_estimator_its_noise_is_no_evidence(tmp_path
     tested.case = reference.case = case
     _judge([tested, reference])
     assert tested.dependence is None
+
+
+def test_an_engine_drawing_its_own_estimator_may_be_noiseless():
+    """An engine file's other_estimators: its estimator may have no noise where Mitsuba's has (an irradiance it
+    computes exactly); the seedless engine of the first test, declared so, is not judged."""
+    tested, reference = _cell("own-exact", _walls(None)), _cell("mitsuba", _walls(1))
+    _judge([tested, reference])
+    assert tested.dependence is None and reference.dependence is None
