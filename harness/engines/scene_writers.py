@@ -12,9 +12,14 @@ from harness.engines.written_scene import written_scene
 Writer = Callable[[Path, dict[str, str], str, str, int], tuple[str, int, int, dict[str, str]]]
 
 
+def _parameter_names(integrator: str) -> tuple[str, ...]:
+    from harness.integrators import entry
+    return tuple(name for _, name, _ in entry(integrator).parameters)
+
+
 def _mitsuba(path: Path, params: dict[str, str], integrator: str, theirs: str,
              spp: int) -> tuple[str, int, int, dict[str, str]]:
-    return (*written_scene(path, params, theirs, spp), {})
+    return (*written_scene(path, params, theirs, spp, (integrator, _parameter_names(integrator))), {})
 
 
 #: scene_format -> its writer; the first is the default.
@@ -22,7 +27,9 @@ SCENE_WRITERS: dict[str, Writer] = {"mitsuba": _mitsuba, "nori": written_nori_sc
 
 
 #: scene_format -> whether its writer passes the scene's own values of an integrator's parameters on, for
-#: (mcval's integrator, the renderer's name for it): Mitsuba's writer replaces the <integrator> with the name
-#: alone; Nori's writes the direct strategy the values select (nori/to_nori.py).
-READS_PARAMETERS: dict[str, Callable[[str, str], bool]] = {"mitsuba": lambda integrator, theirs: False,
-                                                           "nori": reads_direct_strategy}
+#: (mcval's integrator, the renderer's name for it): Mitsuba's writer copies them, in Mitsuba's names, into
+#: the renderer's <integrator> (written_scene); Nori's writes the direct strategy the values select
+#: (nori/to_nori.py).
+READS_PARAMETERS: dict[str, Callable[[str, str], bool]] = {
+    "mitsuba": lambda integrator, theirs: bool(_parameter_names(integrator)),
+    "nori": reads_direct_strategy}

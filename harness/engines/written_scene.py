@@ -59,18 +59,34 @@ def film_size(root: ET.Element) -> tuple[int, int]:
     return size["width"], size["height"]
 
 
-def written_scene(path: Path, params: dict[str, str], integrator: str, spp: int) -> tuple[str, int, int]:
+def file_parameters(root: ET.Element, integrator: str, names: tuple[str, ...]) -> list[ET.Element]:
+    """The children of the file's <integrator type="integrator"> that set one of `names` (copies): the values it
+    gives mcval's integrator's parameters, written in Mitsuba's names. None where its <integrator> is another
+    (the same names may mean something else there)."""
+    own = next((e for e in root if e.tag == "integrator"), None)
+    if own is None or own.get("type") != integrator:
+        return []
+    return [ET.Element(e.tag, name=e.get("name"), value=e.get("value", "")) for e in own if e.get("name") in names]
+
+
+def written_scene(path: Path, params: dict[str, str], integrator: str, spp: int,
+                  passed_on: tuple[str, tuple[str, ...]] | None = None) -> tuple[str, int, int]:
     """(the XML text, width, height) of `path` as an engine file's renderer gets it: `integrator` is the
-    renderer's own name for it; `params` override the scene's <default>s (res sets width and height)."""
+    renderer's own name for it; `params` override the scene's <default>s (res sets width and height).
+    `passed_on`: (mcval's integrator, its parameters' names): the values the file's own <integrator> of that type
+    gives them are written into the renderer's (direct's emitter_samples and bsdf_samples: the strategy check's
+    copies select a strategy so)."""
     root = ET.parse(path).getroot()
     resolve_defaults(root, params, str(path))
     absolute_paths(root, path)
     hide = file_hide_emitters(root)
+    given = file_parameters(root, *passed_on) if passed_on else []
     for e in [e for e in root if e.tag == "integrator"]:
         root.remove(e)
     new = ET.Element("integrator", type=integrator)
     if hide is not None:
         ET.SubElement(new, "boolean", name="hide_emitters", value=hide)
+    new.extend(given)
     root.insert(0, new)
     for sensor in root.iter("sensor"):
         for e in [e for e in sensor if e.tag == "sampler"]:

@@ -35,7 +35,7 @@ def test_an_engine_file_maps_by_its_integrators_table(tmp_path):
     assert not engine.draws_same_estimator(CORNELL, "ao")
 
 
-def test_a_nori_engine_file_takes_directs_strategy_from_the_scene_where_it_maps_noris(tmp_path):
+def test_an_engine_file_takes_directs_strategy_from_the_scene_where_it_can_be_passed_on(tmp_path):
     def engine(scene_format: str, direct: str) -> CommandEngine:
         path = tmp_path / f"{scene_format}_{direct}.toml"
         path.write_text(f'name = "mine"\ncommand = ["true", "{{scene}}", "{{output}}"]\nscene_format = '
@@ -45,7 +45,8 @@ def test_a_nori_engine_file_takes_directs_strategy_from_the_scene_where_it_maps_
     assert engine("nori", "direct_mis").reads_integrator_parameters("direct")
     assert not engine("nori", "direct_mis").reads_integrator_parameters("ao")  # ao has no strategies to pass on
     assert not engine("nori", "my_direct").reads_integrator_parameters("direct")  # not one of Nori's three
-    assert not engine("mitsuba", "direct_mis").reads_integrator_parameters("direct")  # written by its name alone
+    assert engine("mitsuba", "direct_mis").reads_integrator_parameters("direct")  # the file's values passed on
+    assert not engine("mitsuba", "direct_mis").reads_integrator_parameters("normals")  # normals has none
     assert not engine("nori", "direct_mis").reads_integrator_parameters("simple")  # not in its table
 
 
