@@ -7,7 +7,7 @@ lights in pyrender_lights.py), the pixel sampling, the random numbers and the
 image accumulation are pyrender's own, vectorised over pixels x samples.
 
     pyrender.py SCENE --integrator NAME --spp N --seed S --width W --height H
-                -o OUT.exr [--threads T] [--bug NAME]
+                -o OUT.exr [--threads T] [--bug NAME] [--sphere-sampling cone|area]
     pyrender.py --version
 """
 import argparse
@@ -49,6 +49,9 @@ def parse_args(argv):
     p.add_argument("-o", "--output", required=True)
     p.add_argument("--threads", type=int, default=0)
     p.add_argument("--bug", choices=BUGS)
+    p.add_argument("--sphere-sampling", choices=("cone", "area"), default="cone",
+                   help="how direct samples a sphere light: by the cone it subtends (Mitsuba's estimator) or "
+                        "uniformly by area (another unbiased estimator, noisier)")
     a = p.parse_args(argv)
     if min(a.spp, a.width, a.height) < 1 or a.seed < 0:
         p.error("--spp, --width and --height must be positive, --seed non-negative")
@@ -206,7 +209,8 @@ def splat(acc, wsum, value, px, py, sx, sy, w, h, stddev):
 def direct_shader(scene, args, rng, settings):
     """direct's value of camera rays (pyrender_direct.py), with the scene's lights."""
     try:
-        lights = scene_lights(scene, mi, dr, area_measure=args.bug == "area-pdf")
+        lights = scene_lights(scene, mi, dr, area_measure=args.bug == "area-pdf",
+                              sphere_by_area=args.sphere_sampling == "area")
     except LightError as e:
         fail(f"{args.scene}: direct does not render this scene: it has {e}")
 

@@ -4,7 +4,8 @@ disks and spheres, each with sample / eval / pdf by solid angle, in numpy (float
 Mitsuba 3 only reads the scene: each emitter's values come through `mi.traverse` and each area light's shape
 through its `to_world`. How a light is sampled is pyrender's own: a rectangle or disk uniformly by area,
 turned into a density by solid angle, pdf = dist^2 / (|cos_l| * area); a sphere by the cone of directions it
-subtends.
+subtends, as Mitsuba does, or (--sphere-sampling area) uniformly over its whole surface: another unbiased
+estimator of the same image, noisier, which its engine file then declares (other_estimators).
 """
 import math
 
@@ -124,9 +125,10 @@ class SphereLight(AreaLight):
     """Constant radiance on a sphere: from a point outside it, directions uniform in the cone it subtends
     (as Mitsuba samples it; by area, half the samples land on its far side); from inside, uniform by area."""
 
-    def __init__(self, to_world, radiance, shape_id, area_measure=False):
+    def __init__(self, to_world, radiance, shape_id, area_measure=False, by_area=False):
         m = np.asarray(to_world, dtype=np.float64)
         self.radiance, self.shape_id, self.area_measure = radiance[:, None], shape_id, area_measure
+        self.by_area = by_area  # uniform over the whole surface: the far half's samples are wasted
         self.center, self.radius = m[:3, 3:4], float(np.linalg.norm(m[:3, 0]))
         self.area = 4 * math.pi * self.radius**2
 
@@ -144,11 +146,15 @@ class SphereLight(AreaLight):
         return to_c / dc, dc, cos_a, (1 + cos_a) / (2 * math.pi * sin2)
 
     def pdf(self, x, dist, cos_light):
+        if self.by_area:
+            return super().pdf(x, dist, cos_light)
         _, dc, _, cone_pdf = self._cone(x)
         return np.where(dc > self.radius, cone_pdf, super().pdf(x, dist, cos_light))
 
     def sample(self, x, u):
         by_area = super().sample(x, u)
+        if self.by_area:
+            return by_area
         w, dc, cos_a, cone_pdf = self._cone(x)
         cos_t = 1 - u[0] * (1 - cos_a)
         sin_t, phi = np.sqrt(np.maximum(0, 1 - cos_t**2)), 2 * math.pi * u[1]
@@ -166,8 +172,9 @@ class SphereLight(AreaLight):
                            pick(cone_pdf, by_area.pdf), False)
 
 
-def scene_lights(scene, mi, dr, area_measure=False):
-    """The scene's emitters as pyrender's lights; LightError for one it does not model."""
+def scene_lights(scene, mi, dr, area_measure=False, sphere_by_area=False):
+    """The scene's emitters as pyrender's lights; LightError for one it does not model. `sphere_by_area`: sphere
+    lights sampled uniformly by area rather than by their cone."""
     lights = []
     for e in scene.emitters():
         params, kind = mi.traverse(e), e.class_name()
@@ -185,7 +192,7 @@ def scene_lights(scene, mi, dr, area_measure=False):
             shape_id = int(np.array(dr.reinterpret_array(mi.UInt32, mi.ShapePtr(shape)))[0])
             matrix = np.array(mi.traverse(shape)["to_world"].matrix)[..., 0]
             radiance = rgb(params["radiance.value"])
-            lights.append(SphereLight(matrix, radiance, shape_id, area_measure) if shape.class_name() == "Sphere"
+            lights.append(SphereLight(matrix, radiance, shape_id, area_measure, sphere_by_area) if shape.class_name() == "Sphere"
                           else AreaLight(matrix, radiance, shape_id, shape.class_name(), area_measure))
         else:
             raise LightError(f"a {kind} emitter (pyrender's direct reads point, constant and area lights)")

@@ -70,6 +70,43 @@ def test_direct_passes_against_mitsuba_and_the_closed_forms(tmp_path):
         assert entry["pass"] and set(entry["tests"]) == {"mitsuba", "analytic"}, entry
 
 
+def _sphere_light(tmp_path, engine: Path, seed: int = 0) -> dict:
+    """images of the sphere-lit plane under direct at the suite's size against Mitsuba's stored reference: its
+    one entry."""
+    code, results = _run(tmp_path, "images", "--engine", str(engine), "--only", "plane_sphere_light:direct",
+                         "--seed", str(seed))
+    (entry,) = results["images"]
+    assert code == (0 if entry["pass"] else 1)
+    return entry
+
+
+@pytest.mark.slow
+def test_another_estimator_fails_on_noise_unless_its_engine_file_declares_it(tmp_path):
+    """A sphere light sampled by area (pyrender --sphere-sampling area) is unbiased and far noisier than
+    Mitsuba's cone sampling, which Mitsuba's reference draws: undeclared, the noise check fails it."""
+    entry = _sphere_light(tmp_path, pyrender_engine(tmp_path, sphere_by_area=True))
+    variance = entry["tests"]["mitsuba"]["variance"]
+    assert not entry["pass"] and variance["same_estimator"] and variance["verdict"] == "FAIL", variance
+    assert variance["summary"].startswith("noise beyond the estimator's"), variance["summary"]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", [0, 1])
+def test_another_estimator_declared_is_judged_by_its_mean_and_passes(tmp_path, seed):
+    entry = _sphere_light(tmp_path, pyrender_engine(tmp_path, sphere_by_area=True, other_estimators=("direct",)),
+                          seed)
+    variance = entry["tests"]["mitsuba"]["variance"]
+    assert entry["pass"] and not variance["same_estimator"] and variance["verdict"] == "WARN", variance
+
+
+@pytest.mark.slow
+def test_a_declared_other_estimator_with_a_wrong_light_pdf_still_fails(tmp_path):
+    engine = pyrender_engine(tmp_path, "area-pdf", sphere_by_area=True, other_estimators=("direct",))
+    entry = _sphere_light(tmp_path, engine)
+    mean_tests = entry["tests"]["mitsuba"]["tests"]
+    assert not entry["pass"] and not any(t["pass"] for t in mean_tests), mean_tests
+
+
 @pytest.mark.slow
 def test_direct_keeps_its_invariances(tmp_path):
     code, results = _run(tmp_path, "invariance", "--engine", str(pyrender_engine(tmp_path)), "--only",

@@ -1,5 +1,5 @@
 """The example renderer's engine file (examples/renderer/pyrender.toml) as the tests use it: two calls at once,
-optionally with one of its planted bugs."""
+optionally with one of its planted bugs, or sampling sphere lights by area (another estimator of direct)."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -7,13 +7,20 @@ from pathlib import Path
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "renderer"
 
 
-def pyrender_engine(tmp_path: Path, bug: str | None = None) -> Path:
-    """examples/renderer/pyrender.toml, two calls at once, with `--bug BUG` planted (a copy in tmp_path)."""
+def pyrender_engine(tmp_path: Path, bug: str | None = None, *, sphere_by_area: bool = False,
+                    other_estimators: tuple[str, ...] = ()) -> Path:
+    """examples/renderer/pyrender.toml, two calls at once, with `--bug BUG` planted, with `--sphere-sampling area`
+    where `sphere_by_area`, and declaring `other_estimators` (a copy in tmp_path)."""
     text = (EXAMPLE / "pyrender.toml").read_text().replace("{here}", str(EXAMPLE))
     text = text.replace("jobs = 1", "jobs = 2")
-    if bug:
-        text = text.replace('name = "pyrender"', f'name = "pyrender-{bug}"')
-        text = text.replace('"-o", "{output}"]', f'"-o", "{{output}}", "--bug", "{bug}"]')
-    path = tmp_path / f"pyrender-{bug or 'correct'}.toml"
+    words = (["--bug", bug] if bug else []) + (["--sphere-sampling", "area"] if sphere_by_area else [])
+    name = "-".join(["pyrender", *([bug] if bug else []), *(["sphere-by-area"] if sphere_by_area else []),
+                     *(["declared"] if other_estimators else [])])
+    text = text.replace('name = "pyrender"', f'name = "{name}"')
+    text = text.replace('"-o", "{output}"]', '"-o", "{output}"' + "".join(f', "{w}"' for w in words) + "]")
+    if other_estimators:
+        listed = ", ".join(f'"{i}"' for i in other_estimators)
+        text = text.replace("[integrators]", f"other_estimators = [{listed}]\n\n[integrators]")
+    path = tmp_path / f"{name}.toml"
     path.write_text(text)
     return path
