@@ -18,8 +18,10 @@ Material readDiffuse(const XmlContext &ctx, const pugi::xml_node &node, Deferred
     XmlProps props(ctx, node);
     std::string unread;
     for (const auto &child : props.objects())
-        if (std::string(child.name()) == "texture" || std::string(child.name()) == "ref")
-            unread = "a <" + std::string(child.name()) + ">" + at(ctx, child);
+        if (std::string(child.name()) == "texture")
+            unread = "a " + ctx.attr(child, "type") + " texture" + at(ctx, child);
+        else if (std::string(child.name()) == "ref")
+            unread = "a reference to \"" + ctx.attr(child, "id") + "\" (a texture)" + at(ctx, child);
     const pugi::xml_node given = props.node("reflectance");
     if (given && std::string(given.name()) == "spectrum" && isPerWavelength(given))
         unread = "a per-wavelength <spectrum>" + at(ctx, given);

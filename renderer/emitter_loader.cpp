@@ -27,8 +27,16 @@ void requireFinitePlacement(const XmlContext &ctx, const pugi::xml_node &node, c
         ctx.fail(node, "the emitter's position must be finite and within " + std::to_string(kMaxCoordinate));
 }
 
+/// A nested element: a texture (a spot's projected image, a textured radiance) or anything else.
 void noObjects(const XmlContext &ctx, const XmlProps &props) {
-    if (!props.objects().empty()) ctx.fail(props.objects()[0], "unexpected element inside <emitter>");
+    if (props.objects().empty()) return;
+    const pugi::xml_node child = props.objects()[0];
+    const std::string name = child.attribute("name").as_string();
+    if (std::string(child.name()) == "texture" || std::string(child.name()) == "ref")
+        ctx.fail(child, "textured emission" + (name.empty() ? std::string() : " (\"" + name + "\")") +
+                            " is not modelled, such as a spot light's projected image: this renderer's emitters "
+                            "read an <rgb>, a <float> or a constant <spectrum>");
+    ctx.fail(child, "unexpected element inside <emitter>");
 }
 
 SpotLight readSpot(const XmlContext &ctx, const pugi::xml_node &node) {
@@ -120,8 +128,9 @@ void judgeOtherEmitters(const XmlContext &ctx, const Deferred &deferred, const s
         } else if (other.kind == EmitterKind::Directional) {
             scene.directionalLights.push_back(readDirectional(ctx, other.node));
         } else {
-            ctx.fail(other.node, "the " + chosen + " integrator would be lit by this emitter, which this renderer "
-                                 "does not model (it models point, spot, directional, constant and area emitters)");
+            ctx.fail(other.node, "the " + chosen + " integrator would be lit by this " +
+                                     ctx.attr(other.node, "type") + " emitter, which this renderer does not model "
+                                     "(it models point, spot, directional, constant and area emitters)");
         }
     }
 }
