@@ -19,7 +19,7 @@ from harness.comparison.summary import summarize
 from harness.engines.base import Engine
 from harness.images.case_task import draws_tested_estimator
 from harness.images.references import load_reference, render_params, render_reference
-from harness.images.suite import TESTED_SPP, ImageCase
+from harness.images.suite import ImageCase
 from harness.integrators import entry
 from harness.images.spp_search import MAX_SPP, pooled, smallest_spp
 from harness.statistics.constants import IMAGE_BATCHES
@@ -58,7 +58,7 @@ def plan_budget(case: ImageCase, tested: Engine, reference: Engine, target: floa
     ref, _ = load_reference(case, reference)
     if ref is None:
         ref = render_reference(case, reference)
-    pilot_spp = TESTED_SPP[case.integrator]
+    pilot_spp = case.test_spp
     start = time.perf_counter()
     result = tested.render(str(case.path), case.integrator, pilot_spp, IMAGE_BATCHES, seed, render_params(case))
     render_seconds = result.seconds.get("render", time.perf_counter() - start)

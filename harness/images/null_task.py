@@ -15,7 +15,7 @@ from harness.images.case_task import on_files
 from harness.comparison.compare import SCALES, compare_summaries
 from harness.comparison.summary import summarize
 from harness.images.references import REFERENCE_BATCHES
-from harness.images.suite import TESTED_SPP, ImageCase
+from harness.images.suite import ImageCase
 from harness.statistics.calibration_rates import CALIBRATION_LEVELS
 from harness.statistics.constants import IMAGE_BATCHES, TILE_SIZE
 from harness.integrators import entry
@@ -45,7 +45,7 @@ def null_comparison(job: NullJob, bundle: Bundle | None = None) -> dict:
     """The rejections of one null comparison by scale and level, its image-scale smallest p-value, and
     (the tested engine twice) which planted biases the default level finds."""
     case = on_files(job.case, bundle)
-    spp, signed = TESTED_SPP[case.integrator], entry(case.integrator).signed
+    spp, signed = case.test_spp, entry(case.integrator).signed
     # The test side as the validation renders the tested engine's; the reference side with more batches, as a
     # reference has.
     test_engine, ref_engine = {"test-test": (job.test, job.test),

@@ -48,6 +48,14 @@ def test_suite_views_are_the_entries_budgets():
                                                                                  "ao": 256}
 
 
+def test_a_heavy_tailed_scene_of_the_suite_takes_more_tested_samples():
+    assert ImageCase("cornell", "simple").test_spp == TESTED_SPP["simple"]
+    assert ImageCase("close_light", "ao").test_spp == TESTED_SPP["ao"]  # no light near a wall under ao
+    assert ImageCase("close_light", "direct").test_spp == 4 * TESTED_SPP["direct"]
+    assert ImageCase("close_light", "simple", group="user").test_spp == TESTED_SPP["simple"]  # a user's is not ours
+    assert ImageCase("close_light", "simple", spp=20).test_spp == 20  # a budget chose them
+
+
 def test_an_entry_from_the_path_is_found_and_an_error_without_a_renderer_integrator(extra_folder):
     (extra_folder / "sparkle.py").write_text(EXTRA.format(name="sparkle"))
     assert entries()["sparkle"].source == str(extra_folder / "sparkle.py")
