@@ -1,6 +1,6 @@
 """The example renderer's `direct` (examples/renderer/pyrender_direct.py), mapped by its engine file, through
-the suites a user runs: the lit planes against their closed forms (quick, at 16 pixels) and against Mitsuba,
-the invariances and the bench (slow, at the suite's size); each planted mistake of a direct integrator (a light
+the suites a user runs: the lit planes against their closed forms (quick, at 16 pixels) and against Mitsuba
+(slow, at 32), the invariances and the bench (slow, at the suite's size); each planted mistake of a direct integrator (a light
 pdf left in area measure, a BSDF without its cosine) fails the image suite."""
 import json
 import subprocess
@@ -63,17 +63,19 @@ def test_direct_refuses_a_light_it_does_not_model_in_one_line(tmp_path):
 @pytest.mark.slow
 @pytest.mark.mitsuba
 def test_direct_passes_against_mitsuba_and_the_closed_forms(tmp_path):
-    cases = [f"{scene}:direct" for scene in ("plane_rect_light", "plane_disk_light", "plane_sphere_light")]
-    code, results = _run(tmp_path, "images", "--engine", str(pyrender_engine(tmp_path)), "--only", *cases)
+    scenes = ("plane_rect_light", "plane_disk_light", "plane_sphere_light")
+    files = [arg for scene in scenes for arg in ("--scene", str(SCENES / f"{scene}.xml"))]
+    code, results = _run(tmp_path, "images", "--engine", str(pyrender_engine(tmp_path)), *files, "--resolution", "32",
+                         "--only", "direct")
     assert code == 0 and len(results["images"]) == 3
     for entry in results["images"]:
         assert entry["pass"] and set(entry["tests"]) == {"mitsuba", "analytic"}, entry
 
 
 def _sphere_light(tmp_path, engine: Path, seed: int = 0) -> dict:
-    """images of the sphere-lit plane under direct at the suite's size against Mitsuba's stored reference: its
-    one entry."""
-    code, results = _run(tmp_path, "images", "--engine", str(engine), "--only", "plane_sphere_light:direct",
+    """images of the sphere-lit plane under direct, 32 pixels wide, against Mitsuba: its one entry."""
+    code, results = _run(tmp_path, "images", "--engine", str(engine), "--scene",
+                         str(SCENES / "plane_sphere_light.xml"), "--resolution", "32", "--only", "direct",
                          "--seed", str(seed))
     (entry,) = results["images"]
     assert code == (0 if entry["pass"] else 1)
