@@ -82,8 +82,9 @@ class CommandEngine(Engine):
         return integrator not in self.file.other_estimators
 
     def reads_integrator_parameters(self, integrator: str) -> bool:
-        """Where its dialect's writer hands the scene's own values of the integrator's parameters on: Nori's, for
-        direct mapped to one of Nori's direct_ems, direct_mats, direct_mis (the strategy those values select)."""
+        """Where its dialect's writer hands the scene's own values of the integrator's parameters on: Mitsuba's,
+        for an integrator that has parameters (copied into the renderer's <integrator>); Nori's, for direct
+        mapped to one of Nori's direct_ems, direct_mats, direct_mis (the strategy those values select)."""
         theirs = self.file.integrators.get(integrator)
         return theirs is not None and READS_PARAMETERS[self.file.scene_format](integrator, theirs)
 

@@ -61,7 +61,7 @@ def film_size(root: ET.Element) -> tuple[int, int]:
 
 def file_parameters(root: ET.Element, integrator: str, names: tuple[str, ...]) -> list[ET.Element]:
     """The children of the file's <integrator type="integrator"> that set one of `names` (copies): the values it
-    gives mcval's integrator's parameters, written in Mitsuba's names. None where its <integrator> is another
+    gives mcval's integrator's parameters, written in Mitsuba's names. None (an empty list) where its <integrator> is another
     (the same names may mean something else there)."""
     own = next((e for e in root if e.tag == "integrator"), None)
     if own is None or own.get("type") != integrator:
