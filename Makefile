@@ -31,10 +31,9 @@ FUZZ_IMAGE_SEED ?= 4104
 validate: build
 	$(PY) -m harness validate
 
-## test: the C++ unit tests (ctest), the harness's layer contract (lint-imports), the Python suites (pytest),
-## then the sanitizer run and a short fuzz pass
+## test: the harness's layer contract (lint-imports), the Python suites (pytest), then the sanitizer run (the C++
+## unit tests among it) and a short fuzz pass
 test: build
-	ctest --test-dir $(BUILD) --output-on-failure
 	$(VENV)/bin/lint-imports
 	$(PY) -m pytest -n $(TEST_JOBS) --dist loadfile
 	$(MAKE) --no-print-directory sanitize
