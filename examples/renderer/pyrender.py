@@ -7,7 +7,7 @@ lights in pyrender_lights.py), the pixel sampling, the random numbers and the
 image accumulation are pyrender's own, vectorised over pixels x samples.
 
     pyrender.py SCENE --integrator NAME --spp N --seed S --width W --height H
-                -o OUT.exr [--threads T] [--bug NAME] [--sphere-sampling cone|area]
+                -o OUT.exr [--batches K] [--threads T] [--bug NAME] [--sphere-sampling cone|area]
     pyrender.py --version
 """
 import argparse
@@ -47,14 +47,17 @@ def parse_args(argv):
     for opt in ("--spp", "--seed", "--width", "--height"):
         p.add_argument(opt, type=int, required=True)
     p.add_argument("-o", "--output", required=True)
+    p.add_argument("--batches", type=int, default=1,
+                   help="independent images to render, each with --spp samples, written as the layers batch0 ... "
+                        "(one process for them all: the start-up, Mitsuba's and the scene's, is paid once)")
     p.add_argument("--threads", type=int, default=0)
     p.add_argument("--bug", choices=BUGS)
     p.add_argument("--sphere-sampling", choices=("cone", "area"), default="cone",
                    help="how direct samples a sphere light: by the cone it subtends (Mitsuba's estimator) or "
                         "uniformly by area (another unbiased estimator, noisier)")
     a = p.parse_args(argv)
-    if min(a.spp, a.width, a.height) < 1 or a.seed < 0:
-        p.error("--spp, --width and --height must be positive, --seed non-negative")
+    if min(a.spp, a.width, a.height, a.batches) < 1 or a.seed < 0:
+        p.error("--spp, --width, --height and --batches must be positive, --seed non-negative")
     return a
 
 
@@ -259,16 +262,18 @@ def render(scene, args, rng, stddev, settings):
     return img.astype(np.float32)
 
 
-def write_exr(path, img, seconds):
-    h, w, _ = img.shape
-    spec = oiio.ImageSpec(w, h, 3, oiio.FLOAT)
-    spec.channelnames = ("R", "G", "B")
+def write_exr(path, images, seconds):
+    """One image as R, G, B; several as the layers batch0.R/G/B, batch1.R/G/B, ..."""
+    h, w, _ = images[0].shape
+    layers = [""] if len(images) == 1 else [f"batch{k}." for k in range(len(images))]
+    spec = oiio.ImageSpec(w, h, 3 * len(images), oiio.FLOAT)
+    spec.channelnames = tuple(layer + c for layer in layers for c in "RGB")
     spec.attribute("pyrender.renderSeconds", float(seconds))
     spec.attribute("Software", VERSION)
     out = oiio.ImageOutput.create(path)
     if out is None or not out.open(path, spec):
         fail(f"cannot write {path!r}: {oiio.geterror()}")
-    ok = out.write_image(np.ascontiguousarray(img))
+    ok = out.write_image(np.ascontiguousarray(np.concatenate(images, axis=-1)))
     out.close()
     if not ok:
         fail(f"cannot write {path!r}: {out.geterror()}")
@@ -300,8 +305,11 @@ def main(argv):
     except Exception as e:  # noqa: BLE001 - Mitsuba raises RuntimeError and others
         fail(f"cannot load scene {args.scene!r}: {e}")
     start = time.perf_counter()  # renderSeconds: rendering only, as docs/engines.md asks
-    img = render(scene, args, np.random.default_rng(args.seed), stddev, settings)
-    write_exr(args.output, img, time.perf_counter() - start)
+    # Batch k draws from the stream (seed, k): independent of every other batch of this call and of other seeds.
+    rngs = [np.random.default_rng(args.seed)] if args.batches == 1 else \
+        [np.random.default_rng((args.seed, k)) for k in range(args.batches)]
+    images = [render(scene, args, rng, stddev, settings) for rng in rngs]
+    write_exr(args.output, images, time.perf_counter() - start)
     return 0
 
 

@@ -1,6 +1,6 @@
-"""A renderer described by an engine file (docs/engines.md): one call of its command per image, each in a
-temporary folder of its own, with the scene file the harness writes for it (scene_writers: written_scene, or
-nori/to_nori for scene_format = "nori")."""
+"""A renderer described by an engine file (docs/engines.md): one call of its command per image (or, where the
+command holds {batches}, per share of a case's images), each in a temporary folder of its own, with the scene
+file the harness writes for it (scene_writers: written_scene, or nori/to_nori for scene_format = "nori")."""
 from __future__ import annotations
 
 import math
@@ -20,7 +20,7 @@ from harness.engines.child_process import cancelled_by, current_cancel, run_chil
 from harness.engines.engine_file import EngineFile, read_engine_file
 from harness.engines.render_process import THREADS_ENV, default_timeout
 from harness.engines.scene_writers import READS_PARAMETERS, SCENE_WRITERS
-from harness.exr import ExrError, read_image
+from harness.exr import ExrError, read_image, read_layers
 from harness.foreign_text import FOREIGN_LIMIT, foreign
 
 #: Seconds the version command may take.
@@ -32,6 +32,27 @@ VERSION_OUTPUT_LIMIT = 1 << 20
 def call_seed(seed: int, k: int) -> int:
     """The seed of a case's k-th call: distinct per (seed, k), in [0, 2^31)."""
     return (seed * 1_000_003 + k * 7919 + 1) % 2**31
+
+
+def call_shares(batches: int, jobs: int) -> list[int]:
+    """How many of a case's `batches` images each call renders where the command holds {batches}: one call per
+    job that may run at once, the images shared as evenly as they go."""
+    calls = max(1, min(jobs, batches))
+    return [batches // calls + (k < batches % calls) for k in range(calls)]
+
+
+def read_call_images(output: Path, count: int) -> tuple[np.ndarray, dict[str, object]]:
+    """A call's `count` images, (count, H, W, 3): one is any RGB image of the EXR (read_image); more are its
+    layers batch0 ... batch<count-1>. RenderFailed naming the layers it lacks."""
+    if count == 1:
+        image, attributes = read_image(output)
+        return image[None], attributes
+    layers, attributes = read_layers(output)
+    missing = [f"batch{k}" for k in range(count) if f"batch{k}" not in layers]
+    if missing:
+        raise RenderFailed(f"wrote no layer {missing[0]} ({len(missing)} of the {count} it was asked for missing): "
+                           f"a call asked for {{batches}} = {count} writes batch0.R/G/B ... batch{count - 1}.R/G/B")
+    return np.stack([layers[f"batch{k}"] for k in range(count)]), attributes
 
 
 def render_seconds(attributes: dict[str, object]) -> float | None:
@@ -123,12 +144,13 @@ class CommandEngine(Engine):
             return int(os.environ[THREADS_ENV])
         return max(1, (os.cpu_count() or 1) // self.file.jobs)
 
-    def _call(self, folder: Path, scene: Path, values: dict[str, str], width: int, height: int,
+    def _call(self, folder: Path, scene: Path, values: dict[str, str], count: int, width: int, height: int,
               timeout: float, cancel: threading.Event | None = None) -> tuple[np.ndarray, float]:
-        """One call: its image and render seconds. RenderFailed on every way it can fail."""
+        """One call: its `count` images and render seconds. RenderFailed on every way it can fail."""
         folder.mkdir()
         output = folder / "image.exr"
-        fields = {**values, "scene": str(scene), "output": str(output), "here": str(self.file.here)}
+        fields = {**values, "batches": str(count), "scene": str(scene), "output": str(output),
+                  "here": str(self.file.here)}
         command = [w.format(**fields) for w in self.file.command]
         start = time.perf_counter()
         try:
@@ -139,26 +161,28 @@ class CommandEngine(Engine):
         if not output.exists():
             raise RenderFailed(f"wrote no image at {{output}} (seed {values['seed']})")
         try:
-            image, attributes = read_image(output)
+            images, attributes = read_call_images(output, count)
         except ExrError as e:
             raise RenderFailed(foreign(f"wrote a file that is not a readable EXR image: {e}")) from None
-        if image.shape[:2] != (height, width):
-            raise RenderFailed(f"wrote a {image.shape[1]}x{image.shape[0]} image, expected {width}x{height}")
+        if images.shape[1:3] != (height, width):
+            raise RenderFailed(f"wrote a {images.shape[2]}x{images.shape[1]} image, expected {width}x{height}")
         seconds = render_seconds(attributes)
         # A time the bench would plot and divide by: a negative, NaN or infinite one is the renderer's error.
         if seconds is not None and not (math.isfinite(seconds) and seconds >= 0):
             raise RenderFailed(f"{self.name} wrote renderSeconds = {seconds:g} in its EXR (seed {values['seed']}): "
                                "a render time must be a finite number of seconds, at least 0")
-        return image, wall if seconds is None else seconds
+        return images, wall if seconds is None else seconds
 
     def render(self, scene: str, integrator: str, spp: int, batches: int, seed: int,
                params: dict[str, str] | None = None) -> RenderResult:
-        """K calls of the command with seeds call_seed(seed, k); RenderFailed naming the first that fails."""
+        """K calls of the command with seeds call_seed(seed, k), or where it holds {batches} one call per job
+        (call_shares); RenderFailed naming the first that fails."""
         start = time.perf_counter()
         theirs = self.file.integrators.get(integrator)
         if theirs is None:
             raise RenderFailed(f"{self.name} has no integrator for {integrator} (its engine file's [integrators])")
-        timeout = self.file.timeout or default_timeout(spp, 1, params)
+        shares = call_shares(batches, self.file.jobs) if self.file.renders_batches else [1] * batches
+        timeout = self.file.timeout or default_timeout(spp, max(shares), params)
         with tempfile.TemporaryDirectory(prefix=f"mcval-{self.name}-") as tmp:
             try:
                 text, width, height, meshes = SCENE_WRITERS[self.file.scene_format](
@@ -176,14 +200,14 @@ class CommandEngine(Engine):
 
             def call(k: int) -> tuple[np.ndarray, float]:
                 with cancelled_by(outer):  # a render thread's cancel reaches the calls on threads of their own
-                    return self._call(Path(tmp) / f"call{k}", scene_file,
-                                      {**values, "seed": str(call_seed(seed, k))}, width, height, timeout, cancel)
+                    return self._call(Path(tmp) / f"call{k}", scene_file, {**values, "seed": str(call_seed(seed, k))},
+                                      shares[k], width, height, timeout, cancel)
 
             if self.file.jobs == 1:
-                outcomes = [call(k) for k in range(batches)]  # the first failure ends the case at once
+                outcomes = [call(k) for k in range(len(shares))]  # the first failure ends the case at once
             else:
                 with ThreadPoolExecutor(self.file.jobs) as pool:
-                    futures = [pool.submit(call, k) for k in range(batches)]
+                    futures = [pool.submit(call, k) for k in range(len(shares))]
                     try:
                         done, _ = wait(futures, return_when=FIRST_EXCEPTION)
                         failed = next((f for f in futures if f in done and f.exception() is not None), None)
@@ -193,6 +217,6 @@ class CommandEngine(Engine):
                     except BaseException:
                         cancel.set()  # a failure or a Ctrl-C here ends the calls still running, at once
                         raise
-        images = np.stack([image for image, _ in outcomes])
+        images = np.concatenate([images for images, _ in outcomes])
         seconds = {"render": float(sum(s for _, s in outcomes)), "total": time.perf_counter() - start}
         return RenderResult(self.name, str(scene), integrator, spp, seed, images, seconds, "independent")

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 #: The placeholders a command may hold, and the two it must.
-PLACEHOLDERS = ("scene", "output", "spp", "seed", "integrator", "width", "height", "threads", "here")
+PLACEHOLDERS = ("scene", "output", "spp", "seed", "integrator", "width", "height", "threads", "batches", "here")
 REQUIRED_PLACEHOLDERS = ("scene", "output")
 KEYS = ("name", "command", "version", "scene_format", "jobs", "timeout", "integrators", "other_estimators")
 
@@ -42,6 +42,11 @@ class EngineFile:
     @property
     def here(self) -> Path:
         return self.path.parent
+
+    @property
+    def renders_batches(self) -> bool:
+        """Whether its command holds {batches}: one call renders several of a case's images."""
+        return "batches" in _placeholders(self.command)
 
 
 def looks_like_engine_file(name: str) -> bool:

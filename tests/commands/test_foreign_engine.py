@@ -116,6 +116,15 @@ def test_a_renderer_whose_seeds_repeat_fails_as_batches_not_independent(tmp_path
     assert test["dependent"] and test["correlation"] > 0.99 and not test["alike"]
 
 
+def test_a_renderer_repeating_the_batches_of_one_call_fails_as_batches_not_independent(tmp_path):
+    engine = write_engine(tmp_path, "batched_repeats")  # one call renders all 8: one image, 8 times
+    out = tmp_path / "results"
+    assert main(["images", "--engine", str(engine), "--only", "plane_point:simple", "--out", str(out)]) == 1
+    (case,) = _results(out)["images"]
+    independence = case["tests"]["mitsuba"]["independence"]
+    assert not case["pass"] and "all 8 test batches are the same image" in independence["summary"]
+
+
 def test_control_characters_from_an_engine_leave_every_output_readable(tmp_path):
     """Its version and its failed call's output hold C0 controls, DEL, malformed UTF-8 and an encoded lone
     surrogate: results.json, report.html and junit.xml are written and parse, with the characters escaped."""

@@ -11,7 +11,7 @@ from harness.comparison.compare import compare_summaries
 from harness.comparison.summary import summarize
 from harness.engines import child_process
 from harness.engines.base import RenderFailed
-from harness.engines.command import CommandEngine, call_seed
+from harness.engines.command import CommandEngine, call_seed, call_shares
 from harness.images.suite import SCENES_DIR
 from tests.helpers.foreign_renderers import write_engine
 
@@ -43,6 +43,18 @@ def test_jobs_run_calls_at_once_with_the_same_images(tmp_path):
     (tmp_path / "two").mkdir()
     both = _render(tmp_path / "two", "faithful", batches=4, extra="jobs = 2\n")
     assert np.array_equal(one.batches, both.batches)
+
+
+def test_a_renderer_given_batches_renders_a_share_of_them_in_each_call(tmp_path):
+    result = _render(tmp_path, "batched", batches=5, extra="jobs = 2\n")
+    assert result.batches.shape == (5, 8, 8, 3) and len({b.tobytes() for b in result.batches}) == 5
+    assert sorted((tmp_path / "calls.log").read_text().split()) == ["2", "3"]  # call_shares(5, 2): one call a job
+    assert call_shares(8, 2) == [4, 4] and call_shares(8, 1) == [8] and call_shares(2, 4) == [1, 1]
+
+
+def test_a_call_without_a_layer_it_was_asked_for_fails_naming_it(tmp_path):
+    reason = _failure(tmp_path, "batched_short", batches=4).reason
+    assert reason.startswith("wrote no layer batch3 (1 of the 4 it was asked for missing)"), reason
 
 
 @pytest.mark.parametrize("behaviour", ["y_half", "layer"])

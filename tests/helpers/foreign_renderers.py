@@ -1,6 +1,6 @@
 """Engine files for renderers other than mcval's, written into a test's folder: each calls a small Python
-script that renders through our `render` binary (one batch, as an engine file's renderer renders), or
-misbehaves in one named way instead."""
+script that renders through our `render` binary (one batch, as an engine file's renderer renders, or the
+{batches} it is given), or misbehaves in one named way instead."""
 from __future__ import annotations
 
 import stat
@@ -20,10 +20,11 @@ def write(pixels, names=("R", "G", "B"), fmt="float"):
     out.open(output, spec)
     out.write_image(np.ascontiguousarray(pixels, dtype=np.float32))
     out.close()
+count = sys.argv[8] if len(sys.argv) > 8 else "1"  # {{batches}}, where the engine file gives it
 def render():
     import subprocess
     subprocess.run([{str(REAL_RENDER)!r}, scene, "--integrator", integrator, "--spp", spp, "--seed", seed,
-                    "-q", "-o", output], check=True)
+                    "--batches", count, "-q", "-o", output], check=True)
 def shape(channels=3):
     import numpy as np
     return np.full((int(height), int(width), channels), 0.25, np.float32)
@@ -49,6 +50,17 @@ BEHAVIOURS = {
     "nan": "render(); import numpy as np; im = shape(); im[2, 3] = np.nan; write(im)",
     "negative": "im = shape(); im[1, 1] = -0.5; write(im)",
     "hang": "time.sleep(600)",
+    # With {batches}: says how many it was asked for (in calls.log beside it), then renders them as layers.
+    "batched": "import os; open(os.path.join(os.path.dirname(__file__), 'calls.log'), 'a').write(count + '\\n'); "
+               "render()",
+    # With {batches}: one image written as every layer asked for, the same K times.
+    "batched_repeats": "c = count; count = '1'; render(); count = c\nimport numpy as np, OpenImageIO as oiio\n"
+                       "im = oiio.ImageInput.open(output); px = im.read_image('float'); im.close()\n"
+                       "write(np.concatenate([px[..., :3]] * int(count), axis=-1), "
+                       "[f'batch{k}.{c}' for k in range(int(count)) for c in 'RGB'])",
+    # With {batches}: one layer short of those asked for.
+    "batched_short": "import numpy as np\nwrite(np.concatenate([shape()] * (int(count) - 1), axis=-1), "
+                     "[f'batch{k}.{c}' for k in range(int(count) - 1) for c in 'RGB'])",
     "spam": "while True: print('x' * 4096, flush=True)",
     # Renders, then writes a firefly (FACTOR times the value; a value itself past 1e3) into pixel (64, 64) of
     # BATCHES of a case's 8 calls: their seeds are distinct modulo 8 (see harness.engines.command.call_seed).
@@ -63,6 +75,8 @@ BEHAVIOURS = {
 }
 
 ARGUMENTS = ["{scene}", "{output}", "{spp}", "{seed}", "{integrator}", "{width}", "{height}"]
+#: Behaviours whose engine file passes {batches} too (the 8th argument).
+BATCHED = ("batched", "batched_repeats", "batched_short")
 INTEGRATORS = ("normals", "simple", "ao")
 
 
@@ -75,7 +89,8 @@ def write_engine(folder: Path, behaviour: str, name: str | None = None, extra: s
     preamble = "".join(f"{k} = {v!r}\n" for k, v in (constants or {}).items())
     script.write_text(_HEADER + preamble + BEHAVIOURS[behaviour] + "\n")
     script.chmod(script.stat().st_mode | stat.S_IXUSR)
-    command = ", ".join(f'"{w}"' for w in ["{here}/" + script.name, *ARGUMENTS])
+    arguments = ARGUMENTS + (["{batches}"] if behaviour in BATCHED else [])
+    command = ", ".join(f'"{w}"' for w in ["{here}/" + script.name, *arguments])
     path = folder / f"{behaviour}.toml"
     table = "[integrators]\n" + "".join(f'{i} = "{i}"\n' for i in integrators)
     path.write_text(f'name = "{name or behaviour.replace("_", "-")}"\ncommand = [{command}]\n{extra}{table}')
