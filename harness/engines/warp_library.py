@@ -1,7 +1,7 @@
 """A C or C++ warp library as an engine of warps alone: the functions of include/mcval_warps.h, float32 and
 interleaved, called on numpy arrays (docs/engines.md#warps-in-c-or-c).
 
-The library runs in a child process of its own (harness/engines/python_child.py): a segfault, an abort(), a
+The library runs in a child process of its own (harness/engines/library_process.py): a segfault, an abort(), a
 write past its output, an exit() or a hang costs the warp whose call it was (a crash while loading: every
 warp of the library), with the library, the function and the signal or exit status in one line. Each call
 has a time limit ($MCVAL_WARP_TIMEOUT seconds); a child that failed is replaced at the next call."""
@@ -13,7 +13,8 @@ from pathlib import Path
 import numpy as np
 
 from harness.engines.base import Engine, WarpFunctions
-from harness.engines.python_child import ChildFailed, ChildRaised, PythonChild, seconds_from_env
+from harness.engines.library_process import LibraryProcess
+from harness.engines.python_child import ChildFailed, ChildRaised, seconds_from_env
 
 #: Each warp of the ABI and the dimension of its points.
 DIMENSIONS = {"square_to_uniform_square": 2, "square_to_tent": 2, "square_to_uniform_disk": 2,
@@ -53,7 +54,7 @@ class WarpLibraryEngine(Engine):
         if not self.path.is_file():
             raise ValueError(f"--warp-library {path}: no such file")
         self.name = self.label = self.path.stem.removeprefix("lib")
-        self._child: PythonChild | None = None
+        self._process = LibraryProcess(self.path, _CHILD, call_timeout)
         #: Why the library could not be loaded (its constructor crashed, hung or exited): every warp fails so.
         self.load_failure: ChildFailed | None = None
         try:
@@ -69,31 +70,8 @@ class WarpLibraryEngine(Engine):
         return WarpLibraryEngine, (self.path,)
 
     def _call(self, function: str, *args, what: str):
-        """`function` of warp_library_child in the library's process (started if there is none). Raises
-        ChildFailed, naming the library and `what` was called, when the call crashes, exits, hangs or writes
-        past its output (the process is then ended: the next call starts another); ChildRaised for an error
-        the library is not to blame for."""
-        if self._child is None or not self._child.alive:
-            child = PythonChild()
-            try:
-                child.call(f"{_CHILD}:load", str(self.path), timeout=call_timeout())
-            except ChildFailed as e:
-                raise ChildFailed(f"{self.path.name}: loading it {e.reason}", e.output) from None
-            except ChildRaised:
-                child.close()
-                raise
-            self._child = child
-        try:
-            return self._child.call(f"{_CHILD}:{function}", *args, timeout=call_timeout())
-        except ChildFailed as e:
-            self._child = None
-            raise ChildFailed(f"{self.path.name}: {what} {e.reason}", e.output) from None
-        except ChildRaised as e:
-            if e.original is not None and type(e.original).__name__ == "OutputOverrun":
-                self._child.close()  # what it overwrote is unknown
-                self._child = None
-                raise ChildFailed(f"{self.path.name}: {what} {e.original}") from None
-            raise
+        """`function` of warp_library_child in the library's process (harness/engines/library_process.py)."""
+        return self._process.call(function, *args, what=what)
 
     def exported(self) -> list[str]:
         """The warps of the ABI whose sampler the library exports."""

@@ -1,0 +1,61 @@
+// Our BSDFs through the C ABI of include/mcval_bsdfs.h (build/libmcval_bsdfs.so): the BSDF checks load it
+// as they load a user's library, so ours and theirs take one path.
+#include <mcval_bsdfs.h>
+
+#include "diffuse.h"
+
+namespace mcval {
+namespace {
+
+Vec3f row(const float *v, size_t i) { return {v[3 * i], v[3 * i + 1], v[3 * i + 2]}; }
+
+/// A gray BSDF's one channel (its parameters are scalars, so every channel is alike).
+float gray(const Color &c) { return c.x; }
+
+template <typename Make>
+void evalRows(Make make, const float *params, const float *wi, const float *wo, float *value, size_t n) {
+    const auto bsdf = make(params);
+    for (size_t i = 0; i < n; ++i) value[i] = gray(bsdf.eval(row(wi, i), row(wo, i)));
+}
+
+template <typename Make>
+void pdfRows(Make make, const float *params, const float *wi, const float *wo, float *pdf, size_t n) {
+    const auto bsdf = make(params);
+    for (size_t i = 0; i < n; ++i) pdf[i] = bsdf.pdf(row(wi, i), row(wo, i));
+}
+
+template <typename Make>
+void sampleRows(Make make, const float *params, const float *wi, const float *u, float *wo, float *weight, float *pdf,
+                size_t n) {
+    const auto bsdf = make(params);
+    for (size_t i = 0; i < n; ++i) {
+        const BsdfSample s = bsdf.sample(row(wi, i), Vec2f(u[3 * i], u[3 * i + 1]));
+        wo[3 * i] = s.wo.x, wo[3 * i + 1] = s.wo.y, wo[3 * i + 2] = s.wo.z;
+        weight[i] = gray(s.weight);
+        pdf[i] = s.pdf;
+    }
+}
+
+DiffuseBsdf makeDiffuse(const float *params) { return DiffuseBsdf(Color(params[0], params[0], params[0])); }
+
+}  // namespace
+}  // namespace mcval
+
+/// Defines the four symbols of NAME from MAKE (params -> a BSDF object) and its parameter names.
+#define MCVAL_EXPORT_BSDF(NAME, PARAMS, MAKE)                                                                   \
+    MCVAL_DECLARE_BSDF(NAME)                                                                                    \
+    const char *bsdf_##NAME##_params = PARAMS;                                                                  \
+    void bsdf_##NAME##_eval(const float *params, const float *wi, const float *wo, float *value, size_t n) {   \
+        mcval::evalRows(MAKE, params, wi, wo, value, n);                                                        \
+    }                                                                                                           \
+    void bsdf_##NAME##_pdf(const float *params, const float *wi, const float *wo, float *pdf, size_t n) {       \
+        mcval::pdfRows(MAKE, params, wi, wo, pdf, n);                                                           \
+    }                                                                                                           \
+    void bsdf_##NAME##_sample(const float *params, const float *wi, const float *u, float *wo, float *weight,  \
+                              float *pdf, size_t n) {                                                           \
+        mcval::sampleRows(MAKE, params, wi, u, wo, weight, pdf, n);                                             \
+    }
+
+extern "C" {
+MCVAL_EXPORT_BSDF(diffuse, "reflectance", mcval::makeDiffuse)
+}
