@@ -9,6 +9,26 @@ from typing import Any, Callable
 import numpy as np
 
 
+@dataclass(frozen=True)
+class BsdfFunctions:
+    """One BSDF at fixed parameter values, over numpy arrays (float64).
+
+    eval(wi, wo) -> (N,) f(wi, wo) |cos theta_o|;  pdf(wi, wo) -> (N,) density of wo by solid angle;
+    sample(wi, u) -> wo (N, 3), weight (N,), pdf (N,), with u (N, 3) uniforms.
+    """
+
+    name: str
+    params: dict[str, float]
+    eval: Callable[[np.ndarray, np.ndarray], np.ndarray]
+    pdf: Callable[[np.ndarray, np.ndarray], np.ndarray]
+    sample: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]]
+
+    @property
+    def label(self) -> str:
+        """"roughconductor alpha=0.1": the BSDF and its parameter values."""
+        return " ".join([self.name, *(f"{k}={v:g}" for k, v in self.params.items())])
+
+
 @dataclass
 class WarpFunctions:
     """An engine's sampler and pdf for one distribution, over numpy arrays.

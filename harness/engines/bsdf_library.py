@@ -4,12 +4,11 @@ BSDF's function fails that call, with the signal, and the next call starts the l
 from __future__ import annotations
 
 import hashlib
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable
 
 import numpy as np
 
+from harness.engines.base import BsdfFunctions
 from harness.engines.library_process import LibraryProcess
 from harness.engines.python_child import ChildFailed, ChildRaised, seconds_from_env
 
@@ -23,26 +22,6 @@ FUNCTIONS = ("params", "eval", "pdf", "sample")
 
 class BsdfUnavailable(RuntimeError):
     """A BSDF the library cannot be checked on, with one line saying why (a function of the four missing)."""
-
-
-@dataclass(frozen=True)
-class BsdfFunctions:
-    """One BSDF at fixed parameter values, over numpy arrays (float64 out, float32 to the library).
-
-    eval(wi, wo) -> (N,) f(wi, wo) |cos theta_o|;  pdf(wi, wo) -> (N,) density of wo by solid angle;
-    sample(wi, u) -> wo (N, 3), weight (N,), pdf (N,), with u (N, 3) uniforms.
-    """
-
-    name: str
-    params: dict[str, float]
-    eval: Callable[[np.ndarray, np.ndarray], np.ndarray]
-    pdf: Callable[[np.ndarray, np.ndarray], np.ndarray]
-    sample: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]]
-
-    @property
-    def label(self) -> str:
-        """"roughconductor alpha=0.1": the BSDF and its parameter values."""
-        return " ".join([self.name, *(f"{k}={v:g}" for k, v in self.params.items())])
 
 
 def call_timeout() -> float:

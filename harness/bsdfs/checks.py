@@ -1,0 +1,174 @@
+"""The checks of one BSDF at one incident direction wi, each a CheckResult (harness/warps/check_result.py):
+
+- sampling: the sampled directions against the BSDF's own pdf, by chi-square on the sphere in cells of equal
+  expected count, the samples that failed (weight and pdf 0) counted in a cell of their own whose expected
+  share is 1 minus the pdf's integral;
+- normalisation: the pdf integrates to 1 minus the share of failed samples;
+- weight: every sample's weight is value / pdf at its direction, and its pdf the pdf's value there (the check
+  Mitsuba's chi2 adapter does not make: it counts a sample whatever its weight);
+- energy: the directional albedo E[weight] is at most 1 (one-sided), with the smallest excess it finds 90 % of
+  the time;
+- reciprocity: value / |cos theta_o| is symmetric in wi and wo where both are above the surface.
+
+Statistical checks (sampling, energy) carry a p-value, decided at the run's level."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import stats
+
+from harness.engines.base import BsdfFunctions
+from harness.statistics.chi2 import goodness_of_fit
+from harness.statistics.constants import NORMALISATION_TOLERANCE
+from harness.warps.bins import sample_quantum
+from harness.warps.check_result import CheckResult, not_judged
+from harness.warps.checks import equal_probability_cells, histogram, normalisation_check
+from harness.warps.domains import SPHERE
+
+#: Relative difference allowed between a sample's weight and value / pdf (and its pdf and the pdf's): float32
+#: arithmetic reaches a few ulps; any missing factor (a cosine, 1/pi, a Jacobian) is far beyond.
+WEIGHT_TOLERANCE = 1e-3
+#: Relative difference allowed between value / |cos theta_o| and its reciprocal.
+RECIPROCITY_TOLERANCE = 1e-3
+#: Power of the energy check's stated smallest excess.
+POWER = 0.9
+
+
+@dataclass(frozen=True)
+class Draw:
+    """`n` samples of the BSDF at wi: the uniforms, the sampled directions, weights and pdfs (float64)."""
+
+    wi: np.ndarray
+    u: np.ndarray
+    wo: np.ndarray
+    weight: np.ndarray
+    pdf: np.ndarray
+
+    @property
+    def failed(self) -> np.ndarray:
+        """The samples that drew nothing: weight and pdf 0 (as the ABI says)."""
+        return (self.pdf == 0) & (self.weight == 0)
+
+
+def incident(theta_degrees: float, below: bool = False) -> np.ndarray:
+    """The unit wi at polar angle theta from the normal, in the xz plane (the BSDFs are isotropic); `below`:
+    mirrored under the surface (for the BSDFs that transmit)."""
+    t = np.radians(theta_degrees)
+    return np.array([np.sin(t), 0.0, -np.cos(t) if below else np.cos(t)])
+
+
+def draw(bsdf: BsdfFunctions, wi: np.ndarray, samples: int, seed: int) -> Draw:
+    u = np.random.default_rng(seed).random((samples, 3), dtype=np.float32).astype(np.float64)
+    wo, weight, pdf = bsdf.sample(np.tile(wi, (samples, 1)), u)
+    return Draw(wi, u, wo, weight, pdf)
+
+
+def _pdf_at(bsdf: BsdfFunctions, wi: np.ndarray):
+    return lambda wo: bsdf.pdf(np.tile(wi, (len(wo), 1)), wo)
+
+
+def sampling_checks(bsdf: BsdfFunctions, d: Draw) -> tuple[CheckResult, CheckResult]:
+    """The chi-square of the sampled directions against the pdf, and the pdf's normalisation (see the module)."""
+    n = len(d.wo)
+    failed = d.failed
+    drawn = d.wo[~failed]
+    broken = int(np.count_nonzero(~SPHERE.inside(drawn)))
+    pdf = _pdf_at(bsdf, d.wi)
+    bins, integrals = equal_probability_cells(SPHERE, pdf, n, sample_quantum(drawn))
+    probabilities = np.asarray(integrals.values, np.float64).ravel()
+    integral = float(probabilities.sum())
+    share = float(np.count_nonzero(failed)) / n
+    # Within 5 standard deviations of the failed share, and the integration's own tolerance.
+    slack = NORMALISATION_TOLERANCE + 5.0 * np.sqrt(max(share * (1 - share), 1.0 / n) / n)
+    normalisation = normalisation_check(integral + share, integrals.error)
+    if abs(integral + share - 1.0) <= slack and not normalisation.passed:
+        normalisation = CheckResult(True, integral, f"integral = {integral:.6f}, {share:.4%} of samples failed",
+                                    details={"tolerance": slack, "integration_error": integrals.error})
+    elif normalisation.passed:
+        normalisation.summary = f"integral = {integral:.6f}, {share:.4%} of samples failed"
+    if broken:
+        hard = f"{broken} samples are not unit directions"
+        return CheckResult(False, 0.0, hard, p_value=0.0, hard_failure=hard), normalisation
+    observed = np.append(histogram(SPHERE, drawn, bins).ravel(), np.count_nonzero(failed))
+    expected = np.append(probabilities, max(1.0 - integral, 0.0)) * n
+    if not np.all(np.isfinite(expected)) or np.any(expected < 0):
+        hard = "the pdf is negative or not finite somewhere"
+        return CheckResult(False, 0.0, hard, p_value=0.0, hard_failure=hard), normalisation
+    stray = int(observed[expected <= 0].sum())
+    if stray:
+        hard = f"{stray} samples where the pdf is zero"
+        return CheckResult(False, 0.0, hard, p_value=0.0, hard_failure=hard), normalisation
+    res = goodness_of_fit(observed, expected)
+    details = {"statistic": res.statistic, "dof": res.dof, "pooled_cells": res.pooled_cells, "samples": n,
+               "failed_samples": int(np.count_nonzero(failed)), **bins.to_json()}
+    if res.not_judged:
+        return not_judged(res.not_judged, **details), normalisation
+    return CheckResult(None, res.p_value, f"p = {res.p_value:.3g}", p_value=res.p_value, details=details), normalisation
+
+
+def _relative(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return np.abs(a - b) / np.maximum(np.maximum(np.abs(a), np.abs(b)), 1e-30)
+
+
+def weight_check(bsdf: BsdfFunctions, d: Draw) -> CheckResult:
+    """Every sample's weight is value / pdf at its direction and its pdf the pdf's value there; a failed sample
+    has weight 0 and a drawn one a finite, non-negative weight."""
+    drawn = ~d.failed
+    wi = np.tile(d.wi, (int(drawn.sum()), 1))
+    value, pdf = bsdf.eval(wi, d.wo[drawn]), bsdf.pdf(wi, d.wo[drawn])
+    weight, sampled_pdf = d.weight[drawn], d.pdf[drawn]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        expected = np.where(pdf > 0, value / pdf, np.inf)
+    bad_weight = ~np.isfinite(weight) | (weight < 0) | (_relative(weight, expected) > WEIGHT_TOLERANCE)
+    bad_pdf = ~np.isfinite(sampled_pdf) | (_relative(sampled_pdf, pdf) > WEIGHT_TOLERANCE)
+    details = {"samples": int(drawn.sum()), "weight_off": int(bad_weight.sum()), "pdf_off": int(bad_pdf.sum()),
+               "tolerance": WEIGHT_TOLERANCE}
+    if not (bad_weight.any() or bad_pdf.any()):
+        return CheckResult(True, 0.0, f"weight = value / pdf at all {int(drawn.sum())} samples", details=details)
+    parts = []
+    if bad_weight.any():
+        k = int(np.flatnonzero(bad_weight)[0])
+        ratio = weight[k] / expected[k] if np.isfinite(expected[k]) and expected[k] else float("nan")
+        parts.append(f"{int(bad_weight.sum())} weights are not value / pdf (e.g. at cos theta_o = "
+                     f"{d.wo[drawn][k, 2]:.3f}: weight {weight[k]:.4g}, value / pdf {expected[k]:.4g}, ratio {ratio:.4g})")
+    if bad_pdf.any():
+        k = int(np.flatnonzero(bad_pdf)[0])
+        parts.append(f"{int(bad_pdf.sum())} sampled pdfs differ from pdf() (e.g. {sampled_pdf[k]:.4g} and {pdf[k]:.4g})")
+    return CheckResult(False, float(bad_weight.sum() + bad_pdf.sum()), "; ".join(parts), details=details)
+
+
+def energy_check(d: Draw, level: float) -> CheckResult:
+    """E[weight] <= 1, one-sided: the p-value of the mean weight under an albedo of exactly 1. `level` (the run's
+    per-test level) sets the stated smallest excess found with probability POWER."""
+    w = np.where(d.failed, 0.0, d.weight)
+    if not np.all(np.isfinite(w)):
+        hard = f"{int(np.count_nonzero(~np.isfinite(w)))} weights are NaN or infinite"
+        return CheckResult(False, float("nan"), hard, p_value=0.0, hard_failure=hard)
+    mean, se = float(w.mean()), float(w.std(ddof=1) / np.sqrt(len(w)))
+    if se == 0:
+        p = 1.0 if mean <= 1.0 else 0.0
+    else:
+        p = float(stats.norm.sf((mean - 1.0) / se))
+    excess = float((stats.norm.isf(level) + stats.norm.ppf(POWER)) * se)
+    details = {"albedo": mean, "standard_error": se, "detectable_excess": excess, "power": POWER}
+    return CheckResult(None, mean, f"albedo {mean:.5f} ± {se:.2g}; p = {p:.3g} (finds an excess of {excess:.2g} "
+                       f"{POWER:.0%} of the time)", p_value=p, details=details)
+
+
+def reciprocity_check(bsdf: BsdfFunctions, pairs: int, seed: int) -> CheckResult:
+    """value(wi, wo) / |cos theta_o| = value(wo, wi) / |cos theta_i| at `pairs` random pairs above the surface."""
+    rng = np.random.default_rng(seed)
+    v = rng.normal(size=(2, pairs, 3))
+    v[..., 2] = np.abs(v[..., 2]) + 1e-3
+    wi, wo = v / np.linalg.norm(v, axis=-1, keepdims=True)
+    there, back = bsdf.eval(wi, wo) / wo[:, 2], bsdf.eval(wo, wi) / wi[:, 2]
+    off = ~np.isfinite(there) | ~np.isfinite(back) | (_relative(there, back) > RECIPROCITY_TOLERANCE) & \
+        (np.maximum(np.abs(there), np.abs(back)) > 1e-6)
+    details = {"pairs": pairs, "not_reciprocal": int(off.sum()), "tolerance": RECIPROCITY_TOLERANCE}
+    if not off.any():
+        return CheckResult(True, 0.0, f"reciprocal at all {pairs} pairs", details=details)
+    k = int(np.flatnonzero(off)[0])
+    return CheckResult(False, float(off.sum()), f"{int(off.sum())} of {pairs} pairs not reciprocal (e.g. cos theta_i "
+                       f"= {wi[k, 2]:.3f}, cos theta_o = {wo[k, 2]:.3f}: f = {there[k]:.4g} one way, {back[k]:.4g} "
+                       "the other)", details=details)

@@ -1,0 +1,72 @@
+/* A Lambertian BSDF of include/mcval_bsdfs.h and its known-wrong twins, each with one mistake a renderer's
+ * author makes, for the tests of harness/bsdfs/checks.py (each must fail the check that names it). */
+#include <math.h>
+#include <stddef.h>
+
+#include <mcval_bsdfs.h>
+
+#define PI 3.14159265358979323846f
+
+MCVAL_DECLARE_BSDF(lambert)
+MCVAL_DECLARE_BSDF(no_inv_pi)
+MCVAL_DECLARE_BSDF(weight_no_cosine)
+MCVAL_DECLARE_BSDF(uniform_pdf)
+MCVAL_DECLARE_BSDF(one_sided_shadowing)
+
+/* The mistakes, as factors of the correct value, weight and pdf. */
+enum Mistake { NONE, NO_INV_PI, WEIGHT_NO_COSINE, UNIFORM_PDF, ONE_SIDED_SHADOWING };
+
+static int above(const float *w, size_t i) { return w[3 * i + 2] > 0; }
+
+/* A shadowing-like factor of the outgoing direction alone: applied on one side, it breaks reciprocity. */
+static float g1(float cos_o) { return 0.5f + 0.5f * cos_o; }
+
+static float value(enum Mistake m, float albedo, float cos_o) {
+    const float v = (m == NO_INV_PI ? albedo : albedo / PI) * cos_o;
+    return m == ONE_SIDED_SHADOWING ? v * g1(cos_o) : v;
+}
+
+static float density(enum Mistake m, float cos_o) { return m == UNIFORM_PDF ? 1 / (2 * PI) : cos_o / PI; }
+
+static void eval(enum Mistake m, const float *params, const float *wi, const float *wo, float *out, size_t n) {
+    for (size_t i = 0; i < n; ++i) out[i] = above(wi, i) && above(wo, i) ? value(m, params[0], wo[3 * i + 2]) : 0.f;
+}
+
+static void pdf(enum Mistake m, const float *wi, const float *wo, float *out, size_t n) {
+    for (size_t i = 0; i < n; ++i) out[i] = above(wi, i) && above(wo, i) ? density(m, wo[3 * i + 2]) : 0.f;
+}
+
+/* Cosine-weighted sampling for all (the uniform_pdf twin's pdf says otherwise). */
+static void sample(enum Mistake m, const float *params, const float *wi, const float *u, float *wo, float *weight,
+                   float *pdf_out, size_t n) {
+    for (size_t i = 0; i < n; ++i) {
+        const float r = sqrtf(u[3 * i]), phi = 2 * PI * u[3 * i + 1], z = sqrtf(fmaxf(0.f, 1 - u[3 * i]));
+        wo[3 * i] = r * cosf(phi), wo[3 * i + 1] = r * sinf(phi), wo[3 * i + 2] = z;
+        if (!(above(wi, i) && z > 0)) {
+            weight[i] = pdf_out[i] = 0.f;
+            continue;
+        }
+        pdf_out[i] = density(m, z);
+        weight[i] = m == WEIGHT_NO_COSINE ? params[0] / z : value(m, params[0], z) / pdf_out[i];
+    }
+}
+
+#define DEFINE(NAME, MISTAKE)                                                                                   \
+    const char *bsdf_##NAME##_params = "albedo";                                                                \
+    void bsdf_##NAME##_eval(const float *params, const float *wi, const float *wo, float *value, size_t n) {   \
+        eval(MISTAKE, params, wi, wo, value, n);                                                                \
+    }                                                                                                           \
+    void bsdf_##NAME##_pdf(const float *params, const float *wi, const float *wo, float *out, size_t n) {       \
+        (void)params;                                                                                           \
+        pdf(MISTAKE, wi, wo, out, n);                                                                           \
+    }                                                                                                           \
+    void bsdf_##NAME##_sample(const float *params, const float *wi, const float *u, float *wo, float *weight,  \
+                              float *pdf, size_t n) {                                                           \
+        sample(MISTAKE, params, wi, u, wo, weight, pdf, n);                                                     \
+    }
+
+DEFINE(lambert, NONE)
+DEFINE(no_inv_pi, NO_INV_PI)
+DEFINE(weight_no_cosine, WEIGHT_NO_COSINE)
+DEFINE(uniform_pdf, UNIFORM_PDF)
+DEFINE(one_sided_shadowing, ONE_SIDED_SHADOWING)
