@@ -3,6 +3,7 @@
 #include <mcval_bsdfs.h>
 
 #include "diffuse.h"
+#include "roughconductor.h"
 
 namespace mcval {
 namespace {
@@ -38,6 +39,13 @@ void sampleRows(Make make, const float *params, const float *wi, const float *u,
 
 DiffuseBsdf makeDiffuse(const float *params) { return DiffuseBsdf(Color(params[0], params[0], params[0])); }
 
+/// alpha, eta, k, ggx (0: Beckmann, 1: GGX), sample_visible (0 or 1).
+RoughConductorBsdf makeRoughConductor(const float *params) {
+    const auto type = params[3] != 0.f ? MicrofacetDistribution::Type::GGX : MicrofacetDistribution::Type::Beckmann;
+    return RoughConductorBsdf(MicrofacetDistribution(type, params[0], params[4] != 0.f), params[1], params[2],
+                              Color(1.f, 1.f, 1.f));
+}
+
 }  // namespace
 }  // namespace mcval
 
@@ -58,4 +66,5 @@ DiffuseBsdf makeDiffuse(const float *params) { return DiffuseBsdf(Color(params[0
 
 extern "C" {
 MCVAL_EXPORT_BSDF(diffuse, "reflectance", mcval::makeDiffuse)
+MCVAL_EXPORT_BSDF(roughconductor, "alpha,eta,k,ggx,sample_visible", mcval::makeRoughConductor)
 }
