@@ -5,23 +5,32 @@ import numpy as np
 
 from harness.engines.base import BsdfFunctions
 from harness.bsdfs.checks import draw, energy_check, reciprocity_check, sampling_checks, weight_check
+from harness.bsdfs.reference import samples_check, values_check
 from harness.warps.check_result import CheckResult
 
 #: The checks, in the order a report lists them.
 CHECKS = ("sampling", "normalisation", "weight", "energy", "reciprocity")
+#: Against a reference engine's plugin of the same name, where there is one.
+REFERENCE_CHECKS = ("reference values", "reference samples")
 #: The statistical ones: each counts once in the run's Sidak split.
-STATISTICAL = ("sampling", "energy")
+STATISTICAL = ("sampling", "energy", "reference samples")
 #: Random (wi, wo) pairs of the reciprocity check.
 RECIPROCITY_PAIRS = 10_000
 
 
-def check_bsdf_at(bsdf: BsdfFunctions, wi: np.ndarray, samples: int, seed: int, level: float) -> dict[str, CheckResult]:
-    """The checks of `bsdf` at `wi` from `samples` samples (seeded), the statistical ones decided at the per-test
-    `level` (the run's family-wise level split over its statistical checks)."""
+def check_bsdf_at(bsdf: BsdfFunctions, wi: np.ndarray, samples: int, seed: int, level: float,
+                  reference: BsdfFunctions | None = None) -> dict[str, CheckResult]:
+    """The checks of `bsdf` at `wi` from `samples` samples (seeded), and against `reference` (the same plugin in
+    another engine) where given; the statistical ones decided at the per-test `level` (the run's family-wise
+    level split over its statistical checks)."""
     d = draw(bsdf, wi, samples, seed)
     sampling, normalisation = sampling_checks(bsdf, d)
     results = {"sampling": sampling, "normalisation": normalisation, "weight": weight_check(bsdf, d),
                "energy": energy_check(d, level), "reciprocity": reciprocity_check(bsdf, RECIPROCITY_PAIRS, seed)}
+    if reference is not None:
+        results["reference values"] = values_check(bsdf, reference, wi, RECIPROCITY_PAIRS, seed)
+        results["reference samples"] = samples_check(bsdf, d, reference, seed + 1)
     for name in STATISTICAL:
-        results[name].decide(level)
+        if name in results:
+            results[name].decide(level)
     return results
