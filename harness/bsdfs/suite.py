@@ -1,0 +1,120 @@
+"""The BSDF matrix: every BSDF asked for (at its parameter values) at every incident angle, all its checks
+(harness/bsdfs/evaluate.py) decided at one per-test level, the run's family-wise level split over every
+statistical check of the matrix (Sidak)."""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Callable
+
+from harness.bsdfs.checks import incident
+from harness.bsdfs.evaluate import STATISTICAL, check_bsdf_at
+from harness.engines.base import BsdfFunctions
+from harness.engines.python_child import ChildFailed
+from harness.statistics.constants import sidak_level
+from harness.warps.check_result import CheckResult
+
+#: Incident angles from the normal, in degrees: normal, oblique and grazing incidence.
+ANGLES = (0.0, 30.0, 60.0, 80.0, 89.0)
+#: Samples per BSDF and angle.
+SAMPLES = 200_000
+#: The family-wise level of a run's statistical checks.
+ALPHA = 0.01
+#: Values of a parameter a library names, where the command line gives none: a name of Mitsuba's, else 0.5.
+DEFAULT_VALUES = {"alpha": 0.3, "reflectance": 0.8, "albedo": 0.8, "eta": 0.2, "k": 3.0, "ggx": 0.0,
+                  "sample_visible": 1.0, "int_ior": 1.5, "ext_ior": 1.0}
+#: The BSDFs of our library the matrix runs by default: each model with its choices, at a low and a high
+#: roughness.
+OUR_DEFAULTS = ("diffuse",
+                *(f"roughconductor:alpha={a},ggx={g},sample_visible={v}"
+                  for a in (0.05, 0.5) for g in (0, 1) for v in (0, 1)))
+
+
+@dataclass(frozen=True)
+class BsdfSpec:
+    """A BSDF asked for: its name and the values given for some of its parameters."""
+
+    name: str
+    given: tuple[tuple[str, float], ...] = ()
+
+    def values(self, parameters: list[str]) -> dict[str, float]:
+        """Every parameter's value: given, else DEFAULT_VALUES, else 0.5. ValueError for a given one it lacks."""
+        given = dict(self.given)
+        unknown = sorted(set(given) - set(parameters))
+        if unknown:
+            raise ValueError(f"{self.name} has no parameter {', '.join(unknown)} (it takes "
+                             f"{', '.join(parameters) or 'none'})")
+        return {p: given.get(p, DEFAULT_VALUES.get(p, 0.5)) for p in parameters}
+
+
+def parse_spec(text: str) -> BsdfSpec:
+    """"roughconductor:alpha=0.1,ggx=1" (or a name alone); ValueError saying what was expected."""
+    name, _, rest = text.partition(":")
+    given = []
+    for item in filter(None, rest.split(",")):
+        key, eq, value = item.partition("=")
+        try:
+            number = float(value)
+        except ValueError:
+            number = None
+        if not eq or not key.strip() or number is None:
+            raise ValueError(f"--bsdf {text}: expected NAME or NAME:param=value,param=value (e.g. "
+                             f"roughconductor:alpha=0.1,ggx=1), not {item!r}")
+        given.append((key.strip(), number))
+    if not name.strip().isidentifier():
+        raise ValueError(f"--bsdf {text}: {name!r} is not a BSDF name (letters, digits and _)")
+    return BsdfSpec(name.strip(), tuple(given))
+
+
+@dataclass
+class BsdfRow:
+    """One BSDF at one incident angle: its checks, or the one line saying why it could not be checked."""
+
+    label: str
+    theta: float | None  # None: the BSDF could not be checked at any angle
+    checks: dict[str, CheckResult] = field(default_factory=dict)
+    failure: str | None = None
+    seconds: float = 0.0
+
+    @property
+    def passed(self) -> bool:
+        return self.failure is None and bool(self.checks) and all(c.passed for c in self.checks.values())
+
+    def to_json(self) -> dict:
+        return {"bsdf": self.label, "theta": self.theta, "pass": self.passed, "failure": self.failure,
+                "seconds": round(self.seconds, 3), "checks": {k: c.to_json() for k, c in self.checks.items()}}
+
+
+@dataclass(frozen=True)
+class Entry:
+    """A BSDF ready to check: its functions and the reference engine's (None: no such plugin there), or why it
+    cannot be checked."""
+
+    label: str
+    bsdf: BsdfFunctions | None = None
+    reference: BsdfFunctions | None = None
+    failure: str | None = None
+
+
+def run_matrix(entries: list[Entry], angles=ANGLES, samples: int = SAMPLES, seed: int = 0, alpha: float = ALPHA,
+               on_progress: Callable[[str], None] = lambda _: None) -> tuple[list[BsdfRow], float]:
+    """Every entry at every angle; returns the rows and the per-test level they were decided at."""
+    tests = sum(len(angles) * (len(STATISTICAL) - (e.reference is None)) for e in entries if e.failure is None)
+    level = sidak_level(alpha, max(tests, 1))
+    rows = []
+    for entry in entries:
+        if entry.failure is not None:
+            on_progress(entry.label)
+            rows.append(BsdfRow(entry.label, None, failure=entry.failure))
+            continue
+        for theta in angles:
+            on_progress(f"{entry.label} at {theta:g} degrees")
+            row, start = BsdfRow(entry.label, theta), time.perf_counter()
+            try:  # each row its own uniforms
+                row.checks = check_bsdf_at(entry.bsdf, incident(theta), samples, seed * 7919 + len(rows), level,
+                                           entry.reference)
+            except ChildFailed as e:  # the library (or Mitsuba) crashed, hung or wrote past its output
+                row.failure = e.reason
+            row.seconds = time.perf_counter() - start
+            rows.append(row)
+    return rows, level

@@ -1,0 +1,61 @@
+"""`mcval bsdfs`: our BSDFs pass the matrix; a library's twins each fail their row, naming the check; a crashing,
+overrunning or incomplete BSDF fails its own row and the others run; bad values are refused in one line."""
+import json
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+
+from harness.cli import main
+from tests.helpers.warp_libraries import build_warp_library
+
+HERE = Path(__file__).resolve().parent
+TWINS = HERE.parent / "bsdfs" / "bsdf_twins.c"
+MISBEHAVING = HERE.parent / "engines" / "bsdf_libraries" / "misbehaving_bsdfs.c"
+
+
+def _run(tmp_path, *args: str) -> tuple[int, dict]:
+    code = main(["bsdfs", "--angles", "0", "60", "--samples", "50000", "--out", str(tmp_path / "r"), *args])
+    run = tmp_path / "r" / "latest"
+    ET.parse(run / "junit.xml")
+    return code, json.loads((run / "results.json").read_text())
+
+
+@pytest.mark.mitsuba
+def test_ours_pass_against_mitsuba(tmp_path):
+    code, results = _run(tmp_path, "--bsdf", "diffuse:reflectance=0.5", "roughconductor:alpha=0.2,ggx=1")
+    assert code == 0 and results["verdict"] == "PASS" and len(results["bsdfs"]) == 4
+    assert all("reference samples" in row["checks"] for row in results["bsdfs"])
+
+
+def test_each_twin_fails_its_row_naming_its_check(tmp_path, capsys):
+    library = build_warp_library(TWINS, tmp_path)
+    named = {"no_inv_pi": ["energy"], "weight_no_cosine": ["weight"], "uniform_pdf": ["sampling"],
+             "one_sided_shadowing": ["reciprocity"]}
+    code, results = _run(tmp_path, "--bsdf-library", str(library), "--no-mitsuba", "--bsdf",
+                         *(f"{name}:albedo=0.5" for name in ["lambert", *named]))
+    failed = {(row["bsdf"].split()[0], row["theta"]): sorted(k for k, c in row["checks"].items() if not c["pass"])
+              for row in results["bsdfs"] if not row["pass"]}
+    assert code == 1 and failed == {(name, theta): checks for name, checks in named.items() for theta in (0.0, 60.0)}
+    assert "FAIL weight_no_cosine albedo=0.5 at 0 degrees: weight:" in " ".join(capsys.readouterr().out.split())
+
+
+def test_a_misbehaving_bsdf_fails_its_own_row(tmp_path):
+    library = build_warp_library(MISBEHAVING, tmp_path)
+    code, results = _run(tmp_path, "--bsdf-library", str(library), "--no-mitsuba")
+    rows = {(row["bsdf"].split()[0], row["theta"]): row for row in results["bsdfs"]}
+    assert code == 1 and rows[("lambert", 0.0)]["pass"] and rows[("lambert", 60.0)]["pass"]
+    assert rows[("crash", 0.0)]["failure"].endswith("bsdf_crash_sample (crash) was killed by SIGSEGV")
+    assert "wrote past the end of its value" in rows[("overrun", 0.0)]["failure"]
+    assert rows[("partial", None)]["failure"].startswith("libmisbehaving_bsdfs.so exports partial without")
+
+
+def test_a_malformed_value_is_refused_in_one_line(tmp_path, capsys):
+    assert main(["bsdfs", "--bsdf", "roughconductor:alpha", "--out", str(tmp_path / "r")]) == 2
+    assert "expected NAME or NAME:param=value,param=value" in capsys.readouterr().err
+
+
+def test_a_parameter_the_bsdf_lacks_fails_its_row(tmp_path):
+    code, results = _run(tmp_path, "--bsdf", "roughconductor:beta=1", "--no-mitsuba")
+    (row,) = results["bsdfs"]
+    assert code == 1 and row["failure"].startswith("roughconductor has no parameter beta (it takes alpha, eta, k")
