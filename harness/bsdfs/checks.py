@@ -33,6 +33,9 @@ WEIGHT_TOLERANCE = 1e-3
 RECIPROCITY_TOLERANCE = 1e-3
 #: Power of the energy check's stated smallest excess.
 POWER = 0.9
+#: The largest error of the pdf's cell integrals (as the cubature estimates it) at which the chi-square is judged:
+#: beyond it the expected counts are not known well enough (a lobe narrower than the cubature resolves).
+INTEGRATION_LIMIT = 1e-3
 
 
 @dataclass(frozen=True)
@@ -79,8 +82,8 @@ def sampling_checks(bsdf: BsdfFunctions, d: Draw) -> tuple[CheckResult, CheckRes
     probabilities = np.asarray(integrals.values, np.float64).ravel()
     integral = float(probabilities.sum())
     share = float(np.count_nonzero(failed)) / n
-    # Within 5 standard deviations of the failed share, and the integration's own tolerance.
-    slack = NORMALISATION_TOLERANCE + 5.0 * np.sqrt(max(share * (1 - share), 1.0 / n) / n)
+    # Within 5 standard deviations of the failed share, the integration's own tolerance and its estimated error.
+    slack = NORMALISATION_TOLERANCE + 5.0 * np.sqrt(max(share * (1 - share), 1.0 / n) / n) + integrals.error
     normalisation = normalisation_check(integral + share, integrals.error)
     if abs(integral + share - 1.0) <= slack and not normalisation.passed:
         normalisation = CheckResult(True, integral, f"integral = {integral:.6f}, {share:.4%} of samples failed",
@@ -101,7 +104,10 @@ def sampling_checks(bsdf: BsdfFunctions, d: Draw) -> tuple[CheckResult, CheckRes
         return CheckResult(False, 0.0, hard, p_value=0.0, hard_failure=hard), normalisation
     res = goodness_of_fit(observed, expected)
     details = {"statistic": res.statistic, "dof": res.dof, "pooled_cells": res.pooled_cells, "samples": n,
-               "failed_samples": int(np.count_nonzero(failed)), **bins.to_json()}
+               "failed_samples": int(np.count_nonzero(failed)), "integration_error": integrals.error, **bins.to_json()}
+    if integrals.error > INTEGRATION_LIMIT:
+        return not_judged(f"the pdf's cell integrals are uncertain to {integrals.error:.2g} (a lobe narrower than "
+                          f"the cubature resolves; at most {INTEGRATION_LIMIT:g} is judged)", **details), normalisation
     if res.not_judged:
         return not_judged(res.not_judged, **details), normalisation
     return CheckResult(None, res.p_value, f"p = {res.p_value:.3g}", p_value=res.p_value, details=details), normalisation

@@ -186,7 +186,9 @@ def _most_cells(edges_for: Callable[[int], np.ndarray | None], noncentrality: Ca
     while hi - lo > 1:
         mid = (lo + hi) // 2
         candidate = edges_for(mid)
-        if noncentrality(candidate) <= ROUNDING_NONCENTRALITY:
+        if candidate is None:  # strips this wide miss a mass narrower than them: more cells see it
+            lo = mid
+        elif noncentrality(candidate) <= ROUNDING_NONCENTRALITY:
             lo, best = mid, candidate
         else:
             hi = mid

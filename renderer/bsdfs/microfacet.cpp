@@ -115,7 +115,7 @@ MicrofacetSample MicrofacetDistribution::sample(const Vec3f &wi, float u1, float
         const float cosM = 1.f / std::sqrt(1.f + tan2), cos3 = cosM * cosM * cosM;
         s.pdf = m_type == Type::Beckmann ? (1.f - u1) / (kPi * a2 * cos3)
                                          : 1.f / (kPi * a2 * cos3 * sqr(1.f + tan2 / a2));
-        const float sinM = detail::safeSqrt(1.f - cosM * cosM);
+        const float sinM = std::sqrt(tan2) * cosM;  // not sqrt(1 - cos^2): that cancels for small tan2
         const float phi = 2.f * kPi * u2;
         s.m = Vec3f(std::cos(phi) * sinM, std::sin(phi) * sinM, cosM);
         return s;
