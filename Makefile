@@ -25,7 +25,7 @@ FUZZ_SEED ?= 1
 FUZZ_IMAGE_RUNS ?= 2000
 FUZZ_IMAGE_SEED ?= 4104
 
-.PHONY: validate test references bench build deps clean sanitize sanitize-build sanitize-compile fuzz mutate
+.PHONY: validate test references bench build deps clean sanitize sanitize-build fuzz mutate
 
 ## validate: run the whole validation; writes results/<run>/ and fails on any FAIL
 validate: build
@@ -33,16 +33,9 @@ validate: build
 
 ## test: the harness's layer contract (lint-imports), the Python suites (pytest), then the sanitizer run (the C++
 ## unit tests among it) and a short fuzz pass
-test: deps
-	@# The sanitizer build needs no .venv: it compiles niced beside the set-up and pytest, on the cores they leave
-	@# idle, and its output is printed once they are done.
-	@mkdir -p $(SANITIZE_BUILD); \
-	nice -n 19 $(MAKE) --no-print-directory sanitize-compile > $(SANITIZE_BUILD)/make.log 2>&1 & sanitizer=$$!; \
-	$(MAKE) --no-print-directory build && echo "$(VENV)/bin/lint-imports" && $(VENV)/bin/lint-imports && \
-		echo "$(PY) -m pytest -n $(TEST_JOBS) --dist loadfile" && $(PY) -m pytest -n $(TEST_JOBS) --dist loadfile; \
-	status=$$?; \
-	wait $$sanitizer; built=$$?; echo "--- the sanitizer build, compiled beside them:"; cat $(SANITIZE_BUILD)/make.log; \
-	[ $$status = 0 ] && [ $$built = 0 ]
+test: build
+	$(VENV)/bin/lint-imports
+	$(PY) -m pytest -n $(TEST_JOBS) --dist loadfile
 	$(MAKE) --no-print-directory sanitize
 	$(MAKE) --no-print-directory fuzz FUZZ_RUNS=300 FUZZ_IMAGE_RUNS=0
 
@@ -52,12 +45,9 @@ sanitize: sanitize-build
 	ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 $(SANITIZE_BUILD)/test_renderer --gtest_brief=1
 	$(PY) tests/fuzz/replay.py --render $(SANITIZE_BUILD)/render
 
-sanitize-build: build sanitize-compile
-
-## sanitize-compile: the sanitizer build alone (it needs no .venv)
-sanitize-compile: deps
+sanitize-build: build
 	@[ -f $(SANITIZE_BUILD)/build.ninja ] || cmake -S . -B $(SANITIZE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-		-DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DMCVAL_SANITIZE=ON
+		-DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DMCVAL_SANITIZE=ON -DPython_EXECUTABLE=$(abspath $(PY))
 	cmake --build $(SANITIZE_BUILD) --target render test_renderer
 
 ## fuzz: a bounded mutation-fuzz campaign of the sanitized renderer (FUZZ_RUNS variants, seed FUZZ_SEED), then

@@ -28,10 +28,16 @@ def _verdicts(results) -> dict[str, str]:
     return {r.label: r.verdict for r in results}
 
 
+@pytest.fixture(scope="module")
+def power_cache(tmp_path_factory) -> Path:
+    """The power figures of these runs, kept for the next seed's (the same cells give the same figures)."""
+    return tmp_path_factory.mktemp("power") / "warp_power.json"
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1, 2])
-def test_the_correct_library_passes_every_warp_against_mitsuba(mitsuba, seed):
-    results, _ = run_matrix(_library(), mitsuba, list(SUITE), seed=seed, samples=SAMPLES, power_cache=None)
+def test_the_correct_library_passes_every_warp_against_mitsuba(mitsuba, seed, power_cache):
+    results, _ = run_matrix(_library(), mitsuba, list(SUITE), seed=seed, samples=SAMPLES, power_cache=power_cache)
     assert all(r.passed for r in results), _verdicts(results)
     checked = {name for r in results for name, c in r.checks.items() if not c.skipped}
     assert {"pdf_vs_mitsuba", "samples_vs_mitsuba"} <= checked
