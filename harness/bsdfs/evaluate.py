@@ -24,12 +24,12 @@ def check_bsdf_at(bsdf: BsdfFunctions, wi: np.ndarray, samples: int, seed: int, 
     another engine) where given; the statistical ones decided at the per-test `level` (the run's family-wise
     level split over its statistical checks)."""
     d = draw(bsdf, wi, samples, seed)
-    sampling, normalisation = sampling_checks(bsdf, d)
+    sampling, normalisation, bins = sampling_checks(bsdf, d)
     results = {"sampling": sampling, "normalisation": normalisation, "weight": weight_check(bsdf, d),
                "energy": energy_check(d, level), "reciprocity": reciprocity_check(bsdf, RECIPROCITY_PAIRS, seed)}
     if reference is not None:
         results["reference values"] = values_check(bsdf, reference, wi, RECIPROCITY_PAIRS, seed)
-        results["reference samples"] = samples_check(bsdf, d, reference, seed + 1)
+        results["reference samples"] = samples_check(d, reference, bins, seed + 1)
     for name in STATISTICAL:
         if name in results:
             results[name].decide(level)

@@ -6,9 +6,9 @@ import numpy as np
 
 from harness.bsdfs.checks import Draw
 from harness.engines.base import BsdfFunctions
-from harness.warps.bins import sample_quantum
+from harness.warps.bins import Bins
 from harness.warps.check_result import CheckResult
-from harness.warps.checks import equal_probability_cells, histogram, homogeneity_check
+from harness.warps.checks import histogram, homogeneity_check
 from harness.warps.domains import SPHERE
 
 #: Relative difference allowed between the two engines' values (and pdfs): beyond float32 rounding and the
@@ -48,17 +48,15 @@ def values_check(bsdf: BsdfFunctions, reference: BsdfFunctions, wi: np.ndarray, 
                        f"{z:.3f}: {a:.4g} here, {b:.4g} there)", details=details)
 
 
-def samples_check(bsdf: BsdfFunctions, d: Draw, reference: BsdfFunctions, seed: int) -> CheckResult:
+def samples_check(d: Draw, reference: BsdfFunctions, bins: Bins, seed: int) -> CheckResult:
     """The directions this BSDF sampled (`d`) and as many the reference samples from the same wi, from one
-    distribution: a two-sample chi-square in this BSDF's equal-probability cells, failed samples in a cell of
-    their own."""
+    distribution: a two-sample chi-square in this BSDF's equal-probability cells (`bins`, those of its sampling
+    check), failed samples in a cell of their own."""
     n = len(d.wo)
     u = np.random.default_rng(seed).random((n, 3), dtype=np.float32).astype(np.float64)
     wo, weight, pdf = reference.sample(np.tile(d.wi, (n, 1)), u)
     theirs_failed = (pdf == 0) & (weight == 0)
     ours, theirs = d.wo[~d.failed], wo[~theirs_failed]
-    bins, _ = equal_probability_cells(SPHERE, lambda w: bsdf.pdf(np.tile(d.wi, (len(w), 1)), w), n,
-                                      sample_quantum(ours, theirs))
     counts = [np.append(histogram(SPHERE, points, bins).ravel(), failed.sum())
               for points, failed in ((ours, d.failed), (theirs, theirs_failed))]
     outside = int(np.count_nonzero(~SPHERE.inside(ours)))
