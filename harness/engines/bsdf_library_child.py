@@ -7,10 +7,9 @@ import re
 
 import numpy as np
 
-from harness.engines.warp_library_child import GUARD, OutputOverrun
+from harness.engines.warp_library_child import pointer, checked, guarded
 
 _lib: ctypes.CDLL | None = None
-_GUARD_BITS = np.uint32(0x7FC0DEAD)
 _SYMBOL = re.compile(r"bsdf_(\w+)_(params|eval|pdf|sample)")
 _F32 = ctypes.POINTER(ctypes.c_float)
 
@@ -41,21 +40,8 @@ def bsdfs(path: str) -> dict[str, dict]:
     return found
 
 
-def _guarded(n: int, columns: int) -> np.ndarray:
-    out = np.zeros(n * columns + GUARD, np.float32)
-    out.view(np.uint32)[n * columns:] = _GUARD_BITS
-    return out
-
-
-def _checked(out: np.ndarray, n: int, columns: int, what: str) -> np.ndarray:
-    if np.any(out.view(np.uint32)[n * columns:] != _GUARD_BITS):
-        raise OutputOverrun(f"wrote past the end of its {what} ({n} rows, {columns} float{'s' * (columns > 1)} each)")
-    return out[:n * columns].reshape(n, columns)
-
-
-def _floats(a) -> tuple[np.ndarray, object]:
-    a = np.ascontiguousarray(a, np.float32)
-    return a, a.ctypes.data_as(_F32)
+def _float32(*arrays) -> list[np.ndarray]:
+    return [np.ascontiguousarray(a, np.float32) for a in arrays]
 
 
 def _function(name: str, kind: str, arguments: int):
@@ -68,16 +54,15 @@ def _function(name: str, kind: str, arguments: int):
 def eval_or_pdf(name: str, kind: str, params: np.ndarray, wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
     """bsdf_NAME_eval or bsdf_NAME_pdf (`kind`) at n rows of wi, wo (n, 3): (n,) float32."""
     n = len(wi)
-    (p, pp), (i, ip), (o, op) = _floats(params), _floats(wi), _floats(wo)
-    out = _guarded(n, 1)
-    _function(name, kind, 4)(pp, ip, op, out.ctypes.data_as(_F32), n)
-    return _checked(out, n, 1, {"eval": "value", "pdf": "pdf"}[kind])[:, 0]
+    out = guarded(n, 1)
+    _function(name, kind, 4)(*map(pointer, (*_float32(params, wi, wo), out)), n)
+    return checked(out, n, 1, {"eval": "value", "pdf": "pdf"}[kind], "rows")[:, 0]
 
 
 def sample(name: str, params: np.ndarray, wi: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, ...]:
     """bsdf_NAME_sample at n rows of wi (n, 3) and u (n, 3): wo (n, 3), weight (n,), pdf (n,), float32."""
     n = len(wi)
-    (p, pp), (i, ip), (v, up) = _floats(params), _floats(wi), _floats(u)
-    wo, weight, pdf = _guarded(n, 3), _guarded(n, 1), _guarded(n, 1)
-    _function(name, "sample", 6)(pp, ip, up, *(a.ctypes.data_as(_F32) for a in (wo, weight, pdf)), n)
-    return (_checked(wo, n, 3, "wo"), _checked(weight, n, 1, "weight")[:, 0], _checked(pdf, n, 1, "pdf")[:, 0])
+    wo, weight, pdf = guarded(n, 3), guarded(n, 1), guarded(n, 1)
+    _function(name, "sample", 6)(*map(pointer, (*_float32(params, wi, u), wo, weight, pdf)), n)
+    return (checked(wo, n, 3, "wo", "rows"), checked(weight, n, 1, "weight", "rows")[:, 0],
+            checked(pdf, n, 1, "pdf", "rows")[:, 0])

@@ -37,8 +37,22 @@ def _function(name: str, alpha: float | None):
     return fn, (() if alpha is None else (ctypes.c_float(alpha),))
 
 
-def _pointer(a: np.ndarray):
+def pointer(a: np.ndarray):
     return a.ctypes.data_as(ctypes.POINTER(ctypes.c_float))
+
+
+def guarded(n: int, columns: int) -> np.ndarray:
+    """An output buffer of n rows of `columns` floats, with GUARD floats of the guard value after them."""
+    out = np.zeros(n * columns + GUARD, np.float32)
+    out.view(np.uint32)[n * columns:] = _GUARD_BITS
+    return out
+
+
+def checked(out: np.ndarray, n: int, columns: int, what: str = "output", rows: str = "points") -> np.ndarray:
+    """The (n, columns) rows of a `guarded` buffer; OutputOverrun if the function wrote over its guard."""
+    if np.any(out.view(np.uint32)[n * columns:] != _GUARD_BITS):
+        raise OutputOverrun(f"wrote past the end of its {what} ({n} {rows}, {columns} float{'s' * (columns > 1)} each)")
+    return out[:n * columns].reshape(n, columns)
 
 
 def call(name: str, alpha: float | None, inputs: np.ndarray, columns: int) -> np.ndarray:
@@ -46,13 +60,9 @@ def call(name: str, alpha: float | None, inputs: np.ndarray, columns: int) -> np
     fn, extra = _function(name, alpha)
     inputs = np.ascontiguousarray(inputs, np.float32)
     n = len(inputs)
-    out = np.zeros(n * columns + GUARD, np.float32)
-    out.view(np.uint32)[n * columns:] = _GUARD_BITS
-    fn(_pointer(inputs), _pointer(out), n, *extra)
-    if np.any(out.view(np.uint32)[n * columns:] != _GUARD_BITS):
-        raise OutputOverrun(f"wrote past the end of its output ({n} points, {columns} float{'s' * (columns > 1)} "
-                            "each)")
-    return out[:n * columns].reshape(n, columns)
+    out = guarded(n, columns)
+    fn(pointer(inputs), pointer(out), n, *extra)
+    return checked(out, n, columns)
 
 
 def prepare(key: tuple, name: str, alpha: float | None, n: int, columns: int) -> None:
@@ -63,4 +73,4 @@ def prepare(key: tuple, name: str, alpha: float | None, n: int, columns: int) ->
 
 def run(key: tuple) -> None:
     fn, extra, u, out, n = _runs[key]
-    fn(_pointer(u), _pointer(out), n, *extra)
+    fn(pointer(u), pointer(out), n, *extra)
