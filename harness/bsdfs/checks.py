@@ -39,10 +39,9 @@ INTEGRATION_LIMIT = 1e-3
 
 @dataclass(frozen=True)
 class Draw:
-    """`n` samples of the BSDF at wi: the uniforms, the sampled directions, weights and pdfs (float64)."""
+    """`n` samples of the BSDF at wi: the sampled directions, weights and pdfs (float64)."""
 
     wi: np.ndarray
-    u: np.ndarray
     wo: np.ndarray
     weight: np.ndarray
     pdf: np.ndarray
@@ -63,7 +62,7 @@ def incident(theta_degrees: float, below: bool = False) -> np.ndarray:
 def draw(bsdf: BsdfFunctions, wi: np.ndarray, samples: int, seed: int) -> Draw:
     u = np.random.default_rng(seed).random((samples, 3), dtype=np.float32).astype(np.float64)
     wo, weight, pdf = bsdf.sample(np.tile(wi, (samples, 1)), u)
-    return Draw(wi, u, wo, weight, pdf)
+    return Draw(wi, wo, weight, pdf)
 
 
 def _pdf_at(bsdf: BsdfFunctions, wi: np.ndarray):
