@@ -1,6 +1,7 @@
-"""A user's shared library (warps, BSDFs) loaded in a process of its own (harness/engines/python_child.py): a
-segfault, an abort(), a write past its output, an exit() or a hang costs the call it happened in, named in one
-line with the library and what was called; a child that failed is replaced at the next call."""
+"""A user's shared library (warps, BSDFs), or Mitsuba's BSDF plugins, in a process of its own
+(harness/engines/python_child.py): a segfault, an abort(), a write past its output, an exit() or a hang costs the
+call it happened in, named in one line with the library and what was called; a child that failed is replaced at
+the next call."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -10,11 +11,14 @@ from harness.engines.python_child import ChildFailed, ChildRaised, PythonChild
 
 
 class LibraryProcess:
-    """The library at `path`, loaded by `child_module:load(path)` in a child, whose functions `call` runs there
-    with a time limit of `timeout()` seconds."""
+    """The library at `path` (loaded by `child_module:load(path)` in a child; None: the module loads what it needs
+    itself), whose functions `call` runs there with a time limit of `timeout()` seconds. `name` begins its
+    failures' lines (default: the library's file name)."""
 
-    def __init__(self, path: Path, child_module: str, timeout: Callable[[], float]) -> None:
+    def __init__(self, path: Path | None, child_module: str, timeout: Callable[[], float],
+                 name: str | None = None) -> None:
         self.path, self._module, self._timeout = path, child_module, timeout
+        self.name = name or (path.name if path else child_module)
         self._child: PythonChild | None = None
 
     def call(self, function: str, *args: Any, what: str) -> Any:
@@ -25,9 +29,10 @@ class LibraryProcess:
         if self._child is None or not self._child.alive:
             child = PythonChild()
             try:
-                child.call(f"{self._module}:load", str(self.path), timeout=self._timeout())
+                if self.path is not None:
+                    child.call(f"{self._module}:load", str(self.path), timeout=self._timeout())
             except ChildFailed as e:
-                raise ChildFailed(f"{self.path.name}: loading it {e.reason}", e.output) from None
+                raise ChildFailed(f"{self.name}: loading it {e.reason}", e.output) from None
             except ChildRaised:
                 child.close()
                 raise
@@ -36,10 +41,10 @@ class LibraryProcess:
             return self._child.call(f"{self._module}:{function}", *args, timeout=self._timeout())
         except ChildFailed as e:
             self._child = None
-            raise ChildFailed(f"{self.path.name}: {what} {e.reason}", e.output) from None
+            raise ChildFailed(f"{self.name}: {what} {e.reason}", e.output) from None
         except ChildRaised as e:
             if e.original is not None and type(e.original).__name__ == "OutputOverrun":
                 self._child.close()  # what it overwrote is unknown
                 self._child = None
-                raise ChildFailed(f"{self.path.name}: {what} {e.original}") from None
+                raise ChildFailed(f"{self.name}: {what} {e.original}") from None
             raise

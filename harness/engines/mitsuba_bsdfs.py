@@ -6,7 +6,8 @@ from __future__ import annotations
 import numpy as np
 
 from harness.engines.base import BsdfFunctions
-from harness.engines.python_child import ChildFailed, PythonChild, seconds_from_env
+from harness.engines.library_process import LibraryProcess
+from harness.engines.python_child import seconds_from_env
 
 _CHILD = "harness.engines.mitsuba_bsdf_child"
 #: Seconds one call may take (Mitsuba compiles its kernels at the first): $MCVAL_BSDF_TIMEOUT, else this.
@@ -40,17 +41,11 @@ class MitsubaBsdfs:
     """Mitsuba's BSDF plugins, called in one child process (started at the first call, again after a failure)."""
 
     def __init__(self) -> None:
-        self._child: PythonChild | None = None
+        self._process = LibraryProcess(None, _CHILD, lambda: seconds_from_env("MCVAL_BSDF_TIMEOUT", DEFAULT_TIMEOUT),
+                                       name="Mitsuba")
 
     def _call(self, function: str, *args, what: str):
-        if self._child is None or not self._child.alive:
-            self._child = PythonChild()
-        try:
-            return self._child.call(f"{_CHILD}:{function}", *args,
-                                    timeout=seconds_from_env("MCVAL_BSDF_TIMEOUT", DEFAULT_TIMEOUT))
-        except ChildFailed as e:
-            self._child = None
-            raise ChildFailed(f"Mitsuba's {what} {e.reason}", e.output) from None
+        return self._process.call(function, *args, what=what)
 
     def functions(self, name: str, values: dict[str, float]) -> BsdfFunctions | None:
         """Mitsuba's plugin `name` at `values`, or None where it has none of that name."""
