@@ -63,12 +63,16 @@ class Reference:
 
 
 def scene_hash(path: Path) -> str:
-    """SHA-256 of the scene file and of every file its filename properties name."""
+    """SHA-256 of the scene file and of every regular file its filename properties name (a device or a pipe
+    is hashed by its name only: it would be read without end)."""
     h = hashlib.sha256(path.read_bytes())
     for name in sorted(set(re.findall(r'name="filename"\s+value="([^"]+)"', path.read_text()))):
         mesh = path.parent / name
         h.update(name.encode())
-        h.update(mesh.read_bytes() if mesh.exists() else b"missing")
+        if mesh.is_file():
+            h.update(mesh.read_bytes())
+        else:
+            h.update(b"not a regular file" if mesh.exists() else b"missing")
     return h.hexdigest()
 
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from harness.engines.nori.ply_mesh import PlyError, PlyMesh
+from harness.engines.nori.ply_mesh import PlyError, PlyMesh, regular_file
 
 
 def read_obj(path: Path) -> PlyMesh:
@@ -15,7 +15,7 @@ def read_obj(path: Path) -> PlyMesh:
     positions: list[list[float]] = []
     corners: dict[tuple[int, ...], int] = {}
     triangles: list[tuple[int, int, int]] = []
-    with open(path, errors="replace") as f:
+    with open(regular_file(path), errors="replace") as f:
         for number, line in enumerate(f, 1):
             words = line.split()
             try:

@@ -17,6 +17,15 @@ class PlyError(ValueError):
     """A PLY file this reader cannot read, naming the file and what is wrong."""
 
 
+def regular_file(path: Path) -> Path:
+    """`path` if it is a regular file; PlyError otherwise, as a device or a pipe named as a mesh would be read
+    without end (/dev/zero, a FIFO)."""
+    path = Path(path)
+    if path.exists() and not path.is_file():
+        raise PlyError(f"{path}: not a regular file")
+    return path
+
+
 @dataclass
 class PlyMesh:
     positions: np.ndarray        # (n, 3) float64
@@ -48,7 +57,7 @@ def _header(data: bytes, path: Path) -> tuple[str, list[tuple[str, int, list[tup
 
 def read_ply(path: Path) -> PlyMesh:
     """The mesh in the PLY file at `path`; PlyError if it cannot be read."""
-    data = Path(path).read_bytes()
+    data = regular_file(path).read_bytes()
     try:
         fmt, elements, offset = _header(data, path)
     except (KeyError, IndexError, ValueError) as e:

@@ -78,8 +78,11 @@ def rgb(name: str, values: list[float]) -> ET.Element:
 
 
 def obj_has_normals(filename: str, scene: Path) -> bool | None:
-    """Whether the OBJ file has `vn` lines (None if it cannot be read: the engines then say so)."""
+    """Whether the OBJ file has `vn` lines (None if it cannot be read, or is not a regular file: the engines then
+    say so)."""
     path = Path(filename) if Path(filename).is_absolute() else scene.parent / filename
+    if not path.is_file():
+        return None
     try:
         with open(path, errors="replace") as f:
             return any(line.startswith("vn ") for line in f)

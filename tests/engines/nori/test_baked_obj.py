@@ -1,6 +1,9 @@
 """Meshes written for Nori as OBJ files (harness/engines/nori/baked_obj.py, obj_mesh.py, ply_mesh.py): an OBJ
 Nori shades as Mitsuba does is named as it is, every other mesh is baked into world space with the normals
 Mitsuba shades it with, checked against Mitsuba's own positions and normals."""
+import resource
+import subprocess
+import sys
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -137,3 +140,37 @@ def test_baked_normals_are_mitsubas(tmp_path, kind):
     wrong = mcval_n.copy()
     wrong[1] = [0, 0, 1]  # a wrong normal at one vertex is seen
     assert not np.allclose(wrong[order], theirs_n, atol=1e-5)
+
+
+# Each reader of a named mesh file, given a device and a pipe: run in a child with a time and memory limit, as
+# a reader that reads them reads without end.
+ENDLESS_READS = """
+import os, sys, tempfile
+from pathlib import Path
+from harness.engines.nori.obj_mesh import read_obj
+from harness.engines.nori.ply_mesh import PlyError, read_ply
+from harness.engines.nori.reader import obj_has_normals
+from harness.images.references import scene_hash
+fifo = Path(tempfile.mkdtemp()) / "fifo"
+os.mkfifo(fifo)
+for path in ("/dev/zero", fifo):
+    for read in (read_obj, read_ply):
+        try:
+            read(Path(path))
+            sys.exit(f"{read.__name__} read {path}")
+        except PlyError as e:
+            assert "not a regular file" in str(e), e
+    assert obj_has_normals(str(path), fifo) is None
+    scene = fifo.with_name("scene.xml")
+    scene.write_text(f'<scene><shape type="obj"><string name="filename" value="{path}"/></shape></scene>')
+    scene_hash(scene)
+print("ok")
+"""
+
+
+def test_a_device_or_a_pipe_named_as_a_mesh_is_refused_not_read():
+    def limit_memory():
+        resource.setrlimit(resource.RLIMIT_AS, (2 << 30, 2 << 30))
+    done = subprocess.run([sys.executable, "-c", ENDLESS_READS], capture_output=True, text=True, timeout=60,
+                          preexec_fn=limit_memory)
+    assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr[-2000:]
