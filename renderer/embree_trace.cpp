@@ -23,6 +23,18 @@ void setFixedFields(Packet &p, int i) {
     p.flags[i] = 0;
 }
 
+/// Lane i as a finite, empty ray. Every inactive lane gets one: Embree's AVX2 kernels (16 rays as two packets
+/// of 8) assert on a NaN, or on what was left in memory, in an inactive lane too, and a caller's unused lane may
+/// hold either (simple's unlit lane where the light sits on its point: fuzz corpus light_on_floor; a lane never
+/// set).
+template <typename Packet>
+void setEmptyRay(Packet &p, int i) {
+    p.org_x[i] = p.org_y[i] = p.org_z[i] = 0.f;
+    p.dir_x[i] = p.dir_y[i] = 0.f;
+    p.dir_z[i] = 1.f;
+    p.tnear[i] = p.tfar[i] = 0.f;
+}
+
 /// Writes ray `r` into lane i of an Embree SoA ray packet.
 template <typename Packet>
 void setLane(Packet &p, int i, const Ray &r) {
@@ -227,6 +239,7 @@ MCVAL_HOT void EmbreeScene::intersect(RayHitPacket &packet, int count, HitPacket
         hits.dx[i] = r.dir_x[i]; hits.dy[i] = r.dir_y[i]; hits.dz[i] = r.dir_z[i];
         hits.tnear[i] = r.tnear[i];
         hits.tfar[i] = r.tfar[i];
+        if (!packet.valid[i]) setEmptyRay(packet.rh.ray, i);
     }
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -246,9 +259,10 @@ MCVAL_HOT void EmbreeScene::intersect(RayHitPacket *packets, const int *counts, 
             h.tnear[i] = r.tnear[i];
             h.tfar[i] = r.tfar[i];
             // A stream has no valid mask: a lane is left out by an empty interval.
-            const bool on = packets[j].valid[i] != 0;
-            r.tnear[i] = on ? r.tnear[i] : 1.f;
-            r.tfar[i] = on ? r.tfar[i] : 0.f;
+            if (!packets[j].valid[i]) {
+                setEmptyRay(r, i);
+                r.tnear[i] = 1.f;
+            }
         }
     }
     RTCIntersectContext context;
@@ -261,17 +275,8 @@ MCVAL_HOT void EmbreeScene::intersect(RayHitPacket *packets, const int *counts, 
 
 void EmbreeScene::occluded(OcclusionPacket &packet, bool coherent) const {
     if (packet.active == 0) return;
-    // An inactive lane gets a finite ray: Embree's AVX2 kernels (16 rays as two packets of 8) assert on a
-    // NaN in an inactive lane too, and a caller's unused lane may hold one (simple's unlit lane where the
-    // light sits on its point: fuzz corpus light_on_floor).
-    RTCRay16 &r = packet.rays;
-    for (int i = 0; i < kPacketSize; ++i) {
-        if (packet.valid[i]) continue;
-        r.org_x[i] = r.org_y[i] = r.org_z[i] = 0.f;
-        r.dir_x[i] = r.dir_y[i] = 0.f;
-        r.dir_z[i] = 1.f;
-        r.tnear[i] = r.tfar[i] = 0.f;
-    }
+    for (int i = 0; i < kPacketSize; ++i)
+        if (!packet.valid[i]) setEmptyRay(packet.rays, i);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     if (coherent) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
