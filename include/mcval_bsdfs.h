@@ -8,7 +8,10 @@
  *   bsdf_NAME_eval     value = f(wi, wo) |cos theta_o|
  *   bsdf_NAME_pdf      the density of wo by solid angle with which NAME_sample draws it given wi
  *   bsdf_NAME_sample   draws wo from 3 uniforms, with weight = value / pdf and its pdf;
- *                      weight and pdf 0 (wo any unit vector) where nothing is sampled
+ *                      weight and pdf 0 (wo any unit vector) where nothing is sampled;
+ *                      on a delta lobe (a mirror, a smooth glass), pdf = INFINITY and weight the lobe's
+ *                      (its reflectance or transmittance at wi over the probability of choosing the lobe);
+ *                      eval and pdf are then those of the other lobes only (0 for a pure mirror)
  *
  * Frame and conventions (Mitsuba 3's): the local shading frame, z the shading normal; wi points toward the
  * viewer (where the light goes, Mitsuba's si.wi), wo toward where the light comes from; both unit vectors.

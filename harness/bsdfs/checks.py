@@ -51,6 +51,16 @@ class Draw:
         """The samples that drew nothing: weight and pdf 0 (as the ABI says)."""
         return (self.pdf == 0) & (self.weight == 0)
 
+    @property
+    def delta(self) -> np.ndarray:
+        """The samples on a delta lobe (a mirror's, a smooth glass's): an infinite pdf (as the ABI says)."""
+        return np.isposinf(self.pdf)
+
+    @property
+    def smooth(self) -> np.ndarray:
+        """The samples drawn from a density: neither failed nor on a delta lobe."""
+        return ~self.failed & ~self.delta
+
 
 def incident(theta_degrees: float, below: bool = False) -> np.ndarray:
     """The unit wi at polar angle theta from the normal, in the xz plane (the BSDFs are isotropic); `below`:
@@ -71,18 +81,23 @@ def _pdf_at(bsdf: BsdfFunctions, wi: np.ndarray):
 
 def sampling_checks(bsdf: BsdfFunctions, d: Draw) -> tuple[CheckResult, CheckResult, Bins]:
     """The chi-square of the sampled directions against the pdf, the pdf's normalisation (see the module), and the
-    cells of that chi-square (for the reference's samples: harness/bsdfs/reference.py)."""
+    cells of that chi-square (for the reference's samples: harness/bsdfs/reference.py). Samples on a delta lobe
+    count with the failed ones: the pdf describes the rest."""
     n = len(d.wo)
-    failed = d.failed
+    failed = ~d.smooth
     drawn = d.wo[~failed]
     bins, integrals = equal_probability_cells(SPHERE, _pdf_at(bsdf, d.wi), n, sample_quantum(drawn))
     probabilities = np.asarray(integrals.values, np.float64).ravel()
     integral = float(probabilities.sum())
     share = float(np.count_nonzero(failed)) / n
+    if integral == 0 and not len(drawn):  # a mirror: every sample on its delta lobe, and no density anywhere
+        summary = f"no density: pdf() is 0 everywhere, and all {n} samples are on a delta lobe or failed"
+        return (CheckResult(None, 0.0, summary, p_value=1.0), CheckResult(True, 0.0, summary), bins)
     # Within 5 standard deviations of the failed share, the integration's own tolerance and its estimated error.
     slack = NORMALISATION_TOLERANCE + 5.0 * np.sqrt(max(share * (1 - share), 1.0 / n) / n) + integrals.error
     if abs(integral + share - 1.0) <= slack:
-        normalisation = CheckResult(True, integral, f"integral = {integral:.6f}, {share:.4%} of samples failed",
+        normalisation = CheckResult(True, integral, f"integral = {integral:.6f}, {share:.4%} of samples failed "
+                                    "or on a delta lobe",
                                     details={"tolerance": slack, "integration_error": integrals.error})
     else:
         normalisation = normalisation_check(integral + share, integrals.error)
@@ -100,24 +115,36 @@ def sampling_checks(bsdf: BsdfFunctions, d: Draw) -> tuple[CheckResult, CheckRes
 
 
 def _relative(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return np.abs(a - b) / np.maximum(np.maximum(np.abs(a), np.abs(b)), 1e-30)
+    with np.errstate(invalid="ignore"):  # inf against inf is NaN: the callers flag infinities themselves
+        return np.abs(a - b) / np.maximum(np.maximum(np.abs(a), np.abs(b)), 1e-30)
 
 
 def weight_check(bsdf: BsdfFunctions, d: Draw) -> CheckResult:
     """Every sample's weight is value / pdf at its direction and its pdf the pdf's value there; a failed sample
-    has weight 0 and a drawn one a finite, non-negative weight."""
-    drawn = ~d.failed
+    has weight 0 and a drawn one a finite, non-negative weight (a delta sample's weight has no value / pdf to
+    match: only that)."""
+    delta_weights = d.weight[d.delta]
+    bad_delta = ~np.isfinite(delta_weights) | (delta_weights < 0)
+    if bad_delta.any():
+        return CheckResult(False, float(bad_delta.sum()), f"{int(bad_delta.sum())} samples on a delta lobe have a "
+                           f"NaN, infinite or negative weight (e.g. {delta_weights[bad_delta][0]:.4g})",
+                           details={"delta_samples": int(d.delta.sum()), "weight_off": int(bad_delta.sum())})
+    drawn = d.smooth
     wi = np.tile(d.wi, (int(drawn.sum()), 1))
     value, pdf = bsdf.eval(wi, d.wo[drawn]), bsdf.pdf(wi, d.wo[drawn])
     weight, sampled_pdf = d.weight[drawn], d.pdf[drawn]
     with np.errstate(divide="ignore", invalid="ignore"):
         expected = np.where(pdf > 0, value / pdf, np.inf)
-    bad_weight = ~np.isfinite(weight) | (weight < 0) | (_relative(weight, expected) > WEIGHT_TOLERANCE)
+    # Where pdf() is 0 no weight is value / pdf (expected infinite: a NaN relative difference would let it by).
+    bad_weight = ~np.isfinite(weight) | (weight < 0) | ~np.isfinite(expected) | \
+        (_relative(weight, expected) > WEIGHT_TOLERANCE)
     bad_pdf = ~np.isfinite(sampled_pdf) | (_relative(sampled_pdf, pdf) > WEIGHT_TOLERANCE)
     details = {"samples": int(drawn.sum()), "weight_off": int(bad_weight.sum()), "pdf_off": int(bad_pdf.sum()),
                "tolerance": WEIGHT_TOLERANCE}
     if not (bad_weight.any() or bad_pdf.any()):
-        return CheckResult(True, 0.0, f"weight = value / pdf at all {int(drawn.sum())} samples", details=details)
+        on_delta = f"; {int(d.delta.sum())} on a delta lobe, each weight finite" if d.delta.any() else ""
+        return CheckResult(True, 0.0, f"weight = value / pdf at all {int(drawn.sum())} samples{on_delta}",
+                           details=details)
     parts = []
     if bad_weight.any():
         k = int(np.flatnonzero(bad_weight)[0])

@@ -5,15 +5,24 @@ import numpy as np
 
 from harness.engines.base import BsdfFunctions
 from harness.bsdfs.checks import draw, energy_check, reciprocity_check, sampling_checks, weight_check
-from harness.bsdfs.reference import samples_check, values_check
+from harness.bsdfs import delta
+from harness.bsdfs.reference import reference_draw, samples_check, values_check
 from harness.warps.check_result import CheckResult
 
 #: The checks, in the order a report lists them.
 CHECKS = ("sampling", "normalisation", "weight", "energy", "reciprocity")
 #: Against a reference engine's plugin of the same name, where there is one.
 REFERENCE_CHECKS = ("reference values", "reference samples")
-#: The statistical ones: each counts once in the run's Sidak split.
-STATISTICAL = ("sampling", "energy", "reference samples")
+#: Where a BSDF draws samples on a delta lobe (harness/bsdfs/delta.py): its own, and against the reference's.
+DELTA_CHECKS = ("delta lobes",)
+REFERENCE_DELTA_CHECKS = ("reference delta weights",)
+#: The statistical ones, of a BSDF alone and against a reference: each counts once in the run's Sidak split,
+#: the delta weights' in every row with a reference (whether a BSDF has a delta lobe is known once it is sampled).
+OWN_STATISTICAL = ("sampling", "energy")
+REFERENCE_STATISTICAL = ("reference samples", "reference delta weights")
+STATISTICAL = OWN_STATISTICAL + REFERENCE_STATISTICAL
+#: Every check a row may hold, in the order a report lists them.
+ALL_CHECKS = CHECKS + DELTA_CHECKS + REFERENCE_CHECKS + REFERENCE_DELTA_CHECKS
 #: Random (wi, wo) pairs of the reciprocity check.
 RECIPROCITY_PAIRS = 10_000
 
@@ -27,9 +36,14 @@ def check_bsdf_at(bsdf: BsdfFunctions, wi: np.ndarray, samples: int, seed: int, 
     sampling, normalisation, bins = sampling_checks(bsdf, d)
     results = {"sampling": sampling, "normalisation": normalisation, "weight": weight_check(bsdf, d),
                "energy": energy_check(d, level), "reciprocity": reciprocity_check(bsdf, RECIPROCITY_PAIRS, seed)}
+    if d.delta.any():
+        results["delta lobes"] = delta.law_check(d)
     if reference is not None:
+        theirs = reference_draw(d, reference, seed + 1)
         results["reference values"] = values_check(bsdf, reference, wi, RECIPROCITY_PAIRS, seed)
-        results["reference samples"] = samples_check(d, reference, bins, seed + 1)
+        results["reference samples"] = samples_check(d, theirs, bins)
+        if d.delta.any() or theirs.delta.any():
+            results["reference delta weights"] = delta.weights_check(d, theirs)
     for name in STATISTICAL:
         if name in results:
             results[name].decide(level)

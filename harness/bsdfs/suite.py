@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 from harness.bsdfs.checks import incident
-from harness.bsdfs.evaluate import STATISTICAL, check_bsdf_at
+from harness.bsdfs.evaluate import OWN_STATISTICAL, REFERENCE_STATISTICAL, check_bsdf_at
 from harness.engines.base import BsdfFunctions
 from harness.engines.python_child import ChildFailed
 from harness.statistics.constants import sidak_level
@@ -22,10 +22,11 @@ SAMPLES = 200_000
 ALPHA = 0.01
 #: Values of a parameter a library names, where the command line gives none: a name of Mitsuba's, else 0.5.
 DEFAULT_VALUES = {"alpha": 0.3, "reflectance": 0.8, "albedo": 0.8, "eta": 0.2, "k": 3.0, "ggx": 0.0,
+                  "specular_reflectance": 1.0,
                   "sample_visible": 1.0, "int_ior": 1.5, "ext_ior": 1.0}
 #: The BSDFs of our library the matrix runs by default: each model with its choices, at a low and a high
 #: roughness.
-OUR_DEFAULTS = ("diffuse",
+OUR_DEFAULTS = ("diffuse", "conductor", "conductor:eta=0,k=1",
                 *(f"roughconductor:alpha={a},ggx={g},sample_visible={v}"
                   for a in (0.05, 0.5) for g in (0, 1) for v in (0, 1)))
 
@@ -99,7 +100,8 @@ class Entry:
 def run_matrix(entries: list[Entry], angles=ANGLES, samples: int = SAMPLES, seed: int = 0, alpha: float = ALPHA,
                on_progress: Callable[[str], None] = lambda _: None) -> tuple[list[BsdfRow], float]:
     """Every entry at every angle; returns the rows and the per-test level they were decided at."""
-    tests = sum(len(angles) * (len(STATISTICAL) - (e.reference is None)) for e in entries if e.failure is None)
+    tests = sum(len(angles) * (len(OWN_STATISTICAL) + len(REFERENCE_STATISTICAL) * (e.reference is not None))
+                for e in entries if e.failure is None)
     level = sidak_level(alpha, max(tests, 1))
     rows = []
     for entry in entries:

@@ -43,11 +43,13 @@ def eval_or_pdf(spec: dict, kind: str, wi: np.ndarray, wo: np.ndarray) -> np.nda
 
 def sample(spec: dict, wi: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The plugin's sample at n rows of wi and u (the third uniform chooses a lobe): wo, weight, pdf, with weight
-    and pdf 0 where it sampled nothing (as include/mcval_bsdfs.h has it)."""
+    and pdf 0 where it sampled nothing and pdf infinite on a delta lobe (as include/mcval_bsdfs.h has it)."""
     bsdf = _bsdf(spec)
     u = np.asarray(u, np.float32)
     bs, weight = bsdf.sample(_mi.BSDFContext(), _interaction(wi), _mi.Float(u[:, 2]), _mi.Point2f(u[:, 0], u[:, 1]))
     wo = np.stack([np.asarray(c, np.float32) for c in (bs.wo.x, bs.wo.y, bs.wo.z)], axis=1)
     weight = np.asarray(weight, np.float32)[0]
     drawn = (weight != 0) & np.isfinite(weight)
-    return wo, np.where(drawn, weight, 0.0), np.where(drawn, np.asarray(bs.pdf, np.float32), 0.0)
+    delta = np.asarray(_mi.has_flag(bs.sampled_type, _mi.BSDFFlags.Delta), bool)  # Mitsuba's pdf there is 1
+    pdf = np.where(delta, np.float32(np.inf), np.asarray(bs.pdf, np.float32))
+    return wo, np.where(drawn, weight, 0.0), np.where(drawn, pdf, 0.0)

@@ -6,7 +6,7 @@ import xml.etree.ElementTree as ET
 
 from rich.table import Table
 
-from harness.bsdfs.evaluate import CHECKS, REFERENCE_CHECKS
+from harness.bsdfs.evaluate import ALL_CHECKS
 from harness.bsdfs.suite import BsdfRow
 from harness.report.warp_table import verdict_text
 
@@ -14,14 +14,14 @@ from harness.report.warp_table import verdict_text
 def bsdf_table(rows: list[BsdfRow], level: float) -> Table:
     """One row per BSDF and angle, one column per check: its verdict ("-": not run, no such plugin in Mitsuba)."""
     table = Table(title=f"BSDF matrix (per-test level {level:.2g}, Sidak over the run)", header_style="bold")
-    for column in ("BSDF", "theta", *CHECKS, *REFERENCE_CHECKS):
+    for column in ("BSDF", "theta", *ALL_CHECKS):
         table.add_column(column)
     for row in rows:
         if row.failure:
-            table.add_row(row.label, "", verdict_text(False), *[""] * (len(CHECKS) + len(REFERENCE_CHECKS) - 1))
+            table.add_row(row.label, "", verdict_text(False), *[""] * (len(ALL_CHECKS) - 1))
             continue
         table.add_row(row.label, f"{row.theta:g}",
-                      *(verdict_text(row.checks[k].passed) if k in row.checks else "-" for k in CHECKS + REFERENCE_CHECKS))
+                      *(verdict_text(row.checks[k].passed) if k in row.checks else "-" for k in ALL_CHECKS))
     return table
 
 

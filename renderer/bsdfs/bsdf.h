@@ -16,8 +16,8 @@ using Color = Vec3f;  ///< linear RGB
 
 struct BsdfSample {
     Vec3f wo;             ///< the sampled direction, local frame
-    Color weight;         ///< eval(wi, wo) / pdf; 0 where nothing is sampled
-    float pdf = 0.f;      ///< density of wo by solid angle
+    Color weight;         ///< eval(wi, wo) / pdf; 0 where nothing is sampled; on a delta lobe, its weight
+    float pdf = 0.f;      ///< density of wo by solid angle; infinite on a delta lobe (a mirror's, a glass's)
 };
 
 class Bsdf {

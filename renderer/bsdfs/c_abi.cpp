@@ -2,6 +2,7 @@
 // as they load a user's library, so ours and theirs take one path.
 #include <mcval_bsdfs.h>
 
+#include "conductor.h"
 #include "diffuse.h"
 #include "roughconductor.h"
 
@@ -39,6 +40,11 @@ void sampleRows(Make make, const float *params, const float *wi, const float *u,
 
 DiffuseBsdf makeDiffuse(const float *params) { return DiffuseBsdf(Color(params[0], params[0], params[0])); }
 
+/// eta, k, specular_reflectance.
+ConductorBsdf makeConductor(const float *params) {
+    return ConductorBsdf(params[0], params[1], Color(params[2], params[2], params[2]));
+}
+
 /// alpha, eta, k, ggx (0: Beckmann, 1: GGX), sample_visible (0 or 1).
 RoughConductorBsdf makeRoughConductor(const float *params) {
     const auto type = params[3] != 0.f ? MicrofacetDistribution::Type::GGX : MicrofacetDistribution::Type::Beckmann;
@@ -65,6 +71,7 @@ RoughConductorBsdf makeRoughConductor(const float *params) {
     }
 
 extern "C" {
+MCVAL_EXPORT_BSDF(conductor, "eta,k,specular_reflectance", mcval::makeConductor)
 MCVAL_EXPORT_BSDF(diffuse, "reflectance", mcval::makeDiffuse)
 MCVAL_EXPORT_BSDF(roughconductor, "alpha,eta,k,ggx,sample_visible", mcval::makeRoughConductor)
 }
