@@ -6,11 +6,12 @@ import numpy as np
 from harness.engines.base import BsdfFunctions
 from harness.bsdfs.checks import draw, energy_check, reciprocity_check, sampling_checks, weight_check
 from harness.bsdfs import delta
+from harness.bsdfs.hard_inputs import hard_inputs_check
 from harness.bsdfs.reference import reference_draw, samples_check, values_check
 from harness.warps.check_result import CheckResult
 
 #: The checks, in the order a report lists them.
-CHECKS = ("sampling", "normalisation", "weight", "energy", "reciprocity")
+CHECKS = ("sampling", "normalisation", "weight", "energy", "reciprocity", "hard inputs")
 #: Against a reference engine's plugin of the same name, where there is one.
 REFERENCE_CHECKS = ("reference values", "reference samples")
 #: Where a BSDF draws samples on a delta lobe (harness/bsdfs/delta.py): its own, and against the reference's.
@@ -28,14 +29,17 @@ RECIPROCITY_PAIRS = 10_000
 
 
 def check_bsdf_at(bsdf: BsdfFunctions, wi: np.ndarray, samples: int, seed: int, level: float,
-                  reference: BsdfFunctions | None = None) -> dict[str, CheckResult]:
+                  reference: BsdfFunctions | None = None,
+                  extremes: tuple[BsdfFunctions, ...] = ()) -> dict[str, CheckResult]:
     """The checks of `bsdf` at `wi` from `samples` samples (seeded), and against `reference` (the same plugin in
     another engine) where given; the statistical ones decided at the per-test `level` (the run's family-wise
-    level split over its statistical checks)."""
+    level split over its statistical checks). `extremes`: the same BSDF at the ends of its roughness range, for
+    the hard-inputs check (harness/bsdfs/hard_inputs.py)."""
     d = draw(bsdf, wi, samples, seed)
     sampling, normalisation, bins = sampling_checks(bsdf, d)
     results = {"sampling": sampling, "normalisation": normalisation, "weight": weight_check(bsdf, d),
-               "energy": energy_check(d, level), "reciprocity": reciprocity_check(bsdf, RECIPROCITY_PAIRS, seed)}
+               "energy": energy_check(d, level), "reciprocity": reciprocity_check(bsdf, RECIPROCITY_PAIRS, seed),
+               "hard inputs": hard_inputs_check(bsdf, wi, extremes)}
     if d.delta.any():
         results["delta lobes"] = delta.law_check(d)
     if reference is not None:

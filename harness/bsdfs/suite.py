@@ -95,6 +95,7 @@ class Entry:
     bsdf: BsdfFunctions | None = None
     reference: BsdfFunctions | None = None
     failure: str | None = None
+    extremes: tuple[BsdfFunctions, ...] = ()  # the same BSDF at the ends of its roughness range
 
 
 def run_matrix(entries: list[Entry], angles=ANGLES, samples: int = SAMPLES, seed: int = 0, alpha: float = ALPHA,
@@ -114,7 +115,7 @@ def run_matrix(entries: list[Entry], angles=ANGLES, samples: int = SAMPLES, seed
             row, start = BsdfRow(entry.label, theta), time.perf_counter()
             try:  # each row its own uniforms
                 row.checks = check_bsdf_at(entry.bsdf, incident(theta), samples, seed * 7919 + len(rows), level,
-                                           entry.reference)
+                                           entry.reference, entry.extremes)
             except ChildFailed as e:  # the library (or Mitsuba) crashed, hung or wrote past its output
                 row.failure = e.reason
             row.seconds = time.perf_counter() - start

@@ -39,6 +39,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def _entries(args, library, mitsuba) -> list:
     """The BSDFs asked for, each ready or with the one line saying why it cannot be checked."""
+    from harness.bsdfs.hard_inputs import roughness_extremes
     from harness.bsdfs.suite import Entry, parse_spec
     from harness.engines.bsdf_library import BsdfUnavailable
 
@@ -52,7 +53,8 @@ def _entries(args, library, mitsuba) -> list:
             entries.append(Entry(spec.name, failure=str(e)))
             continue
         reference = None if mitsuba is None else mitsuba.functions(spec.name, values)
-        entries.append(Entry(bsdf.label, bsdf, reference))
+        extremes = roughness_extremes(lambda v, name=spec.name: library.functions(name, v), values)
+        entries.append(Entry(bsdf.label, bsdf, reference, extremes=extremes))
     return entries
 
 

@@ -39,6 +39,8 @@ def test_a_correct_lambertian_passes_every_check(twins, seed):
     ("weight_no_cosine", "weight"),         # weight = albedo / cos theta_o where value / pdf = albedo
     ("uniform_pdf", "sampling"),            # samples the cosine, says uniform
     ("one_sided_shadowing", "reciprocity"),  # a factor of wo alone
+    ("nan_on_the_normal", "hard inputs"),   # wi's azimuth normalised by its sine: 0 / 0 with wi on the normal
+    ("unguarded_sampler", "hard inputs"),   # z = sqrt(u): value / pdf is 0 / 0 at u = 0
 ])
 def test_each_twin_fails_the_check_that_names_it(twins, twin, check):
     results = check_bsdf_at(twins.functions(twin, {"albedo": 0.5}), incident(30.0), SAMPLES, 0, LEVEL)

@@ -59,3 +59,13 @@ def test_a_parameter_the_bsdf_lacks_fails_its_row(tmp_path):
     code, results = _run(tmp_path, "--bsdf", "roughconductor:beta=1", "--no-mitsuba")
     (row,) = results["bsdfs"]
     assert code == 1 and row["failure"].startswith("roughconductor has no parameter beta (it takes alpha, eta, k")
+
+
+def test_a_roughness_that_breaks_at_its_end_fails_the_hard_inputs_naming_it(tmp_path):
+    library = build_warp_library(TWINS, tmp_path)
+    code, results = _run(tmp_path, "--bsdf-library", str(library), "--no-mitsuba", "--bsdf",
+                         "rough_lambert:albedo=0.5,alpha=0.5")
+    assert code == 1 and len(results["bsdfs"]) == 2
+    for row in results["bsdfs"]:
+        assert sorted(k for k, c in row["checks"].items() if not c["pass"]) == ["hard inputs"]
+        assert row["checks"]["hard inputs"]["summary"].startswith("rough_lambert albedo=0.5 alpha=0.0001: eval NaN")
