@@ -90,6 +90,9 @@ def sampling_checks(bsdf: BsdfFunctions, d: Draw) -> tuple[CheckResult, CheckRes
     probabilities = np.asarray(integrals.values, np.float64).ravel()
     integral = float(probabilities.sum())
     share = float(np.count_nonzero(failed)) / n
+    if not d.delta.any() and not len(drawn):  # a BSDF that draws nothing passes nothing: it judged nothing
+        return (not_judged(f"no sample was drawn: all {n} failed (weight and pdf 0)"),
+                normalisation_check(integral + share, integrals.error), bins)
     if integral == 0 and not len(drawn):  # a mirror: every sample on its delta lobe, and no density anywhere
         summary = f"no density: pdf() is 0 everywhere, and all {n} samples are on a delta lobe or failed"
         return (CheckResult(None, 0.0, summary, p_value=1.0), CheckResult(True, 0.0, summary), bins)

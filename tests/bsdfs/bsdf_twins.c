@@ -113,3 +113,26 @@ void bsdf_rough_lambert_sample(const float *params, const float *wi, const float
                                float *pdf_out, size_t n) {
     sample(NONE, params, wi, u, wo, weight, pdf_out, n);
 }
+
+/* A BSDF that draws nothing: value and pdf 0 everywhere, every sample failed. Each check alone would find
+ * nothing wrong in it; the matrix must not call that a pass. */
+MCVAL_DECLARE_BSDF(draws_nothing)
+const char *bsdf_draws_nothing_params = "albedo";
+
+void bsdf_draws_nothing_eval(const float *params, const float *wi, const float *wo, float *value, size_t n) {
+    (void)params, (void)wi, (void)wo;
+    for (size_t i = 0; i < n; ++i) value[i] = 0.f;
+}
+
+void bsdf_draws_nothing_pdf(const float *params, const float *wi, const float *wo, float *out, size_t n) {
+    bsdf_draws_nothing_eval(params, wi, wo, out, n);
+}
+
+void bsdf_draws_nothing_sample(const float *params, const float *wi, const float *u, float *wo, float *weight,
+                               float *pdf_out, size_t n) {
+    (void)params, (void)wi, (void)u;
+    for (size_t i = 0; i < n; ++i) {
+        wo[3 * i] = wo[3 * i + 1] = 0.f, wo[3 * i + 2] = 1.f;
+        weight[i] = pdf_out[i] = 0.f;
+    }
+}

@@ -51,3 +51,8 @@ def test_the_energy_check_states_the_excess_it_finds(twins):
     energy = check_bsdf_at(twins.functions("one_sided_shadowing", {"albedo": 0.5}), incident(30.0), SAMPLES, 0,
                            LEVEL)["energy"]
     assert energy.verdict == "PASS" and 0 < energy.details["detectable_excess"] < 0.01, energy.details
+
+
+def test_a_bsdf_that_draws_nothing_is_not_judged_a_pass(twins):
+    results = check_bsdf_at(twins.functions("draws_nothing", {"albedo": 0.5}), incident(30.0), SAMPLES, 0, LEVEL)
+    assert results["sampling"].verdict == "FAIL" and "no sample was drawn" in results["sampling"].summary
