@@ -11,10 +11,11 @@ from harness.verdict import Tally, Verdict, run_verdict
 
 
 def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=None, invariances: bool = False,
-                 json_copy=None, images: bool = True) -> Verdict:
-    """Run the warps of `specs`, the invariances (if `invariances`, narrowed by `invariance_only`) and, if
-    `images`, the image `cases`; `latest` moves to the run once it is whole, `images-latest` too if it has
-    images. The run PASSes only if nothing failed and each suite that ran judged something (harness/verdict.py)."""
+                 json_copy=None, images: bool = True, bsdfs: bool = False, bsdf_specs=None) -> Verdict:
+    """Run the warps of `specs`, the BSDF matrix (if `bsdfs`: `bsdf_specs`, None for the default set), the
+    invariances (if `invariances`, narrowed by `invariance_only`) and, if `images`, the image `cases`; `latest`
+    moves to the run once it is whole, `images-latest` too if it has images. The run PASSes only if nothing failed
+    and each suite that ran judged something (harness/verdict.py)."""
     from harness.commands.options import case_selection
     from harness.commands.warp_section import run_warp_section, warp_engine
     from harness.images.suite import not_applicable_cases
@@ -40,6 +41,9 @@ def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=N
         payload.update(warps=warps["warps"], warp_level=warps["level"])
         if warps["problems"]:
             payload["warp_problems"] = warps["problems"]
+    if bsdfs:
+        with phases.timed("bsdfs"):
+            ok &= _bsdf_section(args, bsdf_specs, run_dir, payload, tallies)
     if invariances:
         # Before the images, so report.html (written with them) carries the matrix.
         console.rule("[bold]Invariances[/] (each engine against itself)")
@@ -67,6 +71,25 @@ def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=N
     console.print(f"Phases: {phases.line()}")
     print_verdict(run_dir / "results.json", verdict, reason)
     return verdict
+
+
+def _bsdf_section(args, specs, run_dir, payload: dict, tallies: list[Tally]) -> bool:
+    """The BSDF matrix of the engine under test's library (or --bsdf-library) into `payload` and `tallies`; an
+    engine without one is said to have no BSDFs checked, as one without warps. Returns whether every row passed."""
+    from harness.bsdfs.suite import ALPHA, ANGLES, SAMPLES
+    from harness.commands.bsdf_section import bsdf_library_of, run_bsdf_section
+
+    library = bsdf_library_of(args)
+    if library is None:
+        payload["bsdfs_not_checked"] = f"{args.engine} has no BSDF library (give --bsdf-library LIB.so)"
+        console.print(f"[yellow]BSDFs[/]: {payload['bsdfs_not_checked']}: not checked")
+        return True
+    console.rule("[bold]BSDFs[/]")
+    tally, block = run_bsdf_section(library, specs, ANGLES, SAMPLES, args.seed, ALPHA, True, run_dir,
+                                    junit_name="bsdfs-junit.xml")
+    payload.update(block)
+    tallies.append(tally)
+    return tally.failed == 0
 
 
 def warp_tally(warps: dict) -> Tally:

@@ -49,7 +49,8 @@ def test_validate_on_a_scheduler_gives_the_local_answer(cluster, tmp_path):
     # The warps run in this process either way (one warp keeps their section in the comparison).
     # A closed-form plane, a stored reference (the bundle must carry it) and the sphere.
     args = ["validate", "--only", "plane_point:simple", "cornell:normals", "sphere_floor_unit:simple",
-            "--warps-only", "tent", "--invariance-only", "plane_point:simple", "scale", "--seed", "3"]
+            "--warps-only", "tent", "--invariance-only", "plane_point:simple", "scale", "--seed", "3",
+            "--no-bsdfs"]
     assert main(args + ["--scheduler", cluster, "--out", str(tmp_path / "cluster")]) == 0
     assert main(args + ["--serial", "--out", str(tmp_path / "local")]) == 0
     far, near = (json.loads((tmp_path / d / "latest" / "results.json").read_text()) for d in ("cluster", "local"))

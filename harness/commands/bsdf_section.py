@@ -1,0 +1,76 @@
+"""The BSDF matrix as a section of a run (`bsdfs`, `validate`): the BSDFs asked for, run, printed, and its
+results.json block, JUnit file and tally."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from harness.commands.output import console, progress_bar
+from harness.verdict import Tally
+
+#: Our renderer's BSDFs, built as a library of include/mcval_bsdfs.h.
+OUR_LIBRARY = Path(__file__).resolve().parents[2] / "build" / "libmcval_bsdfs.so"
+
+
+def bsdf_library_of(args):
+    """The library whose BSDFs are checked: --bsdf-library, else ours where the engine under test is ours; None
+    for another engine without a library (it has no BSDFs to check)."""
+    from harness.engines.bsdf_library import BsdfLibrary
+    from harness.engines.registry import DEFAULT_TEST
+
+    if getattr(args, "bsdf_library", None) is not None:
+        return BsdfLibrary(args.bsdf_library)
+    engine = getattr(args, "engine", None) or DEFAULT_TEST
+    return BsdfLibrary(OUR_LIBRARY) if engine == DEFAULT_TEST else None
+
+
+def _entries(specs, library, mitsuba) -> list:
+    """The BSDFs asked for (`specs`, parsed; None for the default set), each ready or with the one line saying why
+    it cannot be checked."""
+    from harness.bsdfs.hard_inputs import roughness_extremes
+    from harness.bsdfs.suite import OUR_DEFAULTS, Entry, parse_spec
+    from harness.engines.bsdf_library import BsdfUnavailable
+
+    if specs is None:
+        specs = [parse_spec(t) for t in (OUR_DEFAULTS if library.path == OUR_LIBRARY else library.names)]
+    entries = []
+    for spec in specs:
+        try:
+            values = spec.values(library.parameters(spec.name))
+            bsdf = library.functions(spec.name, values)
+        except (BsdfUnavailable, ValueError) as e:
+            entries.append(Entry(spec.name, failure=str(e)))
+            continue
+        reference = None if mitsuba is None else mitsuba.functions(spec.name, values)
+        extremes = roughness_extremes(lambda v, name=spec.name: library.functions(name, v), values)
+        entries.append(Entry(bsdf.label, bsdf, reference, extremes=extremes))
+    return entries
+
+
+def run_bsdf_section(library, specs, angles, samples: int, seed: int, alpha: float, mitsuba: bool, run_dir: Path,
+                     junit_name: str = "junit.xml") -> tuple[Tally, dict]:
+    """The matrix of `library`'s BSDFs `specs` (None: the default set); prints its table and one line per failed
+    row, writes its JUnit file; returns its tally and results.json block."""
+    from rich.markup import escape
+
+    from harness.bsdfs.suite import run_matrix
+    from harness.engines.mitsuba_bsdfs import MitsubaBsdfs
+    from harness.report.bsdf_outputs import bsdf_junit, bsdf_table
+
+    entries = _entries(specs, library, MitsubaBsdfs() if mitsuba else None)
+    with progress_bar("bsdfs") as progress:
+        task = progress.add_task("", total=sum(1 if e.failure else len(angles) for e in entries))
+        rows, level = run_matrix(entries, angles, samples, seed, alpha,
+                                 on_progress=lambda s: progress.update(task, advance=1, description=s))
+    console.print(bsdf_table(rows, level))
+    for row in rows:
+        if not row.passed:
+            where = "" if row.theta is None else f" at {row.theta:g} degrees"
+            lines = [row.failure] if row.failure else [f"{k}: {c.summary}" for k, c in row.checks.items() if not c.passed]
+            console.print(f"[red]FAIL[/] {escape(row.label + where + ': ' + '; '.join(lines))}", soft_wrap=True)
+    passed = sum(r.passed for r in rows)
+    meta = {"library": library.version(), "reference": "Mitsuba 3 plugins" if mitsuba else "none",
+            "samples": samples, "seed": seed, "alpha": alpha, "level": level}
+    (run_dir / junit_name).write_text(bsdf_junit(rows, meta))
+    console.print(f"{passed} of {len(rows)} BSDF rows pass.")
+    return Tally("BSDF rows", passed, len(rows) - passed), {"bsdfs": [r.to_json() for r in rows], "bsdf_level": level,
+                                                             "bsdf_meta": meta}
