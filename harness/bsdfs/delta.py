@@ -2,7 +2,8 @@
 include/mcval_bsdfs.h has them), which no density describes:
 
 - delta lobes: each delta sample leaves by the law of reflection (wo the mirror image of wi about the normal) or
-  of refraction (in the plane of incidence, on the other side, and every refracted sample in one direction);
+  of refraction (in the plane of incidence, on the other side, every refracted sample in one direction and, for
+  a BSDF that names its indices of refraction, at Snell's angle);
 - reference delta weights: the expected weight each lobe contributes (its weight times how often it is chosen)
   is the reference engine's, by a two-sample z-test per lobe (equal within float32 rounding where neither
   varies)."""
@@ -27,8 +28,9 @@ def _lobe(d: Draw, name: str) -> np.ndarray:
     return d.delta & ((side > 0) if name == "reflection" else (side <= 0))
 
 
-def law_check(d: Draw) -> CheckResult:
-    """Each delta sample obeys the law of reflection or of refraction (see the module)."""
+def law_check(d: Draw, eta: float | None = None) -> CheckResult:
+    """Each delta sample obeys the law of reflection or of refraction (see the module); where the relative index
+    `eta` = int / ext is known, refraction obeys Snell's law with it."""
     mirror = np.array([-d.wi[0], -d.wi[1], d.wi[2]])
     reflected, refracted = d.wo[_lobe(d, "reflection")], d.wo[_lobe(d, "refraction")]
     off_mirror = np.linalg.norm(reflected - mirror, axis=1) > DIRECTION_TOLERANCE
@@ -37,7 +39,11 @@ def law_check(d: Draw) -> CheckResult:
     across = np.abs(refracted[:, 0] * d.wi[1] - refracted[:, 1] * d.wi[0]) > DIRECTION_TOLERANCE
     turned = (refracted[:, :2] @ d.wi[:2] > DIRECTION_TOLERANCE * tangent) if tangent > 0 else np.zeros(len(refracted), bool)
     spread = np.linalg.norm(refracted - refracted[:1], axis=1) > DIRECTION_TOLERANCE if len(refracted) else across
-    off_refraction = across | turned | spread
+    snell = np.zeros(len(refracted), bool)
+    if eta is not None:  # sin theta_o = sin theta_i * (eta of wi's side / eta of wo's side)
+        eta_ti = 1.0 / eta if d.wi[2] > 0 else eta
+        snell = np.abs(np.hypot(refracted[:, 0], refracted[:, 1]) - eta_ti * tangent) > DIRECTION_TOLERANCE
+    off_refraction = across | turned | spread | snell
     details = {"reflected": len(reflected), "refracted": len(refracted), "not_mirrored": int(off_mirror.sum()),
                "not_refracted": int(off_refraction.sum()), "tolerance": DIRECTION_TOLERANCE}
     if not (off_mirror.any() or off_refraction.any()):
@@ -49,9 +55,12 @@ def law_check(d: Draw) -> CheckResult:
                            f"delta samples are not the mirror direction (e.g. {np.round(reflected[k], 5).tolist()} for "
                            f"{np.round(mirror, 5).tolist()})", details=details)
     k = int(np.flatnonzero(off_refraction)[0])
+    how = [what for what, bad in (("leave the plane of incidence", across), ("keep wi's side of it", turned),
+                                  ("spread over more than one direction", spread),
+                                  (f"miss Snell's angle for eta = {eta:g}" if eta else "", snell)) if bad.any()]
     return CheckResult(False, float(off_refraction.sum()), f"{int(off_refraction.sum())} of {len(refracted)} refracted "
-                       f"delta samples leave the plane of incidence, keep wi's side of it or spread (e.g. "
-                       f"{np.round(refracted[k], 5).tolist()})", details=details)
+                       f"delta samples {', '.join(how)} (e.g. {np.round(refracted[k], 5).tolist()} for wi = "
+                       f"{np.round(d.wi, 5).tolist()})", details=details)
 
 
 def weights_check(ours: Draw, theirs: Draw) -> CheckResult:

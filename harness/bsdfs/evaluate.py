@@ -36,12 +36,13 @@ def check_bsdf_at(bsdf: BsdfFunctions, wi: np.ndarray, samples: int, seed: int, 
     level split over its statistical checks). `extremes`: the same BSDF at the ends of its roughness range, for
     the hard-inputs check (harness/bsdfs/hard_inputs.py)."""
     d = draw(bsdf, wi, samples, seed)
+    eta = bsdf.params["int_ior"] / bsdf.params.get("ext_ior", 1.0) if "int_ior" in bsdf.params else None
     sampling, normalisation, bins = sampling_checks(bsdf, d)
     results = {"sampling": sampling, "normalisation": normalisation, "weight": weight_check(bsdf, d),
-               "energy": energy_check(d, level), "reciprocity": reciprocity_check(bsdf, RECIPROCITY_PAIRS, seed),
+               "energy": energy_check(d, level, eta), "reciprocity": reciprocity_check(bsdf, RECIPROCITY_PAIRS, seed),
                "hard inputs": hard_inputs_check(bsdf, wi, extremes)}
     if d.delta.any():
-        results["delta lobes"] = delta.law_check(d)
+        results["delta lobes"] = delta.law_check(d, eta)
     if reference is not None:
         theirs = reference_draw(d, reference, seed + 1)
         results["reference values"] = values_check(bsdf, reference, wi, RECIPROCITY_PAIRS, seed)

@@ -26,9 +26,20 @@ DEFAULT_VALUES = {"alpha": 0.3, "reflectance": 0.8, "albedo": 0.8, "eta": 0.2, "
                   "sample_visible": 1.0, "int_ior": 1.5, "ext_ior": 1.0}
 #: The BSDFs of our library the matrix runs by default: each model with its choices, at a low and a high
 #: roughness.
-OUR_DEFAULTS = ("diffuse", "conductor", "conductor:eta=0,k=1",
+OUR_DEFAULTS = ("diffuse", "conductor", "conductor:eta=0,k=1", "dielectric", "dielectric:int_ior=1.33",
                 *(f"roughconductor:alpha={a},ggx={g},sample_visible={v}"
                   for a in (0.05, 0.5) for g in (0, 1) for v in (0, 1)))
+
+
+def transmits(bsdf: BsdfFunctions) -> bool:
+    """Whether the BSDF is an interface seen from both sides (a dielectric: it takes an `int_ior`)."""
+    return "int_ior" in bsdf.params
+
+
+def row_angles(bsdf: BsdfFunctions, angles) -> list[float]:
+    """The polar angles of wi of its rows: `angles` from above, and for a BSDF that transmits each also from below
+    (180 - angle: wi mirrored under the surface)."""
+    return [*angles, *(180.0 - a for a in angles)] if transmits(bsdf) else list(angles)
 
 
 @dataclass(frozen=True)
@@ -101,7 +112,8 @@ class Entry:
 def run_matrix(entries: list[Entry], angles=ANGLES, samples: int = SAMPLES, seed: int = 0, alpha: float = ALPHA,
                on_progress: Callable[[str], None] = lambda _: None) -> tuple[list[BsdfRow], float]:
     """Every entry at every angle; returns the rows and the per-test level they were decided at."""
-    tests = sum(len(angles) * (len(OWN_STATISTICAL) + len(REFERENCE_STATISTICAL) * (e.reference is not None))
+    tests = sum(len(row_angles(e.bsdf, angles)) * (len(OWN_STATISTICAL) + len(REFERENCE_STATISTICAL) *
+                                                    (e.reference is not None))
                 for e in entries if e.failure is None)
     level = sidak_level(alpha, max(tests, 1))
     rows = []
@@ -110,7 +122,7 @@ def run_matrix(entries: list[Entry], angles=ANGLES, samples: int = SAMPLES, seed
             on_progress(entry.label)
             rows.append(BsdfRow(entry.label, None, failure=entry.failure))
             continue
-        for theta in angles:
+        for theta in row_angles(entry.bsdf, angles):
             on_progress(f"{entry.label} at {theta:g} degrees")
             row, start = BsdfRow(entry.label, theta), time.perf_counter()
             try:  # each row its own uniforms

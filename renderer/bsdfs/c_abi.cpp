@@ -3,6 +3,7 @@
 #include <mcval_bsdfs.h>
 
 #include "conductor.h"
+#include "dielectric.h"
 #include "diffuse.h"
 #include "roughconductor.h"
 
@@ -45,6 +46,9 @@ ConductorBsdf makeConductor(const float *params) {
     return ConductorBsdf(params[0], params[1], Color(params[2], params[2], params[2]));
 }
 
+/// int_ior, ext_ior.
+DielectricBsdf makeDielectric(const float *params) { return DielectricBsdf(params[0], params[1]); }
+
 /// alpha, eta, k, ggx (0: Beckmann, 1: GGX), sample_visible (0 or 1).
 RoughConductorBsdf makeRoughConductor(const float *params) {
     const auto type = params[3] != 0.f ? MicrofacetDistribution::Type::GGX : MicrofacetDistribution::Type::Beckmann;
@@ -72,6 +76,7 @@ RoughConductorBsdf makeRoughConductor(const float *params) {
 
 extern "C" {
 MCVAL_EXPORT_BSDF(conductor, "eta,k,specular_reflectance", mcval::makeConductor)
+MCVAL_EXPORT_BSDF(dielectric, "int_ior,ext_ior", mcval::makeDielectric)
 MCVAL_EXPORT_BSDF(diffuse, "reflectance", mcval::makeDiffuse)
 MCVAL_EXPORT_BSDF(roughconductor, "alpha,eta,k,ggx,sample_visible", mcval::makeRoughConductor)
 }
