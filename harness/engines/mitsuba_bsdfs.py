@@ -13,7 +13,7 @@ _CHILD = "harness.engines.mitsuba_bsdf_child"
 #: Seconds one call may take (Mitsuba compiles its kernels at the first): $MCVAL_BSDF_TIMEOUT, else this.
 DEFAULT_TIMEOUT = 300.0
 #: Mitsuba's plugins the checks compare with, by the ABI's NAME.
-PLUGINS = ("conductor", "dielectric", "diffuse", "roughconductor")
+PLUGINS = ("conductor", "dielectric", "diffuse", "plastic", "roughconductor")
 #: Parameters Mitsuba takes as a spectrum (given here one value for every channel), and as a flag.
 _SPECTRA = ("reflectance", "eta", "k", "specular_reflectance", "diffuse_reflectance")
 _FLAGS = ("sample_visible", "nonlinear")

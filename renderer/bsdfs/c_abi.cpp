@@ -5,6 +5,7 @@
 #include "conductor.h"
 #include "dielectric.h"
 #include "diffuse.h"
+#include "plastic.h"
 #include "roughconductor.h"
 
 namespace mcval {
@@ -49,6 +50,11 @@ ConductorBsdf makeConductor(const float *params) {
 /// int_ior, ext_ior.
 DielectricBsdf makeDielectric(const float *params) { return DielectricBsdf(params[0], params[1]); }
 
+/// int_ior, ext_ior, diffuse_reflectance, nonlinear (0 or 1).
+PlasticBsdf makePlastic(const float *params) {
+    return PlasticBsdf(params[0], params[1], params[2], params[3] != 0.f);
+}
+
 /// alpha, eta, k, ggx (0: Beckmann, 1: GGX), sample_visible (0 or 1).
 RoughConductorBsdf makeRoughConductor(const float *params) {
     const auto type = params[3] != 0.f ? MicrofacetDistribution::Type::GGX : MicrofacetDistribution::Type::Beckmann;
@@ -78,5 +84,6 @@ extern "C" {
 MCVAL_EXPORT_BSDF(conductor, "eta,k,specular_reflectance", mcval::makeConductor)
 MCVAL_EXPORT_BSDF(dielectric, "int_ior,ext_ior", mcval::makeDielectric)
 MCVAL_EXPORT_BSDF(diffuse, "reflectance", mcval::makeDiffuse)
+MCVAL_EXPORT_BSDF(plastic, "int_ior,ext_ior,diffuse_reflectance,nonlinear", mcval::makePlastic)
 MCVAL_EXPORT_BSDF(roughconductor, "alpha,eta,k,ggx,sample_visible", mcval::makeRoughConductor)
 }
