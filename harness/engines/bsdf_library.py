@@ -33,6 +33,13 @@ def _rows(a: np.ndarray, columns: int) -> np.ndarray:
     return np.ascontiguousarray(np.asarray(a, np.float32).reshape(-1, columns))
 
 
+def _incident(wi: np.ndarray) -> np.ndarray:
+    """wi as rows, or its one row where every row is the same (the usual call: one wi, many wo): the child
+    repeats it, so that half the floats cross the pipe."""
+    rows = _rows(wi, 3)
+    return rows[:1] if len(rows) > 1 and (rows == rows[0]).all() else rows
+
+
 class BsdfLibrary:
     """The BSDFs a shared library exports: `names`, each one's `parameters`, and `functions` at given values."""
 
@@ -91,13 +98,13 @@ class BsdfLibrary:
 
         def value_or_pdf(kind: str):
             def call(wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
-                out = self._process.call("eval_or_pdf", name, kind, params, _rows(wi, 3), _rows(wo, 3),
+                out = self._process.call("eval_or_pdf", name, kind, params, _incident(wi), _rows(wo, 3),
                                          what=f"bsdf_{name}_{kind} ({at})")
                 return out.astype(np.float64)
             return call
 
         def sample(wi: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-            out = self._process.call("sample", name, params, _rows(wi, 3), _rows(u, 3),
+            out = self._process.call("sample", name, params, _incident(wi), _rows(u, 3),
                                      what=f"bsdf_{name}_sample ({at})")
             return tuple(a.astype(np.float64) for a in out)
 

@@ -51,17 +51,26 @@ def _function(name: str, kind: str, arguments: int):
     return fn
 
 
+def _repeated(wi: np.ndarray, n: int) -> np.ndarray:
+    """wi as n rows: one row sent for all of them is repeated here."""
+    return np.repeat(wi, n, axis=0) if len(wi) == 1 and n != 1 else wi
+
+
 def eval_or_pdf(name: str, kind: str, params: np.ndarray, wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
-    """bsdf_NAME_eval or bsdf_NAME_pdf (`kind`) at n rows of wi, wo (n, 3): (n,) float32."""
-    n = len(wi)
+    """bsdf_NAME_eval or bsdf_NAME_pdf (`kind`) at n rows of wi, wo (n, 3; wi may be one row for all): (n,)
+    float32."""
+    n = len(wo)
+    wi = _repeated(wi, n)
     out = guarded(n, 1)
     _function(name, kind, 4)(*map(pointer, (*_float32(params, wi, wo), out)), n)
     return checked(out, n, 1, {"eval": "value", "pdf": "pdf"}[kind], "rows")[:, 0]
 
 
 def sample(name: str, params: np.ndarray, wi: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, ...]:
-    """bsdf_NAME_sample at n rows of wi (n, 3) and u (n, 3): wo (n, 3), weight (n,), pdf (n,), float32."""
-    n = len(wi)
+    """bsdf_NAME_sample at n rows of wi (n, 3; or one row for all) and u (n, 3): wo (n, 3), weight (n,), pdf (n,),
+    float32."""
+    n = len(u)
+    wi = _repeated(wi, n)
     wo, weight, pdf = guarded(n, 3), guarded(n, 1), guarded(n, 1)
     _function(name, "sample", 6)(*map(pointer, (*_float32(params, wi, u), wo, weight, pdf)), n)
     return (checked(wo, n, 3, "wo", "rows"), checked(weight, n, 1, "weight", "rows")[:, 0],
