@@ -30,8 +30,8 @@ def _entries(specs, library, mitsuba) -> list:
     from harness.bsdfs.suite import OUR_DEFAULTS, Entry, parse_spec
     from harness.engines.bsdf_library import BsdfUnavailable
 
-    if specs is None:
-        specs = [parse_spec(t) for t in (OUR_DEFAULTS if library.path == OUR_LIBRARY else library.names)]
+    if specs is None:  # ours and Mitsuba's (the same names) at their set of values, a user's at its defaults
+        specs = [parse_spec(t) for t in (OUR_DEFAULTS if library.path in (OUR_LIBRARY, None) else library.names)]
     entries = []
     for spec in specs:
         try:
@@ -48,15 +48,16 @@ def _entries(specs, library, mitsuba) -> list:
 
 def run_bsdf_section(library, specs, angles, samples: int, seed: int, alpha: float, mitsuba: bool, run_dir: Path,
                      junit_name: str = "junit.xml") -> tuple[Tally, dict]:
-    """The matrix of `library`'s BSDFs `specs` (None: the default set); prints its table and one line per failed
-    row, writes its JUnit file; returns its tally and results.json block."""
+    """The matrix of `library`'s BSDFs `specs` (None: the default set), against Mitsuba's plugins if `mitsuba`
+    (not when the library is Mitsuba's: harness/engines/mitsuba_bsdfs.py); prints its table and one line per
+    failed row, writes its JUnit file; returns its tally and results.json block."""
     from rich.markup import escape
 
     from harness.bsdfs.suite import run_matrix
     from harness.engines.mitsuba_bsdfs import MitsubaBsdfs
     from harness.report.bsdf_outputs import bsdf_junit, bsdf_table
 
-    entries = _entries(specs, library, MitsubaBsdfs() if mitsuba else None)
+    entries = _entries(specs, library, MitsubaBsdfs() if mitsuba and library.path is not None else None)
     with progress_bar("bsdfs") as progress:
         task = progress.add_task("", total=sum(1 if e.failure else len(angles) for e in entries))
         rows, level = run_matrix(entries, angles, samples, seed, alpha,
@@ -68,7 +69,7 @@ def run_bsdf_section(library, specs, angles, samples: int, seed: int, alpha: flo
             lines = [row.failure] if row.failure else [f"{k}: {c.summary}" for k, c in row.checks.items() if not c.passed]
             console.print(f"[red]FAIL[/] {escape(row.label + where + ': ' + '; '.join(lines))}", soft_wrap=True)
     passed = sum(r.passed for r in rows)
-    meta = {"library": library.version(), "reference": "Mitsuba 3 plugins" if mitsuba else "none",
+    meta = {"library": library.version(), "reference": "Mitsuba 3 plugins" if mitsuba and library.path else "none",
             "samples": samples, "seed": seed, "alpha": alpha, "level": level}
     (run_dir / junit_name).write_text(bsdf_junit(rows, meta))
     console.print(f"{passed} of {len(rows)} BSDF rows pass.")

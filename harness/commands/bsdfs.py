@@ -33,6 +33,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--alpha", type=float, default=ALPHA,
                    help=f"family-wise level of the run's statistical checks (default: {ALPHA})")
     p.add_argument("--no-mitsuba", action="store_true", help="skip the checks against Mitsuba's plugins")
+    p.add_argument("--mitsuba", action="store_true",
+                   help="check Mitsuba's own plugins (conductor, dielectric, diffuse, plastic, roughconductor) instead "
+                        "of a library, each on its own")
     p.add_argument("--json", type=Path, metavar="PATH", help="also write the results as JSON to PATH")
 
 
@@ -41,11 +44,14 @@ def run(args: argparse.Namespace, run: RunFolder) -> Verdict:
     from harness.commands.bsdf_section import OUR_LIBRARY, run_bsdf_section
     from harness.commands.output import print_verdict
     from harness.engines.bsdf_library import BsdfLibrary
+    from harness.engines.mitsuba_bsdfs import MitsubaBsdfs
 
     if args.samples < 1000:
         raise ValueError(f"--samples {args.samples}: at least 1000 (the chi-square needs counts to test)")
     specs = None if args.bsdf is None else [parse_spec(t) for t in args.bsdf]
-    library = BsdfLibrary(args.bsdf_library or OUR_LIBRARY)
+    if args.mitsuba and args.bsdf_library:
+        raise ValueError("--mitsuba and --bsdf-library: give one (whose BSDFs to check)")
+    library = MitsubaBsdfs() if args.mitsuba else BsdfLibrary(args.bsdf_library or OUR_LIBRARY)
     run_dir = run.start()
     tally, block = run_bsdf_section(library, specs, args.angles, args.samples, args.seed, args.alpha,
                                     not args.no_mitsuba, run_dir)

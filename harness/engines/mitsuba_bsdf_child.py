@@ -34,11 +34,17 @@ def _interaction(wi: np.ndarray):
     return si
 
 
+def _width(a, n: int) -> np.ndarray:
+    """a as n floats: a plugin that answers a constant (a mirror's pdf: 0) gives Dr.Jit's array of width 1."""
+    a = np.asarray(a, np.float32)
+    return np.full(n, a[0], np.float32) if a.shape == (1,) and n != 1 else a
+
+
 def eval_or_pdf(spec: dict, kind: str, wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
     """The plugin's eval (its first channel) or pdf at n rows of wi, wo: (n,) float32."""
     bsdf = _bsdf(spec)
     out = getattr(bsdf, kind)(_mi.BSDFContext(), _interaction(wi), _vectors(wo))
-    return np.asarray(out, np.float32)[0] if kind == "eval" else np.asarray(out, np.float32)
+    return _width(np.asarray(out, np.float32)[0] if kind == "eval" else out, len(wo))
 
 
 def sample(spec: dict, wi: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -47,9 +53,10 @@ def sample(spec: dict, wi: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.nd
     bsdf = _bsdf(spec)
     u = np.asarray(u, np.float32)
     bs, weight = bsdf.sample(_mi.BSDFContext(), _interaction(wi), _mi.Float(u[:, 2]), _mi.Point2f(u[:, 0], u[:, 1]))
-    wo = np.stack([np.asarray(c, np.float32) for c in (bs.wo.x, bs.wo.y, bs.wo.z)], axis=1)
-    weight = np.asarray(weight, np.float32)[0]
+    n = len(u)
+    wo = np.stack([_width(c, n) for c in (bs.wo.x, bs.wo.y, bs.wo.z)], axis=1)
+    weight = _width(np.asarray(weight, np.float32)[0], n)
     drawn = (weight != 0) & np.isfinite(weight)
-    delta = np.asarray(_mi.has_flag(bs.sampled_type, _mi.BSDFFlags.Delta), bool)  # Mitsuba's pdf there is 1
-    pdf = np.where(delta, np.float32(np.inf), np.asarray(bs.pdf, np.float32))
+    delta = _width(_mi.has_flag(bs.sampled_type, _mi.BSDFFlags.Delta), n) != 0  # Mitsuba's pdf there is 1
+    pdf = np.where(delta, np.float32(np.inf), _width(bs.pdf, n))
     return wo, np.where(drawn, weight, 0.0), np.where(drawn, pdf, 0.0)

@@ -12,8 +12,12 @@ from harness.engines.python_child import seconds_from_env
 _CHILD = "harness.engines.mitsuba_bsdf_child"
 #: Seconds one call may take (Mitsuba compiles its kernels at the first): $MCVAL_BSDF_TIMEOUT, else this.
 DEFAULT_TIMEOUT = 300.0
-#: Mitsuba's plugins the checks compare with, by the ABI's NAME.
-PLUGINS = ("conductor", "dielectric", "diffuse", "plastic", "roughconductor")
+#: Mitsuba's plugins the checks compare with, by the ABI's NAME, and the parameters each is checked at (the
+#: ABI's names, as our library exports them: `ggx` for Mitsuba's `distribution`).
+PARAMETERS = {"conductor": ["eta", "k", "specular_reflectance"], "dielectric": ["int_ior", "ext_ior"],
+              "diffuse": ["reflectance"], "plastic": ["int_ior", "ext_ior", "diffuse_reflectance", "nonlinear"],
+              "roughconductor": ["alpha", "eta", "k", "ggx", "sample_visible"]}
+PLUGINS = tuple(PARAMETERS)
 #: Parameters Mitsuba takes as a spectrum (given here one value for every channel), and as a flag.
 _SPECTRA = ("reflectance", "eta", "k", "specular_reflectance", "diffuse_reflectance")
 _FLAGS = ("sample_visible", "nonlinear")
@@ -43,6 +47,24 @@ class MitsubaBsdfs:
     def __init__(self) -> None:
         self._process = LibraryProcess(None, _CHILD, lambda: seconds_from_env("MCVAL_BSDF_TIMEOUT", DEFAULT_TIMEOUT),
                                        name="Mitsuba")
+
+    #: As a library of BSDFs to check (`bsdfs --mitsuba`): no file of its own.
+    path = None
+
+    @property
+    def names(self) -> list[str]:
+        return sorted(PLUGINS)
+
+    def parameters(self, name: str) -> list[str]:
+        """The parameters `name` is checked at; ValueError where Mitsuba has no such plugin here."""
+        if name not in PARAMETERS:
+            raise ValueError(f"Mitsuba's plugins checked here are {', '.join(PLUGINS)}, not {name}")
+        return list(PARAMETERS[name])
+
+    def version(self) -> str:
+        from importlib.metadata import version  # not Mitsuba's import: that runs in the child only
+
+        return f"Mitsuba {version('mitsuba')} plugins, in a process of their own"
 
     def _call(self, function: str, *args, what: str):
         return self._process.call(function, *args, what=what)

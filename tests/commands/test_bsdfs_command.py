@@ -69,3 +69,17 @@ def test_a_roughness_that_breaks_at_its_end_fails_the_hard_inputs_naming_it(tmp_
     for row in results["bsdfs"]:
         assert sorted(k for k, c in row["checks"].items() if not c["pass"]) == ["hard inputs"]
         assert row["checks"]["hard inputs"]["summary"].startswith("rough_lambert albedo=0.5 alpha=0.0001: eval NaN")
+
+
+@pytest.mark.mitsuba
+def test_mitsubas_own_plugins_go_through_the_matrix_and_its_finding_fails(tmp_path):
+    code, results = _run(tmp_path, "--mitsuba", "--samples", "20000", "--bsdf", "diffuse", "conductor", "dielectric",
+                         "plastic", "roughconductor:alpha=0.5,ggx=1")
+    assert code == 0 and len(results["bsdfs"]) == 12  # the dielectric from both sides
+    assert results["meta"]["reference"] == "none" and results["meta"]["library"].startswith("Mitsuba ")
+    # docs/findings.md#bsdfs: Beckmann with visible normals samples another density than its pdf at grazing angles.
+    code = main(["bsdfs", "--mitsuba", "--angles", "89", "--bsdf", "roughconductor:alpha=0.5,ggx=0",
+                 "--out", str(tmp_path / "finding")])
+    results = json.loads((tmp_path / "finding" / "latest" / "results.json").read_text())
+    (row,) = results["bsdfs"]
+    assert code == 1 and not row["checks"]["sampling"]["pass"] and row["checks"]["weight"]["pass"]
