@@ -83,10 +83,19 @@ def _pdf_at(bsdf: BsdfFunctions, wi: np.ndarray):
     return lambda wo: bsdf.pdf(np.tile(wi, (len(wo), 1)), wo)
 
 
-def sampling_checks(bsdf: BsdfFunctions, d: Draw) -> tuple[CheckResult, CheckResult, Bins]:
-    """The chi-square of the sampled directions against the pdf, the pdf's normalisation (see the module), and the
-    cells of that chi-square (for the reference's samples: harness/bsdfs/reference.py). Samples on a delta lobe
-    count with the failed ones: the pdf describes the rest."""
+@dataclass(frozen=True)
+class CellCounts:
+    """The drawn directions per cell of the sampling check and the pdf's expected counts there, (rows, cols)."""
+
+    observed: np.ndarray
+    expected: np.ndarray
+
+
+def sampling_checks(bsdf: BsdfFunctions, d: Draw) -> tuple[CheckResult, CheckResult, Bins, CellCounts | None]:
+    """The chi-square of the sampled directions against the pdf, the pdf's normalisation (see the module), the
+    cells of that chi-square (for the reference's samples: harness/bsdfs/reference.py) and its counts (None where
+    nothing was drawn from a density). Samples on a delta lobe count with the failed ones: the pdf describes the
+    rest."""
     n = len(d.wo)
     failed = ~d.smooth
     drawn = d.wo[~failed]
@@ -96,10 +105,10 @@ def sampling_checks(bsdf: BsdfFunctions, d: Draw) -> tuple[CheckResult, CheckRes
     share = float(np.count_nonzero(failed)) / n
     if not d.delta.any() and not len(drawn):  # a BSDF that draws nothing passes nothing: it judged nothing
         return (not_judged(f"no sample was drawn: all {n} failed (weight and pdf 0)"),
-                normalisation_check(integral + share, integrals.error), bins)
+                normalisation_check(integral + share, integrals.error), bins, None)
     if integral == 0 and not len(drawn):  # a mirror: every sample on its delta lobe, and no density anywhere
         summary = f"no density: pdf() is 0 everywhere, and all {n} samples are on a delta lobe or failed"
-        return (CheckResult(None, 0.0, summary, p_value=1.0), CheckResult(True, 0.0, summary), bins)
+        return (CheckResult(None, 0.0, summary, p_value=1.0), CheckResult(True, 0.0, summary), bins, None)
     # Within 5 standard deviations of the failed share, the integration's own tolerance and its estimated error.
     slack = NORMALISATION_TOLERANCE + 5.0 * np.sqrt(max(share * (1 - share), 1.0 / n) / n) + integrals.error
     if abs(integral + share - 1.0) <= slack:
@@ -111,14 +120,15 @@ def sampling_checks(bsdf: BsdfFunctions, d: Draw) -> tuple[CheckResult, CheckRes
     # The failed samples are one more cell, expected at 1 - the pdf's integral; a drawn sample that is no unit
     # direction never reaches a cell and fails the check as a sample outside the domain.
     inside = SPHERE.inside(drawn)
-    observed = np.append(histogram(SPHERE, drawn[inside], bins).ravel(), np.count_nonzero(failed))
+    cells = histogram(SPHERE, drawn[inside], bins)
+    observed = np.append(cells.ravel(), np.count_nonzero(failed))
     sampling = chi2_check(observed, np.append(probabilities, max(1.0 - integral, 0.0)),
                           int(np.count_nonzero(~inside)), bins, int(np.count_nonzero(~np.all(np.isfinite(drawn), axis=1))))
     sampling.details.update(failed_samples=int(np.count_nonzero(failed)), integration_error=integrals.error)
     if sampling.hard_failure is None and integrals.error > INTEGRATION_LIMIT:
         sampling = not_judged(f"the pdf's cell integrals are uncertain to {integrals.error:.2g} (a lobe narrower than "
                               f"the cubature resolves; at most {INTEGRATION_LIMIT:g} is judged)", **sampling.details)
-    return sampling, normalisation, bins
+    return sampling, normalisation, bins, CellCounts(cells, probabilities.reshape(cells.shape) * n)
 
 
 def _relative(a: np.ndarray, b: np.ndarray) -> np.ndarray:

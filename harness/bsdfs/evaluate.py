@@ -9,6 +9,8 @@ from harness.bsdfs import delta
 from harness.bsdfs.hard_inputs import hard_inputs_check
 from harness.bsdfs.reference import reference_draw, samples_check, values_check
 from harness.warps.check_result import CheckResult
+from harness.warps.checks import histogram
+from harness.warps.domains import SPHERE
 
 #: The checks, in the order a report lists them.
 CHECKS = ("sampling", "normalisation", "weight", "energy", "reciprocity", "hard inputs")
@@ -29,15 +31,18 @@ RECIPROCITY_PAIRS = 10_000
 
 
 def check_bsdf_at(bsdf: BsdfFunctions, wi: np.ndarray, samples: int, seed: int, level: float,
-                  reference: BsdfFunctions | None = None,
-                  extremes: tuple[BsdfFunctions, ...] = ()) -> dict[str, CheckResult]:
+                  reference: BsdfFunctions | None = None, extremes: tuple[BsdfFunctions, ...] = (),
+                  histograms: dict | None = None) -> dict[str, CheckResult]:
     """The checks of `bsdf` at `wi` from `samples` samples (seeded), and against `reference` (the same plugin in
     another engine) where given; the statistical ones decided at the per-test `level` (the run's family-wise
     level split over its statistical checks). `extremes`: the same BSDF at the ends of its roughness range, for
-    the hard-inputs check (harness/bsdfs/hard_inputs.py)."""
+    the hard-inputs check (harness/bsdfs/hard_inputs.py). `histograms`, where given, gets the sampling check's
+    cell counts, "observed" and "expected", and the reference's, "reference" (for the page's heat maps)."""
     d = draw(bsdf, wi, samples, seed)
     eta = bsdf.params["int_ior"] / bsdf.params.get("ext_ior", 1.0) if "int_ior" in bsdf.params else None
-    sampling, normalisation, bins = sampling_checks(bsdf, d)
+    sampling, normalisation, bins, counts = sampling_checks(bsdf, d)
+    if histograms is not None and counts is not None:
+        histograms.update(observed=counts.observed, expected=counts.expected)
     results = {"sampling": sampling, "normalisation": normalisation, "weight": weight_check(bsdf, d),
                "energy": energy_check(d, level, eta), "reciprocity": reciprocity_check(bsdf, RECIPROCITY_PAIRS, seed),
                "hard inputs": hard_inputs_check(bsdf, wi, extremes)}
@@ -47,6 +52,8 @@ def check_bsdf_at(bsdf: BsdfFunctions, wi: np.ndarray, samples: int, seed: int, 
         theirs = reference_draw(d, reference, seed + 1)
         results["reference values"] = values_check(bsdf, reference, wi, RECIPROCITY_PAIRS, seed)
         results["reference samples"] = samples_check(d, theirs, bins)
+        if histograms is not None and counts is not None:
+            histograms["reference"] = histogram(SPHERE, theirs.wo[theirs.smooth & SPHERE.inside(theirs.wo)], bins)
         if d.delta.any() or theirs.delta.any():
             results["reference delta weights"] = delta.weights_check(d, theirs)
     for name in STATISTICAL:

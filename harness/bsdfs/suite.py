@@ -100,6 +100,8 @@ class BsdfRow:
     checks: dict[str, CheckResult] = field(default_factory=dict)
     failure: str | None = None
     seconds: float = 0.0
+    #: The sampling check's cell counts ("observed", "expected", "reference"), for the page (not in results.json).
+    histograms: dict = field(default_factory=dict)
 
     @property
     def passed(self) -> bool:
@@ -140,7 +142,7 @@ def run_matrix(entries: list[Entry], angles=ANGLES, samples: int = SAMPLES, seed
             row, start = BsdfRow(entry.label, theta), time.perf_counter()
             try:  # each row its own uniforms
                 row.checks = check_bsdf_at(entry.bsdf, incident(theta), samples, seed * 7919 + len(rows), level,
-                                           entry.reference, entry.extremes)
+                                           entry.reference, entry.extremes, row.histograms)
             except ChildFailed as e:  # the library (or Mitsuba) crashed, hung or wrote past its output
                 row.failure = e.reason
             row.seconds = time.perf_counter() - start

@@ -55,6 +55,7 @@ def run_bsdf_section(library, specs, angles, samples: int, seed: int, alpha: flo
 
     from harness.bsdfs.suite import run_matrix
     from harness.engines.mitsuba_bsdfs import MitsubaBsdfs
+    from harness.report.bsdf_html import bsdf_report_html
     from harness.report.bsdf_outputs import bsdf_junit, bsdf_table
 
     entries = _entries(specs, library, MitsubaBsdfs() if mitsuba and library.path is not None else None)
@@ -72,6 +73,7 @@ def run_bsdf_section(library, specs, angles, samples: int, seed: int, alpha: flo
     meta = {"library": library.version(), "reference": "Mitsuba 3 plugins" if mitsuba and library.path else "none",
             "samples": samples, "seed": seed, "alpha": alpha, "level": level}
     (run_dir / junit_name).write_text(bsdf_junit(rows, meta))
-    console.print(f"{passed} of {len(rows)} BSDF rows pass.")
+    (run_dir / "bsdfs.html").write_text(bsdf_report_html(rows, level, meta))
+    console.print(f"{passed} of {len(rows)} BSDF rows pass; histograms and residuals: {run_dir / 'bsdfs.html'}")
     return Tally("BSDF rows", passed, len(rows) - passed), {"bsdfs": [r.to_json() for r in rows], "bsdf_level": level,
                                                              "bsdf_meta": meta}

@@ -11,11 +11,11 @@ from harness.warps.evaluate import CHECK_NAMES, WarpResult
 
 
 #: A check that passed with warnings is yellow (the shared stylesheet has pass, fail and na).
-_WARN_CSS = ".warn { background: #fff3c4; } li.fail { color: #a00; } li.warn { color: #7a5b00; }"
+WARN_CSS = ".warn { background: #fff3c4; } li.fail { color: #a00; } li.warn { color: #7a5b00; }"
 _ORDER = {"FAIL": 0, "WARN": 1, "PASS": 2}
 
 
-def _cell(verdict: str | None, text: str, word: str | None = None) -> str:
+def verdict_cell(verdict: str | None, text: str, word: str | None = None) -> str:
     """A table cell for a verdict ("PASS", "WARN", "FAIL"; anything else: n/a) over a short text."""
     cls = {"PASS": "pass", "WARN": "warn", "FAIL": "fail"}.get(verdict or "", "na")
     word = word or (verdict if cls != "na" else "n/a")
@@ -44,11 +44,12 @@ def _summary_table(results: list[WarpResult]) -> str:
         cells = [f'<td class="fail" colspan="{len(CHECK_NAMES)}">{html.escape(r.failure)}</td>'] if r.failure else []
         for name in CHECK_NAMES if not r.failure else ():
             c = r.checks.get(name)
-            cells.append(_cell(None, c.summary if c else "") if c is None or c.skipped else _cell(c.verdict, c.summary))
+            cells.append(verdict_cell(None, c.summary if c else "") if c is None or c.skipped
+                         else verdict_cell(c.verdict, c.summary))
         anchor = html.escape(r.label.replace(" ", "_"))
         rows.append(f'<tr><td><a href="#{anchor}">{html.escape(r.label)}</a></td>{"".join(cells)}'
                     f'<td title="{html.escape(POWER_CAPTION)}"><small>{html.escape(power_cell(r))}</small></td>'
-                    f'{_cell(r.verdict, "", _warp_word(r))}</tr>')
+                    f'{verdict_cell(r.verdict, "", _warp_word(r))}</tr>')
     return f"<table><tr>{head}</tr>{''.join(rows)}</table>"
 
 
@@ -61,9 +62,9 @@ def _section(r: WarpResult, reproduce: str, data_file: str | None) -> str:
     img = base64.b64encode(png).decode()
     rows = "".join(
         f"<tr><td>{html.escape(name)}</td>"
-        + (_cell(None, c.summary) if c.skipped else _cell(c.verdict, c.summary))
+        + (verdict_cell(None, c.summary) if c.skipped else verdict_cell(c.verdict, c.summary))
         + f"<td><small>{power_html(c)}</small></td>"
-        + f"<td><small>{html.escape(_details(c.to_json()))}</small></td></tr>"
+        + f"<td><small>{html.escape(details_text(c.to_json()))}</small></td></tr>"
         for name, c in r.checks.items())
     extra = ""
     if not r.passed:
@@ -79,7 +80,7 @@ def _section(r: WarpResult, reproduce: str, data_file: str | None) -> str:
             f"<table><tr><th>check</th><th>verdict</th><th>power (90 %)</th><th>details</th></tr>{rows}</table>")
 
 
-def _details(d: dict) -> str:
+def details_text(d: dict) -> str:
     skip = {"pass", "summary", "figure", "verdict", "findings", "power"}
     parts = []
     for k, v in d.items():
@@ -99,7 +100,7 @@ def warp_report_html(results: list[WarpResult], level: float, meta: dict, reprod
     meta_html = "".join(f"<li>{html.escape(str(k))}: {html.escape(str(v))}</li>" for k, v in meta.items())
     sections = "".join(_section(r, reproduce[r.label], data_files.get(r.label)) for r in ordered)
     return f"""<!DOCTYPE html>
-<html lang="en"><head><meta charset="utf-8"><title>mcval warp conformance</title><style>{CSS}{_WARN_CSS}</style></head>
+<html lang="en"><head><meta charset="utf-8"><title>mcval warp conformance</title><style>{CSS}{WARN_CSS}</style></head>
 <body><h1>Warp conformance: {len(results) - failed} of {len(results)} warps pass{f" ({warned} with warnings)" if warned else ""}</h1>
 <ul class="meta">{meta_html}<li>per-test significance level: {level:.3g} (Sidak, family-wise 0.01)</li></ul>
 <p>Histograms are over each domain's parameter square, in equal-probability cells: the edges are quantiles of

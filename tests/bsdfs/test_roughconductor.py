@@ -12,6 +12,6 @@ def test_grazing_beckmann_visible_normals_match_their_pdf_at_a_million_samples()
     """Where Mitsuba's rational approximation of the masking term (docs/findings.md) fails these checks."""
     bsdf = BsdfLibrary(LIBRARY).functions("roughconductor", {"alpha": 0.5, "eta": 0.2, "k": 3.0, "ggx": 0,
                                                              "sample_visible": 1})
-    sampling, normalisation, _ = sampling_checks(bsdf, draw(bsdf, incident(85.0), 1_000_000, 0))
+    sampling, normalisation, _, _ = sampling_checks(bsdf, draw(bsdf, incident(85.0), 1_000_000, 0))
     sampling.decide(0.01)
     assert sampling.verdict == "PASS" and normalisation.verdict == "PASS", (sampling.summary, normalisation.summary)

@@ -26,6 +26,8 @@ def test_ours_pass_against_mitsuba(tmp_path):
     code, results = _run(tmp_path, "--bsdf", "diffuse:reflectance=0.5", "roughconductor:alpha=0.2,ggx=1")
     assert code == 0 and results["verdict"] == "PASS" and len(results["bsdfs"]) == 4
     assert all("reference samples" in row["checks"] for row in results["bsdfs"])
+    page = (tmp_path / "r" / "latest" / "bsdfs.html").read_text()
+    assert page.count("data:image/png;base64,") == 4 and "BSDF matrix: 4 of 4 rows pass" in page
 
 
 def test_each_twin_fails_its_row_naming_its_check(tmp_path, capsys):
