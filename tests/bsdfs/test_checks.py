@@ -1,25 +1,17 @@
 """The checks of a BSDF (harness/bsdfs/checks.py) on a correct Lambertian BSDF, ours and a C library's, at
 several seeds and incident directions, and on its known-wrong twins (tests/bsdfs/bsdf_twins.c): each twin
 fails the check that names its mistake."""
-from pathlib import Path
-
 import pytest
 
 from harness.bsdfs.checks import incident
 from harness.bsdfs.evaluate import CHECKS, STATISTICAL, check_bsdf_at
-from harness.engines.bsdf_library import BsdfLibrary
 from harness.statistics.constants import sidak_level
-from tests.helpers.warp_libraries import build_warp_library
 
 SAMPLES = 100_000
 ANGLES = (0.0, 60.0, 89.0)
 #: The per-test level of a run of these BSDFs at these angles, at a family-wise 0.01.
 LEVEL = sidak_level(0.01, len(STATISTICAL) * len(ANGLES) * 2)
 
-
-@pytest.fixture(scope="module")
-def twins(tmp_path_factory) -> BsdfLibrary:
-    return BsdfLibrary(build_warp_library(Path(__file__).parent / "bsdf_twins.c", tmp_path_factory.mktemp("twins")))
 
 
 def _verdicts(bsdf, theta: float, seed: int) -> dict[str, str]:

@@ -2,37 +2,23 @@
 against Mitsuba's, from above and below, at normal, oblique and grazing incidence (total internal reflection
 from inside) and seeds 0-2, its energy counted as flux; a glass without the radiance scale eta^2 fails its energy
 and its delta weights against Mitsuba's, and one bending by eta where 1 / eta belongs fails Snell's law."""
-from pathlib import Path
-
 import pytest
 
 from harness.bsdfs.checks import incident
-from harness.bsdfs.evaluate import CHECKS, DELTA_CHECKS, REFERENCE_CHECKS, REFERENCE_DELTA_CHECKS, STATISTICAL, \
-    check_bsdf_at
+from harness.bsdfs.evaluate import STATISTICAL, check_bsdf_at
 from harness.bsdfs.suite import row_angles
 from harness.engines.bsdf_library import BsdfLibrary
-from harness.engines.mitsuba_bsdfs import MitsubaBsdfs
 from harness.statistics.constants import sidak_level
-from tests.helpers.warp_libraries import build_warp_library
+from tests.helpers.bsdf_libraries import EVERY_CHECK, OURS
 
 pytestmark = pytest.mark.mitsuba
 
-OURS = Path(__file__).resolve().parents[2] / "build" / "libmcval_bsdfs.so"
 GLASS = {"int_ior": 1.5, "ext_ior": 1.0}
 ANGLES = (0.0, 30.0, 89.0)
 LEVEL = sidak_level(0.01, len(STATISTICAL) * len(ANGLES) * 2)
 SAMPLES = 20_000
-EVERY_CHECK = CHECKS + DELTA_CHECKS + REFERENCE_CHECKS + REFERENCE_DELTA_CHECKS
 
 
-@pytest.fixture(scope="module")
-def mitsuba() -> MitsubaBsdfs:
-    return MitsubaBsdfs()
-
-
-@pytest.fixture(scope="module")
-def twins(tmp_path_factory) -> BsdfLibrary:
-    return BsdfLibrary(build_warp_library(Path(__file__).parent / "glass_twins.c", tmp_path_factory.mktemp("glass")))
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
@@ -49,15 +35,15 @@ def test_our_dielectric_passes_every_check_against_mitsubas_from_both_sides(mits
             assert lobes["refraction"]["here"] == 0 and lobes["reflection"]["here"] == 1
 
 
-def test_a_glass_without_the_radiance_scale_fails_energy_and_delta_weights(twins, mitsuba):
-    results = check_bsdf_at(twins.functions("dielectric", GLASS), incident(0.0), SAMPLES, 0, LEVEL,
+def test_a_glass_without_the_radiance_scale_fails_energy_and_delta_weights(delta_twins, mitsuba):
+    results = check_bsdf_at(delta_twins.functions("dielectric", GLASS), incident(0.0), SAMPLES, 0, LEVEL,
                             mitsuba.functions("dielectric", GLASS))
     failed = sorted(n for n, r in results.items() if r.verdict == "FAIL")
     assert failed == ["energy", "reference delta weights"], {n: r.summary for n, r in results.items()}
 
 
-def test_a_glass_bending_by_the_inverse_index_fails_snells_law(twins):
-    results = check_bsdf_at(twins.functions("snell_inverted", GLASS), incident(30.0), SAMPLES, 0, LEVEL)
+def test_a_glass_bending_by_the_inverse_index_fails_snells_law(delta_twins):
+    results = check_bsdf_at(delta_twins.functions("snell_inverted", GLASS), incident(30.0), SAMPLES, 0, LEVEL)
     failed = sorted(n for n, r in results.items() if r.verdict == "FAIL")
     # Bent by 1.5 where 1 / 1.5 belongs, a grazing wi's tangent outgrows 1: no unit vector is left to draw.
     assert failed == ["delta lobes", "hard inputs"], {n: r.summary for n, r in results.items()}

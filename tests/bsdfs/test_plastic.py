@@ -2,33 +2,23 @@
 normal, oblique and grazing incidence and seeds 0-2 (its diffuse samples against its pdf, its specular ones as a
 mirror's, each lobe's share of the weight Mitsuba's), and is not taken for a BSDF that transmits; a plastic without
 the coating's 1 / eta^2 fails its values against Mitsuba's."""
-from pathlib import Path
-
 import pytest
 
 from harness.bsdfs.checks import incident
-from harness.bsdfs.evaluate import CHECKS, DELTA_CHECKS, REFERENCE_CHECKS, REFERENCE_DELTA_CHECKS, STATISTICAL, \
-    check_bsdf_at
+from harness.bsdfs.evaluate import STATISTICAL, check_bsdf_at
 from harness.bsdfs.suite import row_angles
 from harness.engines.bsdf_library import BsdfLibrary
-from harness.engines.mitsuba_bsdfs import MitsubaBsdfs
 from harness.statistics.constants import sidak_level
-from tests.helpers.warp_libraries import build_warp_library
+from tests.helpers.bsdf_libraries import EVERY_CHECK, OURS
 
 pytestmark = pytest.mark.mitsuba
 
-OURS = Path(__file__).resolve().parents[2] / "build" / "libmcval_bsdfs.so"
 LINEAR = {"int_ior": 1.5, "ext_ior": 1.0, "diffuse_reflectance": 0.5, "nonlinear": 0.0}
 NONLINEAR = {**LINEAR, "diffuse_reflectance": 0.9, "nonlinear": 1.0}
 ANGLES = (0.0, 60.0, 89.0)
 LEVEL = sidak_level(0.01, len(STATISTICAL) * len(ANGLES) * 2)
 SAMPLES = 50_000
-EVERY_CHECK = CHECKS + DELTA_CHECKS + REFERENCE_CHECKS + REFERENCE_DELTA_CHECKS
 
-
-@pytest.fixture(scope="module")
-def mitsuba() -> MitsubaBsdfs:
-    return MitsubaBsdfs()
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
@@ -43,8 +33,8 @@ def test_our_plastic_passes_every_check_against_mitsubas(mitsuba, seed):
                 (values, theta, {n: r.summary for n, r in results.items()})
 
 
-def test_a_plastic_without_the_coatings_inverse_eta_squared_fails_its_values(mitsuba, tmp_path):
-    twin = BsdfLibrary(build_warp_library(Path(__file__).parent / "glass_twins.c", tmp_path)).functions("plastic", LINEAR)
+def test_a_plastic_without_the_coatings_inverse_eta_squared_fails_its_values(mitsuba, delta_twins):
+    twin = delta_twins.functions("plastic", LINEAR)
     results = check_bsdf_at(twin, incident(30.0), SAMPLES, 0, LEVEL, mitsuba.functions("plastic", LINEAR))
     assert results["reference values"].verdict == "FAIL", results["reference values"].summary
     assert results["reference values"].summary.startswith("value differs from the reference's by 0.55")  # 1 - 1/2.25

@@ -2,20 +2,17 @@
 own: harness/engines/mitsuba_bsdfs.py): every check of their own and values, pdfs and sampled directions agree,
 for both microfacet distributions and both ways of sampling normals, at 30 and 89 degrees and seeds 0-2; a twin judged
 against Mitsuba's plugin it claims to be fails there (a diffuse without its 1/pi, GGX where Beckmann is meant)."""
-from pathlib import Path
-
 import pytest
 
 from harness.bsdfs.checks import incident
 from harness.bsdfs.evaluate import CHECKS, REFERENCE_CHECKS, STATISTICAL, check_bsdf_at
 from harness.engines.bsdf_library import BsdfLibrary
-from harness.engines.mitsuba_bsdfs import MitsubaBsdfs, plugin_spec
+from harness.engines.mitsuba_bsdfs import plugin_spec
 from harness.statistics.constants import sidak_level
-from tests.helpers.warp_libraries import build_warp_library
+from tests.helpers.bsdf_libraries import OURS
 
 pytestmark = pytest.mark.mitsuba
 
-OURS = Path(__file__).resolve().parents[2] / "build" / "libmcval_bsdfs.so"
 CONDUCTOR = {"alpha": 0.3, "eta": 0.2, "k": 3.0, "sample_visible": 1}
 BSDFS = [("diffuse", {"reflectance": 0.7}),
          *(("roughconductor", {**CONDUCTOR, "ggx": ggx, "sample_visible": visible}) for ggx in (0, 1) for visible in (0, 1))]
@@ -23,10 +20,6 @@ ANGLES = (30.0, 89.0)
 LEVEL = sidak_level(0.01, len(STATISTICAL) * len(ANGLES) * len(BSDFS))
 SAMPLES = 50_000
 
-
-@pytest.fixture(scope="module")
-def mitsuba() -> MitsubaBsdfs:
-    return MitsubaBsdfs()
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
@@ -40,9 +33,8 @@ def test_ours_agree_with_mitsubas_plugins(mitsuba, seed):
                 (name, values, theta, {n: r.summary for n, r in results.items()})
 
 
-def test_a_diffuse_without_its_inverse_pi_differs_from_mitsubas(mitsuba, tmp_path):
-    twin = BsdfLibrary(build_warp_library(Path(__file__).parent / "bsdf_twins.c", tmp_path)).functions(
-        "no_inv_pi", {"albedo": 0.5})
+def test_a_diffuse_without_its_inverse_pi_differs_from_mitsubas(mitsuba, twins):
+    twin = twins.functions("no_inv_pi", {"albedo": 0.5})
     results = check_bsdf_at(twin, incident(30.0), SAMPLES, 0, LEVEL, mitsuba.functions("diffuse", {"reflectance": 0.5}))
     assert results["reference values"].verdict == "FAIL" and results["reference samples"].verdict == "PASS"
     assert results["reference values"].summary.startswith("value differs from the reference's by 0.68"), \

@@ -1,14 +1,18 @@
-/* Smooth dielectrics of include/mcval_bsdfs.h with one mistake each, for the delta-lobe and energy checks: each
- * must fail the check that names it in tests/bsdfs/test_dielectric.py. Parameters: int_ior, ext_ior. */
+/* BSDFs of include/mcval_bsdfs.h whose lobes are deltas (mirrors, smooth glass), and a plastic, each with one
+ * mistake, for the delta-lobe, energy and reference checks: each must fail the check that names it in
+ * tests/bsdfs/test_conductor.py, test_dielectric.py and test_plastic.py. */
 #include <math.h>
 #include <stddef.h>
 
 #include <mcval_bsdfs.h>
 
+MCVAL_DECLARE_BSDF(unturned_mirror)
+MCVAL_DECLARE_BSDF(conductor)
+MCVAL_DECLARE_BSDF(finite_pdf_mirror)
 MCVAL_DECLARE_BSDF(dielectric)
 MCVAL_DECLARE_BSDF(snell_inverted)
 
-enum Mistake { NO_RADIANCE_SCALE, ETA_INVERTED };
+enum Mistake { UNTURNED, NO_FRESNEL, FINITE_PDF, NO_RADIANCE_SCALE, ETA_INVERTED };
 
 /* Fresnel reflectance at cos_i (negative from inside), the refracted cosine's size and eta_ti (wi's side over
  * the far side's), as Mitsuba's fresnel(). */
@@ -27,8 +31,25 @@ static void zero(float *out, size_t n) {
     for (size_t i = 0; i < n; ++i) out[i] = 0.f;
 }
 
-static void sample(enum Mistake m, const float *params, const float *wi, const float *u, float *wo, float *weight,
-                   float *pdf, size_t n) {
+static void mirror_sample(enum Mistake m, const float *params, const float *wi, const float *u, float *wo,
+                          float *weight, float *pdf, size_t n) {
+    (void)u;
+    for (size_t i = 0; i < n; ++i) {
+        const float *v = wi + 3 * i;
+        const float turn = m == UNTURNED ? 1.f : -1.f; /* the tangential part must turn around */
+        wo[3 * i] = turn * v[0], wo[3 * i + 1] = turn * v[1], wo[3 * i + 2] = v[2];
+        if (!(v[2] > 0)) {
+            weight[i] = pdf[i] = 0.f;
+            continue;
+        }
+        /* No Fresnel: the specular reflectance alone (Mitsuba's conductor multiplies it by F). */
+        weight[i] = m == NO_FRESNEL ? params[2] : 1.f;
+        pdf[i] = m == FINITE_PDF ? 1.f : INFINITY; /* Mitsuba's own pdf of a delta sample is 1: not the ABI's */
+    }
+}
+
+static void glass_sample(enum Mistake m, const float *params, const float *wi, const float *u, float *wo,
+                         float *weight, float *pdf, size_t n) {
     const float eta = params[0] / params[1];
     for (size_t i = 0; i < n; ++i) {
         const float *v = wi + 3 * i;
@@ -49,8 +70,13 @@ static void sample(enum Mistake m, const float *params, const float *wi, const f
     }
 }
 
-#define DEFINE(NAME, MISTAKE)                                                                                   \
-    const char *bsdf_##NAME##_params = "int_ior,ext_ior";                                                       \
+static void sample(enum Mistake m, const float *params, const float *wi, const float *u, float *wo, float *weight,
+                   float *pdf, size_t n) {
+    (m == NO_RADIANCE_SCALE || m == ETA_INVERTED ? glass_sample : mirror_sample)(m, params, wi, u, wo, weight, pdf, n);
+}
+
+#define DEFINE(NAME, PARAMS, MISTAKE)                                                                           \
+    const char *bsdf_##NAME##_params = PARAMS;                                                                  \
     void bsdf_##NAME##_eval(const float *params, const float *wi, const float *wo, float *value, size_t n) {   \
         (void)params, (void)wi, (void)wo;                                                                       \
         zero(value, n);                                                                                         \
@@ -64,8 +90,11 @@ static void sample(enum Mistake m, const float *params, const float *wi, const f
         sample(MISTAKE, params, wi, u, wo, weight, pdf, n);                                                     \
     }
 
-DEFINE(dielectric, NO_RADIANCE_SCALE)
-DEFINE(snell_inverted, ETA_INVERTED)
+DEFINE(unturned_mirror, "", UNTURNED)
+DEFINE(conductor, "eta,k,specular_reflectance", NO_FRESNEL)
+DEFINE(finite_pdf_mirror, "", FINITE_PDF)
+DEFINE(dielectric, "int_ior,ext_ior", NO_RADIANCE_SCALE)
+DEFINE(snell_inverted, "int_ior,ext_ior", ETA_INVERTED)
 
 /* Mitsuba's plastic (linear, gray) without the 1 / eta^2 by which light leaving the coating spreads into a
  * larger solid angle: its diffuse lobe 2.25 times too bright for eta 1.5. */
