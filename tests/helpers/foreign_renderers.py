@@ -61,7 +61,9 @@ BEHAVIOURS = {
     # With {batches}: one layer short of those asked for.
     "batched_short": "import numpy as np\nwrite(np.concatenate([shape()] * (int(count) - 1), axis=-1), "
                      "[f'batch{k}.{c}' for k in range(int(count) - 1) for c in 'RGB'])",
-    "spam": "while True: print('x' * 4096, flush=True)",
+    # 64 MB, far past the 1 MB a call may print, then silence: a copy orphaned by a killed test run cannot fill
+    # the disk.
+    "spam": "for _ in range(1 << 14): print('x' * 4096, flush=True)\nimport time\ntime.sleep(600)",
     # Renders, then writes a firefly (FACTOR times the value; a value itself past 1e3) into pixel (64, 64) of
     # BATCHES of a case's 8 calls: their seeds are distinct modulo 8 (see harness.engines.command.call_seed).
     # Renders, then writes every value FACTOR times (a 1/pi or a reflectance left out, a pdf off by pi^2).
