@@ -23,7 +23,8 @@ WEIGHT_TOLERANCE = 1e-4
 LOBES = ("reflection", "refraction")
 
 
-def _lobe(d: Draw, name: str) -> np.ndarray:
+def lobe(d: Draw, name: str) -> np.ndarray:
+    """The delta samples of the lobe `name` (one of LOBES): those leaving on wi's side, or crossing to the other."""
     side = d.wo[:, 2] * d.wi[2]
     return d.delta & ((side > 0) if name == "reflection" else (side <= 0))
 
@@ -32,7 +33,7 @@ def law_check(d: Draw, eta: float | None = None) -> CheckResult:
     """Each delta sample obeys the law of reflection or of refraction (see the module); where the relative index
     `eta` = int / ext is known, refraction obeys Snell's law with it."""
     mirror = np.array([-d.wi[0], -d.wi[1], d.wi[2]])
-    reflected, refracted = d.wo[_lobe(d, "reflection")], d.wo[_lobe(d, "refraction")]
+    reflected, refracted = d.wo[lobe(d, "reflection")], d.wo[lobe(d, "refraction")]
     off_mirror = np.linalg.norm(reflected - mirror, axis=1) > DIRECTION_TOLERANCE
     # Refraction keeps the plane of incidence and turns the tangential part around; one direction for one wi.
     tangent = np.hypot(d.wi[0], d.wi[1])
@@ -68,7 +69,7 @@ def weights_check(ours: Draw, theirs: Draw) -> CheckResult:
     module); the p-value the smaller of the lobes' (Bonferroni over the two)."""
     parts, ps, details = [], [], {}
     for name in LOBES:
-        a, b = (np.where(_lobe(x, name), x.weight, 0.0) for x in (ours, theirs))
+        a, b = (np.where(lobe(x, name), x.weight, 0.0) for x in (ours, theirs))
         mean_a, mean_b = float(a.mean()), float(b.mean())
         se = float(np.sqrt(a.var(ddof=1) / len(a) + b.var(ddof=1) / len(b)))
         if se > 0:

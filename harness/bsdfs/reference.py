@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from harness.bsdfs.checks import Draw
+from harness.bsdfs.delta import LOBES, lobe
 from harness.engines.base import BsdfFunctions
 from harness.warps.bins import Bins
 from harness.warps.check_result import CheckResult
@@ -56,10 +57,10 @@ def reference_draw(d: Draw, reference: BsdfFunctions, seed: int) -> Draw:
 
 
 def _counts(d: Draw, bins: Bins) -> np.ndarray:
-    """The drawn directions per cell, then the failed samples, the reflected and the refracted delta samples."""
-    side = d.wo[:, 2] * d.wi[2]
+    """The drawn directions per cell, then the failed samples, then the delta samples of each lobe (delta.LOBES:
+    reflected, refracted)."""
     return np.concatenate([histogram(SPHERE, d.wo[d.smooth], bins).ravel(),
-                           [d.failed.sum(), (d.delta & (side > 0)).sum(), (d.delta & (side <= 0)).sum()]])
+                           [d.failed.sum(), *(lobe(d, name).sum() for name in LOBES)]])
 
 
 def samples_check(d: Draw, theirs: Draw, bins: Bins) -> CheckResult:

@@ -125,9 +125,13 @@ class Entry:
 
 
 def run_matrix(entries: list[Entry], angles=ANGLES, samples: int = SAMPLES, seed: int = 0, alpha: float = ALPHA,
-               on_progress: Callable[[str], None] = lambda _: None) -> tuple[list[BsdfRow], float]:
-    """Every entry at every angle; returns the rows and the per-test level they were decided at."""
+               on_progress: Callable[[str], None] = lambda _: None,
+               on_rows: Callable[[int], None] = lambda _: None) -> tuple[list[BsdfRow], float]:
+    """Every entry at every angle (from below too where it transmits); returns the rows and the per-test level they
+    were decided at. `on_rows` is told how many rows there will be, once that is known; `on_progress` names each
+    as it starts."""
     rows_of = {id(e): row_angles(e.bsdf, angles) for e in entries if e.failure is None}
+    on_rows(sum(len(rows_of[id(e)]) if e.failure is None else 1 for e in entries))
     tests = sum(len(rows_of[id(e)]) * (len(OWN_STATISTICAL) + len(REFERENCE_STATISTICAL) * (e.reference is not None))
                 for e in entries if e.failure is None)
     level = sidak_level(alpha, max(tests, 1))

@@ -58,11 +58,13 @@ def run_bsdf_section(library, specs, angles, samples: int, seed: int, alpha: flo
     from harness.report.bsdf_html import bsdf_report_html
     from harness.report.bsdf_outputs import bsdf_junit, bsdf_table
 
-    entries = _entries(specs, library, MitsubaBsdfs() if mitsuba and library.path is not None else None)
+    against_mitsuba = mitsuba and library.path is not None
+    entries = _entries(specs, library, MitsubaBsdfs() if against_mitsuba else None)
     with progress_bar("bsdfs") as progress:
-        task = progress.add_task("", total=sum(1 if e.failure else len(angles) for e in entries))
+        task = progress.add_task("", total=None)
         rows, level = run_matrix(entries, angles, samples, seed, alpha,
-                                 on_progress=lambda s: progress.update(task, advance=1, description=s))
+                                 on_progress=lambda s: progress.update(task, advance=1, description=s),
+                                 on_rows=lambda n: progress.update(task, total=n))
     console.print(bsdf_table(rows, level))
     for row in rows:
         if not row.passed:
@@ -70,7 +72,7 @@ def run_bsdf_section(library, specs, angles, samples: int, seed: int, alpha: flo
             lines = [row.failure] if row.failure else [f"{k}: {c.summary}" for k, c in row.checks.items() if not c.passed]
             console.print(f"[red]FAIL[/] {escape(row.label + where + ': ' + '; '.join(lines))}", soft_wrap=True)
     passed = sum(r.passed for r in rows)
-    meta = {"library": library.version(), "reference": "Mitsuba 3 plugins" if mitsuba and library.path else "none",
+    meta = {"library": library.version(), "reference": "Mitsuba 3 plugins" if against_mitsuba else "none",
             "samples": samples, "seed": seed, "alpha": alpha, "level": level}
     (run_dir / junit_name).write_text(bsdf_junit(rows, meta))
     (run_dir / "bsdfs.html").write_text(bsdf_report_html(rows, level, meta))

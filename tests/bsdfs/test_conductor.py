@@ -9,7 +9,7 @@ from harness.bsdfs.checks import incident
 from harness.bsdfs.evaluate import CHECKS, DELTA_CHECKS, REFERENCE_CHECKS, STATISTICAL, check_bsdf_at
 from harness.engines.bsdf_library import BsdfLibrary
 from harness.statistics.constants import sidak_level
-from tests.helpers.bsdf_libraries import EVERY_CHECK, OURS
+from tests.helpers.bsdf_libraries import OURS, assert_every_check_passes
 
 pytestmark = pytest.mark.mitsuba
 
@@ -20,17 +20,13 @@ LEVEL = sidak_level(0.01, len(STATISTICAL) * len(ANGLES) * 2)
 SAMPLES = 20_000
 
 
-
-
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_our_conductor_passes_every_check_against_mitsubas(mitsuba, seed):
     ours = BsdfLibrary(OURS)
     for values in (GOLD, MIRROR):
         for theta in ANGLES:
-            results = check_bsdf_at(ours.functions("conductor", values), incident(theta), SAMPLES, seed, LEVEL,
-                                    mitsuba.functions("conductor", values))
-            assert {n: r.verdict for n, r in results.items()} == dict.fromkeys(EVERY_CHECK, "PASS"), \
-                (values, theta, {n: r.summary for n, r in results.items()})
+            results = assert_every_check_passes(ours.functions("conductor", values), theta, SAMPLES, seed, LEVEL,
+                                                mitsuba.functions("conductor", values))
             fresnel = results["reference delta weights"].details["reflection"]["here"]
             assert 0 < fresnel <= values["specular_reflectance"] + 1e-6
 

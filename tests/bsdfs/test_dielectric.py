@@ -9,7 +9,7 @@ from harness.bsdfs.evaluate import STATISTICAL, check_bsdf_at
 from harness.bsdfs.suite import row_angles
 from harness.engines.bsdf_library import BsdfLibrary
 from harness.statistics.constants import sidak_level
-from tests.helpers.bsdf_libraries import EVERY_CHECK, OURS
+from tests.helpers.bsdf_libraries import OURS, assert_every_check_passes
 
 pytestmark = pytest.mark.mitsuba
 
@@ -19,17 +19,13 @@ LEVEL = sidak_level(0.01, len(STATISTICAL) * len(ANGLES) * 2)
 SAMPLES = 20_000
 
 
-
-
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_our_dielectric_passes_every_check_against_mitsubas_from_both_sides(mitsuba, seed):
     ours = BsdfLibrary(OURS).functions("dielectric", GLASS)
     angles = row_angles(ours, ANGLES)
     assert angles == [0.0, 30.0, 89.0, 180.0, 150.0, 91.0]
     for theta in angles:
-        results = check_bsdf_at(ours, incident(theta), SAMPLES, seed, LEVEL, mitsuba.functions("dielectric", GLASS))
-        assert {n: r.verdict for n, r in results.items()} == dict.fromkeys(EVERY_CHECK, "PASS"), \
-            (theta, {n: r.summary for n, r in results.items()})
+        results = assert_every_check_passes(ours, theta, SAMPLES, seed, LEVEL, mitsuba.functions("dielectric", GLASS))
         lobes = results["reference delta weights"].details
         if theta == 91.0:  # from inside, beyond the critical angle: all reflected
             assert lobes["refraction"]["here"] == 0 and lobes["reflection"]["here"] == 1
