@@ -23,6 +23,18 @@ def bsdf_library_of(args):
     return BsdfLibrary(OUR_LIBRARY) if engine == DEFAULT_TEST else None
 
 
+def null_row_functions(library: str, against_mitsuba: bool, spec_text: str):
+    """A calibration row's BSDF from `library` (a path) and Mitsuba's plugin of its name where asked and there is
+    one (harness/bsdfs/calibration.py: bound with functools.partial, it travels to a cluster's workers)."""
+    from harness.bsdfs.suite import parse_spec
+    from harness.engines.bsdf_library import BsdfLibrary
+    from harness.engines.mitsuba_bsdfs import MitsubaBsdfs
+
+    spec, lib = parse_spec(spec_text), BsdfLibrary(Path(library))
+    values = spec.values(lib.parameters(spec.name))
+    return lib.functions(spec.name, values), MitsubaBsdfs().functions(spec.name, values) if against_mitsuba else None
+
+
 def _entries(specs, library, mitsuba) -> list:
     """The BSDFs asked for (`specs`, parsed; None for the default set), each ready or with the one line saying why
     it cannot be checked."""

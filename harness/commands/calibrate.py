@@ -1,5 +1,5 @@
-"""`calibrate`: the measured false-alarm rate of every statistical check (warps, image comparisons) and the
-power of the image comparison."""
+"""`calibrate`: the measured false-alarm rate of every statistical check (warps, image comparisons, BSDFs) and
+the power of the image comparison and of the BSDF checks."""
 from __future__ import annotations
 
 import argparse
@@ -12,6 +12,8 @@ from harness.commands.output import console, task_progress
 from harness.commands.run_folder import RunFolder
 from harness.distributed.cluster import add_executor_options
 from harness.results import write_atomic
+from harness.bsdfs.calibration import NULL_ROWS
+from harness.bsdfs.suite import SAMPLES as BSDF_SAMPLES
 from harness.statistics.constants import WARP_SAMPLES
 from harness.verdict import Tally, Verdict, run_verdict
 
@@ -29,15 +31,25 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "and calibration.json (blocks with `comparisons` and `false_alarm_rate`); results/calibration-latest "
         "points at the newest. Exits 1 if a rate lies above its nominal level beyond its interval (the check "
         "raises more false alarms than it says) or a comparison failed, 3 if no null run was made; a rate below "
-        "its interval (conservative: it costs power, not false FAILs) is shown in yellow.")
+        "its interval (conservative: it costs power, not false FAILs) is shown in yellow. BSDFs (--bsdfs, not in "
+        "the default: about 10 minutes on two workers): correct BSDFs of a library (ours by default) against "
+        "Mitsuba's plugins at many seeds, every check as the matrix runs it; a deterministic check must never "
+        "fail them; and the power of the energy and weight checks on planted defects of the stated size.")
     add_common(p)
     add_engines(p)
     p.add_argument("--warps", action="store_true", help="calibrate the warp checks (with --images: both; the default)")
     p.add_argument("--images", action="store_true", help="calibrate the image comparisons (default: both)")
+    p.add_argument("--bsdfs", action="store_true", help="calibrate the BSDF checks (alone, or with --warps, --images)")
     p.add_argument("--only", nargs="+", metavar="WARP", help="only these warps, e.g. tent beckmann:0.01")
-    p.add_argument("--seeds", type=int, default=200, help="null runs per warp (default 200)")
-    p.add_argument("--samples", type=int, default=WARP_SAMPLES,
-                   help=f"samples per run, as in the matrix (default {WARP_SAMPLES})")
+    p.add_argument("--bsdf", nargs="+", metavar="NAME[:p=v,...]@DEGREES",
+                   help="the BSDF null rows, e.g. roughconductor:alpha=0.1@60 (default: "
+                        f"{' '.join(NULL_ROWS)}; a Lambertian on the energy check's edge is always added)")
+    p.add_argument("--bsdf-library", type=Path, metavar="LIB.so",
+                   help="calibrate on the BSDFs of this library (include/mcval_bsdfs.h) instead of ours")
+    p.add_argument("--seeds", type=int, default=200, help="null runs per warp and per BSDF row (default 200)")
+    p.add_argument("--samples", type=int,
+                   help=f"samples per run, as in the matrix (default {WARP_SAMPLES} for warps, {BSDF_SAMPLES} for "
+                        "BSDFs)")
     p.add_argument("--comparisons", type=int, default=80,
                    help="null image comparisons of each of the three kinds (default 80: 240 in all)")
     p.add_argument("--json", type=Path, metavar="PATH", help="also write the figures as JSON to PATH")
@@ -73,11 +85,13 @@ def calibration_tally(what: str, runs: int, sound: bool, why_none: str) -> Tally
 def _calibrate(args, run_dir: Path, executor) -> tuple[list[Tally], dict, str]:
     from harness.engines.registry import make_engine
     from harness.report.calibration_html import calibration_page, warp_calibration_html
+    from harness.report.bsdf_calibration_html import bsdf_calibration_sections
     from harness.report.image_calibration_html import image_calibration_sections
 
     from harness.commands.warp_section import warp_engine
 
-    warps, images = (args.warps or not args.images), (args.images or not args.warps)
+    chosen = args.warps or args.images or args.bsdfs
+    warps, images, bsdfs = args.warps or not chosen, args.images or not chosen, args.bsdfs
     tested = make_engine(args.engine)
     warp_source = warp_engine(args) if warps else None
     if warps and not warp_source.has_warps:
@@ -100,18 +114,27 @@ def _calibrate(args, run_dir: Path, executor) -> tuple[list[Tally], dict, str]:
                      "image comparisons ran on": cal_images["ran_on"]})
         tallies.append(calibration_tally("null image comparisons", cal_images["comparisons"], cal_images["pass"],
                                          f"--comparisons {args.comparisons} gave none"))
+    if bsdfs:
+        cal_bsdfs = _calibrate_bsdfs(args, reference is not None, executor)
+        payload["bsdfs"] = cal_bsdfs.to_json()
+        sections += bsdf_calibration_sections(cal_bsdfs)
+        meta.update({"seeds per BSDF row": args.seeds, "BSDF samples": cal_bsdfs.samples,
+                     "BSDF seconds": round(cal_bsdfs.seconds, 1), "BSDFs ran on": executor.description})
+        tallies.append(calibration_tally("null BSDF runs", cal_bsdfs.null_runs, cal_bsdfs.sound,
+                                         f"--seeds {args.seeds} gave none"))
     if warps:
         cal = _calibrate_warps(args, warp_source, reference, executor)
         payload["warps"] = cal.to_json()
-        meta.update({"seeds per warp": args.seeds, "samples": args.samples, "warp seconds": round(cal.seconds, 1),
+        meta.update({"seeds per warp": args.seeds, "samples": cal.samples, "warp seconds": round(cal.seconds, 1),
                      "warps ran on": executor.description})
         runs = args.seeds * len(cal.entries)
         tallies.append(calibration_tally("null warp runs", runs, cal.sound,
                                          f"--seeds {args.seeds} over {len(cal.entries)} warp checks gave none"))
         page = warp_calibration_html(cal, meta, sections)
     else:
-        page = calibration_page("Calibration of the image comparisons", "Each rejection of a null comparison "
-                                "is a false alarm.", sections, meta)
+        what = "image comparisons" if not bsdfs else "BSDF checks" if not images else "statistical checks"
+        page = calibration_page(f"Calibration of the {what}", "Each rejection of a null run is a false alarm.",
+                                sections, meta)
     payload["meta"] = meta
     return tallies, payload, page
 
@@ -122,12 +145,44 @@ def _calibrate_warps(args, tested, reference, executor):
     from harness.warps.suite import select
 
     specs = select(args.only)
+    samples = args.samples or WARP_SAMPLES
     with task_progress("calibrate warps", executor) as show:
-        cal = calibrate_warps(tested, reference, specs, args.seeds, args.samples, executor, show)
+        cal = calibrate_warps(tested, reference, specs, args.seeds, samples, executor, show)
     console.print(calibration_table(cal))
     for line in cal.failed:
         console.print(f"[red]failed[/] {line}")
     console.print(f"{len(specs)} warps x {args.seeds} seeds in {cal.seconds:.0f} s on {executor.description}.")
+    return cal
+
+
+def _calibrate_bsdfs(args, against_mitsuba: bool, executor):
+    from functools import partial
+
+    from harness.bsdfs.calibration import calibrate_bsdfs, parse_row
+    from harness.commands.bsdf_section import OUR_LIBRARY, null_row_functions
+    from harness.report.calibration_table import bsdf_power_table, calibration_table
+
+    rows = list(args.bsdf or NULL_ROWS)
+    for row in rows:
+        parse_row(row)  # a mistyped row is refused before any runs
+    library = args.bsdf_library or OUR_LIBRARY
+    if not library.is_file():
+        raise ValueError(f"--bsdf-library {library}: no such file")
+    with task_progress("calibrate bsdfs", executor) as show:
+        functions_of = partial(null_row_functions, str(library), against_mitsuba)
+        cal = calibrate_bsdfs(functions_of, rows, args.seeds, args.samples or BSDF_SAMPLES, executor, show)
+    console.print(calibration_table(cal, "BSDF"))
+    console.print(bsdf_power_table(cal))
+    for d in cal.deterministic:
+        if d.failures:
+            console.print(f"[red]false FAIL[/] {escape(f'{d.row}: {d.check} failed {d.failures} of {d.runs} runs ({d.example})')}",
+                          soft_wrap=True)
+    for line in cal.failed:
+        console.print(f"[red]failed[/] {escape(line)}", soft_wrap=True)
+    if cal.degenerate:
+        console.print(f"p = 1 at every seed (nothing random tested; not in the rates): {escape('; '.join(cal.degenerate))}",
+                      soft_wrap=True)
+    console.print(f"{len(rows) + 1} BSDF rows x {args.seeds} seeds in {cal.seconds:.0f} s on {executor.description}.")
     return cal
 
 

@@ -7,12 +7,12 @@ from harness.report.verdict_style import VERDICT_COLOUR, VERDICT_KEY
 from harness.statistics.calibration_rates import CALIBRATION_LEVELS
 
 
-def calibration_table(cal) -> Table:
-    """Pooled rows first, then each warp; green where the nominal level lies inside the interval, yellow
-    where the interval lies below it (conservative), red above it (liberal)."""
-    table = Table(title="False-alarm rates of the warp checks (observed, simultaneous 95 % interval)",
+def calibration_table(cal, what: str = "warp") -> Table:
+    """Pooled rows first, then each warp (or BSDF row: `what`); green where the nominal level lies inside the
+    interval, yellow where the interval lies below it (conservative), red above it (liberal)."""
+    table = Table(title=f"False-alarm rates of the {what} checks (observed, simultaneous 95 % interval)",
                   header_style="bold", caption=VERDICT_KEY)
-    for col in ("warp", "check", "tests", *[f"at {level:g}" for level in CALIBRATION_LEVELS], "KS p"):
+    for col in (what, "check", "tests", *[f"at {level:g}" for level in CALIBRATION_LEVELS], "KS p"):
         table.add_column(col)
     for e in cal.pooled + cal.entries:
         cells = [f"[{VERDICT_COLOUR[r.verdict]}]{r.observed:.3f}[/] ({r.low:.2f}-{r.high:.2f})" for r in e.rates]
@@ -43,3 +43,16 @@ def bias_text(b: float | None) -> str:
     """A power figure: the smallest bias found often enough, or that none up to the largest planted was."""
     from harness.images.null_task import BIASES
     return f"beyond {BIASES[-1]:g}" if b is None else f"{b:.2g}"
+
+
+def bsdf_power_table(cal) -> Table:
+    """The BSDF calibration's planted defects: found how often, beside the power the check states; and the
+    deterministic checks that failed a correct BSDF."""
+    table = Table(title="Power of the BSDF checks: defects of the stated size, planted", header_style="bold")
+    for col in ("check", "planted defect", "level", "stated", "found [interval]"):
+        table.add_column(col)
+    for p in cal.power:
+        colour = "green" if p.holds else "red"
+        table.add_row(p.check, p.defect, "" if p.level is None else f"{p.level:g}", f"{p.stated:.0%}",
+                      f"[{colour}]{p.found} of {p.runs}[/] [{p.low:.3f}, {p.high:.3f}]")
+    return table

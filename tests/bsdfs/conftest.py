@@ -26,3 +26,9 @@ def twins(tmp_path_factory) -> BsdfLibrary:
 def delta_twins(tmp_path_factory) -> BsdfLibrary:
     """tests/bsdfs/delta_twins.c: mirrors, glass and a plastic, each with one mistake."""
     return BsdfLibrary(build_warp_library(HERE / "delta_twins.c", tmp_path_factory.mktemp("delta")))
+
+
+@pytest.fixture(scope="session")
+def microfacet_twins(tmp_path_factory) -> BsdfLibrary:
+    """tests/bsdfs/microfacet_twins.c: a Beckmann reflector and its microfacet mistakes."""
+    return BsdfLibrary(build_warp_library(HERE / "microfacet_twins.c", tmp_path_factory.mktemp("microfacet")))

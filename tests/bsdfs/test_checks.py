@@ -39,6 +39,22 @@ def test_each_twin_fails_the_check_that_names_it(twins, twin, check):
     assert [n for n, r in results.items() if r.verdict == "FAIL"] == [check], {n: r.summary for n, r in results.items()}
 
 
+@pytest.mark.parametrize("twin, shown", [
+    ("alpha_for_alpha2", "p = 0"),  # D with alpha where alpha^2 belongs, its sampler right: a wider lobe than drawn
+    ("no_jacobian", "pdf integrates to"),  # pdf = D(h) cos theta_h, without dh/dwo = 1 / (4 wo.h): not a density of wo
+    ("ggx_sampled", "p = 0"),  # GGX's normals drawn, Beckmann's evaluated
+])
+def test_each_microfacet_twin_fails_where_its_sampler_and_pdf_part(microfacet_twins, twin, shown):
+    """Each computes its weight as its own value / pdf, so the weight holds: the sampling check names the mistake
+    (and the normalisation, as the share of failed samples no longer matches the pdf's integral)."""
+    correct = check_bsdf_at(microfacet_twins.functions("beckmann", {"alpha": 0.3}), incident(30.0), SAMPLES, 0, LEVEL)
+    assert {n: r.verdict for n, r in correct.items()} == dict.fromkeys(CHECKS, "PASS")
+    results = check_bsdf_at(microfacet_twins.functions(twin, {"alpha": 0.3}), incident(30.0), SAMPLES, 0, LEVEL)
+    failed = [n for n, r in results.items() if r.verdict == "FAIL"]
+    assert failed == ["sampling", "normalisation"], {n: r.summary for n, r in results.items()}
+    assert shown in results["sampling" if shown == "p = 0" else "normalisation"].summary
+
+
 def test_the_energy_check_states_the_excess_it_finds(twins):
     energy = check_bsdf_at(twins.functions("one_sided_shadowing", {"albedo": 0.5}), incident(30.0), SAMPLES, 0,
                            LEVEL)["energy"]
