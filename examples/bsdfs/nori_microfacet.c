@@ -1,6 +1,7 @@
 /* Nori's `microfacet` BSDF (the course's PA5), through mcval's BSDF ABI (include/mcval_bsdfs.h): a diffuse base
- * of albedo kd under a Beckmann specular lobe of roughness alpha and weight ks = 1 - kd, with the Fresnel
- * reflectance of a dielectric interface (int_ior inside, ext_ior outside):
+ * of albedo kd under a Beckmann specular lobe of roughness alpha and weight ks, with the Fresnel reflectance of a
+ * dielectric interface (int_ior inside, ext_ior outside). Nori derives ks = 1 - max(kd) from a coloured kd; one
+ * gray channel takes kd (its luminance) and ks apart, which is how `bsdfs --nori-test` passes Nori's values:
  *
  *   f(wi, wo) = kd / pi + ks D(h) F(wi . h) G(wi, wo, h) / (4 cos theta_i cos theta_o),   h = (wi + wo) / |wi + wo|
  *
@@ -19,7 +20,7 @@
 
 MCVAL_DECLARE_BSDF(microfacet)
 
-const char *bsdf_microfacet_params = "alpha,kd,int_ior,ext_ior";
+const char *bsdf_microfacet_params = "alpha,kd,ks,int_ior,ext_ior";
 
 typedef struct { float x, y, z; } vec3;
 
@@ -61,16 +62,16 @@ static float fresnel(float cos_i, float eta_i, float eta_t) {
 
 static float value(const float *p, vec3 wi, vec3 wo) {
     if (wi.z <= 0 || wo.z <= 0) return 0.f;
-    const float alpha = p[0], kd = p[1], ks = 1 - kd;
+    const float alpha = p[0], kd = p[1], ks = p[2];
     const vec3 h = half_vector(wi, wo);
-    const float specular = beckmann_d(h, alpha) * fresnel(dot(wi, h), p[3], p[2]) * smith_g1(wi, h, alpha) *
+    const float specular = beckmann_d(h, alpha) * fresnel(dot(wi, h), p[4], p[3]) * smith_g1(wi, h, alpha) *
                            smith_g1(wo, h, alpha) / (4 * wi.z * wo.z);
     return (kd / PI + ks * specular) * wo.z;
 }
 
 static float density(const float *p, vec3 wi, vec3 wo) {
     if (wi.z <= 0 || wo.z <= 0) return 0.f;
-    const float alpha = p[0], ks = 1 - p[1];
+    const float alpha = p[0], ks = p[2];
     const vec3 h = half_vector(wi, wo);
     /* D(h) cos theta_h is h's density; 1 / (4 wo . h) the Jacobian from h to the reflected wo. */
     return ks * beckmann_d(h, alpha) * h.z / (4 * dot(wo, h)) + (1 - ks) * wo.z / PI;
@@ -86,7 +87,7 @@ void bsdf_microfacet_pdf(const float *params, const float *wi, const float *wo, 
 
 void bsdf_microfacet_sample(const float *params, const float *wi, const float *u, float *wo, float *weight,
                             float *pdf, size_t n) {
-    const float alpha = params[0], ks = 1 - params[1];
+    const float alpha = params[0], ks = params[2];
     for (size_t i = 0; i < n; ++i) {
         const vec3 in = load(wi, i);
         const float u1 = u[3 * i], phi = 2 * PI * u[3 * i + 1];

@@ -25,11 +25,11 @@ ALPHA = 0.01
 #: Values of a parameter a library names, where the command line gives none: a name of Mitsuba's, else 0.5.
 DEFAULT_VALUES = {"alpha": 0.3, "reflectance": 0.8, "albedo": 0.8, "eta": 0.2, "k": 3.0, "ggx": 0.0,
                   "specular_reflectance": 1.0, "diffuse_reflectance": 0.5, "nonlinear": 0.0,
-                  "sample_visible": 1.0, "int_ior": 1.5, "ext_ior": 1.0}
+                  "sample_visible": 1.0, "int_ior": 1.5, "ext_ior": 1.0, "kd": 0.5, "ks": 0.5}
 #: The BSDFs of our library the matrix runs by default: each model with its choices, at a low and a high
 #: roughness.
 OUR_DEFAULTS = ("diffuse", "conductor", "conductor:eta=0,k=1", "dielectric", "dielectric:int_ior=1.33", "plastic",
-                "plastic:diffuse_reflectance=0.9,nonlinear=1",
+                "plastic:diffuse_reflectance=0.9,nonlinear=1", "microfacet:alpha=0.2,kd=0.3,ks=0.6",
                 *(f"roughconductor:alpha={a},ggx={g},sample_visible={v}"
                   for a in (0.05, 0.5) for g in (0, 1) for v in (0, 1)))
 

@@ -42,8 +42,10 @@ def _entries(specs, library, mitsuba) -> list:
     from harness.bsdfs.suite import OUR_DEFAULTS, Entry, parse_spec
     from harness.engines.bsdf_library import BsdfUnavailable
 
-    if specs is None:  # ours and Mitsuba's (the same names) at their set of values, a user's at its defaults
-        specs = [parse_spec(t) for t in (OUR_DEFAULTS if library.path in (OUR_LIBRARY, None) else library.names)]
+    if specs is None:  # ours and Mitsuba's (the plugins of our names) at their set of values, a user's at defaults
+        ours = [parse_spec(t) for t in OUR_DEFAULTS]
+        specs = ([s for s in ours if s.name in library.names] if library.path in (OUR_LIBRARY, None)
+                 else [parse_spec(t) for t in library.names])
     entries = []
     for spec in specs:
         try:

@@ -36,6 +36,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--mitsuba", action="store_true",
                    help="check Mitsuba's own plugins (conductor, dielectric, diffuse, plastic, roughconductor) instead "
                         "of a library, each on its own")
+    p.add_argument("--nori-test", nargs="+", type=Path, metavar="FILE.xml",
+                   help="Nori's BSDF test files (<test type=\"chi2test\"> or \"ttest\", e.g. pa5's "
+                        "chi2test-microfacet.xml): each <bsdf> is mapped onto the library's BSDF of its type and "
+                        "judged as Nori judges it, then by the matrix's checks (instead of --bsdf)")
     p.add_argument("--json", type=Path, metavar="PATH", help="also write the results as JSON to PATH")
 
 
@@ -51,12 +55,19 @@ def run(args: argparse.Namespace, run: RunFolder) -> Verdict:
     specs = None if args.bsdf is None else [parse_spec(t) for t in args.bsdf]
     if args.mitsuba and args.bsdf_library:
         raise ValueError("--mitsuba and --bsdf-library: give one (whose BSDFs to check)")
+    if args.nori_test and args.bsdf:
+        raise ValueError("--nori-test and --bsdf: give one (the test files name their BSDFs)")
     library = MitsubaBsdfs() if args.mitsuba else BsdfLibrary(args.bsdf_library or OUR_LIBRARY)
+    tallies, nori = [], {}
+    if args.nori_test:
+        from harness.commands.nori_test_section import run_nori_tests
+        nori_tally, nori, specs = run_nori_tests(args.nori_test, library, args.seed)
+        tallies.append(nori_tally)
     run_dir = run.start()
     tally, block = run_bsdf_section(library, specs, args.angles, args.samples, args.seed, args.alpha,
                                     not args.no_mitsuba, run_dir)
-    verdict, reason = run_verdict([tally])
-    run.finish({"run": run_dir.name, "bsdfs": block["bsdfs"], "bsdf_level": block["bsdf_level"],
+    verdict, reason = run_verdict([*tallies, tally])
+    run.finish({"run": run_dir.name, "bsdfs": block["bsdfs"], "bsdf_level": block["bsdf_level"], **nori,
                 "meta": block["bsdf_meta"], "pass": verdict is Verdict.PASS, "verdict": verdict.value,
                 "verdict_reason": reason}, json_copy=args.json)
     print_verdict(run_dir / "results.json", verdict, reason)

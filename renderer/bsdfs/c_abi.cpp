@@ -5,6 +5,7 @@
 #include "conductor.h"
 #include "dielectric.h"
 #include "diffuse.h"
+#include "nori_microfacet.h"
 #include "plastic.h"
 #include "roughconductor.h"
 
@@ -62,6 +63,11 @@ RoughConductorBsdf makeRoughConductor(const float *params) {
                               Color(1.f, 1.f, 1.f));
 }
 
+/// alpha, kd, ks, int_ior, ext_ior (Nori's microfacet, kd and ks given apart).
+NoriMicrofacetBsdf makeNoriMicrofacet(const float *params) {
+    return NoriMicrofacetBsdf(params[0], params[1], params[2], params[3], params[4]);
+}
+
 }  // namespace
 }  // namespace mcval
 
@@ -84,6 +90,7 @@ extern "C" {
 MCVAL_EXPORT_BSDF(conductor, "eta,k,specular_reflectance", mcval::makeConductor)
 MCVAL_EXPORT_BSDF(dielectric, "int_ior,ext_ior", mcval::makeDielectric)
 MCVAL_EXPORT_BSDF(diffuse, "reflectance", mcval::makeDiffuse)
+MCVAL_EXPORT_BSDF(microfacet, "alpha,kd,ks,int_ior,ext_ior", mcval::makeNoriMicrofacet)
 MCVAL_EXPORT_BSDF(plastic, "int_ior,ext_ior,diffuse_reflectance,nonlinear", mcval::makePlastic)
 MCVAL_EXPORT_BSDF(roughconductor, "alpha,eta,k,ggx,sample_visible", mcval::makeRoughConductor)
 }

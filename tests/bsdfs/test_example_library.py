@@ -20,7 +20,7 @@ def library(tmp_path_factory) -> Path:
 def test_the_example_microfacet_passes(library, tmp_path, seed):
     out = tmp_path / "r"
     code = main(["bsdfs", "--bsdf-library", str(library), "--bsdf", "microfacet",
-                 "microfacet:alpha=0.6,kd=0.6,int_ior=1.8", "--angles", "0", "60", "80", "89", "--samples", "100000", "--seed", str(seed), "--out",
+                 "microfacet:alpha=0.6,kd=0.6,ks=0.4,int_ior=1.8", "--angles", "0", "60", "80", "89", "--samples", "100000", "--seed", str(seed), "--out",
                  str(out)])
     rows = json.loads((out / "latest" / "results.json").read_text())["bsdfs"]
     assert code == 0 and len(rows) == 8 and all(r["pass"] for r in rows), [r for r in rows if not r["pass"]]
