@@ -73,7 +73,7 @@ def incident(theta_degrees: float, below: bool = False) -> np.ndarray:
     return np.array([np.sin(t), 0.0, -np.cos(t) if below else np.cos(t)])
 
 
-def draw(bsdf: BsdfFunctions, wi: np.ndarray, samples: int, seed: int) -> Draw:
+def draw(bsdf: BsdfFunctions, wi: np.ndarray, samples: int, seed: int | list[int]) -> Draw:
     u = np.random.default_rng(seed).random((samples, 3), dtype=np.float32).astype(np.float64)
     wo, weight, pdf = bsdf.sample(np.tile(wi, (samples, 1)), u)
     return Draw(wi, wo, weight, pdf)
@@ -91,15 +91,20 @@ class CellCounts:
     expected: np.ndarray
 
 
-def sampling_checks(bsdf: BsdfFunctions, d: Draw) -> tuple[CheckResult, CheckResult, Bins, CellCounts | None]:
+def sampling_checks(bsdf: BsdfFunctions, d: Draw,
+                    pilot: Draw | None = None) -> tuple[CheckResult, CheckResult, Bins, CellCounts | None]:
     """The chi-square of the sampled directions against the pdf, the pdf's normalisation (see the module), the
     cells of that chi-square (for the reference's samples: harness/bsdfs/reference.py) and its counts (None where
     nothing was drawn from a density). Samples on a delta lobe count with the failed ones: the pdf describes the
-    rest."""
+    rest. `pilot`: samples drawn apart from `d`, whose quantiles give the cells (else the pdf's)."""
     n = len(d.wo)
     failed = ~d.smooth
     drawn = d.wo[~failed]
-    bins, integrals = equal_probability_cells(SPHERE, _pdf_at(bsdf, d.wi), n, sample_quantum(drawn))
+    pilot_points = None
+    if pilot is not None:
+        pilot_points = pilot.wo[pilot.smooth]
+        pilot_points = pilot_points[SPHERE.inside(pilot_points)]
+    bins, integrals = equal_probability_cells(SPHERE, _pdf_at(bsdf, d.wi), n, sample_quantum(drawn), pilot_points)
     probabilities = np.asarray(integrals.values, np.float64).ravel()
     integral = float(probabilities.sum())
     share = float(np.count_nonzero(failed)) / n

@@ -26,6 +26,8 @@ REFERENCE_STATISTICAL = ("reference samples", "reference delta weights")
 STATISTICAL = OWN_STATISTICAL + REFERENCE_STATISTICAL
 #: Every check a row may hold, in the order a report lists them.
 ALL_CHECKS = CHECKS + DELTA_CHECKS + REFERENCE_CHECKS + REFERENCE_DELTA_CHECKS
+#: The pilot draw's stream, apart from the tested draw's (seed) and the reference's (seed + 1).
+PILOT_STREAM = 7
 #: Random (wi, wo) pairs of the reciprocity check.
 RECIPROCITY_PAIRS = 10_000
 
@@ -40,7 +42,8 @@ def check_bsdf_at(bsdf: BsdfFunctions, wi: np.ndarray, samples: int, seed: int, 
     cell counts, "observed" and "expected", and the reference's, "reference" (for the page's heat maps)."""
     d = draw(bsdf, wi, samples, seed)
     eta = bsdf.params["int_ior"] / bsdf.params.get("ext_ior", 1.0) if "int_ior" in bsdf.params else None
-    sampling, normalisation, bins, counts = sampling_checks(bsdf, d)
+    # The cells from a pilot drawn apart (a stream of its own), not from a search of the pdf's marginals.
+    sampling, normalisation, bins, counts = sampling_checks(bsdf, d, draw(bsdf, wi, samples, [seed, PILOT_STREAM]))
     if histograms is not None and counts is not None:
         histograms.update(observed=counts.observed, expected=counts.expected)
     results = {"sampling": sampling, "normalisation": normalisation, "weight": weight_check(bsdf, d),

@@ -10,7 +10,7 @@ never on the sample values, so the chi-square test stays valid.
 
 Quantiles are found hierarchically: integrate the density over 256 strips (the
 adaptive rule of harness.statistics.cubature), find the strip holding each quantile, then
-halve it 40 times, all quantiles at once (to about 1e-15 in x; the strip masses
+halve it 24 times, all quantiles at once (to about 2e-10 in x; the strip masses
 are known to 1e-8 of the mass, and a float32 pdf's own noise limits it sooner).
 They are of the pdf's own mass, so a pdf off by a constant factor gets the same
 cells (the normalisation check and the chi-square's N * cell integral still
@@ -41,8 +41,9 @@ _UNIFORM_ACROSS = np.linspace(0.0, 1.0, 5)
 _MAX_ACROSS = 8
 #: Strips of the first level of the quantile search, shared by all quantiles.
 _FIRST_STRIPS = 256
-#: Halvings after the first level: 2^-8 * 2^-40 = 2^-48, about 3.6e-15.
-_LEVELS = 40
+#: Halvings after the first level: 2^-8 * 2^-24 = 2^-32, about 2.3e-10, far below float32's quantum of 2^-24 (the
+#: cells need not be exactly equal: any cells fixed before the samples give a valid test, their integrals exact).
+_LEVELS = 24
 #: Relative and absolute accuracy of the strip integrals behind the quantiles (densities of mass about 1). A
 #: float32 pdf is noisy at about 1e-6 (its input rounded to float32): a tighter tolerance would refine forever.
 #: 1e-8 of the mass moves a quantile by 0.01 of 10^6 samples; a pdf that jumps along a diagonal (a triangle on the
@@ -114,8 +115,8 @@ def marginal_quantiles(density: Density, fractions: np.ndarray, axis: int = 0,
     """Points x in [0, 1] where the marginal CDF along `axis` reaches each fraction of the total mass.
 
     density(s, t) on [0,1]^2 need not integrate to 1 (the fractions are of its own mass). On a flat
-    stretch of the CDF the lowest such point is returned. Accurate to about 1e-15 in x (the search
-    halves each quantile's strip down to 2^-48). None when the density has no finite, non-negative,
+    stretch of the CDF the lowest such point is returned. Accurate to about 2e-10 in x (the search
+    halves each quantile's strip down to 2^-32). None when the density has no finite, non-negative,
     positive mass (no quantiles exist). `across`: see _strip_masses.
     """
     fractions = np.asarray(fractions, dtype=np.float64)
@@ -168,6 +169,8 @@ def rounding_noncentrality(density: Density, edges: np.ndarray, axis: int, sampl
 def _noncentrality(near: np.ndarray, cells: np.ndarray, samples: int) -> float:
     """rounding_noncentrality from the masses within quantum / 2 of each inner edge and the masses of the cells."""
     total = cells.sum()
+    if not total > 0:  # no mass to move (a pdf that is 0 everywhere): rounding changes nothing
+        return 0.0
     var = np.concatenate([[0.0], (near / total) ** 2 / 12, [0.0]])
     cell = np.maximum(cells / total, 1e-300)
     return float(samples * np.sum((var[:-1] + var[1:]) / cell))
@@ -241,6 +244,28 @@ def equal_probability_bins(density: Density, res: int = HISTOGRAM_RES, samples: 
     if t_axis is None:
         return uniform_bins(res)
     return Bins(s_axis[0], t_axis[0], "equal-probability", res, _limits([s_axis[1], t_axis[1]]))
+
+
+def pilot_bins(density: Density, pilot_s: np.ndarray, pilot_t: np.ndarray, res: int = HISTOGRAM_RES,
+               samples: int = WARP_SAMPLES, quantum: float = 0.0, s_breaks: tuple[float, ...] = ()) -> Bins:
+    """Cells at the quantiles of a pilot sample's marginals (parameters pilot_s, pilot_t of points drawn apart from
+    the tested ones), as fine as the samples' rounding `quantum` allows (as equal_probability_bins). The pilot
+    stands in for the quantile search of the pdf's marginals, which costs a thousand of its evaluations a cell
+    edge: cells fixed before the tested samples are drawn give a valid test whatever they are, and the expected
+    counts remain the pdf's integrals over them. A wrong sampler only makes the cells unequal under the pdf.
+    `s_breaks`: edges in s kept whatever the pilot (where the density may jump: the domain's s_breaks), which no
+    sample's rounding crosses."""
+    def axis(values: np.ndarray, ax: int, across: np.ndarray, breaks: tuple[float, ...]) -> tuple[np.ndarray, bool]:
+        def edges_for(n: int) -> np.ndarray:
+            return _edges(np.concatenate([np.quantile(values, np.arange(1, n) / n), breaks]))
+        # A break is a boundary no rounding crosses (the sign of z): the cells it splits count as one there.
+        return _most_cells(edges_for, lambda e: rounding_noncentrality(density, np.setdiff1d(e, breaks), ax, samples,
+                                                                       quantum, across), res)
+
+    s_edges, s_limited = axis(np.asarray(pilot_s, np.float64), 0, _UNIFORM_ACROSS, tuple(s_breaks))
+    t_edges, t_limited = axis(np.asarray(pilot_t, np.float64), 1,
+                              _pieces(s_edges) if len(s_edges) > 2 else _UNIFORM_ACROSS, ())
+    return Bins(s_edges, t_edges, "pilot quantiles", res, _limits([s_limited, t_limited]))
 
 
 #: A marginal CDF on [0, 1] (from 0 to 1) and its inverse.

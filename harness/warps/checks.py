@@ -14,7 +14,7 @@ from harness.statistics.cubature import CellIntegrals, integrate_cells
 from harness.statistics.factors import name_factor
 from harness.warps.domains import Domain
 from harness.statistics.constants import HISTOGRAM_RES, NORMALISATION_TOLERANCE
-from harness.warps.bins import Bins, bin_indices, equal_probability_bins, uniform_bins
+from harness.warps.bins import Bins, bin_indices, equal_probability_bins, pilot_bins, uniform_bins
 from harness.warps.check_result import CheckResult, not_judged
 from harness.warps.findings import classify, count, describe, merge, off_domain, summarize
 
@@ -84,25 +84,43 @@ def parameter_grid(domain: Domain, s_edges: np.ndarray | None = None, t_edges: n
     return domain.from_param(*[a.ravel() for a in np.meshgrid(s, t, indexing="ij")])
 
 
+#: The fewest pilot points whose quantiles give cells (fewer: the pdf's own quantiles).
+MIN_PILOT = 10_000
+#: Expected samples a cell at least, where fewer samples than HISTOGRAM_RES^2 times this are drawn: fewer cells,
+#: so that a small run's cells are not all pooled (below 5 expected) and the test judges something.
+SAMPLES_PER_CELL = 16
+
+
+def cells_per_axis(samples: int) -> int:
+    """HISTOGRAM_RES cells per axis, fewer where `samples` would leave a cell fewer than SAMPLES_PER_CELL."""
+    return int(min(HISTOGRAM_RES, max(2, np.sqrt(samples / SAMPLES_PER_CELL))))
 #: Points of the parameter square at which a pdf's values identify it, and how many pdfs' cells are kept.
 _FINGERPRINT = np.random.default_rng(20240).random((2, 4096))
 _KEPT = 32
 _recent_cells: dict[tuple, Bins] = {}
 
 
-def equal_probability_cells(domain: Domain, pdf: Pdf, samples: int, quantum: float) -> tuple[Bins, CellIntegrals]:
+def equal_probability_cells(domain: Domain, pdf: Pdf, samples: int, quantum: float,
+                            pilot: np.ndarray | None = None) -> tuple[Bins, CellIntegrals]:
     """The chi-square cells of `pdf` for `samples` samples, as fine as their rounding `quantum` allows (see
     warp_bins.sample_quantum), and the pdf's integral over each.
 
     The cells of the last few pdfs are kept, by the pdf's values at 4096 fixed points: the same pdf at another
     seed (tests, a user's loop) gets its cells again without the quantile search. Any cells fixed before the
-    samples are drawn give a valid test, and the integrals are always this pdf's.
+    samples are drawn give a valid test, and the integrals are always this pdf's. `pilot`: points drawn apart
+    from the tested ones, whose marginal quantiles give the cells instead of the pdf's (warps.bins.pilot_bins;
+    not kept).
     """
+    res = cells_per_axis(samples)
+    if pilot is not None and len(pilot) >= MIN_PILOT:
+        s, t = domain.to_param(pilot)
+        bins = pilot_bins(parameter_density(domain, pdf), s, t, res, samples, quantum, domain.s_breaks)
+        return bins, expected_probabilities(domain, pdf, bins)
     values = np.asarray(pdf(domain.from_param(*_FINGERPRINT)), dtype=np.float64)
     key = (domain.name, samples, quantum, values.tobytes())
     bins = _recent_cells.get(key)
     if bins is None:
-        bins = equal_probability_bins(parameter_density(domain, pdf), HISTOGRAM_RES, samples, quantum)
+        bins = equal_probability_bins(parameter_density(domain, pdf), res, samples, quantum)
         _recent_cells[key] = bins
         while len(_recent_cells) > _KEPT:
             del _recent_cells[next(iter(_recent_cells))]

@@ -34,6 +34,9 @@ class Domain:
     outside: Callable[[np.random.Generator, int], np.ndarray] | None
     #: on_boundary(points, tol): which points lie within distance tol of the domain's edge (see BOUNDARY_TOLERANCE).
     on_boundary: Callable[[np.ndarray, float], np.ndarray]
+    #: Values of s where densities on the domain commonly jump (the sphere's horizon, where a BSDF's reflection
+    #: ends): cells from a pilot sample keep an edge there, so that no cell integral straddles the jump.
+    s_breaks: tuple[float, ...] = ()
 
     def inside(self, points: np.ndarray) -> np.ndarray:
         """Which points are finite and in the domain (NaN and Inf count as outside)."""
@@ -121,6 +124,7 @@ SPHERE = Domain(
     contains=_unit,
     outside=None,
     on_boundary=_no_boundary,
+    s_breaks=(0.5,),
 )
 
 HEMISPHERE = Domain(

@@ -55,6 +55,18 @@ def test_each_microfacet_twin_fails_where_its_sampler_and_pdf_part(microfacet_tw
     assert shown in results["sampling" if shown == "p = 0" else "normalisation"].summary
 
 
+def test_the_cells_come_from_a_pilot_draw_and_a_small_run_is_judged(twins):
+    """The cells are the quantiles of a pilot drawn apart; 5,000 samples get 17 x 17 of them (16 a cell), not 51 x 51
+    pooled into one."""
+    lambert = twins.functions("lambert", {"albedo": 0.5})
+    sampling = check_bsdf_at(lambert, incident(30.0), SAMPLES, 0, LEVEL)["sampling"]
+    assert sampling.verdict == "PASS" and sampling.details["binning"] == "pilot quantiles"
+    small = check_bsdf_at(lambert, incident(30.0), 5000, 0, LEVEL)["sampling"]
+    assert small.verdict == "PASS" and small.details["dof"] > 200, small.details
+    wrong = check_bsdf_at(twins.functions("uniform_pdf", {"albedo": 0.5}), incident(30.0), 5000, 0, LEVEL)["sampling"]
+    assert wrong.verdict == "FAIL"
+
+
 def test_the_energy_check_states_the_excess_it_finds(twins):
     energy = check_bsdf_at(twins.functions("one_sided_shadowing", {"albedo": 0.5}), incident(30.0), SAMPLES, 0,
                            LEVEL)["energy"]
