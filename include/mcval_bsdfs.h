@@ -3,7 +3,8 @@
  *
  * A library exports, for each BSDF NAME it offers, these four symbols under these exact (unmangled) names:
  *
- *   bsdf_NAME_params   the names of its parameters, comma-separated ("alpha", "reflectance", "" for none);
+ *   bsdf_NAME_params   a `const char *` (a pointer, as MCVAL_DECLARE_BSDF below declares it) to the names of
+ *                      its parameters, comma-separated ("alpha,eta", "reflectance", "" for none);
  *                      `params` below holds one float per name, in this order, the same for every row
  *   bsdf_NAME_eval     value = f(wi, wo) |cos theta_o|
  *   bsdf_NAME_pdf      the density of wo by solid angle with which NAME_sample draws it given wi
@@ -17,8 +18,12 @@
  * viewer (where the light goes, Mitsuba's si.wi), wo toward where the light comes from; both unit vectors.
  * A value is one channel (a gray BSDF: the parameters are scalars).
  *
+ * wi below the surface (z < 0): a BSDF that only reflects returns value, pdf, weight 0 there (Mitsuba's
+ * convention); one that transmits (a glass) is asked from both sides.
+ *
  * Layout: float32, n rows per call, 3-vectors interleaved (x0, y0, z0, x1, ...); u holds 3 uniforms a row
- * in [0, 1) (the third to choose a lobe, where there is a choice); value, weight and pdf one float a row.
+ * in [0, 1), to use as the BSDF likes (e.g. the first to choose a lobe and, rescaled, to draw in it; the checks
+ * only ask that the three be all it draws from); value, weight and pdf one float a row.
  * The harness calls them from one thread, with n up to 2^22; they must not keep the pointers.
  */
 #ifndef MCVAL_BSDFS_H
@@ -31,7 +36,9 @@ extern "C" {
 #endif
 
 /* The four functions of one BSDF, declared for NAME: MCVAL_DECLARE_BSDF(diffuse) declares bsdf_diffuse_params,
- * bsdf_diffuse_eval, bsdf_diffuse_pdf and bsdf_diffuse_sample. */
+ * bsdf_diffuse_eval, bsdf_diffuse_pdf and bsdf_diffuse_sample. Put it before their definitions: the compiler
+ * then refuses a definition of another type (e.g. `const char bsdf_diffuse_params[]`, an array, where the ABI
+ * has a pointer). */
 #define MCVAL_DECLARE_BSDF(NAME)                                                                            \
     extern const char *bsdf_##NAME##_params;                                                               \
     void bsdf_##NAME##_eval(const float *params, const float *wi, const float *wo, float *value, size_t n);  \

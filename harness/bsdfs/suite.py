@@ -82,6 +82,8 @@ def parse_spec(text: str) -> BsdfSpec:
             number = float(value)
         except ValueError:
             number = None
+        if eq and key.strip() and number is None:
+            raise ValueError(f"--bsdf {text}: the value of {key.strip()} must be a number, not {value!r}")
         if not eq or not key.strip() or number is None:
             raise ValueError(f"--bsdf {text}: expected NAME or NAME:param=value,param=value (e.g. "
                              f"roughconductor:alpha=0.1,ggx=1), not {item!r}")

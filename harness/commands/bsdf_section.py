@@ -35,6 +35,28 @@ def null_row_functions(library: str, against_mitsuba: bool, spec_text: str):
     return lib.functions(spec.name, values), MitsubaBsdfs().functions(spec.name, values) if against_mitsuba else None
 
 
+def _usable_reference(mitsuba, name: str, values: dict):
+    """Mitsuba's plugin `name` at `values`, or None where it has none or refuses the values (a reflectance of 2):
+    then the BSDF is checked on its own, and a line says why."""
+    import numpy as np
+    from rich.markup import escape
+
+    from harness.engines.python_child import ChildFailed, ChildRaised
+    from harness.foreign_text import one_line
+
+    reference = mitsuba.functions(name, values)
+    if reference is None:
+        return None
+    try:
+        reference.eval(np.array([[0.0, 0.0, 1.0]]), np.array([[0.0, 0.0, 1.0]]))
+    except (ChildRaised, ChildFailed) as e:
+        given = " ".join(f"{k}={v:g}" for k, v in values.items())
+        console.print(f"[yellow]Mitsuba's {name} refuses {escape(given)}[/] "
+                      f"({escape(one_line(e.reason, 320))}): checked without it", soft_wrap=True)
+        return None
+    return reference
+
+
 def _entries(specs, library, mitsuba) -> list:
     """The BSDFs asked for (`specs`, parsed; None for the default set), each ready or with the one line saying why
     it cannot be checked."""
@@ -54,7 +76,7 @@ def _entries(specs, library, mitsuba) -> list:
         except (BsdfUnavailable, ValueError) as e:
             entries.append(Entry(spec.name, failure=str(e)))
             continue
-        reference = None if mitsuba is None else mitsuba.functions(spec.name, values)
+        reference = None if mitsuba is None else _usable_reference(mitsuba, spec.name, values)
         extremes = roughness_extremes(lambda v, name=spec.name: library.functions(name, v), values)
         entries.append(Entry(bsdf.label, bsdf, reference, extremes=extremes))
     return entries

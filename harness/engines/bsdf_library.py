@@ -29,6 +29,19 @@ def call_timeout() -> float:
     return seconds_from_env(TIMEOUT_ENV, DEFAULT_TIMEOUT)
 
 
+def parameter_names(name: str, text: str | None) -> list[str]:
+    """The names in bsdf_NAME_params' text (spaces around them ignored); BsdfUnavailable, in one line, for a NULL
+    pointer or a name that is empty or no identifier (names separated by spaces, a trailing comma)."""
+    if text is None:
+        raise BsdfUnavailable(f"bsdf_{name}_params is NULL: give \"\" for a BSDF without parameters")
+    names = [n.strip() for n in text.split(",")] if text.strip() else []
+    bad = [n for n in names if not n or not n.isidentifier()]
+    if bad:
+        raise BsdfUnavailable(f"bsdf_{name}_params is {text!r}: expected names (letters, digits, _) separated by "
+                              f"commas, e.g. \"alpha,eta\" (not {bad[0]!r})")
+    return names
+
+
 def _rows(a: np.ndarray, columns: int) -> np.ndarray:
     return np.ascontiguousarray(np.asarray(a, np.float32).reshape(-1, columns))
 
@@ -74,7 +87,10 @@ class BsdfLibrary:
         if missing:
             raise BsdfUnavailable(f"{self.path.name} exports {name} without {', '.join(missing)}: a BSDF is checked "
                                   "through all four functions of include/mcval_bsdfs.h")
-        return list(entry["params"])
+        try:
+            return parameter_names(name, entry["params_text"])
+        except BsdfUnavailable as e:
+            raise BsdfUnavailable(f"{self.path.name}: {e}") from None
 
     def version(self) -> str:
         digest = hashlib.sha256(self.path.read_bytes()).hexdigest()[:12]

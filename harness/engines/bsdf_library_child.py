@@ -27,7 +27,7 @@ def bsdfs(path: str) -> dict[str, dict]:
 
     with open(path, "rb") as f:
         table = ELFFile(f).get_section_by_name(".dynsym")
-        defined = [s.name for s in (table.iter_symbols() if table else ()) if s["st_shndx"] != "SHN_UNDEF"]
+        defined = {s.name: s["st_size"] for s in (table.iter_symbols() if table else ()) if s["st_shndx"] != "SHN_UNDEF"}
     found: dict[str, dict] = {}
     for symbol in defined:
         match = _SYMBOL.fullmatch(symbol)
@@ -35,9 +35,18 @@ def bsdfs(path: str) -> dict[str, dict]:
             found.setdefault(match[1], {"functions": []})["functions"].append(match[2])
     for name, entry in found.items():
         if "params" in entry["functions"]:
-            text = ctypes.c_char_p.in_dll(_lib, f"bsdf_{name}_params").value
-            entry["params"] = [] if not text else [p.strip() for p in text.decode(errors="replace").split(",")]
+            entry["params_text"] = _params_text(f"bsdf_{name}_params", defined[f"bsdf_{name}_params"])
     return found
+
+
+def _params_text(symbol: str, size: int) -> str | None:
+    """The string bsdf_NAME_params gives: through the pointer the ABI declares, or, where the symbol is not the
+    size of a pointer, from the array a definition without MCVAL_DECLARE_BSDF made of it; None for a NULL
+    pointer."""
+    if size != ctypes.sizeof(ctypes.c_void_p):
+        return (ctypes.c_char * size).in_dll(_lib, symbol).value.decode(errors="replace")
+    text = ctypes.c_char_p.in_dll(_lib, symbol).value
+    return None if text is None else text.decode(errors="replace")
 
 
 def _float32(*arrays) -> list[np.ndarray]:

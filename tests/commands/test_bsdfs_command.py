@@ -85,3 +85,21 @@ def test_mitsubas_own_plugins_go_through_the_matrix_and_its_finding_fails(tmp_pa
     results = json.loads((tmp_path / "finding" / "latest" / "results.json").read_text())
     (row,) = results["bsdfs"]
     assert code == 1 and not row["checks"]["sampling"]["pass"] and row["checks"]["weight"]["pass"]
+
+
+@pytest.mark.mitsuba
+def test_values_mitsuba_refuses_check_the_bsdf_on_its_own(tmp_path, capsys):
+    """A reflectance of 2 makes Mitsuba's loader raise: the row runs without the reference (and fails its energy),
+    the run goes on, one line says why."""
+    code, results = _run(tmp_path, "--bsdf", "diffuse:reflectance=2", "diffuse:reflectance=0.5")
+    out = capsys.readouterr().out
+    assert code == 1 and "Mitsuba's diffuse refuses reflectance=2" in out and "checked without it" in out
+    failed = {(r["bsdf"], r["theta"]): [k for k, c in r["checks"].items() if not c["pass"]] for r in results["bsdfs"]
+              if not r["pass"]}
+    assert failed == {("diffuse reflectance=2", 0.0): ["energy"], ("diffuse reflectance=2", 60.0): ["energy"]}
+    assert "reference values" not in results["bsdfs"][0]["checks"] and "reference values" in results["bsdfs"][2]["checks"]
+
+
+def test_a_value_that_is_no_number_is_refused_saying_so(tmp_path, capsys):
+    assert main(["bsdfs", "--bsdf", "diffuse:reflectance=abc", "--out", str(tmp_path / "r")]) == 2
+    assert "the value of reflectance must be a number, not 'abc'" in capsys.readouterr().err

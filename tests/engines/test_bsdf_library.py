@@ -41,7 +41,8 @@ def test_our_diffuse_is_lambertian_and_its_weight_is_its_albedo(rho):
 
 
 def test_a_user_library_lists_its_bsdfs_and_their_parameters(misbehaving):
-    assert misbehaving.names == ["crash", "lambert", "overrun", "partial"]
+    assert misbehaving.names == ["arrayed", "crash", "lambert", "nullparams", "overrun", "partial", "spaced",
+                                 "trailing"]
     assert misbehaving.parameters("lambert") == ["albedo"] and misbehaving.parameters("crash") == []
     with pytest.raises(BsdfUnavailable, match="exports partial without bsdf_partial_sample"):
         misbehaving.parameters("partial")
@@ -49,6 +50,20 @@ def test_a_user_library_lists_its_bsdfs_and_their_parameters(misbehaving):
         misbehaving.parameters("ggx")
     with pytest.raises(ValueError, match="lambert takes the parameters albedo: alpha unknown; albedo not given"):
         misbehaving.functions("lambert", {"alpha": 0.1})
+
+
+def test_a_parameter_list_is_read_or_refused_in_one_line(misbehaving):
+    """An array where the ABI has a pointer is read as the string it holds (it used to hide every BSDF of the
+    library); names separated by a space, a trailing comma or a NULL pointer are refused, naming the symbol."""
+    assert misbehaving.parameters("arrayed") == ["albedo"]
+    _, weight, _ = misbehaving.functions("arrayed", {"albedo": 0.5}).sample(_directions(10, 5),
+                                                                           np.full((10, 3), 0.5))
+    assert set(weight) <= {0.0, 0.5}
+    for name, why in [("spaced", "bsdf_spaced_params is 'albedo exponent': expected names"),
+                      ("trailing", "bsdf_trailing_params is 'albedo,': expected names"),
+                      ("nullparams", 'bsdf_nullparams_params is NULL: give "" for a BSDF without parameters')]:
+        with pytest.raises(BsdfUnavailable, match=f"^libmisbehaving_bsdfs.so: {why}"):
+            misbehaving.parameters(name)
 
 
 def test_a_crash_or_an_overrun_fails_its_call_alone(misbehaving):

@@ -72,3 +72,25 @@ void bsdf_partial_eval(const float *params, const float *wi, const float *wo, fl
 void bsdf_partial_pdf(const float *params, const float *wi, const float *wo, float *pdf, size_t n) {
     bsdf_lambert_pdf(params, wi, wo, pdf, n);
 }
+
+/* Parameter lists a user writes without the header's declaration, each a Lambertian otherwise: an array (read as
+ * the string it holds), names separated by a space, a trailing comma, a NULL pointer (the last three refused). */
+#define LAMBERT_WRAPPERS(NAME)                                                                                  \
+    void bsdf_##NAME##_eval(const float *params, const float *wi, const float *wo, float *value, size_t n) {   \
+        bsdf_lambert_eval(params, wi, wo, value, n);                                                            \
+    }                                                                                                           \
+    void bsdf_##NAME##_pdf(const float *params, const float *wi, const float *wo, float *pdf, size_t n) {       \
+        bsdf_lambert_pdf(params, wi, wo, pdf, n);                                                               \
+    }                                                                                                           \
+    void bsdf_##NAME##_sample(const float *params, const float *wi, const float *u, float *wo, float *weight,  \
+                              float *pdf, size_t n) {                                                           \
+        bsdf_lambert_sample(params, wi, u, wo, weight, pdf, n);                                                 \
+    }
+const char bsdf_arrayed_params[] = "albedo";
+LAMBERT_WRAPPERS(arrayed)
+const char *bsdf_spaced_params = "albedo exponent";
+LAMBERT_WRAPPERS(spaced)
+const char *bsdf_trailing_params = "albedo,";
+LAMBERT_WRAPPERS(trailing)
+const char *bsdf_nullparams_params = 0;
+LAMBERT_WRAPPERS(nullparams)
