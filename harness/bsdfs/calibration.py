@@ -21,6 +21,7 @@ from harness.bsdfs.boundary import uniform_lambert
 from harness.bsdfs.checks import POWER, WEIGHT_TOLERANCE, draw, energy_check, incident, weight_check
 from harness.bsdfs.evaluate import STATISTICAL, check_bsdf_at
 from harness.engines.base import BsdfFunctions
+from harness.engines.python_child import ChildFailed, ChildRaised
 from harness.distributed.executor import Executor, SerialExecutor, Status, Task
 from harness.statistics.calibration_rates import (CALIBRATION_CONFIDENCE, CALIBRATION_LEVELS, clopper_pearson,
                                                   rates, uniformity_p)
@@ -65,7 +66,15 @@ def null_row(functions_of: FunctionsOf, row: str, seeds: range, samples: int, ba
     failed (with the first failure's summary). A statistical check that gives no p-value is a failure too."""
     spec_text, theta = parse_row(row)
     boundary = spec_text == BOUNDARY_ROW.partition("@")[0]
-    bsdf, reference = (uniform_lambert(), None) if boundary else functions_of(spec_text)
+    try:
+        bsdf, reference = (uniform_lambert(), None) if boundary else functions_of(spec_text)
+        return _null_runs(bsdf, reference, theta, seeds, samples, base_seed, on_seed)
+    except (ChildFailed, ChildRaised, RuntimeError, ValueError) as e:  # crashed, hung, refused or lacks the BSDF
+        return {"label": row, "error": f"seeds {seeds.start}-{seeds.stop - 1}: {getattr(e, 'reason', e)}"}
+
+
+def _null_runs(bsdf: BsdfFunctions, reference: BsdfFunctions | None, theta: float, seeds: range, samples: int,
+               base_seed: int, on_seed: Callable[[], None] | None) -> dict:
     p_values: dict[str, list[float]] = {}
     failures: dict[str, int] = {}
     examples: dict[str, str] = {}
@@ -219,7 +228,9 @@ def calibrate_bsdfs(functions_of: FunctionsOf, rows: list[str], seeds: int, samp
         tasks.append(Task("weight power", weight_power, (range(seeds), samples, 9_000_001)))
     outcomes = executor.run(tasks, on_status)
     failed = [f"{task.key}: {o.error}" for task, o in zip(tasks, outcomes) if not o.ok]
-    done = _merge([o.value for o in outcomes[:row_tasks] if o.ok])
+    parts = [o.value for o in outcomes[:row_tasks] if o.ok]
+    failed += [f"{p['label']}: {p['error']}" for p in parts if "error" in p]
+    done = _merge([p for p in parts if "error" not in p])
     planted = [o.value for o in outcomes[row_tasks:] if o.ok]
     every = [(r["label"], c, np.asarray(p)) for r in done for c, p in r["p_values"].items()]
     # p = 1 at every seed: nothing random was tested (a glass's sampling without a density, the energy of a BSDF

@@ -57,6 +57,13 @@ def test_a_wrong_bsdf_makes_the_calibration_fail(twins):
         ("one_sided_shadowing", "reciprocity", 3)]
 
 
+def test_a_row_that_cannot_run_fails_the_calibration_and_the_others_run(twins):
+    cal = calibrate_bsdfs(partial(null_row_functions, str(twins.path), False), ["lambert:albedo=0.5@30", "nosuch@30"],
+                          2, SAMPLES)
+    assert not cal.sound and len(cal.failed) == 1 and "exports no BSDF nosuch" in cal.failed[0], cal.failed
+    assert all(d.runs == 2 for d in cal.deterministic)
+
+
 def test_the_command_writes_its_figures_and_refuses_a_row_without_an_angle(tmp_path, capsys):
     out = tmp_path / "r"
     args = ["calibrate", "--bsdfs", "--bsdf", "diffuse@60", "--seeds", "3", "--samples", str(SAMPLES), "--no-mitsuba"]
