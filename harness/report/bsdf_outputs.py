@@ -17,8 +17,9 @@ def bsdf_table(rows: list[BsdfRow], level: float) -> Table:
     for column in ("BSDF", "theta", *ALL_CHECKS):
         table.add_column(column)
     for row in rows:
-        if row.failure:
-            table.add_row(row.label, "", verdict_text(False), *[""] * (len(ALL_CHECKS) - 1))
+        if row.failure:  # no check ran: the FAIL line under the table says why
+            table.add_row(row.label, "" if row.theta is None else f"{row.theta:g}", "[red]not checked[/]",
+                          *[""] * (len(ALL_CHECKS) - 1))
             continue
         table.add_row(row.label, f"{row.theta:g}",
                       *(verdict_text(row.checks[k].passed) if k in row.checks else "-" for k in ALL_CHECKS))

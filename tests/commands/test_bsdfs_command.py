@@ -103,3 +103,18 @@ def test_values_mitsuba_refuses_check_the_bsdf_on_its_own(tmp_path, capsys):
 def test_a_value_that_is_no_number_is_refused_saying_so(tmp_path, capsys):
     assert main(["bsdfs", "--bsdf", "diffuse:reflectance=abc", "--out", str(tmp_path / "r")]) == 2
     assert "the value of reflectance must be a number, not 'abc'" in capsys.readouterr().err
+
+
+def test_a_hanging_bsdf_costs_one_time_limit_not_one_a_row(tmp_path, monkeypatch):
+    """Its first call (the probe of whether it transmits) times out; its five rows fail with that, uncalled."""
+    import time
+
+    monkeypatch.setenv("MCVAL_BSDF_TIMEOUT", "2")
+    library = build_warp_library(HERE.parent / "engines" / "bsdf_libraries" / "hanging_bsdf.c", tmp_path)
+    start = time.perf_counter()
+    code = main(["bsdfs", "--bsdf-library", str(library), "--no-mitsuba", "--out", str(tmp_path / "r")])
+    elapsed = time.perf_counter() - start
+    rows = json.loads((tmp_path / "r" / "latest" / "results.json").read_text())["bsdfs"]
+    assert code == 1 and len(rows) == 5 and all(r["failure"].endswith("timed out after 2 s and was killed")
+                                                 for r in rows), rows
+    assert elapsed < 8, elapsed  # one time limit (2 s), where a call a row took 12 s
