@@ -28,6 +28,8 @@ from harness.warps.domains import SPHERE
 #: Relative difference allowed between a sample's weight and value / pdf (and its pdf and the pdf's): float32
 #: arithmetic reaches a few ulps; any missing factor (a cosine, 1/pi, a Jacobian) is far beyond.
 WEIGHT_TOLERANCE = 1e-3
+#: A few samples may be off by more than WEIGHT_TOLERANCE, up to this much: at most this share of them (and 1).
+ROUNDING_TOLERANCE, ROUNDING_SHARE = 1e-2, 1e-4
 #: Relative difference allowed between value / |cos theta_o| and its reciprocal.
 RECIPROCITY_TOLERANCE = 1e-3
 #: Power of the energy check's stated smallest excess.
@@ -141,6 +143,19 @@ def _relative(a: np.ndarray, b: np.ndarray) -> np.ndarray:
         return np.abs(a - b) / np.maximum(np.maximum(np.abs(a), np.abs(b)), 1e-30)
 
 
+def _rounding_only(weight, expected, sampled_pdf, pdf, bad: np.ndarray) -> int:
+    """How many samples are off, where they are so few (ROUNDING_SHARE of the samples, at least 1) and so near
+    (within ROUNDING_TOLERANCE, finite) that float32 rounding explains them; else 0. Near a glass's critical angle
+    the half vector recomputed from a float32 wo moves by more than 1e-3 (Mitsuba's GGX glass: 2 samples in
+    200,000 at 1.2e-3); a missing factor is off at most samples, and by far more."""
+    count = int(bad.sum())
+    if not count or count > max(1, ROUNDING_SHARE * len(bad)):
+        return 0
+    with np.errstate(invalid="ignore"):
+        off = np.maximum(_relative(weight[bad], expected[bad]), _relative(sampled_pdf[bad], pdf[bad]))
+    return count if np.all(np.isfinite(off)) and np.all(off <= ROUNDING_TOLERANCE) else 0
+
+
 def weight_check(bsdf: BsdfFunctions, d: Draw) -> CheckResult:
     """Every sample's weight is value / pdf at its direction and its pdf the pdf's value there; a failed sample
     has weight 0 and a drawn one a finite, non-negative weight (a delta sample's weight has no value / pdf to
@@ -163,9 +178,15 @@ def weight_check(bsdf: BsdfFunctions, d: Draw) -> CheckResult:
     bad_pdf = ~np.isfinite(sampled_pdf) | (_relative(sampled_pdf, pdf) > WEIGHT_TOLERANCE)
     details = {"samples": int(drawn.sum()), "weight_off": int(bad_weight.sum()), "pdf_off": int(bad_pdf.sum()),
                "tolerance": WEIGHT_TOLERANCE}
+    rounding = _rounding_only(weight, expected, sampled_pdf, pdf, bad_weight | bad_pdf)
+    if rounding:
+        details["within_rounding"] = rounding
+        bad_weight, bad_pdf = np.zeros_like(bad_weight), np.zeros_like(bad_pdf)
     if not (bad_weight.any() or bad_pdf.any()):
         on_delta = f"; {int(d.delta.sum())} on a delta lobe, each weight finite" if d.delta.any() else ""
-        return CheckResult(True, 0.0, f"weight = value / pdf at all {int(drawn.sum())} samples{on_delta}",
+        near = (f" ({rounding} within {ROUNDING_TOLERANCE:g} only: float32 rounding where wo is ill-conditioned)"
+                if rounding else "")
+        return CheckResult(True, 0.0, f"weight = value / pdf at all {int(drawn.sum())} samples{near}{on_delta}",
                            details=details)
     parts = []
     if bad_weight.any():

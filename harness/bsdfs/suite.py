@@ -31,7 +31,8 @@ DEFAULT_VALUES = {"alpha": 0.3, "reflectance": 0.8, "albedo": 0.8, "eta": 0.2, "
 OUR_DEFAULTS = ("diffuse", "conductor", "conductor:eta=0,k=1", "dielectric", "dielectric:int_ior=1.33", "plastic",
                 "plastic:diffuse_reflectance=0.9,nonlinear=1", "microfacet:alpha=0.2,kd=0.3,ks=0.6",
                 *(f"roughconductor:alpha={a},ggx={g},sample_visible={v}"
-                  for a in (0.05, 0.5) for g in (0, 1) for v in (0, 1)))
+                  for a in (0.05, 0.5) for g in (0, 1) for v in (0, 1)),
+                "roughdielectric:alpha=0.1,ggx=0,sample_visible=0", "roughdielectric:alpha=0.5,ggx=1")
 
 
 #: Samples at normal incidence that tell whether a BSDF transmits.

@@ -246,6 +246,29 @@ def equal_probability_bins(density: Density, res: int = HISTOGRAM_RES, samples: 
     return Bins(s_axis[0], t_axis[0], "equal-probability", res, _limits([s_axis[1], t_axis[1]]))
 
 
+#: Cells at least, between two breaks, of a segment the pilot reached: a sliver of the mass (light leaving a glass
+#: just above its horizon) gets edges of its own, so that the cell integrals see it.
+_SEGMENT_CELLS = 4
+
+
+def _segment_quantiles(values: np.ndarray, n: int, breaks: tuple[float, ...]) -> np.ndarray:
+    """About n cells' inner edges at the quantiles of `values`, taken apart between the breaks: each segment a
+    share of the n cells by its count, and at least _SEGMENT_CELLS where it holds enough values for them; each
+    segment's least and greatest value an edge too."""
+    bounds = np.concatenate([[-np.inf], np.sort(breaks), [np.inf]])
+    out = []
+    for lo, hi in zip(bounds[:-1], bounds[1:]):
+        part = values[(values >= lo) & (values < hi)]
+        if not len(part):
+            continue
+        cells = min(max(round(n * len(part) / max(len(values), 1)), _SEGMENT_CELLS), len(part) // 16)
+        # The segment's extremes too: a band the pilot reached, however thin, is a cell of its own.
+        out.append([part.min(), part.max()])
+        if cells >= 2:
+            out.append(np.quantile(part, np.arange(1, cells) / cells))
+    return np.concatenate(out) if out else np.array([])
+
+
 def pilot_bins(density: Density, pilot_s: np.ndarray, pilot_t: np.ndarray, res: int = HISTOGRAM_RES,
                samples: int = WARP_SAMPLES, quantum: float = 0.0, s_breaks: tuple[float, ...] = ()) -> Bins:
     """Cells at the quantiles of a pilot sample's marginals (parameters pilot_s, pilot_t of points drawn apart from
@@ -254,10 +277,10 @@ def pilot_bins(density: Density, pilot_s: np.ndarray, pilot_t: np.ndarray, res: 
     edge: cells fixed before the tested samples are drawn give a valid test whatever they are, and the expected
     counts remain the pdf's integrals over them. A wrong sampler only makes the cells unequal under the pdf.
     `s_breaks`: edges in s kept whatever the pilot (where the density may jump: the domain's s_breaks), which no
-    sample's rounding crosses."""
+    sample's rounding crosses; the quantiles are taken apart on each side of them (_segment_quantiles)."""
     def axis(values: np.ndarray, ax: int, across: np.ndarray, breaks: tuple[float, ...]) -> tuple[np.ndarray, bool]:
         def edges_for(n: int) -> np.ndarray:
-            return _edges(np.concatenate([np.quantile(values, np.arange(1, n) / n), breaks]))
+            return _edges(np.concatenate([_segment_quantiles(values, n, breaks), breaks]))
         # A break is a boundary no rounding crosses (the sign of z): the cells it splits count as one there.
         return _most_cells(edges_for, lambda e: rounding_noncentrality(density, np.setdiff1d(e, breaks), ax, samples,
                                                                        quantum, across), res)

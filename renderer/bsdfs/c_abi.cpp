@@ -2,12 +2,16 @@
 // as they load a user's library, so ours and theirs take one path.
 #include <mcval_bsdfs.h>
 
+#include <type_traits>
+#include <utility>
+
 #include "conductor.h"
 #include "dielectric.h"
 #include "diffuse.h"
 #include "nori_microfacet.h"
 #include "plastic.h"
 #include "roughconductor.h"
+#include "roughdielectric.h"
 
 namespace mcval {
 namespace {
@@ -29,12 +33,24 @@ void pdfRows(Make make, const float *params, const float *wi, const float *wo, f
     for (size_t i = 0; i < n; ++i) pdf[i] = bsdf.pdf(row(wi, i), row(wo, i));
 }
 
+/// Whether a BSDF takes the third uniform to choose its lobe (Mitsuba's sample1): sample(wi, u, uLobe).
+template <typename B, typename = void>
+struct TakesLobeUniform : std::false_type {};
+template <typename B>
+struct TakesLobeUniform<B, std::void_t<decltype(std::declval<const B &>().sample(Vec3f(), Vec2f(), 0.f))>>
+    : std::true_type {};
+
 template <typename Make>
 void sampleRows(Make make, const float *params, const float *wi, const float *u, float *wo, float *weight, float *pdf,
                 size_t n) {
     const auto bsdf = make(params);
     for (size_t i = 0; i < n; ++i) {
-        const BsdfSample s = bsdf.sample(row(wi, i), Vec2f(u[3 * i], u[3 * i + 1]));
+        const Vec2f u2(u[3 * i], u[3 * i + 1]);
+        BsdfSample s;
+        if constexpr (TakesLobeUniform<std::decay_t<decltype(bsdf)>>::value)
+            s = bsdf.sample(row(wi, i), u2, u[3 * i + 2]);
+        else
+            s = bsdf.sample(row(wi, i), u2);
         wo[3 * i] = s.wo.x, wo[3 * i + 1] = s.wo.y, wo[3 * i + 2] = s.wo.z;
         weight[i] = gray(s.weight);
         pdf[i] = s.pdf;
@@ -61,6 +77,12 @@ RoughConductorBsdf makeRoughConductor(const float *params) {
     const auto type = params[3] != 0.f ? MicrofacetDistribution::Type::GGX : MicrofacetDistribution::Type::Beckmann;
     return RoughConductorBsdf(MicrofacetDistribution(type, params[0], params[4] != 0.f), params[1], params[2],
                               Color(1.f, 1.f, 1.f));
+}
+
+/// alpha, int_ior, ext_ior, ggx (0: Beckmann, 1: GGX), sample_visible (0 or 1).
+RoughDielectricBsdf makeRoughDielectric(const float *params) {
+    const auto type = params[3] != 0.f ? MicrofacetDistribution::Type::GGX : MicrofacetDistribution::Type::Beckmann;
+    return RoughDielectricBsdf(MicrofacetDistribution(type, params[0], params[4] != 0.f), params[1], params[2]);
 }
 
 /// alpha, kd, ks, int_ior, ext_ior (Nori's microfacet, kd and ks given apart).
@@ -93,4 +115,5 @@ MCVAL_EXPORT_BSDF(diffuse, "reflectance", mcval::makeDiffuse)
 MCVAL_EXPORT_BSDF(microfacet, "alpha,kd,ks,int_ior,ext_ior", mcval::makeNoriMicrofacet)
 MCVAL_EXPORT_BSDF(plastic, "int_ior,ext_ior,diffuse_reflectance,nonlinear", mcval::makePlastic)
 MCVAL_EXPORT_BSDF(roughconductor, "alpha,eta,k,ggx,sample_visible", mcval::makeRoughConductor)
+MCVAL_EXPORT_BSDF(roughdielectric, "alpha,int_ior,ext_ior,ggx,sample_visible", mcval::makeRoughDielectric)
 }

@@ -1,6 +1,7 @@
 """The checks of a BSDF (harness/bsdfs/checks.py) on a correct Lambertian BSDF, ours and a C library's, at
 several seeds and incident directions, and on its known-wrong twins (tests/bsdfs/bsdf_twins.c): each twin
 fails the check that names its mistake."""
+import numpy as np
 import pytest
 
 from harness.bsdfs.checks import incident
@@ -76,3 +77,23 @@ def test_the_energy_check_states_the_excess_it_finds(twins):
 def test_a_bsdf_that_draws_nothing_is_not_judged_a_pass(twins):
     results = check_bsdf_at(twins.functions("draws_nothing", {"albedo": 0.5}), incident(30.0), SAMPLES, 0, LEVEL)
     assert results["sampling"].verdict == "FAIL" and "no sample was drawn" in results["sampling"].summary
+
+
+@pytest.mark.parametrize("share, off, verdict", [(2e-5, 5e-3, "PASS"), (1e-3, 5e-3, "FAIL"), (2e-5, 0.05, "FAIL")])
+def test_a_few_sampled_pdfs_off_by_rounding_pass_and_more_fail(share, off, verdict):
+    """Float32 rounding of wo near a glass's critical angle moves a few sampled pdfs past 10^-3 of pdf(): up to
+    10^-4 of the samples within 10^-2 pass (saying so); more samples, or farther, fail."""
+    from harness.bsdfs.boundary import uniform_lambert
+    from harness.engines.base import BsdfFunctions
+
+    lambert = uniform_lambert(0.8)
+
+    def sample(wi, u):
+        wo, weight, pdf = lambert.sample(wi, u)
+        k = int(share * len(u))
+        return wo, weight, np.concatenate([pdf[:k] * (1 + off), pdf[k:]])
+
+    bsdf = BsdfFunctions("rounded", lambert.params, lambert.eval, lambert.pdf, sample)
+    weight = check_bsdf_at(bsdf, incident(30.0), SAMPLES, 0, LEVEL)["weight"]
+    assert weight.verdict == verdict, weight.summary
+    assert (verdict == "PASS") == ("float32 rounding" in weight.summary)
