@@ -26,6 +26,8 @@ ALPHA = 0.01
 DEFAULT_VALUES = {"alpha": 0.3, "reflectance": 0.8, "albedo": 0.8, "eta": 0.2, "k": 3.0, "ggx": 0.0,
                   "specular_reflectance": 1.0, "diffuse_reflectance": 0.5, "nonlinear": 0.0,
                   "sample_visible": 1.0, "int_ior": 1.5, "ext_ior": 1.0, "kd": 0.5, "ks": 0.5}
+#: The value of a parameter neither given nor in DEFAULT_VALUES (the run says so).
+FALLBACK_VALUE = 0.5
 #: The BSDFs of our library the matrix runs by default: each model with its choices, at a low and a high
 #: roughness.
 OUR_DEFAULTS = ("diffuse", "conductor", "conductor:eta=0,k=1", "dielectric", "dielectric:int_ior=1.33", "plastic",
@@ -61,13 +63,13 @@ class BsdfSpec:
     given: tuple[tuple[str, float], ...] = ()
 
     def values(self, parameters: list[str]) -> dict[str, float]:
-        """Every parameter's value: given, else DEFAULT_VALUES, else 0.5. ValueError for a given one it lacks."""
+        """Every parameter's value: given, else DEFAULT_VALUES, else FALLBACK_VALUE. ValueError for a given one it lacks."""
         given = dict(self.given)
         unknown = sorted(set(given) - set(parameters))
         if unknown:
             raise ValueError(f"{self.name} has no parameter {', '.join(unknown)} (it takes "
                              f"{', '.join(parameters) or 'none'})")
-        return {p: given.get(p, DEFAULT_VALUES.get(p, 0.5)) for p in parameters}
+        return {p: given.get(p, DEFAULT_VALUES.get(p, FALLBACK_VALUE)) for p in parameters}
 
 
 def parse_spec(text: str) -> BsdfSpec:

@@ -57,6 +57,18 @@ def _usable_reference(mitsuba, name: str, values: dict):
     return reference
 
 
+def _say_guessed(spec, values: dict) -> None:
+    """One line for the parameters neither given nor named in DEFAULT_VALUES, which get FALLBACK_VALUE: a value
+    picked for a name the harness does not know may mean nothing for that BSDF."""
+    from harness.bsdfs.suite import DEFAULT_VALUES, FALLBACK_VALUE
+
+    guessed = [p for p in values if p not in dict(spec.given) and p not in DEFAULT_VALUES]
+    if guessed:
+        example = ",".join(f"{p}=..." for p in guessed)
+        console.print(f"{spec.name}: {', '.join(guessed)} not given, checked at {FALLBACK_VALUE:g} (give "
+                      f"--bsdf {spec.name}:{example})", soft_wrap=True)
+
+
 def _entries(specs, library, mitsuba) -> list:
     """The BSDFs asked for (`specs`, parsed; None for the default set), each ready or with the one line saying why
     it cannot be checked."""
@@ -76,6 +88,7 @@ def _entries(specs, library, mitsuba) -> list:
         except (BsdfUnavailable, ValueError) as e:
             entries.append(Entry(spec.name, failure=str(e)))
             continue
+        _say_guessed(spec, values)
         reference = None if mitsuba is None else _usable_reference(mitsuba, spec.name, values)
         extremes = roughness_extremes(lambda v, name=spec.name: library.functions(name, v), values)
         entries.append(Entry(bsdf.label, bsdf, reference, extremes=extremes))

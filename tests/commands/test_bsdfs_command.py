@@ -118,3 +118,14 @@ def test_a_hanging_bsdf_costs_one_time_limit_not_one_a_row(tmp_path, monkeypatch
     assert code == 1 and len(rows) == 5 and all(r["failure"].endswith("timed out after 2 s and was killed")
                                                  for r in rows), rows
     assert elapsed < 8, elapsed  # one time limit (2 s), where a call a row took 12 s
+
+
+def test_a_parameter_the_harness_does_not_know_is_guessed_aloud(capsys):
+    from harness.bsdfs.suite import parse_spec
+    from harness.commands.bsdf_section import _say_guessed
+
+    spec = parse_spec("phong:reflectance=0.5")
+    _say_guessed(spec, spec.values(["reflectance", "exponent", "alpha"]))
+    assert "phong: exponent not given, checked at 0.5 (give --bsdf phong:exponent=...)" in capsys.readouterr().out
+    _say_guessed(spec, spec.values(["reflectance", "alpha"]))  # alpha has a default of its own: nothing to say
+    assert capsys.readouterr().out == ""
