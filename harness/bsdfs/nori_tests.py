@@ -9,8 +9,8 @@
 - ttest: at each angle (wi in the xz plane), the mean sample weight of `sampleCount` samples against the stated
   reference by Student's t (the variance floored at 10^-5, two-sided), Sidak over the references.
 
-The BSDFs of the ABI are gray: a coloured Nori BSDF is tested through one channel (harness/commands/nori_tests.py
-maps it), as Nori's tests judge the luminance."""
+The BSDFs of the ABI are gray: a coloured Nori BSDF is tested through one channel (harness/commands/
+nori_test_section.py maps it), as Nori's tests judge the luminance."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -18,7 +18,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
+from harness.bsdfs.checks import draw, incident
 from harness.engines.base import BsdfFunctions
+from harness.statistics.constants import sidak_level
 from harness.statistics.cubature import integrate_cells
 from harness.warps.checks import parameter_density
 from harness.warps.domains import SPHERE
@@ -38,10 +40,6 @@ class NoriVerdict:
     def to_json(self) -> dict:
         return {"bsdf": self.bsdf, "test": self.what, "pass": self.passed, "p_value": self.p_value,
                 "level": self.level, "message": self.message}
-
-
-def sidak(significance: float, tests: int) -> float:
-    return 1.0 - (1.0 - significance) ** (1.0 / max(tests, 1))
 
 
 def nori_chi2(observed: np.ndarray, expected: np.ndarray, samples: int, min_expected: float,
@@ -74,10 +72,9 @@ def nori_chi2(observed: np.ndarray, expected: np.ndarray, samples: int, min_expe
 def chi2test(bsdf: BsdfFunctions, wi: np.ndarray, samples: int, resolution: int, min_expected: float, level: float,
              seed: int) -> tuple[bool, float | None, str]:
     """Nori's chi2test of `bsdf` at one incident direction."""
-    u = np.random.default_rng(seed).random((samples, 3), dtype=np.float32).astype(np.float64)
-    wo, weight, _ = bsdf.sample(np.tile(wi, (samples, 1)), u)
-    counted = (weight != 0) & np.all(np.isfinite(wo), axis=1)
-    s, t = SPHERE.to_param(wo[counted])
+    d = draw(bsdf, wi, samples, seed)
+    counted = (d.weight != 0) & np.all(np.isfinite(d.wo), axis=1)
+    s, t = SPHERE.to_param(d.wo[counted])
     rows, cols = resolution, 2 * resolution
     i = np.clip(np.floor(s * rows).astype(int), 0, rows - 1)
     j = np.clip(np.floor(t * cols).astype(int), 0, cols - 1)
@@ -99,7 +96,7 @@ def run_chi2test(bsdfs: list[BsdfFunctions], properties: dict, seed: int) -> lis
     resolution, tests = int(properties["resolution"]), int(properties["testCount"])
     samples = int(properties["sampleCount"])
     samples = resolution * 2 * resolution * 5000 if samples < 0 else samples
-    level = sidak(float(properties["significanceLevel"]), tests * len(bsdfs))
+    level = sidak_level(float(properties["significanceLevel"]), tests * len(bsdfs))
     rng, out = np.random.default_rng(seed), []
     for b in bsdfs:
         for _ in range(tests):
@@ -113,9 +110,7 @@ def run_chi2test(bsdfs: list[BsdfFunctions], properties: dict, seed: int) -> lis
 def ttest(bsdf: BsdfFunctions, theta_degrees: float, reference: float, samples: int, level: float,
           seed: int) -> tuple[bool, float | None, str]:
     """Nori's ttest of `bsdf`'s mean sample weight at polar angle theta (wi in the xz plane) against `reference`."""
-    t = np.radians(theta_degrees)
-    u = np.random.default_rng(seed).random((samples, 3), dtype=np.float32).astype(np.float64)
-    _, weight, _ = bsdf.sample(np.tile([np.sin(t), 0.0, np.cos(t)], (samples, 1)), u)
+    weight = draw(bsdf, incident(theta_degrees), samples, seed).weight
     mean, variance = float(np.mean(weight)), float(np.var(weight, ddof=1))
     statistic = abs(mean - reference) * np.sqrt(samples / max(variance, 1e-5))
     p = float(2 * stats.t.sf(statistic, samples - 1))
@@ -128,7 +123,7 @@ def run_ttest(bsdfs: list[BsdfFunctions], angles: list[float], references: list[
               seed: int) -> list[NoriVerdict]:
     """Every BSDF at every angle against its reference (references in order: the first BSDF's angles, then the
     next's), as Nori's ttest runs them."""
-    level = sidak(float(properties["significanceLevel"]), len(references))
+    level = sidak_level(float(properties["significanceLevel"]), len(references))
     rng, out = np.random.default_rng(seed), []
     for k, b in enumerate(bsdfs):
         for angle, reference in zip(angles, references[k * len(angles):]):

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from harness.bsdfs.checks import Draw
+from harness.bsdfs.checks import Draw, draw
 from harness.bsdfs.delta import LOBES, lobe
 from harness.engines.base import BsdfFunctions
 from harness.warps.bins import Bins
@@ -51,9 +51,7 @@ def values_check(bsdf: BsdfFunctions, reference: BsdfFunctions, wi: np.ndarray, 
 
 def reference_draw(d: Draw, reference: BsdfFunctions, seed: int) -> Draw:
     """As many samples of the reference from d's wi, from uniforms of their own."""
-    n = len(d.wo)
-    u = np.random.default_rng(seed).random((n, 3), dtype=np.float32).astype(np.float64)
-    return Draw(d.wi, *reference.sample(np.tile(d.wi, (n, 1)), u))
+    return draw(reference, d.wi, len(d.wo), seed)
 
 
 def _counts(d: Draw, bins: Bins) -> np.ndarray:

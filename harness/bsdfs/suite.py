@@ -9,7 +9,7 @@ from typing import Callable
 
 import numpy as np
 
-from harness.bsdfs.checks import incident
+from harness.bsdfs.checks import draw, incident
 from harness.bsdfs.evaluate import OWN_STATISTICAL, REFERENCE_STATISTICAL, check_bsdf_at
 from harness.engines.base import BsdfFunctions
 from harness.engines.python_child import ChildFailed
@@ -44,9 +44,8 @@ PROBE_SAMPLES = 4096
 def transmits(bsdf: BsdfFunctions) -> bool:
     """Whether the BSDF is an interface seen from both sides: a sample at normal incidence crosses it (a glass
     transmits 96 % there; a coated or opaque BSDF takes an index of refraction too, but nothing crosses)."""
-    u = np.random.default_rng(0).random((PROBE_SAMPLES, 3), dtype=np.float32).astype(np.float64)
-    wo, weight, pdf = bsdf.sample(np.tile([0.0, 0.0, 1.0], (PROBE_SAMPLES, 1)), u)  # ChildFailed: its rows fail so
-    return bool(np.any((wo[:, 2] < 0) & ((weight != 0) | (pdf != 0))))
+    d = draw(bsdf, incident(0.0), PROBE_SAMPLES, 0)  # ChildFailed: its rows fail so
+    return bool(np.any((d.wo[:, 2] < 0) & ~d.failed))
 
 
 def row_angles(bsdf: BsdfFunctions, angles) -> list[float]:
