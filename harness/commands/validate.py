@@ -14,8 +14,8 @@ HELP = "everything: what `make validate` runs"
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.description = ("Warp conformance, the BSDF matrix (see `bsdfs --help`), image validation (our scenes, then the real scenes of scenes/real/ as "
-                     "their own section) and the invariances (see `invariance --help`); writes "
+    p.description = ("Warp conformance, the BSDF matrix (see `bsdfs --help`), image validation (our scenes, then "
+                     "the real scenes of scenes/real/ as their own section) and the invariances (see `invariance --help`); writes "
                      "results/<run>/report.html.")
     add_common(p)
     add_image_options(p)

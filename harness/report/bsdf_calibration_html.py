@@ -4,18 +4,8 @@ from __future__ import annotations
 
 import html
 
-from harness.report.calibration_html import p_value_histograms, rate_cells, verdict_sentence
+from harness.report.calibration_html import p_value_histograms, rates_table, verdict_sentence
 from harness.report.verdict_style import VERDICT_KEY
-from harness.statistics.calibration_rates import CALIBRATION_LEVELS
-
-
-def _rates_table(cal) -> str:
-    head = "".join(f"<th>rate at {level:g}</th>" for level in CALIBRATION_LEVELS)
-    rows = "".join(
-        f"<tr><td>{html.escape(e.warp)}</td><td>{e.check}</td><td>{len(e.p_values)}</td>{rate_cells(e.rates)}"
-        f"<td>{e.uniformity:.3g}</td></tr>" for e in cal.pooled + cal.entries)
-    return (f"<table><tr><th>BSDF</th><th>check</th><th>null runs</th>{head}<th>KS p (uniform p-values)</th></tr>"
-            f"{rows}</table>")
 
 
 def _deterministic_table(cal) -> str:
@@ -49,7 +39,7 @@ def bsdf_calibration_sections(cal) -> list[str]:
         "the energy check's edge, where its rate is the nominal one (a BSDF that loses energy can only be "
         f"conservative there). Intervals are exact and simultaneous at 95 % over the section ({VERDICT_KEY}). "
         f"Result: {verdict}.</p>",
-        _rates_table(cal),
+        rates_table(cal.pooled + cal.entries, "BSDF", "null runs"),
         f"<p class='meta'>p = 1 at every seed, nothing random tested (left out of the rates): "
         f"{html.escape('; '.join(cal.degenerate))}</p>" if cal.degenerate else "",
         "<h3>Deterministic checks on correct BSDFs (a failure is a false FAIL)</h3>", _deterministic_table(cal),

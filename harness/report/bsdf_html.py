@@ -65,8 +65,8 @@ def bsdf_report_html(rows: list[BsdfRow], level: float, meta: dict) -> str:
 <ul class="meta">{meta_html}<li>per-test significance level: {level:.3g} (Sidak over the run's statistical checks)</li></ul>
 <p>Each row is one BSDF at one incident direction wi (its polar angle θi; beyond 90° wi is below the surface).
 Histograms are of the directions drawn from a density, over the sphere's parameter square ((cos θ+1)/2, φ/2π) in
-cells of equal expected count: the edges are quantiles of the pdf's marginals and every cell is drawn the same
-size, so a correct sampler's expected panel is flat and its residual panel, (O−E)/√E, is noise. Samples on a
+cells of about equal expected count: the edges are quantiles of a pilot draw's marginals (taken apart on each side
+of the horizon) and every cell is drawn the same size, so a correct sampler's expected panel is flat and its residual panel, (O−E)/√E, is noise. Samples on a
 delta lobe and failed ones are counted apart (docs/bsdfs.md). "–": the check does not apply to that row.</p>
 {_summary_table(rows)}
 {"".join(_section(r) for r in ordered)}

@@ -46,6 +46,19 @@ def rate_cells(rates: list[Rate]) -> str:
         for r in rates)
 
 
+def rates_table(entries, subject: str, runs: str) -> str:
+    """One row per calibrated check (harness.warps.calibration.CheckCalibration: its warp or BSDF row, the check,
+    how many null runs, the rate at each level, the KS p of its p-values); `subject` and `runs` head the first and
+    third columns."""
+    from harness.statistics.calibration_rates import CALIBRATION_LEVELS
+    head = "".join(f"<th>rate at {level:g}</th>" for level in CALIBRATION_LEVELS)
+    rows = "".join(
+        f"<tr><td>{html.escape(e.warp)}</td><td>{e.check}</td><td>{len(e.p_values)}</td>{rate_cells(e.rates)}"
+        f"<td>{e.uniformity:.3g}</td></tr>" for e in entries)
+    return (f"<table><tr><th>{subject}</th><th>check</th><th>{runs}</th>{head}<th>KS p (uniform p-values)</th></tr>"
+            f"{rows}</table>")
+
+
 def verdict_sentence(sound: bool, within: bool, missing: str, judged: str = "rate") -> str:
     """The calibration's result in a sentence: `within` says of every `judged` rate; `missing` names what
     can fail to give a result."""
@@ -67,13 +80,7 @@ def warp_calibration_html(cal, meta: dict, more: list[str] = ()) -> str:
     """The calibration page with its warp part (the table, pooled rows first, and the p-value histograms),
     then the sections `more` (the image part)."""
     from harness.report.verdict_style import VERDICT_KEY
-    from harness.statistics.calibration_rates import CALIBRATION_LEVELS
-    head = "".join(f"<th>rate at {level:g}</th>" for level in CALIBRATION_LEVELS)
-    rows = "".join(
-        f"<tr><td>{html.escape(e.warp)}</td><td>{e.check}</td><td>{len(e.p_values)}</td>{rate_cells(e.rates)}"
-        f"<td>{e.uniformity:.3g}</td></tr>" for e in cal.pooled + cal.entries)
-    table = (f"<table><tr><th>warp</th><th>check</th><th>null tests</th>{head}<th>KS p (uniform p-values)</th></tr>"
-             f"{rows}</table>")
+    table = rates_table(cal.pooled + cal.entries, "warp", "null tests")
     panels = [(f"{e.warp}: {e.check}", e.p_values) for e in cal.pooled + cal.entries]
     verdict = verdict_sentence(cal.sound, cal.within, "warps gave no p-values")
     intro = (f"Every correct warp of the matrix at {cal.seeds} seeds ({cal.samples:,} samples each, the matrix's "

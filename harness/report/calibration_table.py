@@ -46,8 +46,7 @@ def bias_text(b: float | None) -> str:
 
 
 def bsdf_power_table(cal) -> Table:
-    """The BSDF calibration's planted defects: found how often, beside the power the check states; and the
-    deterministic checks that failed a correct BSDF."""
+    """The BSDF calibration's planted defects: found how often, beside the power the check states."""
     table = Table(title="Power of the BSDF checks: defects of the stated size, planted", header_style="bold")
     for col in ("check", "planted defect", "level", "stated", "found [interval]"):
         table.add_column(col)
