@@ -34,7 +34,8 @@ OUR_DEFAULTS = ("diffuse", "conductor", "conductor:eta=0,k=1", "dielectric", "di
                 "plastic:diffuse_reflectance=0.9,nonlinear=1", "microfacet:alpha=0.2,kd=0.3,ks=0.6",
                 *(f"roughconductor:alpha={a},ggx={g},sample_visible={v}"
                   for a in (0.05, 0.5) for g in (0, 1) for v in (0, 1)),
-                "roughdielectric:alpha=0.1,ggx=0,sample_visible=0", "roughdielectric:alpha=0.5,ggx=1")
+                "roughdielectric:alpha=0.1,ggx=0,sample_visible=0", "roughdielectric:alpha=0.5,ggx=1",
+                "roughplastic:alpha=0.1", "roughplastic:alpha=0.5,ggx=1,sample_visible=0,diffuse_reflectance=0.9,nonlinear=1")
 
 
 #: Samples at normal incidence that tell whether a BSDF transmits.

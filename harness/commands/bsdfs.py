@@ -35,7 +35,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--no-mitsuba", action="store_true", help="skip the checks against Mitsuba's plugins")
     p.add_argument("--mitsuba", action="store_true",
                    help="check Mitsuba's own plugins (conductor, dielectric, diffuse, plastic, roughconductor, "
-                        "roughdielectric) instead "
+                        "roughdielectric, roughplastic) instead "
                         "of a library, each on its own")
     p.add_argument("--nori-test", nargs="+", type=Path, metavar="FILE.xml",
                    help="Nori's BSDF test files (<test type=\"chi2test\"> or \"ttest\", e.g. pa5's "

@@ -17,7 +17,8 @@ DEFAULT_TIMEOUT = 300.0
 PARAMETERS = {"conductor": ["eta", "k", "specular_reflectance"], "dielectric": ["int_ior", "ext_ior"],
               "diffuse": ["reflectance"], "plastic": ["int_ior", "ext_ior", "diffuse_reflectance", "nonlinear"],
               "roughconductor": ["alpha", "eta", "k", "ggx", "sample_visible"],
-              "roughdielectric": ["alpha", "int_ior", "ext_ior", "ggx", "sample_visible"]}
+              "roughdielectric": ["alpha", "int_ior", "ext_ior", "ggx", "sample_visible"],
+              "roughplastic": ["alpha", "int_ior", "ext_ior", "diffuse_reflectance", "nonlinear", "ggx", "sample_visible"]}
 PLUGINS = tuple(PARAMETERS)
 #: Parameters Mitsuba takes as a spectrum (given here one value for every channel), and as a flag.
 _SPECTRA = ("reflectance", "eta", "k", "specular_reflectance", "diffuse_reflectance")

@@ -12,6 +12,7 @@
 #include "plastic.h"
 #include "roughconductor.h"
 #include "roughdielectric.h"
+#include "roughplastic.h"
 
 namespace mcval {
 namespace {
@@ -85,6 +86,14 @@ RoughDielectricBsdf makeRoughDielectric(const float *params) {
     return RoughDielectricBsdf(MicrofacetDistribution(type, params[0], params[4] != 0.f), params[1], params[2]);
 }
 
+/// alpha, int_ior, ext_ior, diffuse_reflectance, nonlinear (0 or 1), ggx (0: Beckmann, 1: GGX), sample_visible
+/// (0 or 1).
+RoughPlasticBsdf makeRoughPlastic(const float *params) {
+    const auto type = params[5] != 0.f ? MicrofacetDistribution::Type::GGX : MicrofacetDistribution::Type::Beckmann;
+    return RoughPlasticBsdf(MicrofacetDistribution(type, params[0], params[6] != 0.f), params[1], params[2],
+                            params[3], params[4] != 0.f);
+}
+
 /// alpha, kd, ks, int_ior, ext_ior (Nori's microfacet, kd and ks given apart).
 NoriMicrofacetBsdf makeNoriMicrofacet(const float *params) {
     return NoriMicrofacetBsdf(params[0], params[1], params[2], params[3], params[4]);
@@ -116,4 +125,6 @@ MCVAL_EXPORT_BSDF(microfacet, "alpha,kd,ks,int_ior,ext_ior", mcval::makeNoriMicr
 MCVAL_EXPORT_BSDF(plastic, "int_ior,ext_ior,diffuse_reflectance,nonlinear", mcval::makePlastic)
 MCVAL_EXPORT_BSDF(roughconductor, "alpha,eta,k,ggx,sample_visible", mcval::makeRoughConductor)
 MCVAL_EXPORT_BSDF(roughdielectric, "alpha,int_ior,ext_ior,ggx,sample_visible", mcval::makeRoughDielectric)
+MCVAL_EXPORT_BSDF(roughplastic, "alpha,int_ior,ext_ior,diffuse_reflectance,nonlinear,ggx,sample_visible",
+                  mcval::makeRoughPlastic)
 }

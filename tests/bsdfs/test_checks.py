@@ -97,3 +97,23 @@ def test_a_few_sampled_pdfs_off_by_rounding_pass_and_more_fail(share, off, verdi
     weight = check_bsdf_at(bsdf, incident(30.0), SAMPLES, 0, LEVEL)["weight"]
     assert weight.verdict == verdict, weight.summary
     assert (verdict == "PASS") == ("float32 rounding" in weight.summary)
+
+
+@pytest.mark.parametrize("where, verdict", [("below", "PASS"), ("above", "FAIL")])
+def test_a_references_pdf_is_compared_where_a_value_is_not_zero(where, verdict):
+    """A reference with a density where neither BSDF scatters light (Mitsuba's roughplastic below the surface) is
+    not a difference of the tested BSDF's, and is counted; a density off where light is scattered fails."""
+    from harness.bsdfs.boundary import uniform_lambert
+    from harness.bsdfs.reference import values_check
+    from harness.engines.base import BsdfFunctions
+
+    lambert = uniform_lambert(0.8)
+
+    def pdf(wi, wo):
+        stray = (wo[:, 2] < 0) if where == "below" else (wo[:, 2] > 0.5)
+        return lambert.pdf(wi, wo) + 0.1 * stray
+
+    reference = BsdfFunctions("stray", lambert.params, lambert.eval, pdf, lambert.sample)
+    result = values_check(lambert, reference, incident(30.0), 10_000, 0)
+    assert result.verdict == verdict, result.summary
+    assert (result.details["reference_pdf_without_value"] > 0) == (where == "below")
