@@ -12,6 +12,7 @@ import numpy as np
 from harness.bsdfs.checks import draw, incident
 from harness.bsdfs.evaluate import OWN_STATISTICAL, REFERENCE_STATISTICAL, check_bsdf_at
 from harness.engines.base import BsdfFunctions
+from harness.distributed.executor import Executor, SerialExecutor, Status, Task
 from harness.engines.python_child import ChildFailed
 from harness.statistics.constants import sidak_level
 from harness.warps.check_result import CheckResult
@@ -126,12 +127,30 @@ class Entry:
     extremes: tuple[BsdfFunctions, ...] = ()  # the same BSDF at the ends of its roughness range
 
 
+def check_row(entry: Entry, theta: float | None, samples: int, seed: int, level: float,
+              probe_failure: str | None = None) -> BsdfRow:
+    """One row: `entry` at `theta` degrees (None: the entry could not be checked), its uniforms from `seed`."""
+    if entry.failure is not None:
+        return BsdfRow(entry.label, None, failure=entry.failure)
+    row, start = BsdfRow(entry.label, theta), time.perf_counter()
+    if probe_failure is not None:
+        row.failure = probe_failure
+        return row
+    try:
+        row.checks = check_bsdf_at(entry.bsdf, incident(theta), samples, seed, level, entry.reference,
+                                   entry.extremes, row.histograms)
+    except ChildFailed as e:  # the library (or Mitsuba) crashed, hung or wrote past its output
+        row.failure = e.reason
+    row.seconds = time.perf_counter() - start
+    return row
+
+
 def run_matrix(entries: list[Entry], angles=ANGLES, samples: int = SAMPLES, seed: int = 0, alpha: float = ALPHA,
-               on_progress: Callable[[str], None] = lambda _: None,
-               on_rows: Callable[[int], None] = lambda _: None) -> tuple[list[BsdfRow], float]:
-    """Every entry at every angle (from below too where it transmits); returns the rows and the per-test level they
-    were decided at. `on_rows` is told how many rows there will be, once that is known; `on_progress` names each
-    as it starts."""
+               executor: Executor | None = None,
+               on_status: Callable[[Status], None] | None = None) -> tuple[list[BsdfRow], float]:
+    """Every entry at every angle (from below too where it transmits), a task per row on `executor` (serial by
+    default; the rows' uniforms do not depend on it); returns the rows in order and the per-test level they were
+    decided at."""
     rows_of, probe_failed = {}, {}
     for e in entries:
         if e.failure is None:
@@ -139,28 +158,13 @@ def run_matrix(entries: list[Entry], angles=ANGLES, samples: int = SAMPLES, seed
                 rows_of[id(e)] = row_angles(e.bsdf, angles)
             except ChildFailed as err:  # crashed or hung on the probe: its rows fail so, without a call each
                 rows_of[id(e)], probe_failed[id(e)] = list(angles), err.reason
-    on_rows(sum(len(rows_of[id(e)]) if e.failure is None else 1 for e in entries))
     tests = sum(len(rows_of[id(e)]) * (len(OWN_STATISTICAL) + len(REFERENCE_STATISTICAL) * (e.reference is not None))
                 for e in entries if e.failure is None)
     level = sidak_level(alpha, max(tests, 1))
-    rows = []
-    for entry in entries:
-        if entry.failure is not None:
-            on_progress(entry.label)
-            rows.append(BsdfRow(entry.label, None, failure=entry.failure))
-            continue
-        for theta in rows_of[id(entry)]:
-            on_progress(f"{entry.label} at {theta:g} degrees")
-            row, start = BsdfRow(entry.label, theta), time.perf_counter()
-            if id(entry) in probe_failed:
-                row.failure = probe_failed[id(entry)]
-                rows.append(row)
-                continue
-            try:  # each row its own uniforms
-                row.checks = check_bsdf_at(entry.bsdf, incident(theta), samples, seed * 7919 + len(rows), level,
-                                           entry.reference, entry.extremes, row.histograms)
-            except ChildFailed as e:  # the library (or Mitsuba) crashed, hung or wrote past its output
-                row.failure = e.reason
-            row.seconds = time.perf_counter() - start
-            rows.append(row)
-    return rows, level
+    jobs = [(e, theta) for e in entries for theta in ([None] if e.failure is not None else rows_of[id(e)])]
+    tasks = [Task(e.label if theta is None else f"{e.label} at {theta:g} degrees", check_row,
+                  (e, theta, samples, seed * 7919 + i, level, probe_failed.get(id(e))))
+             for i, (e, theta) in enumerate(jobs)]
+    outcomes = (executor or SerialExecutor()).run(tasks, on_status)
+    # A task without a value (a cluster's worker died under it) fails its row so.
+    return [o.value if o.ok else BsdfRow(e.label, theta, failure=o.error) for o, (e, theta) in zip(outcomes, jobs)], level

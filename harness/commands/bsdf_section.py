@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from harness.commands.output import console, progress_bar
+from harness.commands.output import console, task_progress
 from harness.verdict import Tally
 
 #: Our renderer's BSDFs, built as a library of include/mcval_bsdfs.h.
@@ -96,11 +96,16 @@ def _entries(specs, library, mitsuba) -> list:
 
 
 def run_bsdf_section(library, specs, angles, samples: int, seed: int, alpha: float, mitsuba: bool, run_dir: Path,
-                     junit_name: str = "junit.xml") -> tuple[Tally, dict]:
+                     junit_name: str = "junit.xml", jobs: int | None = None) -> tuple[Tally, dict]:
     """The matrix of `library`'s BSDFs `specs` (None: the default set), against Mitsuba's plugins if `mitsuba`
-    (not when the library is Mitsuba's: harness/engines/mitsuba_bsdfs.py); prints its table and one line per
-    failed row, writes its JUnit file; returns its tally and results.json block."""
+    (not when the library is Mitsuba's: harness/engines/mitsuba_bsdfs.py), `jobs` rows at once (default: one per
+    core); prints its table and one line per failed row, writes its JUnit file; returns its tally and results.json
+    block."""
+    import os
+
     from rich.markup import escape
+
+    from harness.distributed.executor import ThreadExecutor
 
     from harness.bsdfs.suite import run_matrix
     from harness.engines.mitsuba_bsdfs import MitsubaBsdfs
@@ -109,11 +114,10 @@ def run_bsdf_section(library, specs, angles, samples: int, seed: int, alpha: flo
 
     against_mitsuba = mitsuba and library.path is not None
     entries = _entries(specs, library, MitsubaBsdfs() if against_mitsuba else None)
-    with progress_bar("bsdfs") as progress:
-        task = progress.add_task("", total=None)
-        rows, level = run_matrix(entries, angles, samples, seed, alpha,
-                                 on_progress=lambda s: progress.update(task, advance=1, description=s),
-                                 on_rows=lambda n: progress.update(task, total=n))
+    # Threads: a row waits mostly on the library's and Mitsuba's processes (a child each per thread) and in numpy.
+    executor = ThreadExecutor(jobs or os.cpu_count() or 1)
+    with task_progress("bsdf rows", executor) as on_status:
+        rows, level = run_matrix(entries, angles, samples, seed, alpha, executor, on_status)
     console.print(bsdf_table(rows, level))
     for row in rows:
         if not row.passed:

@@ -32,6 +32,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--samples", type=int, default=SAMPLES, help=f"samples per BSDF and angle (default: {SAMPLES})")
     p.add_argument("--alpha", type=float, default=ALPHA,
                    help=f"family-wise level of the run's statistical checks (default: {ALPHA})")
+    p.add_argument("--jobs", type=int, metavar="N",
+                   help="rows checked at once, on threads of this process, each with its own processes of the "
+                        "library and of Mitsuba (default: one per core); the results do not depend on it")
     p.add_argument("--no-mitsuba", action="store_true", help="skip the checks against Mitsuba's plugins")
     p.add_argument("--mitsuba", action="store_true",
                    help="check Mitsuba's own plugins (conductor, dielectric, diffuse, plastic, roughconductor, "
@@ -51,6 +54,8 @@ def run(args: argparse.Namespace, run: RunFolder) -> Verdict:
     from harness.engines.bsdf_library import BsdfLibrary
     from harness.engines.mitsuba_bsdfs import MitsubaBsdfs
 
+    if args.jobs is not None and args.jobs < 1:
+        raise ValueError(f"--jobs {args.jobs}: expected at least 1")
     if args.samples < 1000:
         raise ValueError(f"--samples {args.samples}: at least 1000 (the chi-square needs counts to test)")
     specs = None if args.bsdf is None else [parse_spec(t) for t in args.bsdf]
@@ -66,7 +71,7 @@ def run(args: argparse.Namespace, run: RunFolder) -> Verdict:
         tallies.append(nori_tally)
     run_dir = run.start()
     tally, block = run_bsdf_section(library, specs, args.angles, args.samples, args.seed, args.alpha,
-                                    not args.no_mitsuba, run_dir)
+                                    not args.no_mitsuba, run_dir, jobs=args.jobs)
     verdict, reason = run_verdict([*tallies, tally])
     run.finish({"run": run_dir.name, "bsdfs": block["bsdfs"], "bsdf_level": block["bsdf_level"], **nori,
                 "meta": block["bsdf_meta"], "pass": verdict is Verdict.PASS, "verdict": verdict.value,

@@ -88,3 +88,36 @@ class SerialExecutor(Executor):
             if on_status:
                 on_status(status)
         return out
+
+
+class ThreadExecutor(Executor):
+    """Tasks on `slots` threads of this process (concurrent.futures): for work that waits on other processes (a
+    library's children, Mitsuba's) or in numpy, which let go of the interpreter, and whose arguments need not
+    travel (engines of this process). Outcomes in the order given; a task that raises raises here, after the
+    tasks already running have finished."""
+
+    def __init__(self, slots: int) -> None:
+        self.slots = max(int(slots), 1)
+        self.description = f"{self.slots} threads"
+
+    def run(self, tasks, on_status=None):
+        from concurrent.futures import ThreadPoolExecutor, as_completed
+
+        status = Status(len(tasks))
+        with ThreadPoolExecutor(self.slots, thread_name_prefix="task") as pool:
+            futures = {pool.submit(task.fn, *task.args): task for task in tasks}
+            status.running = min(self.slots, len(tasks))
+            if on_status:
+                on_status(status)
+            try:
+                for future in as_completed(futures):
+                    future.result()  # a task that raised: raise here
+                    status.done, status.last = status.done + 1, futures[future].key
+                    status.running = min(self.slots, len(tasks) - status.done)
+                    if on_status:
+                        on_status(status)
+            except BaseException:
+                for future in futures:
+                    future.cancel()
+                raise
+        return [Outcome(future.result()) for future in futures]

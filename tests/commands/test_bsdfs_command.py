@@ -129,3 +129,12 @@ def test_a_parameter_the_harness_does_not_know_is_guessed_aloud(capsys):
     assert "phong: exponent not given, checked at 0.5 (give --bsdf phong:exponent=...)" in capsys.readouterr().out
     _say_guessed(spec, spec.values(["reflectance", "alpha"]))  # alpha has a default of its own: nothing to say
     assert capsys.readouterr().out == ""
+
+
+@pytest.mark.mitsuba
+def test_rows_side_by_side_give_the_rows_one_at_a_time_give(tmp_path):
+    spec = ("--bsdf", "roughplastic:alpha=0.3", "dielectric")
+    _, serial = _run(tmp_path / "one", *spec, "--jobs", "1")
+    _, threads = _run(tmp_path / "two", *spec, "--jobs", "2")
+    rows = [[{k: v for k, v in row.items() if k != "seconds"} for row in r["bsdfs"]] for r in (serial, threads)]
+    assert len(rows[0]) == 6 and rows[0] == rows[1]
