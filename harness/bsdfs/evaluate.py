@@ -9,7 +9,7 @@ from harness.bsdfs import delta
 from harness.bsdfs.hard_inputs import hard_inputs_check
 from harness.bsdfs.reference import reference_draw, samples_check, values_check
 from harness.warps.check_result import CheckResult
-from harness.warps.checks import histogram
+from harness.warps.checks import MIN_PILOT, histogram
 from harness.warps.domains import SPHERE
 
 #: The checks, in the order a report lists them.
@@ -28,6 +28,9 @@ STATISTICAL = OWN_STATISTICAL + REFERENCE_STATISTICAL
 ALL_CHECKS = CHECKS + DELTA_CHECKS + REFERENCE_CHECKS + REFERENCE_DELTA_CHECKS
 #: The pilot draw's stream, apart from the tested draw's (seed) and the reference's (seed + 1).
 PILOT_STREAM = 7
+#: The pilot draws this share of a row's samples (all of them below MIN_PILOT): a cell's share of it is known to a
+#: few percent, which is all the cells need; the test's samples are the row's own.
+PILOT_SHARE = 4
 #: Random (wi, wo) pairs of the reciprocity check.
 RECIPROCITY_PAIRS = 10_000
 
@@ -43,7 +46,8 @@ def check_bsdf_at(bsdf: BsdfFunctions, wi: np.ndarray, samples: int, seed: int, 
     d = draw(bsdf, wi, samples, seed)
     eta = bsdf.params["int_ior"] / bsdf.params.get("ext_ior", 1.0) if "int_ior" in bsdf.params else None
     # The cells from a pilot drawn apart (a stream of its own), not from a search of the pdf's marginals.
-    sampling, normalisation, bins, counts = sampling_checks(bsdf, d, draw(bsdf, wi, samples, [seed, PILOT_STREAM]))
+    pilot = draw(bsdf, wi, max(samples // PILOT_SHARE, min(samples, MIN_PILOT)), [seed, PILOT_STREAM])
+    sampling, normalisation, bins, counts = sampling_checks(bsdf, d, pilot)
     if histograms is not None and counts is not None:
         histograms.update(observed=counts.observed, expected=counts.expected)
     results = {"sampling": sampling, "normalisation": normalisation, "weight": weight_check(bsdf, d),
@@ -54,9 +58,11 @@ def check_bsdf_at(bsdf: BsdfFunctions, wi: np.ndarray, samples: int, seed: int, 
     if reference is not None:
         theirs = reference_draw(d, reference, seed + 1)
         results["reference values"] = values_check(bsdf, reference, wi, RECIPROCITY_PAIRS, seed)
-        results["reference samples"] = samples_check(d, theirs, bins)
+        their_cells = histogram(SPHERE, theirs.wo[theirs.smooth], bins)  # counted once: the check's and the page's
+        results["reference samples"] = samples_check(d, theirs, bins, None if counts is None else counts.observed,
+                                                     their_cells)
         if histograms is not None and counts is not None:
-            histograms["reference"] = histogram(SPHERE, theirs.wo[theirs.smooth & SPHERE.inside(theirs.wo)], bins)
+            histograms["reference"] = their_cells
         if d.delta.any() or theirs.delta.any():
             results["reference delta weights"] = delta.weights_check(d, theirs)
     for name in STATISTICAL:

@@ -63,19 +63,21 @@ def reference_draw(d: Draw, reference: BsdfFunctions, seed: int) -> Draw:
     return draw(reference, d.wi, len(d.wo), seed)
 
 
-def _counts(d: Draw, bins: Bins) -> np.ndarray:
-    """The drawn directions per cell, then the failed samples, then the delta samples of each lobe (delta.LOBES:
-    reflected, refracted)."""
-    return np.concatenate([histogram(SPHERE, d.wo[d.smooth], bins).ravel(),
-                           [d.failed.sum(), *(lobe(d, name).sum() for name in LOBES)]])
+def _counts(d: Draw, bins: Bins, cells: np.ndarray | None = None) -> np.ndarray:
+    """The drawn directions per cell (`cells` where the caller has them), then the failed samples, then the delta
+    samples of each lobe (delta.LOBES: reflected, refracted)."""
+    cells = histogram(SPHERE, d.wo[d.smooth], bins) if cells is None else cells
+    return np.concatenate([cells.ravel(), [d.failed.sum(), *(lobe(d, name).sum() for name in LOBES)]])
 
 
-def samples_check(d: Draw, theirs: Draw, bins: Bins) -> CheckResult:
+def samples_check(d: Draw, theirs: Draw, bins: Bins, cells: np.ndarray | None = None,
+                  their_cells: np.ndarray | None = None) -> CheckResult:
     """The directions this BSDF sampled (`d`) and those the reference sampled from the same wi (`theirs`), from one
     distribution: a two-sample chi-square in this BSDF's equal-probability cells (`bins`, those of its sampling
-    check), failed samples in a cell of their own and each side's delta samples in one."""
+    check), failed samples in a cell of their own and each side's delta samples in one. `cells`, `their_cells`:
+    each side's smooth samples per cell where the caller has counted them (the sampling check, the page)."""
     outside = int(np.count_nonzero(~SPHERE.inside(d.wo[d.smooth])))
-    ours, reference = _counts(d, bins), _counts(theirs, bins)
+    ours, reference = _counts(d, bins, None if outside else cells), _counts(theirs, bins, their_cells)
     used = np.flatnonzero((ours > 0) | (reference > 0))
     if not outside and len(used) == 1 and used[0] >= len(ours) - 2:  # a mirror's, or a glass's at total reflection
         lobe = "reflected" if used[0] == len(ours) - 2 else "refracted"
