@@ -8,7 +8,8 @@ interval; a deterministic check (the weight, the reciprocity, ...) must never fa
 The energy check is one-sided at an albedo of 1, and a BSDF that loses energy sits below that edge, where its rate
 can only be low; so one more null row sits on the edge (harness/bsdfs/boundary.py: weights of mean exactly 1).
 Power, on the same BSDF with a defect of the size the checks state: its albedo raised by the excess the energy
-check says it finds 90 % of the time, and its weights off by twice the weight check's tolerance."""
+check says it finds 90 % of the time, as large a share of its samples moved between the halves of its mass as the
+sampling check says it finds 90 % of the time, and its weights off by twice the weight check's tolerance."""
 from __future__ import annotations
 
 import time
@@ -19,7 +20,7 @@ import numpy as np
 
 from harness.bsdfs.boundary import uniform_lambert
 from harness.bsdfs.checks import POWER, WEIGHT_TOLERANCE, draw, energy_check, incident, weight_check
-from harness.bsdfs.evaluate import STATISTICAL, check_bsdf_at
+from harness.bsdfs.evaluate import STATISTICAL, check_bsdf_at, sampling_at
 from harness.engines.base import BsdfFunctions
 from harness.engines.python_child import ChildRaised
 from harness.distributed.executor import Executor, SerialExecutor, Status, Task
@@ -102,6 +103,20 @@ def energy_power(level: float, seeds: range, samples: int, base_seed: int) -> di
     found = sum(energy_check(draw(planted, wi, samples, base_seed + 1 + s), level).p_value < level for s in seeds)
     return {"check": "energy", "defect": f"albedo 1 + {excess:.3g}", "level": level, "stated_power": POWER,
             "runs": len(seeds), "found": int(found)}
+
+
+def sampling_power(level: float, seeds: range, samples: int, base_seed: int) -> dict:
+    """The share of samples moved between the halves of the mass that the sampling check states it finds POWER of
+    the time at `level`, planted (the boundary BSDF with as many samples moved), and how often the check finds it."""
+    wi = incident(30.0)
+    moved = sampling_at(uniform_lambert(), wi, samples, base_seed, level)[1].details.get("detects_mass_moved")
+    figure = {"check": "sampling", "level": level, "stated_power": POWER}
+    if moved is None:  # nothing stated: the figure cannot hold
+        return figure | {"defect": "none stated", "runs": 0, "found": 0}
+    planted = uniform_lambert(moved=moved)
+    found = sum(sampling_at(planted, wi, samples, base_seed + 1 + s, level)[1].p_value < level for s in seeds)
+    return figure | {"defect": f"{moved:.3g} of the samples moved to the upper half of the mass", "runs": len(seeds),
+                     "found": int(found)}
 
 
 def weight_power(seeds: range, samples: int, base_seed: int) -> dict:
@@ -221,6 +236,9 @@ def calibrate_bsdfs(functions_of: FunctionsOf, rows: list[str], seeds: int, samp
     row_tasks = len(tasks)
     if seeds:  # the planted defects, at as many seeds
         tasks += [Task(f"energy power at {level:g}", energy_power, (level, range(seeds), samples, 7_000_001 * (i + 1)))
+                  for i, level in enumerate(POWER_LEVELS)]
+        tasks += [Task(f"sampling power at {level:g}", sampling_power, (level, range(seeds), samples,
+                                                                         5_000_011 * (i + 1)))
                   for i, level in enumerate(POWER_LEVELS)]
         tasks.append(Task("weight power", weight_power, (range(seeds), samples, 9_000_001)))
     outcomes = executor.run(tasks, on_status)

@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from harness.bsdfs.boundary import uniform_lambert
-from harness.bsdfs.calibration import calibrate_bsdfs, energy_power, parse_row, weight_power
+from harness.bsdfs.calibration import calibrate_bsdfs, energy_power, parse_row, sampling_power, weight_power
 from harness.bsdfs.checks import energy_check, incident, draw
-from harness.bsdfs.evaluate import CHECKS, check_bsdf_at
+from harness.bsdfs.evaluate import CHECKS, check_bsdf_at, sampling_at
 from harness.cli import main
 from harness.commands.bsdf_section import OUR_LIBRARY, null_row_functions
 
@@ -32,6 +32,17 @@ def test_the_planted_defects_are_found_as_often_as_stated():
     energy = energy_power(0.01, range(100), 5000, 11)
     assert 0.8 <= energy["found"] / energy["runs"] <= 0.98  # stated: 90 % (100 runs: about 3 standard deviations)
     assert weight_power(range(10), 5000, 12)["found"] == 10
+    sampling = sampling_power(0.01, range(100), 5000, 13)
+    assert 0.8 <= sampling["found"] / sampling["runs"] <= 0.98, sampling
+
+
+def test_a_third_of_the_stated_sampler_defect_goes_mostly_unseen():
+    """The twin of the sampling check's power figure: the figure is the smallest defect found so often, not any."""
+    wi = incident(30.0)
+    moved = sampling_at(uniform_lambert(), wi, 5000, 13, 0.01)[1].details["detects_mass_moved"]
+    found = [sampling_at(uniform_lambert(moved=moved / 3), wi, 5000, 100 + s, 0.01)[1].p_value < 0.01
+             for s in range(60)]
+    assert 0.0 < moved < 0.5 and np.mean(found) < 0.5
 
 
 @pytest.mark.mitsuba
@@ -70,7 +81,7 @@ def test_the_command_writes_its_figures_and_refuses_a_row_without_an_angle(tmp_p
     assert main([*args, "--out", str(out)]) == 0
     data = json.loads((out / "calibration-latest" / "calibration.json").read_text())
     assert "warps" not in data and "images" not in data and data["bsdfs"]["pass"]
-    assert [p["check"] for p in data["bsdfs"]["power"]] == ["energy", "energy", "weight"]
+    assert [p["check"] for p in data["bsdfs"]["power"]] == ["energy", "energy", "sampling", "sampling", "weight"]
     page = (out / "calibration-latest" / "calibration.html").read_text()
     assert "Calibration of the BSDF checks" in page and "planted defect" in page
     assert main(["calibrate", "--bsdfs", "--bsdf", "diffuse", "--out", str(out)]) == 2
