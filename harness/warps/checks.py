@@ -5,6 +5,7 @@ tests in the run (and so the Sidak-corrected level) is known.
 """
 from __future__ import annotations
 
+import threading
 from typing import Any, Callable
 
 import numpy as np
@@ -98,6 +99,7 @@ def cells_per_axis(samples: int) -> int:
 _FINGERPRINT = np.random.default_rng(20240).random((2, 4096))
 _KEPT = 32
 _recent_cells: dict[tuple, Bins] = {}
+_recent_lock = threading.Lock()  # rows checked side by side share the cache
 
 
 def equal_probability_cells(domain: Domain, pdf: Pdf, samples: int, quantum: float,
@@ -118,12 +120,14 @@ def equal_probability_cells(domain: Domain, pdf: Pdf, samples: int, quantum: flo
         return bins, expected_probabilities(domain, pdf, bins)
     values = np.asarray(pdf(domain.from_param(*_FINGERPRINT)), dtype=np.float64)
     key = (domain.name, samples, quantum, values.tobytes())
-    bins = _recent_cells.get(key)
+    with _recent_lock:
+        bins = _recent_cells.get(key)
     if bins is None:
         bins = equal_probability_bins(parameter_density(domain, pdf), res, samples, quantum)
-        _recent_cells[key] = bins
-        while len(_recent_cells) > _KEPT:
-            del _recent_cells[next(iter(_recent_cells))]
+        with _recent_lock:
+            _recent_cells[key] = bins
+            while len(_recent_cells) > _KEPT:
+                del _recent_cells[next(iter(_recent_cells))]
     return bins, expected_probabilities(domain, pdf, bins)
 
 
