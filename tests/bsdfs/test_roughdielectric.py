@@ -24,6 +24,7 @@ LEVEL = sidak_level(0.01, len(STATISTICAL) * len(ANGLES) * 2 * 2)
 SAMPLES = 50_000
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_our_roughdielectric_passes_every_check_against_mitsubas_from_both_sides(mitsuba, seed):
     ours = BsdfLibrary(OURS)

@@ -23,6 +23,7 @@ def real_run(tmp_path_factory):
     return code, json.loads(((out / "latest").resolve() / "results.json").read_text())
 
 
+@pytest.mark.slow
 def test_the_cornell_box_passes_against_stored_references(real_run):
     code, data = real_run
     assert code == 0 and data["pass"] is True

@@ -19,6 +19,7 @@ def cornell_ao():
     return case, make_engine("mcval"), make_engine("mitsuba")
 
 
+@pytest.mark.slow
 def test_a_half_percent_bias_is_found_about_90_percent_of_the_time(cornell_ao):
     case, mcval, mitsuba = cornell_ao
     budget = plan_budget(case, mcval, mitsuba, 0.005, ALPHA, seed=12345)
