@@ -105,9 +105,8 @@ def run_bsdf_section(library, specs, angles, samples: int, seed: int, alpha: flo
 
     from rich.markup import escape
 
-    from harness.distributed.executor import ThreadExecutor
-
     from harness.bsdfs.suite import run_matrix
+    from harness.distributed.executor import ThreadExecutor
     from harness.engines.mitsuba_bsdfs import MitsubaBsdfs
     from harness.report.bsdf_html import bsdf_report_html
     from harness.report.bsdf_outputs import bsdf_junit, bsdf_table

@@ -134,13 +134,19 @@ def _cases(p: np.ndarray, samples: int, level: float, replications: int, seed: i
     same = lambda x: p  # noqa: E731
     cases = {"chi2": [
         _Case("pdf_half", pdf_half, lam_gof(lambda x: pdf_half_defect(p, x), same), dof),
-        _Case("mass_moved", moved_gof, lam_gof(same, lambda x: mass_moved_defect(p, x)), dof),
+        _Case("mass_moved", moved_gof, _moved_noncentrality(p, samples), dof),
     ]}
     if reference:
-        cases["samples_vs_mitsuba"] = [_Case(
-            "mass_moved", moved_homogeneity,
-            lambda x: float(samples / 2 * np.sum((mass_moved_defect(p, x) - p) ** 2 / p)), dof)]
+        cases["samples_vs_mitsuba"] = [_Case("mass_moved", moved_homogeneity, _moved_noncentrality(p, samples / 2),
+                                             dof)]
     return cases
+
+
+def _moved_noncentrality(p: np.ndarray, scale: float) -> Callable[[float], float]:
+    """x -> the noncentrality of a chi-square in cells of probabilities p (normalised) when a sampler moves a
+    fraction x of the mass (mass_moved_defect): `scale` the samples against p, half of each side's against as many
+    of a correct sampler."""
+    return lambda x: float(scale * np.sum((mass_moved_defect(p, x) - p) ** 2 / p))
 
 
 def _dof(p: np.ndarray, samples: int) -> int:
@@ -160,10 +166,8 @@ def noncentral_mass_moved(p: np.ndarray, samples: int, level: float, two_sample:
     p = p[p > 0] / np.sum(p)
     if len(p) < 2:
         return None
-    scale = samples / 2 if two_sample else samples
-    case = _Case("mass_moved", lambda x: np.zeros(0, bool),
-                 lambda x: float(scale * np.sum((mass_moved_defect(p, x) - p) ** 2 / p)), _dof(p, samples))
-    return _noncentral_estimate(case, level)
+    noncentrality = _moved_noncentrality(p, samples / 2 if two_sample else samples)
+    return _noncentral_estimate(_Case("mass_moved", lambda x: np.zeros(0, bool), noncentrality, _dof(p, samples)), level)
 
 
 def _noncentral_estimate(case: _Case, level: float) -> float | None:
