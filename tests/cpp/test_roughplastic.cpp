@@ -25,7 +25,9 @@ TEST(RoughPlastic, GaussLegendreIsExactOnPolynomialsOfDegreeTwoNMinusOne) {
             sum += weights[i];
             even += weights[i] * std::pow(nodes[i], degree);
             odd += weights[i] * std::pow(nodes[i], degree + 1);
-            if (i > 0) EXPECT_LT(nodes[i - 1], nodes[i]);
+            if (i > 0) {
+                EXPECT_LT(nodes[i - 1], nodes[i]);
+            }
         }
         EXPECT_NEAR(sum, 2.0, 1e-12);
         EXPECT_NEAR(even, 2.0 / (degree + 1), 1e-12) << n;
