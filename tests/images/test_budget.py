@@ -20,15 +20,16 @@ def cornell_ao():
 
 
 @pytest.mark.slow
-def test_a_half_percent_bias_is_found_about_90_percent_of_the_time(cornell_ao):
+def test_a_one_percent_bias_is_found_about_90_percent_of_the_time(cornell_ao):
     case, mcval, mitsuba = cornell_ao
-    budget = plan_budget(case, mcval, mitsuba, 0.005, ALPHA, seed=12345)
-    assert budget.spp is not None and budget.planned_bias <= 0.005 < budget.pilot_bias * 2
+    # The pilot (the case's 32 spp) already finds 0.48 %: the budget for 1 % lies below it, planned from its noise.
+    budget = plan_budget(case, mcval, mitsuba, 0.01, ALPHA, seed=12345)
+    assert budget.spp is not None and budget.spp < budget.pilot_spp and budget.planned_bias <= 0.01 < budget.pilot_bias * 4
     reference, _ = load_reference(case, mitsuba)
     found, runs = 0, 100
     for i in range(runs):
         batches = mcval.render(str(case.path), "ao", budget.spp, budget.batches, 60_000 + i, render_params(case)).batches
-        c = compare_summaries(summarize(batches * 1.005), reference.summary, ALPHA, samples=(budget.spp, reference.spp),
+        c = compare_summaries(summarize(batches * 1.01), reference.summary, ALPHA, samples=(budget.spp, reference.spp),
                               metrics=False, power=False, same_estimator=True)
         found += not c.scales[2].passed  # the image scale: the bias the budget is for
     assert 85 <= found <= 95, found
