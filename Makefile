@@ -33,7 +33,9 @@ validate: build
 
 ## test: the harness's layer contract (lint-imports), the Python suites (pytest), then the sanitizer run (the C++
 ## unit tests among it) and a short fuzz pass
-test: build
+test: deps
+	@# The sanitizer build needs only the Debian packages: it compiles beside pip's install, which leaves a core idle.
+	$(MAKE) --no-print-directory -j2 build sanitize-build
 	$(VENV)/bin/lint-imports
 	$(PY) -m pytest -n $(TEST_JOBS) --dist loadfile
 	$(MAKE) --no-print-directory sanitize
@@ -41,19 +43,19 @@ test: build
 
 ## sanitize: an ASan+UBSan build (-O1 -g1, as ASan advises: half the -O2 -g compile, the same run time within
 ## a tenth); the C++ tests, every scene x integrator and the fuzz corpus run under it
-sanitize: sanitize-build
+sanitize: sanitize-build build
 	ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 $(SANITIZE_BUILD)/test_renderer --gtest_brief=1
 	$(PY) tests/fuzz/replay.py --render $(SANITIZE_BUILD)/render
 
-sanitize-build: build
+sanitize-build: deps
 	@[ -f $(SANITIZE_BUILD)/build.ninja ] || cmake -S . -B $(SANITIZE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-		-DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DMCVAL_SANITIZE=ON -DPython_EXECUTABLE=$(abspath $(PY))
-	cmake --build $(SANITIZE_BUILD) --target render test_renderer
+		-DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DMCVAL_SANITIZE=ON
+	NINJA_STATUS="[sanitize %f/%t] " cmake --build $(SANITIZE_BUILD) --target render test_renderer
 
 ## fuzz: a bounded mutation-fuzz campaign of the sanitized renderer (FUZZ_RUNS variants, seed FUZZ_SEED), then
 ## one of `images --scene` (FUZZ_IMAGE_RUNS variants, seed FUZZ_IMAGE_SEED); each finding is saved as a
 ## reproducer (tests/fuzz/crashes/, tests/fuzz/findings/) and fails the target
-fuzz: sanitize-build
+fuzz: sanitize-build build
 	$(PY) tests/fuzz/fuzz_scenes.py --runs $(FUZZ_RUNS) --seed $(FUZZ_SEED) --render $(SANITIZE_BUILD)/render
 	@[ "$(FUZZ_IMAGE_RUNS)" = 0 ] || $(PY) tests/fuzz/fuzz_images.py --runs $(FUZZ_IMAGE_RUNS) --seed $(FUZZ_IMAGE_SEED)
 
