@@ -116,11 +116,12 @@ def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "
                   params: Any = None, seed: int = 0, samples: int = WARP_SAMPLES,
                   reference: WarpFunctions | None = None, target: Target | None = None, native_run=None,
                   hard_variants: dict[str, tuple[wc.Sampler, wc.Pdf]] | None = None,
-                  judge_throughput: bool = True) -> WarpResult:
+                  judge_throughput: bool = True, timed: bool = True) -> WarpResult:
     """Run every check; statistical ones are left undecided (see `decide`). A sampler taking float32 (its
     `input_dtype`) gets float32 uniforms, all in [0, 1); `target`: the closed form the warp's name promises
     (harness.warps.targets; None: judged against its own pdf only); `judge_throughput` False reports the
-    throughput without a floor (a user's code)."""
+    throughput without a floor (a user's code); `timed` False skips the throughput, which no seed changes
+    (a second seed of the same warp)."""
     start = time.perf_counter()
     dom = get_domain(domain)
     rng = np.random.default_rng(seed)
@@ -163,7 +164,8 @@ def evaluate_warp(sample: wc.Sampler, pdf: wc.Pdf, domain: str, *, name: str = "
         reference_observed = wc.histogram(dom, ref_inside, bins)
         checks["samples_vs_mitsuba"] = wc.homogeneity_check(observed, reference_observed, *lost)
     checks["hard_inputs"] = hard_inputs_check(dom, hard_variants or {"": (sample, pdf)})
-    checks["throughput"] = throughput_check(sample, native_run, reference, judged=judge_throughput)
+    checks["throughput"] = (throughput_check(sample, native_run, reference, judged=judge_throughput) if timed
+                            else skipped("not timed in this run"))
     return WarpResult(name, params, domain, checks, observed, cells.values * samples,
                       reference_observed, time.perf_counter() - start, seed, bins, target, by_name.observed,
                       by_name.expected, by_name.bins)

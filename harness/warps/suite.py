@@ -70,16 +70,19 @@ def spec_seed(spec: WarpSpec, seed: int) -> int:
     return int(np.random.SeedSequence([zlib.crc32(spec.key.encode()), seed]).generate_state(1, np.uint64)[0] >> 1)
 
 
-def check_spec(spec: WarpSpec, tested: Engine, reference: Engine | None, seed: int, samples: int) -> WarpResult:
+def check_spec(spec: WarpSpec, tested: Engine, reference: Engine | None, seed: int, samples: int,
+               timed: bool = True) -> WarpResult:
     """Every check of one spec: our warp against its pdf and against the reference engine's. A warp in a
-    process of its own (a user's library) that crashes, exits or hangs fails alone, with that one line."""
+    process of its own (a user's library) that crashes, exits or hangs fails alone, with that one line.
+    `timed` False skips the throughput (see evaluate_warp)."""
     try:
-        return _check_spec(spec, tested, reference, seed, samples)
+        return _check_spec(spec, tested, reference, seed, samples, timed)
     except ChildFailed as e:
         return failed_warp(spec.name, spec.params, spec.domain, spec_seed(spec, seed), e.reason)
 
 
-def _check_spec(spec: WarpSpec, tested: Engine, reference: Engine | None, seed: int, samples: int) -> WarpResult:
+def _check_spec(spec: WarpSpec, tested: Engine, reference: Engine | None, seed: int, samples: int,
+                timed: bool) -> WarpResult:
     functions = tested.warp(spec.name, spec.alpha)
     if functions is None:
         raise RuntimeError(f"engine {tested.name} has no warp {spec.name}")
@@ -93,21 +96,22 @@ def _check_spec(spec: WarpSpec, tested: Engine, reference: Engine | None, seed: 
     return evaluate_warp(functions.sample, functions.pdf, spec.domain, name=spec.name, params=spec.params,
                          seed=spec_seed(spec, seed), samples=samples, reference=ref,
                          target=target_for(spec.name, spec.alpha), native_run=functions.native_run,
-                         hard_variants=variants, judge_throughput=tested.throughput_judged)
+                         hard_variants=variants, judge_throughput=tested.throughput_judged, timed=timed)
 
 
 def run_matrix(tested: Engine, reference: Engine | None, specs: list[WarpSpec], seed: int = 0,
                samples: int = WARP_SAMPLES,
                on_progress: Callable[[WarpSpec], None] | None = None,
-               power_cache: Path | None = POWER_CACHE) -> tuple[list[WarpResult], float]:
+               power_cache: Path | None = POWER_CACHE, timed: bool = True) -> tuple[list[WarpResult], float]:
     """Check every spec; decide all statistical tests together (Sidak). Returns results and the per-test level.
+    `timed` False skips every warp's throughput (see evaluate_warp).
 
     Each check then gets its power at that level (details["power"], see warp_power), cached in `power_cache`
     (default results/.cache/warp_power.json; None: no cache).
     """
     results = []
     for spec in specs:
-        results.append(check_spec(spec, tested, reference, seed, samples))
+        results.append(check_spec(spec, tested, reference, seed, samples, timed))
         if on_progress:
             on_progress(spec)
     level = decide(results, SIGNIFICANCE)

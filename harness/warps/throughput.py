@@ -12,6 +12,9 @@ from harness.warps.checks import Sampler
 
 #: Below this many samples per second a warp cannot feed a renderer (a per-sample Python loop, a stuck rejection).
 THROUGHPUT_FLOOR = 1e6
+#: Samples a call when a warp is timed as Python functions: vectorised code runs at its full rate by then, and a
+#: per-sample loop is told from it without spending seconds a call.
+PYTHON_CALL_SAMPLES = 1 << 18
 
 
 def throughput_check(sample: Sampler, native_run, reference: WarpFunctions | None,
@@ -22,6 +25,7 @@ def throughput_check(sample: Sampler, native_run, reference: WarpFunctions | Non
     the comparison with the reference is reported, not judged (speed goals live in bench/).
     """
     if native_run is None:
+        n = min(n, PYTHON_CALL_SAMPLES)
         u = np.random.default_rng(1).random((n, 2))
         tested = lambda: sample(u)  # noqa: E731
     else:

@@ -37,17 +37,22 @@ def power_cache(tmp_path_factory) -> Path:
 @pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_the_correct_library_passes_every_warp_against_mitsuba(mitsuba, seed, power_cache):
-    results, _ = run_matrix(_library(), mitsuba, list(SUITE), seed=seed, samples=SAMPLES, power_cache=power_cache)
+    # The throughput does not depend on the seed: timed at the first only.
+    results, _ = run_matrix(_library(), mitsuba, list(SUITE), seed=seed, samples=SAMPLES, power_cache=power_cache,
+                            timed=seed == 0)
     assert all(r.passed for r in results), _verdicts(results)
     checked = {name for r in results for name, c in r.checks.items() if not c.skipped}
     assert {"pdf_vs_mitsuba", "samples_vs_mitsuba"} <= checked
     throughput = results[0].checks["throughput"]
-    assert throughput.details["floor"] is None and "not judged" in throughput.summary
+    if seed == 0:
+        assert throughput.details["floor"] is None and "not judged" in throughput.summary
+    else:
+        assert throughput.skipped
 
 
 def test_the_course_reports_pdfs_fail_their_normalisation(mitsuba):
     specs = select(["tent", "uniform_disk", "uniform_sphere", "uniform_hemisphere", "cosine_hemisphere"])
-    results, _ = run_matrix(_library("_seed"), mitsuba, specs, samples=SAMPLES, power_cache=None)
+    results, _ = run_matrix(_library("_seed"), mitsuba, specs, samples=SAMPLES, power_cache=None, timed=False)
     by_name = {r.warp: r for r in results}
     assert by_name.pop("square_to_tent").passed  # the report's tent is not among its wrong formulas
     for r in by_name.values():
@@ -59,7 +64,7 @@ def test_the_course_reports_pdfs_fail_their_normalisation(mitsuba):
 
 def test_a_sampler_broken_only_at_u_one_warns(mitsuba):
     (result,), _ = run_matrix(_library("_u_one"), mitsuba, select(["cosine_hemisphere"]), samples=SAMPLES,
-                              power_cache=None)
+                              power_cache=None, timed=False)
     assert result.passed and result.verdict == "WARN"
     hard = result.checks["hard_inputs"]
     assert hard.verdict == "WARN" and hard.details["failures_at_u_one"] > 0 and hard.figure == 0
