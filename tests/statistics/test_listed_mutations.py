@@ -88,14 +88,17 @@ def _run(harness_parent: Path, nodes: list[str]) -> subprocess.CompletedProcess:
     # No plugins but pytest's own: the nodes need none, and loading them is a third of a short run.
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(harness_parent), str(ROOT)]), PYTHONDONTWRITEBYTECODE="1",
                PYTEST_DISABLE_PLUGIN_AUTOLOAD="1")
-    check = ("import harness, sys; from pathlib import Path; "
-             f"sys.exit(0 if Path(harness.__file__).parent == Path({str(harness_parent / 'harness')!r}) else 3)")
-    assert subprocess.run([sys.executable, "-c", check], cwd=harness_parent, env=env).returncode == 0, \
-        "the copy of harness/ is not the one imported"
-    return subprocess.run([sys.executable, "-m", "pytest", "-q", "-x", "-p", "no:cacheprovider", "--runxfail", "-o", "pythonpath=",
-                           "--rootdir", str(ROOT), "-c", str(ROOT / "pyproject.toml"),
-                           *[str(ROOT / n) for n in nodes]],
-                          cwd=harness_parent, env=env, capture_output=True, text=True, timeout=300)
+    # One process checks that the copy is the harness it imports (else exit 13: pytest's codes are 0 to 5), then
+    # runs pytest on the nodes.
+    args = ["-q", "-x", "-p", "no:cacheprovider", "--runxfail", "-o", "pythonpath=", "--rootdir", str(ROOT),
+            "-c", str(ROOT / "pyproject.toml"), *[str(ROOT / n) for n in nodes]]
+    script = ("import harness, sys, pytest; from pathlib import Path; "
+              f"sys.exit(pytest.main({args!r}) if Path(harness.__file__).parent == "
+              f"Path({str(harness_parent / 'harness')!r}) else 13)")
+    res = subprocess.run([sys.executable, "-c", script], cwd=harness_parent, env=env, capture_output=True, text=True,
+                         timeout=300)
+    assert res.returncode != 13, "the copy of harness/ is not the one imported"
+    return res
 
 
 def _copy(parent: Path) -> Path:
