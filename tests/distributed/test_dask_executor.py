@@ -16,7 +16,7 @@ from harness.cli import main
 from harness.distributed.cluster import open_executor
 from harness.distributed.executor import SerialExecutor, Task
 
-pytestmark = [pytest.mark.dask, pytest.mark.slow]  # a loopback cluster per test
+pytestmark = [pytest.mark.dask, pytest.mark.slow]  # Dask clusters on loopback: seconds each to start
 
 
 #: results.json keys that differ between any two runs: times, speeds, names, where and how it ran.
