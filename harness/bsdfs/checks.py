@@ -16,10 +16,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import stats
 
 from harness.engines.base import BsdfFunctions
 from harness.statistics.constants import NORMALISATION_TOLERANCE
+from harness.statistics.distributions import norm_isf, norm_ppf, norm_sf
 from harness.warps.bins import Bins, sample_quantum
 from harness.warps.check_result import CheckResult, not_judged
 from harness.warps.checks import chi2_check, equal_probability_cells, histogram, normalisation_check
@@ -223,8 +223,8 @@ def energy_check(d: Draw, level: float, eta: float | None = None) -> CheckResult
     if se == 0:
         p = 1.0 if mean <= 1.0 + ENERGY_ROUNDING else 0.0
     else:
-        p = float(stats.norm.sf((mean - 1.0 - ENERGY_ROUNDING) / se))
-    excess = float(ENERGY_ROUNDING + (stats.norm.isf(level) + stats.norm.ppf(POWER)) * se)
+        p = float(norm_sf((mean - 1.0 - ENERGY_ROUNDING) / se))
+    excess = float(ENERGY_ROUNDING + (norm_isf(level) + norm_ppf(POWER)) * se)
     details = {"albedo": mean, "standard_error": se, "detectable_excess": excess, "power": POWER}
     return CheckResult(None, mean, f"albedo {mean:.5f} ± {se:.2g}; p = {p:.3g} (finds an excess of {excess:.2g} "
                        f"{POWER:.0%} of the time)", p_value=p, details=details)

@@ -10,9 +10,9 @@ include/mcval_bsdfs.h has them), which no density describes:
 from __future__ import annotations
 
 import numpy as np
-from scipy import stats
 
 from harness.bsdfs.checks import Draw
+from harness.statistics.distributions import norm_sf
 from harness.warps.check_result import CheckResult
 
 #: Largest distance between a delta sample's direction and the one its law gives (float32 directions).
@@ -73,7 +73,7 @@ def weights_check(ours: Draw, theirs: Draw) -> CheckResult:
         mean_a, mean_b = float(a.mean()), float(b.mean())
         se = float(np.sqrt(a.var(ddof=1) / len(a) + b.var(ddof=1) / len(b)))
         if se > 0:
-            p = float(2 * stats.norm.sf(abs(mean_a - mean_b) / se))
+            p = float(2 * norm_sf(abs(mean_a - mean_b) / se))
         else:
             p = 1.0 if abs(mean_a - mean_b) <= WEIGHT_TOLERANCE * max(abs(mean_a), abs(mean_b)) else 0.0
         ps.append(min(1.0, 2 * p))

@@ -4,7 +4,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import stats as sps
 
 #: Nominal levels at which every statistical check's false-alarm rate is measured (per test).
 CALIBRATION_LEVELS = (0.3, 0.05, 0.01)
@@ -52,6 +51,8 @@ def clopper_pearson(k: int, n: int, confidence: float) -> tuple[float, float]:
     """Exact (Clopper-Pearson) interval of a binomial proportion k/n."""
     if n == 0:
         return 0.0, 1.0
+    from scipy import stats as sps  # here: its import costs every harness process most of a second
+
     ci = sps.binomtest(k, n).proportion_ci(confidence_level=confidence, method="exact")
     return float(ci.low), float(ci.high)
 
@@ -71,5 +72,7 @@ def rates(p_values: np.ndarray, intervals: int, levels: tuple[float, ...] = CALI
 
 def uniformity_p(p_values: np.ndarray) -> float:
     """Kolmogorov-Smirnov p-value of null p-values against U(0, 1) (a check of the whole distribution)."""
+    from scipy import stats as sps
+
     p = np.asarray(p_values, np.float64)
     return float(sps.kstest(p, "uniform").pvalue) if len(p) else float("nan")

@@ -9,9 +9,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import stats as sps
 
 from harness.statistics.constants import MIN_EXPECTED
+from harness.statistics.distributions import chi2_sf
 
 
 @dataclass
@@ -69,7 +69,7 @@ def goodness_of_fit_batch(observed: np.ndarray, expected: np.ndarray) -> Chi2Bat
         return Chi2Batch(np.full(n, np.nan), np.zeros(n, int), np.full(n, np.nan), np.full(n, pooled))
     statistics = np.sum((obs - exp) ** 2 / exp, axis=1)
     dof = len(exp) - 1
-    return Chi2Batch(statistics, np.full(n, dof), sps.chi2.sf(statistics, dof), np.full(n, pooled))
+    return Chi2Batch(statistics, np.full(n, dof), chi2_sf(statistics, dof), np.full(n, pooled))
 
 
 def _unusable(*counts: np.ndarray) -> str | None:
@@ -126,7 +126,7 @@ def homogeneity_batch(counts_a: np.ndarray, counts_b: np.ndarray) -> Chi2Batch:
     dofs = used.sum(axis=1) - 1
     ok = (dofs >= 1) & (total_a[:, 0] > 0) & (total_b[:, 0] > 0)
     statistics = np.where(ok, statistics, np.nan)
-    p_values = np.where(ok, sps.chi2.sf(statistics, np.maximum(dofs, 1)), np.nan)
+    p_values = np.where(ok, chi2_sf(statistics, np.maximum(dofs, 1)), np.nan)
     return Chi2Batch(statistics, np.where(ok, dofs, 0), p_values, low.sum(axis=1))
 
 

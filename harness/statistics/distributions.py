@@ -29,6 +29,22 @@ def t_isf(q, dof):
     return _valid_dof(dof, np.where(q == 0, np.inf, np.where(q == 1, -np.inf, -sc.stdtrit(dof, q))))
 
 
+def chi2_sf(x, dof):
+    """Chi-square survival function, as scipy.stats.chi2.sf (1 below the support, 0 at infinity)."""
+    x = np.asarray(x, np.float64)
+    with np.errstate(invalid="ignore"):
+        sf = np.where(x < 0, 1.0, np.where(x == np.inf, 0.0, sc.chdtrc(dof, x)))
+    return _valid_dof(dof, sf)
+
+
+def f_ppf(q, dfn, dfd):
+    """F distribution's quantile function, as scipy.stats.f.ppf."""
+    q = np.asarray(q, np.float64)
+    with np.errstate(invalid="ignore"):
+        ppf = np.where(q == 0, 0.0, np.where(q == 1, np.inf, sc.fdtri(dfn, dfd, q)))
+    return _valid_dof(dfn, _valid_dof(dfd, ppf))
+
+
 def norm_sf(x):
     return sc.ndtr(-np.asarray(x, np.float64))
 

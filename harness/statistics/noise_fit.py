@@ -30,10 +30,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import stats as sps
 from scipy.ndimage import uniform_filter
 
 from harness.statistics.constants import ROUNDING_TOLERANCE
+from harness.statistics.distributions import f_ppf
 
 #: Spacing of the pixels the fit uses: high-passes three apart share no pixel.
 LATTICE = 3
@@ -136,8 +136,8 @@ def fit_noise(batches: np.ndarray, spp: int, image: np.ndarray, image_spp: int) 
     nu1 = _satterthwaite(own + model)
     nu2 = (k - 1) * _satterthwaite(v)
     tail = (1.0 - CONFIDENCE) / 2.0
-    low_ratio = ratio / sps.f.ppf(1.0 - tail, nu1, nu2)
-    high_ratio = ratio / sps.f.ppf(tail, nu1, nu2)
+    low_ratio = ratio / f_ppf(1.0 - tail, nu1, nu2)
+    high_ratio = ratio / f_ppf(tail, nu1, nu2)
     share = float(own.sum() / model.sum())  # E[ratio] = (rho + share) / (1 + share)
 
     def to_rho(x: float) -> float:

@@ -28,8 +28,6 @@ from pathlib import Path
 from typing import Any, Callable
 
 import numpy as np
-from scipy import optimize as spo
-from scipy import stats as sps
 
 from harness.statistics.chi2 import goodness_of_fit_batch, homogeneity_batch
 from harness.results import write_json
@@ -177,6 +175,11 @@ def _noncentral_estimate(case: _Case, level: float) -> float | None:
 
 
 def _estimate(case: _Case, level: float) -> float | None:
+    # Imported here, where a power is searched (its cache usually answers): scipy.stats costs every harness
+    # process most of a second to import.
+    from scipy import optimize as spo
+    from scipy import stats as sps
+
     critical = sps.chi2.isf(level, case.dof)
     lo, hi = np.log(SEARCH_RANGE[0]), np.log(min(SEARCH_RANGE[1], 0.49))
 

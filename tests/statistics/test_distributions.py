@@ -12,6 +12,7 @@ X = np.concatenate([RNG.normal(0, 3, 4000), EDGES_X])
 DOF = np.concatenate([RNG.uniform(0.5, 300, 4000), [1, 2, np.inf, 1e10, 7, 7, 7, 7, 7, 3]])
 Q = np.concatenate([RNG.uniform(0, 1, 4000), [0, 1, 1e-300, 0.5, np.nan, 1 - 1e-16, 1e-12, 0.3, 0.3, 0.9]])
 NC = RNG.normal(0, 5, X.size)
+DOF2 = np.concatenate([RNG.uniform(0.5, 300, 4000), [3, np.inf, 2, 1, 7, 1e10, 7, 7, 0.5, 9]])
 
 
 def same_bits(a, b) -> bool:
@@ -28,6 +29,8 @@ def same_bits(a, b) -> bool:
     (d.norm_pdf, sps.norm.pdf, (X,)),
     (d.nct_sf, sps.nct.sf, (X, DOF, NC)),
     (d.nct_cdf, sps.nct.cdf, (X, DOF, NC)),
+    (d.chi2_sf, sps.chi2.sf, (X, DOF)),
+    (d.f_ppf, sps.f.ppf, (Q, DOF, DOF2)),
 ])
 def test_same_bits_as_scipy_stats(mine, theirs, args):
     with np.errstate(all="ignore"):
@@ -39,6 +42,7 @@ def test_same_bits_as_scipy_stats(mine, theirs, args):
 @pytest.mark.parametrize("dof", [0.0, -1.0, np.nan])
 def test_no_distribution_is_nan(dof):
     assert np.isnan(d.t_sf(1.0, dof)) and np.isnan(d.t_isf(0.1, dof)) and np.isnan(d.nct_sf(1.0, dof, 2.0))
+    assert np.isnan(d.chi2_sf(1.0, dof)) and np.isnan(d.f_ppf(0.5, dof, 3.0)) and np.isnan(d.f_ppf(0.5, 3.0, dof))
 
 
 def test_the_comparison_catches_a_changed_bit():
