@@ -14,7 +14,7 @@ from harness.report.style import CSS
 def _png(fig) -> str:
     import matplotlib.pyplot as plt
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=90, bbox_inches="tight")
+    fig.savefig(buf, format="png", dpi=90)  # laid out by tight_layout already: no second draw for a tight box
     plt.close(fig)
     return f'<img alt="p-value histograms" src="data:image/png;base64,{base64.b64encode(buf.getvalue()).decode()}">'
 

@@ -84,25 +84,32 @@ def test_calibrate_on_a_scheduler_gives_the_local_rates(cluster, tmp_path):
     assert far["meta"]["warps ran on"].startswith("Dask scheduler") and near["meta"]["warps ran on"] == "serial"
 
 
-def test_a_tls_scheduler_runs_the_cases_and_refuses_plain_tcp(tmp_path):
-    tls = make_certificates(tmp_path)
-    with loopback_cluster(tmp_path, workers=1, tls=tls) as address:
-        assert address.startswith("tls://127.0.0.1:")
-        files = ["--tls-ca-file", str(tls[0]), "--tls-cert", str(tls[1]), "--tls-key", str(tls[2])]
-        out = tmp_path / "r"
-        assert main(["images", "--only", "plane_point:simple", "--scheduler", address, *files, "--out", str(out)]) == 0
-        assert json.loads((out / "latest" / "results.json").read_text())["images"][0]["pass"]
-        plain = address.replace("tls://", "tcp://")
-        assert main(["images", "--only", "plane_point:simple", "--scheduler", plain, "--out", str(out)]) == 2
+@pytest.fixture(scope="module")
+def tls_cluster(tmp_path_factory):
+    """A TLS cluster of one worker whose renders of `ao` are killed mid-run (the others run the real renderer):
+    (address, the TLS options a client gives)."""
+    folder = tmp_path_factory.mktemp("tls")
+    tls = make_certificates(folder)
+    env = {"MCVAL_RENDER": str(write_wrapper(folder, "kill", "ao")), "MCVAL_RENDER_TIMEOUT": "60"}
+    with loopback_cluster(folder, workers=1, env=env, tls=tls) as address:
+        yield address, ["--tls-ca-file", str(tls[0]), "--tls-cert", str(tls[1]), "--tls-key", str(tls[2])]
 
 
-def test_a_render_killed_on_a_worker_fails_its_case_only(tmp_path, capsys):
+def test_a_tls_scheduler_runs_the_cases_and_refuses_plain_tcp(tls_cluster, tmp_path):
+    address, files = tls_cluster
+    assert address.startswith("tls://127.0.0.1:")
+    out = tmp_path / "r"
+    assert main(["images", "--only", "plane_point:simple", "--scheduler", address, *files, "--out", str(out)]) == 0
+    assert json.loads((out / "latest" / "results.json").read_text())["images"][0]["pass"]
+    plain = address.replace("tls://", "tcp://")
+    assert main(["images", "--only", "plane_point:simple", "--scheduler", plain, "--out", str(out)]) == 2
+
+
+def test_a_render_killed_on_a_worker_fails_its_case_only(tls_cluster, tmp_path, capsys):
     # One worker runs both cases: the render killed under it is a failed case, not a dead worker.
-    wrapper = write_wrapper(tmp_path, "kill", "ao")
-    env = {"MCVAL_RENDER": str(wrapper), "MCVAL_RENDER_TIMEOUT": "60"}
-    with loopback_cluster(tmp_path, workers=1, env=env) as address:
-        code = main(["images", "--only", "plane_point:ao", "plane_point:normals", "--scheduler", address,
-                     "--out", str(tmp_path / "r")])
+    address, files = tls_cluster
+    code = main(["images", "--only", "plane_point:ao", "plane_point:normals", "--scheduler", address, *files,
+                 "--out", str(tmp_path / "r")])
     assert code == 1
     entries = {e["integrator"]: e for e in json.loads((tmp_path / "r" / "latest" / "results.json").read_text())["images"]}
     assert entries.keys() == {"ao", "normals"}
@@ -111,36 +118,20 @@ def test_a_render_killed_on_a_worker_fails_its_case_only(tmp_path, capsys):
     assert "plane_point:ao" in capsys.readouterr().out
 
 
-def test_a_worker_dying_under_a_task_fails_that_case_only():
-    from tests.helpers.dask_engines import DiesOn
-    from harness.distributed.dask_executor import DaskExecutor
-    from harness.engines.mitsuba import MitsubaEngine
-    from harness.images.run import run_images
-    from harness.images.suite import ImageCase
-
-    cases = [ImageCase("plane_point", "normals"), ImageCase("plane_point", "simple")]
-    # Three workers: the failing case kills two (ALLOWED_FAILURES), and the third keeps the scattered scene files
-    # from which the cluster recomputes a finished case whose result died with a worker.
-    with DaskExecutor(workers=3) as executor:
-        results, _ = run_images(cases, DiesOn("simple"), MitsubaEngine(), executor=executor)
-    normals, simple = results
-    assert normals.passed and normals.error is None
-    assert not simple.passed and simple.error.startswith("task failed: its worker died")
-
-
 @pytest.fixture(scope="module")
 def embedded():
-    """The embedded cluster (two workers), for the tests that need nothing of a worker but that it runs."""
+    """The embedded cluster, three workers: the tests that need nothing of a worker but that it runs, then (last
+    in this file, as it kills two of them) the one whose task kills its workers."""
     from harness.distributed.dask_executor import DaskExecutor
 
-    with DaskExecutor(workers=2) as executor:
+    with DaskExecutor(workers=3) as executor:
         yield executor
 
 
 def test_shared_data_stays_on_every_worker_once_no_task_waits_on_it(embedded):
     handle = embedded.share(b"scene files")
     time.sleep(5)  # past two rounds of the active memory manager (every 2 s), which would drop the copies
-    assert len(embedded.client.who_has(handle)[handle.key]) == 2
+    assert len(embedded.client.who_has(handle)[handle.key]) == 3
 
 
 def test_the_embedded_cluster_listens_on_loopback_only(embedded):
@@ -192,3 +183,19 @@ def test_tasks_come_back_in_order_and_a_raising_task_stops_the_run():
 def test_a_task_raising_on_a_worker_raises_here(embedded):
     with pytest.raises(RuntimeError, match="bad input 5"):
         embedded.run([Task("b", _boom, (5,))])
+
+
+def test_a_worker_dying_under_a_task_fails_that_case_only(embedded):
+    from tests.helpers.dask_engines import DiesOn
+    from harness.engines.mitsuba import MitsubaEngine
+    from harness.images.run import run_images
+    from harness.images.suite import ImageCase
+
+    cases = [ImageCase("plane_point", "normals"), ImageCase("plane_point", "simple")]
+    # Three workers: the failing case kills two (ALLOWED_FAILURES), and the third keeps the scattered scene files
+    # from which the cluster recomputes a finished case whose result died with a worker. Last in the file: the
+    # cluster it leaves has lost two workers.
+    results, _ = run_images(cases, DiesOn("simple"), MitsubaEngine(), executor=embedded)
+    normals, simple = results
+    assert normals.passed and normals.error is None
+    assert not simple.passed and simple.error.startswith("task failed: its worker died")
