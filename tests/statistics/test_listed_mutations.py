@@ -7,10 +7,12 @@ source line replaced; if the harness is rewritten so that a line is no longer fo
 """
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import subprocess
 import sys
+from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
@@ -81,24 +83,26 @@ MUTATIONS = {
 }
 
 
-def _run(harness_parent: Path, nodes: list[str]) -> subprocess.CompletedProcess:
-    """pytest on `nodes` with `harness_parent`/harness imported instead of the project's harness."""
-    # The copy first, then the project's root (for tests.helpers); pytest's own `pythonpath` setting, which
-    # would put the root first, is emptied.
-    # No plugins but pytest's own: the nodes need none, and loading them is a third of a short run.
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(harness_parent), str(ROOT)]), PYTHONDONTWRITEBYTECODE="1",
-               PYTEST_DISABLE_PLUGIN_AUTOLOAD="1")
-    # One process checks that the copy is the harness it imports (else exit 13: pytest's codes are 0 to 5), then
-    # runs pytest on the nodes.
-    args = ["-q", "-x", "-p", "no:cacheprovider", "--runxfail", "-o", "pythonpath=", "--rootdir", str(ROOT),
-            "-c", str(ROOT / "pyproject.toml"), *[str(ROOT / n) for n in nodes]]
-    script = ("import harness, sys, pytest; from pathlib import Path; "
-              f"sys.exit(pytest.main({args!r}) if Path(harness.__file__).parent == "
-              f"Path({str(harness_parent / 'harness')!r}) else 13)")
-    res = subprocess.run([sys.executable, "-c", script], cwd=harness_parent, env=env, capture_output=True, text=True,
-                         timeout=300)
-    assert res.returncode != 13, "the copy of harness/ is not the one imported"
-    return res
+@dataclass
+class Run:
+    """pytest's exit code on one copy of harness/, and what it printed."""
+
+    returncode: int
+    stdout: str
+
+
+def _run_all(copies: list[tuple[Path, list[str]]]) -> list[Run]:
+    """pytest on each (folder holding a copy of harness/, nodes), with that copy imported instead of the
+    project's harness: each in a child forked from one process that has imported the libraries once
+    (tests/helpers/mutant_runner.py), two at a time."""
+    runs = [{"parent": str(parent), "nodes": nodes, "out": str(parent / "pytest.log")} for parent, nodes in copies]
+    res = subprocess.run([sys.executable, str(ROOT / "tests" / "helpers" / "mutant_runner.py"), str(ROOT)],
+                         input=json.dumps(runs), capture_output=True, text=True, timeout=600,
+                         env=dict(os.environ, PYTHONPATH=""))
+    assert res.returncode == 0, res.stderr[-3000:]
+    codes = json.loads(res.stdout.strip().splitlines()[-1])
+    assert 13 not in codes, "a copy of harness/ is not the one imported"
+    return [Run(code, Path(run["out"]).read_text()) for code, run in zip(codes, runs)]
 
 
 def _copy(parent: Path) -> Path:
@@ -108,36 +112,44 @@ def _copy(parent: Path) -> Path:
     return parent
 
 
-def _mutant(name: str, parent: Path) -> tuple[str, subprocess.CompletedProcess | None]:
-    file, original, mutated, nodes = MUTATIONS[name]
+def _mutate(name: str, parent: Path) -> str:
+    """Applies the mutation to a copy of harness/ in `parent`; what stops it, if anything."""
+    file, original, mutated, _ = MUTATIONS[name]
     path = _copy(parent) / "harness" / file
     source = path.read_text()
     if source.count(original) != 1:
-        return f"{file} no longer holds {original!r}: update the mutation", None
+        return f"{file} no longer holds {original!r}: update the mutation"
     path.write_text(source.replace(original, mutated))
-    return "", _run(parent, nodes)
+    return ""
+
+
+#: Every node some mutation must fail: on the unmutated harness they all pass.
+TARGETED = sorted({n for *_, targets in MUTATIONS.values() for n in targets})
 
 
 @pytest.fixture(scope="module")
-def outcomes(tmp_path_factory):
-    """Every mutant's run, two at a time (each is a separate pytest process)."""
-    from concurrent.futures import ThreadPoolExecutor
-
-    with ThreadPoolExecutor(max_workers=2) as pool:
-        futures = {name: pool.submit(_mutant, name, tmp_path_factory.mktemp("mutant")) for name in MUTATIONS}
-        return {name: f.result() for name, f in futures.items()}
+def runs(tmp_path_factory):
+    """name -> (what stopped the mutation, its run); "" is the unmutated copy, run on every targeted node."""
+    unmutated = _copy(tmp_path_factory.mktemp("unmutated"))
+    copies, problems = [(unmutated, TARGETED)], {"": ""}
+    for name, (*_, nodes) in MUTATIONS.items():
+        parent = tmp_path_factory.mktemp("mutant")
+        problems[name] = _mutate(name, parent)
+        if not problems[name]:
+            copies.append((parent, nodes))
+    done = iter(_run_all(copies))
+    return {name: (problem, None if problem else next(done)) for name, problem in problems.items()}
 
 
 @pytest.mark.slow
-def test_the_targeted_tests_pass_on_the_unmutated_harness(tmp_path):
-    nodes = sorted({n for *_, targets in MUTATIONS.values() for n in targets})
-    res = _run(_copy(tmp_path), nodes)
+def test_the_targeted_tests_pass_on_the_unmutated_harness(runs):
+    _, res = runs[""]
     assert res.returncode == 0, res.stdout[-3000:]
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", list(MUTATIONS))
-def test_listed_mutation_is_killed(name, outcomes):
-    problem, res = outcomes[name]
+def test_listed_mutation_is_killed(name, runs):
+    problem, res = runs[name]
     assert not problem, problem
     assert res.returncode == 1, f"mutation survived (exit {res.returncode}):\n{res.stdout[-3000:]}"
