@@ -43,15 +43,20 @@ def _child(root: str, run: dict) -> int:
                             "-c", os.path.join(root, "pyproject.toml"), *[os.path.join(root, n) for n in run["nodes"]]]))
 
 
+def _reap(running: dict[int, int], codes: list[int | None]) -> None:
+    """Waits for one child and files its exit code under its run's index."""
+    pid, status = os.wait()
+    codes[running.pop(pid)] = os.waitstatus_to_exitcode(status)
+
+
 def main() -> int:
     root = sys.argv[1]
     runs = json.load(sys.stdin)
     codes: list[int | None] = [None] * len(runs)
-    running: dict[int, int] = {}
+    running: dict[int, int] = {}  # child's pid -> its run's index
     for i, run in enumerate(runs):
         while len(running) >= PARALLEL:
-            pid, status = os.wait()
-            codes[running.pop(pid)] = os.waitstatus_to_exitcode(status)
+            _reap(running, codes)
         sys.stdout.flush()
         pid = os.fork()
         if pid == 0:
@@ -64,8 +69,7 @@ def main() -> int:
                 os._exit(code)
         running[pid] = i
     while running:
-        pid, status = os.wait()
-        codes[running.pop(pid)] = os.waitstatus_to_exitcode(status)
+        _reap(running, codes)
     print(json.dumps(codes))
     return 0
 

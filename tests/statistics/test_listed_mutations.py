@@ -130,15 +130,14 @@ TARGETED = sorted({n for *_, targets in MUTATIONS.values() for n in targets})
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
     """name -> (what stopped the mutation, its run); "" is the unmutated copy, run on every targeted node."""
-    unmutated = _copy(tmp_path_factory.mktemp("unmutated"))
-    copies, problems = [(unmutated, TARGETED)], {"": ""}
+    copies, problems = {"": (_copy(tmp_path_factory.mktemp("unmutated")), TARGETED)}, {"": ""}
     for name, (*_, nodes) in MUTATIONS.items():
         parent = tmp_path_factory.mktemp("mutant")
         problems[name] = _mutate(name, parent)
         if not problems[name]:
-            copies.append((parent, nodes))
-    done = iter(_run_all(copies))
-    return {name: (problem, None if problem else next(done)) for name, problem in problems.items()}
+            copies[name] = (parent, nodes)
+    done = dict(zip(copies, _run_all(list(copies.values()))))
+    return {name: (problem, done.get(name)) for name, problem in problems.items()}
 
 
 @pytest.mark.slow
