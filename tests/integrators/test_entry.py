@@ -51,7 +51,7 @@ def test_suite_views_are_the_entries_budgets():
 def test_a_heavy_tailed_scene_of_the_suite_takes_more_tested_samples():
     assert ImageCase("cornell", "simple").test_spp == TESTED_SPP["simple"]
     assert ImageCase("close_light", "ao").test_spp == TESTED_SPP["ao"]  # no light near a wall under ao
-    assert ImageCase("close_light", "direct").test_spp == 4 * TESTED_SPP["direct"]
+    assert ImageCase("close_light", "direct").test_spp == 16 * TESTED_SPP["direct"]
     assert ImageCase("close_light", "simple", group="user").test_spp == TESTED_SPP["simple"]  # a user's is not ours
     assert ImageCase("close_light", "simple", spp=20).test_spp == 20  # a budget chose them
 
