@@ -17,7 +17,7 @@ def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=N
     moves to the run once it is whole, `images-latest` too if it has images. The run PASSes only if nothing failed
     and each suite that ran judged something (harness/verdict.py)."""
     from harness.commands.options import case_selection
-    from harness.commands.warp_section import run_warp_section, warp_engine
+    from harness.commands.warp_section import WarpSection, warp_engine
     from harness.images.suite import not_applicable_cases
 
     phases = Phases()
@@ -33,17 +33,22 @@ def run_sections(args, run: RunFolder, executor, specs, cases, invariance_only=N
         payload["warps_not_checked"] = f"{warp_engine(args).name} has no warps (give --warp-library LIB.so)"
         console.print(f"[yellow]Warps[/]: {payload['warps_not_checked']}: not checked")
         specs = []
+    warp_section = None
     if specs:
         with phases.timed("warps"):
-            warps_ok, warps = run_warp_section(args, specs, run_dir)
+            warp_section = WarpSection(args, specs)  # its checks go on beside the BSDF rows
+    if bsdfs:
+        with phases.timed("bsdfs"):
+            ok &= _bsdf_section(args, bsdf_specs, run_dir, payload, tallies)
+    if warp_section is not None:
+        # "warps" counts what the matrix takes beyond the BSDFs: the wait for it, its throughput, its page.
+        with phases.timed("warps"):
+            warps_ok, warps = warp_section.finish(run_dir)
         ok &= warps_ok or not warps["warps"]  # a matrix with no warp judged nothing: its tally says so
         tallies.append(warp_tally(warps))
         payload.update(warps=warps["warps"], warp_level=warps["level"])
         if warps["problems"]:
             payload["warp_problems"] = warps["problems"]
-    if bsdfs:
-        with phases.timed("bsdfs"):
-            ok &= _bsdf_section(args, bsdf_specs, run_dir, payload, tallies)
     if invariances:
         # Before the images, so report.html (written with them) carries the matrix.
         console.rule("[bold]Invariances[/] (each engine against itself)")

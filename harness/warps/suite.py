@@ -16,6 +16,7 @@ from harness.warps.power import CACHE_PATH as POWER_CACHE
 from harness.warps.power import attach_power
 from harness.warps.evaluate import WarpResult, decide, evaluate_warp, failed_warp
 from harness.warps.targets import target_for
+from harness.warps.throughput import throughput_check
 
 #: Beckmann roughnesses in the matrix; small ones are where careless cell integrals fail.
 BECKMANN_ALPHAS = (0.01, 0.05, 0.1, 0.3, 1.0)
@@ -118,3 +119,23 @@ def run_matrix(tested: Engine, reference: Engine | None, specs: list[WarpSpec], 
     attach_power(results, [s.key for s in specs], samples, level, power_cache)
     return results, level
 
+
+
+def time_matrix(tested: Engine, reference: Engine | None, specs: list[WarpSpec], results: list[WarpResult],
+                seed: int, on_progress: Callable[[WarpSpec], None] | None = None) -> list[WarpResult]:
+    """The results of a matrix checked with `timed` False, each with its warp's throughput timed now (apart
+    from other work: harness/commands/warp_section.py). A warp whose process dies here fails, as in check_spec."""
+    timed = []
+    for spec, result in zip(specs, results):
+        if result.failure is None:
+            try:
+                functions = tested.warp(spec.name, spec.alpha)
+                ref = reference.warp(spec.name, spec.alpha) if reference is not None else None
+                result.checks["throughput"] = throughput_check(functions.sample, functions.native_run, ref,
+                                                               judged=tested.throughput_judged)
+            except ChildFailed as e:
+                result = failed_warp(spec.name, spec.params, spec.domain, spec_seed(spec, seed), e.reason)
+        timed.append(result)
+        if on_progress:
+            on_progress(spec)
+    return timed

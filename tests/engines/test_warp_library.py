@@ -96,3 +96,25 @@ def test_a_pdf_infinite_at_one_point_in_a_hundred_fails_its_warp_and_the_page_re
     assert warp["checks"]["chi2"]["summary"] == "pdf is not finite somewhere in the domain"
     assert warp["checks"]["normalisation"]["summary"] == "pdf integrates to inf"
     assert "pdf is not finite" in junit.find(".//failure").get("message")
+
+
+def test_a_warp_that_crashes_only_when_timed_fails_its_row_after_its_checks(tmp_path, capsys):
+    # The throughput is timed after the checks (harness/warps/suite.py: time_matrix), on a million samples a call.
+    source = tmp_path / "timed_crash.c"
+    source.write_text('#include <signal.h>\n#include "mcval_warps.h"\n'
+                      "void square_to_uniform_square(const float *u, float *out, size_t n)"
+                      " { if (n > 500000) raise(SIGSEGV); for (size_t i = 0; i < 2 * n; ++i) out[i] = u[i]; }\n"
+                      "void square_to_uniform_square_pdf(const float *p, float *pdf, size_t n)"
+                      " { (void)p; for (size_t i = 0; i < n; ++i) pdf[i] = 1.0f; }\n"
+                      "void square_to_tent(const float *u, float *out, size_t n)"
+                      " { for (size_t i = 0; i < 2 * n; ++i) { float x = 2 * u[i];"
+                      " out[i] = x < 1 ? __builtin_sqrtf(x) - 1 : 1 - __builtin_sqrtf(2 - x); } }\n"
+                      "void square_to_tent_pdf(const float *p, float *pdf, size_t n)"
+                      " { for (size_t i = 0; i < n; ++i) { float a = 1 - __builtin_fabsf(p[2*i]),"
+                      " b = 1 - __builtin_fabsf(p[2*i+1]); pdf[i] = a > 0 && b > 0 ? a * b : 0.0f; } }\n")
+    code, results, _ = _run(build_warp_library(source, tmp_path), tmp_path / "out", "--only", "uniform_square", "tent")
+    assert code == 1
+    square, tent = results["warps"]
+    assert (square["verdict"], square["failure"]) == (
+        "FAIL", "libtimed_crash.so: square_to_uniform_square was killed by SIGSEGV")
+    assert tent["pass"] and tent["checks"]["throughput"]["figure"] > 0  # timed, not skipped
