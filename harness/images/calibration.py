@@ -29,13 +29,15 @@ from harness.statistics.constants import OUTLIER_LEVEL, sidak_level
 #: dilute the rate); cornell:normals is noisy along its edges and gives the normals' power.
 CASES = {
     "test-test": ("cornell:normals", "cornell:simple", "cornell:ao", "sphere_floor_unit:simple", "crevice:ao",
-                  "plane_point:simple", "grazing_light:simple", "close_light:simple"),
-    "reference-reference": ("plane_point:simple", "cornell:ao", "sphere_floor_unit:simple"),
-    "test-closed-form": ("plane_point:simple", "sphere_floor_unit:simple", "sphere_floor_unit:ao"),
+                  "plane_point:simple", "grazing_light:simple", "close_light:simple", "cornell:direct",
+                  "close_light:direct"),
+    "reference-reference": ("plane_point:simple", "cornell:ao", "sphere_floor_unit:simple", "cornell:direct"),
+    "test-closed-form": ("plane_point:simple", "sphere_floor_unit:simple", "sphere_floor_unit:ao",
+                         "plane_rect_light:direct"),
 }
 #: Heavy-tailed estimators among CASES: a point light at grazing angles, one close to a surface (1/r^2 within a
 #: pixel's footprint).
-HEAVY_TAILED = ("grazing_light:simple", "close_light:simple")
+HEAVY_TAILED = ("grazing_light:simple", "close_light:simple", "close_light:direct")
 #: The parts of a comparison whose rejections are counted: the scales, the image-wide variance test, the
 #: per-pixel and per-tile excess of noise (fireflies), a batch standing apart, and the whole comparison.
 PARTS = (*SCALES, "variance", "firefly", "outlier", "whole")
