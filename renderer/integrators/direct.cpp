@@ -96,9 +96,12 @@ public:
             if (index < 0) continue;
             const EmitterHit at = hitSomething ? emitterHit(next, d) : escaped(d);
             const Emitter &emitter = m_emitters[size_t(index)];
-            const float emitterPdf = emitter.pdf(hit.p, at) * choose.pmf(index);
-            result = result + bs.weight * emitter.eval(at) *
-                                  (misWeight(bs.pdf * m_fracBsdf, emitterPdf * m_fracLum) * m_weightBsdf);
+            // A delta lobe (a mirror's, a glass's; its pdf infinite) takes the whole weight: no emitter sample
+            // can find its direction (Mitsuba gives the emitter's pdf 0 there), and inf / inf would make it 0.
+            const float mis = std::isinf(bs.pdf)
+                                  ? 1.f
+                                  : misWeight(bs.pdf * m_fracBsdf, emitter.pdf(hit.p, at) * choose.pmf(index) * m_fracLum);
+            result = result + bs.weight * emitter.eval(at) * (mis * m_weightBsdf);
         }
         return result;
     }

@@ -8,20 +8,7 @@ from harness.cli import main
 from harness.engines.mitsuba import MitsubaEngine
 from harness.engines.mcval import McvalEngine
 from harness.images.calibration import calibrate_images
-
-
-class _Scaled(McvalEngine):
-    """Our renderer with every image scaled by `factor`: a known-wrong twin (mcval against the closed
-    form then disagrees; mcval against itself still agrees)."""
-
-    def __init__(self, factor: float) -> None:
-        super().__init__()
-        self.factor = factor
-
-    def render(self, *args, **kwargs):
-        result = super().render(*args, **kwargs)
-        result.batches = result.batches * self.factor
-        return result
+from tests.helpers.scaled_engine import Scaled
 
 
 @pytest.fixture(scope="module")
@@ -43,7 +30,7 @@ def test_null_comparisons_are_within_their_intervals(mitsuba, seed):
 
 @pytest.mark.slow
 def test_a_biased_renderer_is_outside_the_interval(mitsuba):
-    cal = calibrate_images(_Scaled(1.05), mitsuba, per_kind=3, seed=0, resolution=64)
+    cal = calibrate_images(Scaled(1.05), mitsuba, per_kind=3, seed=0, resolution=64)
     blocks = {(b["kind"], b["scale"], b["comparison_level"]): b for b in cal.blocks()}
     assert blocks[("test-closed-form", "whole", 0.01)]["rejections"] == 3
     assert not blocks[("test-closed-form", "whole", 0.01)]["within"]

@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "bsdfs/conductor.h"
+#include "bsdfs/roughconductor.h"
 #include "embree_scene.h"
 #include "error.h"
 #include "integrators/registry.h"
@@ -153,6 +155,21 @@ TEST(Direct, TheCameraSeesAnEmitterUnlessHideEmitters) {
     EXPECT_NEAR(estimate(load("sky", sky, ""), {0.f, 0.f, 0.5f}, {0.f, 0.f, 1.f}, 10).mean, 2.0, 1e-6);
     EXPECT_EQ(estimate(load("sky_hidden", sky, "<boolean name=\"hide_emitters\" value=\"true\"/>"),
                        {0.f, 0.f, 0.5f}, {0.f, 0.f, 1.f}, 10).mean, 0.0);
+}
+
+TEST(Direct, AMirrorReflectsTheEnvironmentThroughItsBsdfSamplesAtFullWeight) {
+    // The plane made a smooth conductor (a delta lobe, its pdf infinite): every BSDF sample finds the sky at
+    // F(1) times the specular reflectance, with the whole MIS weight (no emitter sample can find that
+    // direction); emitter samples find nothing (the lobe has no value off its direction), as Mitsuba's.
+    const std::string sky = "<emitter type=\"constant\"><rgb name=\"radiance\" value=\"2\"/></emitter>\n";
+    const auto mirror = std::make_shared<ConductorBsdf>(0.2f, 3.f, Color(0.5f, 0.5f, 0.5f));
+    const double expected = 0.5 * fresnelConductor(1.f, 0.2f, 3.f) * 2.0;
+    for (const auto &[e, b] : {std::pair<int, int>{0, 1}, {1, 1}, {2, 3}, {1, 0}}) {
+        SceneDescription scene = load("mirror", sky, samples(e, b));
+        for (auto &bsdf : scene.bsdfs) bsdf = mirror;
+        const Estimate got = estimate(scene, {0.f, 0.f, 0.5f}, {0.f, 0.f, -1.f}, 16);
+        EXPECT_NEAR(got.mean, b > 0 ? expected : 0.0, 1e-5) << e << " " << b;
+    }
 }
 
 TEST(Direct, RefusesSampleCountsMitsubaRefuses) {

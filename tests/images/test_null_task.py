@@ -7,19 +7,7 @@ from harness.engines.mcval import McvalEngine
 from harness.images.null_task import NullJob, null_comparison
 from harness.images.suite import ImageCase
 from harness.statistics.calibration_rates import CALIBRATION_LEVELS
-
-
-class _Scaled(McvalEngine):
-    """Our renderer with every image scaled by `factor`: the closed form must still reject it."""
-
-    def __init__(self, factor: float) -> None:
-        super().__init__()
-        self.factor = factor
-
-    def render(self, *args, **kwargs):
-        result = super().render(*args, **kwargs)
-        result.batches = result.batches * self.factor
-        return result
+from tests.helpers.scaled_engine import Scaled
 
 
 def _job(engine, seed: int) -> NullJob:
@@ -33,7 +21,7 @@ def test_direct_against_its_closed_form_is_not_judged_on_its_noise(seed):
 
 
 def test_a_biased_direct_is_still_rejected_by_its_closed_form():
-    rejected = null_comparison(_job(_Scaled(1.2), 0))["rejected"]
+    rejected = null_comparison(_job(Scaled(1.2), 0))["rejected"]
     assert rejected[str(max(CALIBRATION_LEVELS))]["image"], rejected
 
 
