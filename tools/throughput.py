@@ -1,7 +1,8 @@
-"""The side-by-side render throughput table alone: the tested engine (in process and in its worker) and the reference as shipped on
-the four cases of harness/bench/throughput.py, interleaved run by run.
+"""The side-by-side render throughput table alone: the tested engine (in process and in its worker) and the reference as shipped
+(or `mitsuba-robust`: with Embree's robust intersections, as ours) on the cases of harness/bench/throughput.py,
+interleaved run by run.
 
-    .venv/bin/python -m tools.throughput [runs] [sampler]
+    .venv/bin/python -m tools.throughput [runs] [sampler] [reference engine, default mitsuba-native]
 """
 from __future__ import annotations
 
@@ -31,9 +32,11 @@ if __name__ == "__main__":
     runs = int(sys.argv[1]) if len(sys.argv) > 1 else 3
     sampler = sys.argv[2] if len(sys.argv) > 2 else "independent"
     tested, worker = make_engine("mcval", sampler=sampler, in_process=True), make_engine("mcval", sampler=sampler)
-    reference = make_engine("mitsuba-native", sampler=MITSUBA_SAMPLER.get(sampler, sampler))
+    reference_name = sys.argv[3] if len(sys.argv) > 3 else "mitsuba-native"
+    reference = make_engine(reference_name, sampler=MITSUBA_SAMPLER.get(sampler, sampler))
     print(table([measure(*case, tested, reference, worker, runs=runs, sampler=sampler) for case in CASES]))
     print(f"Render time only, each timed render after a pause and an untimed one of the same engine; medians of {runs} "
           "runs; reference/tested: the median of the per-round ratios; worker: the tested engine in its render --serve worker, as "
           f"images and validate run it (wall clock less load and BVH); sampler {sampler} "
-          f"(Mitsuba: {MITSUBA_SAMPLER.get(sampler, sampler)}); rays/s from our ray count for both.")
+          f"(Mitsuba: {MITSUBA_SAMPLER.get(sampler, sampler)}); reference {reference.label}; rays/s from our ray "
+          "count for both.")

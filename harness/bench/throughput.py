@@ -11,7 +11,8 @@ thread pool's wake-up.
 Rays per second divide the same count for both engines: the rays the tested engine traced
 (RenderResult.rays: camera rays plus the shadow or occlusion rays of front-facing hits), i.e. the work of its
 estimate. Mitsuba's `direct` traces about as many for simple (one emitter sample, no BSDF sample), but for ao it
-also traces a BSDF-sampled ray per hit (its MIS), so its own count there is up to 1.5 times this one.
+also traces a BSDF-sampled ray per hit (its MIS), so its own count there is up to 1.5 times this one. For `direct`
+both trace an emitter sample's shadow ray and a BSDF sample's ray per hit.
 """
 from __future__ import annotations
 
@@ -29,9 +30,9 @@ TESTED, WORKER, REFERENCE = "tested", "tested worker", "reference"
 #: Seconds to wait before an engine's renders, so that the other engine's threads have stopped spinning.
 QUIET_SECONDS = 0.25
 
-#: (scene, integrator, resolution, spp): the four cases timed side by side.
-CASES = (("highpoly", "simple", 768, 32), ("highpoly", "ao", 768, 16),
-         ("cornell", "simple", 128, 64), ("cornell", "ao", 128, 64))
+#: (scene, integrator, resolution, spp): the cases timed side by side.
+CASES = (("highpoly", "simple", 768, 32), ("highpoly", "ao", 768, 16), ("highpoly", "direct", 768, 16),
+         ("cornell", "simple", 128, 64), ("cornell", "ao", 128, 64), ("cornell", "direct", 128, 64))
 
 
 @dataclass

@@ -52,7 +52,8 @@ class MitsubaEngine(Engine):
     """Mitsuba 3 from PyPI. Unless `native`, its `direct` integrator becomes `mcval_direct`, the same with the
     ray offset at its limit (harness/engines/mitsuba_direct.py): Mitsuba's own offset decides pixels where a
     shadow ray grazes a fine mesh, and the reference must not. `native` keeps Mitsuba's integrators, for
-    testing Mitsuba itself (its invariances)."""
+    testing Mitsuba itself (its invariances); `robust` sets Mitsuba's embree_use_robust_intersections in every
+    scene (speed like for like with a renderer that runs Embree's robust mode, as ours does)."""
 
     name = "mitsuba"
     samplers = ("independent", "ldsampler", "multijitter")
@@ -63,13 +64,17 @@ class MitsubaEngine(Engine):
     render_timing = ("render only (scene load and BVH build are timed apart); with an llvm variant the first "
                      "render of each sample count also JIT-compiles, so medians of several runs are warm")
 
-    def __init__(self, variant: str = DEFAULT_VARIANT, sampler: str | None = None, native: bool = False) -> None:
+    def __init__(self, variant: str = DEFAULT_VARIANT, sampler: str | None = None, native: bool = False,
+                 robust: bool = False) -> None:
         if sampler is not None and sampler not in SAMPLERS:
             raise ValueError(f"unknown Mitsuba sampler {sampler!r}: one of {', '.join(SAMPLERS)}")
         self.variant = variant
         self.native = native
+        #: Every scene with Mitsuba's `embree_use_robust_intersections` set: Embree's robust triangle test, as
+        #: ours runs, for a like-for-like speed comparison (Mitsuba's default is the faster, non-robust one).
+        self.robust = robust
         self.name = f"mitsuba-{variant.split('_')[0]}" if variant != DEFAULT_VARIANT else (
-            "mitsuba-native" if native else "mitsuba")
+            "mitsuba-robust" if robust else "mitsuba-native" if native else "mitsuba")
         if variant != DEFAULT_VARIANT:
             self.samplers, self.best_samplers = ("independent",), ()
         self.sampler = sampler  # None: the scene's (mapped); else a Mitsuba sampler plugin name
@@ -101,7 +106,7 @@ class MitsubaEngine(Engine):
     def __reduce__(self):
         # To a worker as its arguments: each worker process loads Mitsuba, sets the variant and JIT-compiles
         # its own kernels (both are per process), and finds LLVM itself (load_mitsuba).
-        return MitsubaEngine, (self.variant, self.sampler, self.native)
+        return MitsubaEngine, (self.variant, self.sampler, self.native, self.robust)
 
     def renders_exactly(self, spp: int) -> bool:
         """Whether the sampler keeps `spp` as asked. Several round it: ldsampler up to a power of 4,
@@ -124,7 +129,8 @@ class MitsubaEngine(Engine):
 
     def version(self) -> str:
         tight = "" if self.native else f", {mitsuba_direct.PLUGIN} for direct"
-        return f"mitsuba {self._mi.__version__} ({self.variant}), drjit {self._dr.__version__}{tight}"
+        robust = ", Embree's robust intersections" if self.robust else ""
+        return f"mitsuba {self._mi.__version__} ({self.variant}), drjit {self._dr.__version__}{tight}{robust}"
 
     def _activate(self):
         """Mitsuba's variant is process-wide: make sure this engine's is the one in force."""
@@ -178,15 +184,16 @@ class MitsubaEngine(Engine):
         """Seconds: "load" (parse, build the scene and its BVH), "first" (the first batch, with the
         JIT compilation of an llvm variant), "render" (all batches), "total". In a worker process
         (harness/engines/mitsuba_worker.py): a scene that crashes or hangs Mitsuba raises RenderFailed."""
-        return render_in_worker((self.variant, self.sampler, self.native), scene, integrator, spp, batches, seed,
-                                params)
+        return render_in_worker((self.variant, self.sampler, self.native, self.robust), scene, integrator, spp,
+                                batches, seed, params)
 
     def render_here(self, scene: str, integrator: str, spp: int, batches: int, seed: int,
                     params: dict[str, str] | None = None) -> RenderResult:
         """`render` in this process (a worker's)."""
         mi = self._activate()
         start = time.perf_counter()
-        loaded = load_scene(scene, integrator, sampler=self.sampler, tight=not self.native, **(params or {}))
+        loaded = load_scene(scene, integrator, sampler=self.sampler, tight=not self.native, robust=self.robust,
+                            **(params or {}))
         seconds = {"load": time.perf_counter() - start}
         sampler = loaded.sensors()[0].sampler().class_name()  # e.g. IndependentSampler
         if self.sampler is not None and sampler != mi.load_dict({"type": self.sampler}).class_name():

@@ -21,14 +21,18 @@ from harness.engines.mitsuba_integrators import mitsuba_mapping
 #: Our samplers Mitsuba has no plugin of the same name for, and the Mitsuba sampler closest to each:
 #: Owen-scrambled Sobol points and Mitsuba's ldsampler are both scrambled (0,2)-sequences per dimension pair.
 MITSUBA_SAMPLER = {"sobol": "ldsampler"}
+#: Mitsuba's scene property for Embree's robust ray-triangle test (off by default).
+ROBUST = "embree_use_robust_intersections"
 #: Mitsuba's integrators and their versions with the ray offset at its limit.
 TIGHT_PLUGINS = {"direct": mitsuba_direct.PLUGIN}
 
 
-def mitsuba_xml(text: str, integrator: str, sampler: str | None = None, tight: bool = False) -> str:
+def mitsuba_xml(text: str, integrator: str, sampler: str | None = None, tight: bool = False,
+                robust: bool = False) -> str:
     """The scene text with our `integrator` mapped onto Mitsuba's plugins; `sampler`, if given, is the
     Mitsuba sampler plugin to use instead of the scene's; `tight`: `direct` becomes `mcval_direct`, the same
-    integrator with its ray offset taken to the limit (harness/engines/mitsuba_direct.py)."""
+    integrator with its ray offset taken to the limit (harness/engines/mitsuba_direct.py); `robust`: the scene's
+    embree_use_robust_intersections set (replacing a value of the file's own)."""
     mapping = mitsuba_mapping(integrator)
     root = ET.fromstring(text)
     old = [e for e in root if e.tag == "integrator"]
@@ -59,6 +63,10 @@ def mitsuba_xml(text: str, integrator: str, sampler: str | None = None, tight: b
     for element in root.iter("sampler"):
         kind = sampler or element.get("type")
         element.set("type", MITSUBA_SAMPLER.get(kind, kind))
+    if robust:
+        for e in [e for e in root if e.get("name") == ROBUST]:
+            remove_keeping_lines(root, e)
+        root.append(ET.Element("boolean", name=ROBUST, value="true"))
     for film in root.iter("film"):
         for e in [e for e in film if e.get("name") == "component_format"]:
             film.remove(e)  # a file's own component_format would be a duplicate property
@@ -66,8 +74,9 @@ def mitsuba_xml(text: str, integrator: str, sampler: str | None = None, tight: b
     return ET.tostring(root, encoding="unicode")
 
 
-def load_scene(path: str | Path, integrator: str, sampler: str | None = None, tight: bool = False, **params):
-    """Load our scene file in Mitsuba (variant already set) with `integrator` mapped (`tight`: see
+def load_scene(path: str | Path, integrator: str, sampler: str | None = None, tight: bool = False,
+               robust: bool = False, **params):
+    """Load our scene file in Mitsuba (variant already set) with `integrator` mapped (`tight`, `robust`: see
     mitsuba_xml). The translated text is loaded from memory with its file names made absolute: nothing is
     written beside the scene."""
     import mitsuba as mi
@@ -76,7 +85,7 @@ def load_scene(path: str | Path, integrator: str, sampler: str | None = None, ti
         mitsuba_direct.register(mi)
     path = Path(path)
     try:
-        root = ET.fromstring(mitsuba_xml(path.read_text(), integrator, sampler, tight))
+        root = ET.fromstring(mitsuba_xml(path.read_text(), integrator, sampler, tight, robust))
     except ET.ParseError as e:
         raise ValueError(f"{path}: not an XML scene file ({e})") from None
     absolute_paths(root, path)

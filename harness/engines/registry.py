@@ -39,11 +39,11 @@ def _mcval(options: dict[str, Any]) -> Engine:
     return McvalEngine(sampler=options.get("sampler"), in_process=options.get("in_process", False))
 
 
-def _mitsuba(variant: str | None, native: bool = False) -> Callable[[dict[str, Any]], Engine]:
+def _mitsuba(variant: str | None, native: bool = False, robust: bool = False) -> Callable[[dict[str, Any]], Engine]:
     def make(options: dict[str, Any]) -> Engine:
         from harness.engines.mitsuba import DEFAULT_VARIANT, MitsubaEngine
         return MitsubaEngine(variant or options.get("variant") or DEFAULT_VARIANT, sampler=options.get("sampler"),
-                             native=native)
+                             native=native, robust=robust)
     return make
 
 
@@ -58,6 +58,9 @@ BUILT_IN = (
                 "integrator with the ray offset at its limit (mcval_direct)"),
     EngineEntry("mitsuba-native", _mitsuba(None, native=True), "Mitsuba 3 with its own integrators and ray "
                 "offset, as shipped (--variant)"),
+    EngineEntry("mitsuba-robust", _mitsuba(None, native=True, robust=True), "Mitsuba 3 as shipped but for Embree's "
+                "robust intersections (embree_use_robust_intersections), as this repository's renderer runs Embree: "
+                "speed like for like"),
     EngineEntry("mitsuba-scalar", _mitsuba("scalar_rgb", native=True), "Mitsuba 3, scalar_rgb, as shipped"),
     EngineEntry("analytic", _analytic, "the integrators' closed forms on the analytic scenes"),
 )

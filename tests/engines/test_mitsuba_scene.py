@@ -4,12 +4,13 @@ through the harness's translation of our integrators into Mitsuba's."""
 from __future__ import annotations
 
 import importlib.util
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from harness.engines.mitsuba_scene import load_scene, mitsuba_xml
+from harness.engines.mitsuba_scene import ROBUST, load_scene, mitsuba_xml
 from harness.images.suite import INTEGRATORS
 
 SCENES = Path(__file__).resolve().parents[2] / "scenes"
@@ -80,3 +81,24 @@ def test_area_emitters_in_shapes_leave_mitsubas_copy_where_our_loader_skips_them
     root = ET.fromstring(mitsuba_xml(text, integrator))
     assert not [e for shape in root.iter("shape") for e in shape if e.tag == "emitter"]
     assert len(list(root.iter("shape"))) == 1
+
+
+def test_robust_sets_embrees_robust_intersections_once(mi):
+    """`mitsuba-robust`'s scenes: the property set true, a file's own value replaced, and Mitsuba takes it."""
+    text = (SCENES / "plane_ao.xml").read_text().replace(
+        "</scene>", '<boolean name="embree_use_robust_intersections" value="false"/></scene>')
+    found = [e for e in ET.fromstring(mitsuba_xml(text, "ao", robust=True)) if e.get("name") == ROBUST]
+    assert [e.get("value") for e in found] == ["true"]
+    assert not [e for e in ET.fromstring(mitsuba_xml(text, "ao")) if e.get("value") == "true" and
+                e.get("name") == ROBUST]
+    assert load_scene(SCENES / "plane_ao.xml", "ao", robust=True, res="8") is not None
+
+
+def test_the_robust_engine_is_named_and_versioned_apart():
+    from harness.engines.registry import make_engine
+
+    robust, native = make_engine("mitsuba-robust"), make_engine("mitsuba-native")
+    assert robust.name == "mitsuba-robust" and robust.native and robust.robust and not native.robust
+    assert "robust" in robust.version() and "robust" not in native.version()
+    result = robust.render(str(SCENES / "plane_ao.xml"), "ao", 2, 1, 0, {"res": "8"})
+    assert result.batches.shape == (1, 8, 8, 3) and np.isfinite(result.batches).all()
