@@ -54,6 +54,14 @@ class AnalyticEngine(Engine):
         ray."""
         return 4 * spp if entry(integrator).analytic.sample is not None else spp
 
+    @staticmethod
+    def draws_estimator(integrator: str) -> bool:
+        """Whether its render of `integrator` draws the tested estimator (the same camera rays, each shaded
+        exactly or by the entry's `sample`), so that the tested engine's noise is judged against it; False where
+        the closed form knows the image's mean only (direct's)."""
+        form = entry(integrator).analytic
+        return form is None or form.draws_estimator
+
     def version(self) -> str:
         return "analytic (closed form, numpy pixel integration)"
 

@@ -21,6 +21,7 @@ from harness.comparison.mismatch import diagnose
 from harness.comparison.outcome import Comparison
 from harness.comparison.strategies import StrategyCheck, compare_strategies
 from harness.comparison.summary import Summary, summarize
+from harness.engines.analytic import AnalyticEngine
 from harness.engines.base import RenderResult
 from harness.foreign_text import one_line
 from harness.images.case_verdict import CaseVerdict
@@ -123,11 +124,9 @@ def evaluate(case: ImageCase, tested: RenderResult | RenderFailure | None,
     refs = {name: r for name, r in references.items() if isinstance(r, Reference)}
     summary = summarize(tested.batches)
     signed = entry(case.integrator).signed
-    # The closed form draws the tested estimator (harness/engines/analytic.py: the same camera rays, each shaded
-    # exactly or by the entry's `sample`) unless it knows the mean only; the reference engine does where the
-    # caller says so.
-    form = entry(case.integrator).analytic
-    exact_draws = form is None or form.draws_estimator
+    # The closed form draws the tested estimator unless it knows the mean only; the reference engine does where
+    # the caller says so.
+    exact_draws = AnalyticEngine.draws_estimator(case.integrator)
     same = {name: (r.source == CLOSED_FORM and exact_draws) or (name == reference and reference_draws_estimator)
             for name, r in refs.items()}
     comparisons = {name: compare_summaries(summary, r.summary, alpha, signed=signed, samples=(tested.spp, r.spp),

@@ -59,10 +59,9 @@ def null_comparison(job: NullJob, bundle: Bundle | None = None) -> dict:
     reference = summarize(_render(ref_engine, case, ref_spp, ref_batches, job.seed + 1, job.resolution))
     samples = (spp, ref_spp)
     rejected, summary = {}, summarize(test)
-    # One engine twice draws one estimator, so the noise is judged too; against the closed form only where its
-    # camera samples draw the integrator's estimator, as the suite judges it (harness/images/evaluate.py).
-    form = entry(case.integrator).analytic
-    same = job.kind != "test-closed-form" or form is None or form.draws_estimator
+    # One engine twice draws one estimator, so the noise is judged too; against the closed form only where it
+    # draws the integrator's estimator, as the suite judges it (harness/images/evaluate.py).
+    same = job.kind != "test-closed-form" or AnalyticEngine.draws_estimator(case.integrator)
     for level in CALIBRATION_LEVELS:
         c = compare_summaries(summary, reference, level, signed, samples=samples, metrics=False, power=False,
                               same_estimator=same)

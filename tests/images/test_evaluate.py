@@ -85,6 +85,7 @@ def test_a_tested_image_that_breaks_the_closed_form_is_not_overruled():
 def test_a_closed_form_of_the_mean_only_judges_the_mean_not_the_noise(monkeypatch):
     import dataclasses
 
+    import harness.engines.analytic as analytic_module
     import harness.images.evaluate as evaluate_module
     from harness.integrators import entry
 
@@ -93,13 +94,15 @@ def test_a_closed_form_of_the_mean_only_judges_the_mean_not_the_noise(monkeypatc
     exact = _reference(mean + np.random.default_rng(4).normal(0, 1e-4, mean.shape).astype(np.float32), CLOSED_FORM)
     ao = entry("ao")
     mean_only = dataclasses.replace(ao, analytic=dataclasses.replace(ao.analytic, draws_estimator=False))
-    monkeypatch.setattr(evaluate_module, "entry", lambda name: mean_only)
+    for module in (evaluate_module, analytic_module):  # the case's entry, and the closed form's (draws_estimator)
+        monkeypatch.setattr(module, "entry", lambda name: mean_only)
     right = _evaluate(_tested(_batches(1)), {"mitsuba": _reference(_batches(2)), "analytic": exact})
     assert right.passed and right.comparisons["analytic"].passed
     # ... and a biased one fails it; where the closed form claims to draw the estimator, the noise fails it.
     biased = _evaluate(_tested(_batches(1, scale=1.05)), {"mitsuba": _reference(_batches(2)), "analytic": exact})
     assert biased.failed and not biased.comparisons["analytic"].passed
-    monkeypatch.setattr(evaluate_module, "entry", lambda name: ao)
+    for module in (evaluate_module, analytic_module):
+        monkeypatch.setattr(module, "entry", lambda name: ao)
     claimed = _evaluate(_tested(_batches(1)), {"mitsuba": _reference(_batches(2)), "analytic": exact})
     assert not claimed.comparisons["analytic"].passed and "variance" in claimed.comparisons["analytic"].failed_checks
 
