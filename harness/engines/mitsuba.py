@@ -103,10 +103,14 @@ class MitsubaEngine(Engine):
         names = {name for _, name, _ in entry(integrator).parameters}
         return bool(names) and names <= set(mitsuba_mapping(integrator).file_values)
 
+    def _arguments(self) -> tuple:
+        """What makes this engine again in another process: MitsubaEngine(*arguments)."""
+        return self.variant, self.sampler, self.native, self.robust
+
     def __reduce__(self):
         # To a worker as its arguments: each worker process loads Mitsuba, sets the variant and JIT-compiles
         # its own kernels (both are per process), and finds LLVM itself (load_mitsuba).
-        return MitsubaEngine, (self.variant, self.sampler, self.native, self.robust)
+        return MitsubaEngine, self._arguments()
 
     def renders_exactly(self, spp: int) -> bool:
         """Whether the sampler keeps `spp` as asked. Several round it: ldsampler up to a power of 4,
@@ -184,8 +188,7 @@ class MitsubaEngine(Engine):
         """Seconds: "load" (parse, build the scene and its BVH), "first" (the first batch, with the
         JIT compilation of an llvm variant), "render" (all batches), "total". In a worker process
         (harness/engines/mitsuba_worker.py): a scene that crashes or hangs Mitsuba raises RenderFailed."""
-        return render_in_worker((self.variant, self.sampler, self.native, self.robust), scene, integrator, spp,
-                                batches, seed, params)
+        return render_in_worker(self._arguments(), scene, integrator, spp, batches, seed, params)
 
     def render_here(self, scene: str, integrator: str, spp: int, batches: int, seed: int,
                     params: dict[str, str] | None = None) -> RenderResult:

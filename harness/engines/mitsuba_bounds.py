@@ -20,7 +20,7 @@ def scene_bounds(text: str, variant: str = DEFAULT_VARIANT) -> tuple[tuple[float
 
 
 def bounds_here(engine: tuple, text: str) -> tuple[tuple[float, ...], tuple[float, ...]] | None:
-    """In a Mitsuba worker: scene_bounds of `text` (`engine` is the worker's (variant, sampler, native))."""
+    """In a Mitsuba worker: scene_bounds of `text` (`engine`: the arguments of the worker's MitsubaEngine)."""
     mi = load_mitsuba(engine[0])
     root = ET.fromstring(text)
     for parent in list(root.iter()):

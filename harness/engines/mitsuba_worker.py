@@ -77,7 +77,7 @@ _engines: dict[tuple, object] = {}
 
 
 def engine(args: tuple):
-    """In the worker: MitsubaEngine(*args), made once per (variant, sampler, native)."""
+    """In the worker: MitsubaEngine(*args), made once per distinct arguments (variant, sampler, native, robust)."""
     from harness.engines.mitsuba import MitsubaEngine
 
     if args not in _engines:
