@@ -36,8 +36,9 @@ struct ShapeChildren {
     std::optional<Color> areaRadiance;
 };
 
-/// The shape's one <bsdf> or <ref> (its material; the default without one) and its area emitter (read where
-/// the integrator reads area emitters, kept aside to be judged otherwise) and media, whatever the shape.
+/// The shape's one <bsdf> or <ref> (its material; without one Mitsuba's default, black where the shape emits)
+/// and its area emitter (read where the integrator reads area emitters, kept aside to be judged otherwise) and
+/// media, whatever the shape.
 ShapeChildren loadShapeChildren(const XmlContext &ctx, const XmlProps &props, Definitions &defs, Deferred &deferred) {
     ShapeChildren out;
     Material &material = out.material;
@@ -73,6 +74,7 @@ ShapeChildren loadShapeChildren(const XmlContext &ctx, const XmlProps &props, De
         }
         hasBsdf = true;
     }
+    if (!hasBsdf && out.areaRadiance) material = defaultEmitterBsdf();
     return out;
 }
 

@@ -42,6 +42,9 @@ using BsdfList = std::vector<std::shared_ptr<const Bsdf>>;
 
 /// Mitsuba's default BSDF, a shape's without one: diffuse, reflectance 0.5 (one shared instance).
 std::shared_ptr<const Bsdf> defaultBsdf();
+/// Mitsuba's default BSDF of a shape with an area emitter and no BSDF: diffuse, reflectance 0 (it emits and
+/// reflects nothing).
+std::shared_ptr<const Bsdf> defaultEmitterBsdf();
 /// A list holding only the default BSDF, at index 0.
 inline BsdfList defaultBsdfs() { return {defaultBsdf()}; }
 

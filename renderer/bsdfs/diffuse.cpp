@@ -10,6 +10,11 @@ std::shared_ptr<const Bsdf> defaultBsdf() {
     return bsdf;
 }
 
+std::shared_ptr<const Bsdf> defaultEmitterBsdf() {
+    static const std::shared_ptr<const Bsdf> bsdf = std::make_shared<DiffuseBsdf>(Color(0.f, 0.f, 0.f));
+    return bsdf;
+}
+
 Color DiffuseBsdf::eval(const Vec3f &wi, const Vec3f &wo) const {
     if (!(wi.z > 0.f && wo.z > 0.f)) return {0.f, 0.f, 0.f};
     return m_reflectance * (kInvPi * wo.z);

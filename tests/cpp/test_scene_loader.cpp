@@ -314,3 +314,24 @@ TEST(SceneLoader, ASpectrumIsReadWhenConstantAndAnUnreadableReflectanceIsRefused
         }
     }
 }
+
+TEST(SceneLoader, AnEmittingShapeWithoutABsdfIsBlackAsMitsubasWhereItsEmitterIsRead) {
+    // Mitsuba gives a shape with an area emitter and no BSDF a diffuse BSDF of reflectance 0; where the
+    // integrator skips the emitter (ao, and Mitsuba's copy drops it), the shape is an ordinary one, 0.5.
+    const std::string path = writeScene(
+        "emitting_shape", std::string(kHeader) + sensor() +
+                              "  <shape type=\"rectangle\"><emitter type=\"area\"><rgb name=\"radiance\" "
+                              "value=\"1\"/></emitter></shape>\n  <shape type=\"disk\"><emitter type=\"area\">"
+                              "<rgb name=\"radiance\" value=\"1\"/></emitter><bsdf type=\"diffuse\"><rgb "
+                              "name=\"reflectance\" value=\"0.3\"/></bsdf></shape>\n</scene>\n");
+    const auto albedo = [](const SceneDescription &scene, uint32_t index) {
+        return scene.bsdfs.at(index)->lambertianAlbedo(true).value().x;
+    };
+    for (const char *integrator : {"direct"}) {
+        const SceneDescription scene = loadScene(path, {}, integrator);
+        EXPECT_EQ(albedo(scene, scene.meshes.at(0).bsdf), 0.f) << integrator;
+        EXPECT_FLOAT_EQ(albedo(scene, scene.disks.at(0).bsdf), 0.3f) << integrator;
+    }
+    const SceneDescription ao = loadScene(path, {}, "ao");
+    EXPECT_FLOAT_EQ(albedo(ao, ao.meshes.at(0).bsdf), 0.5f);
+}
