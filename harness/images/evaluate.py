@@ -1,9 +1,9 @@
 """The one place an image case is decided: its renders, given as data, to a CaseVerdict.
 
 `evaluate` takes what the case's renders gave (the tested engine's RenderResult, each reference's Reference, or
-the RenderFailure of any of them) and returns the whole verdict: the comparisons, a closed form's overrule
-(harness/images/oracle.py), the notes (a failure's named cause, the budget that would decide an INCONCLUSIVE
-case) and PASS, FAIL or INCONCLUSIVE. It renders nothing and reads no file; whatever it needs of the scene
+the RenderFailure of any of them) and returns the whole verdict: the comparisons, an oracle's overrule (a
+closed form's or a scale twin's: harness/images/oracle.py), the notes (a failure's named cause, the budget that
+would decide an INCONCLUSIVE case) and PASS, FAIL or INCONCLUSIVE. It renders nothing and reads no file; whatever it needs of the scene
 comes in as data. `against_image` does the same for a case judged against a reference image, `failure` for a
 case that ends otherwise (its task or its report), and `with_scene_notes` adds what the run learns of each
 case's scene.
@@ -28,6 +28,7 @@ from harness.images.case_verdict import CaseVerdict
 from harness.images.copy_lines import in_user_terms
 from harness.images.oracle import Finding, overrule
 from harness.images.references import CLOSED_FORM, Reference
+from harness.images.scale_twins import SCALE_TWIN
 from harness.images.spp_search import decisive_budget
 from harness.images.suite import ImageCase
 from harness.integrators import entry
@@ -106,7 +107,8 @@ def evaluate(case: ImageCase, tested: RenderResult | RenderFailure | None,
 
     `tested`: the tested engine's batches, or why they failed (None: not rendered, because a render before it
     failed). `references`: by name, the reference engine's (named `reference`) and, where the case has one,
-    the closed form's (its `source` is CLOSED_FORM), or why each failed. `alpha`: the level of each
+    the closed form's (its `source` is CLOSED_FORM) or the reference engine's render of the scene's scale twin
+    (SCALE_TWIN), or why each failed. `alpha`: the level of each
     comparison. `reference_draws_estimator`: the reference engine draws the tested estimator sample for
     sample (the closed form always does), so that its noise is judged too. `constants`: the scene's values a
     factor between the images may be (harness/images/scene_constants.py), for a failure's named cause.
@@ -127,14 +129,17 @@ def evaluate(case: ImageCase, tested: RenderResult | RenderFailure | None,
     # The closed form draws the tested estimator unless it knows the mean only; the reference engine does where
     # the caller says so.
     exact_draws = AnalyticEngine.draws_estimator(case.integrator)
-    same = {name: (r.source == CLOSED_FORM and exact_draws) or (name == reference and reference_draws_estimator)
+    # The reference engine's render of the scene's scale twin draws what it draws.
+    same = {name: (r.source == CLOSED_FORM and exact_draws)
+            or ((name == reference or r.source == SCALE_TWIN) and reference_draws_estimator)
             for name, r in refs.items()}
     comparisons = {name: compare_summaries(summary, r.summary, alpha, signed=signed, samples=(tested.spp, r.spp),
                                            same_estimator=same[name])
                    for name, r in refs.items()}
-    closed_form = next((name for name, r in refs.items() if r.source == CLOSED_FORM), "")
+    oracle = next((name for name, r in refs.items() if r.source in (CLOSED_FORM, SCALE_TWIN)), "")
+    shown = "the closed form" if not oracle or refs[oracle].source == CLOSED_FORM else f"its own render of the scale twin ({oracle})"
     finding = overrule(comparisons, summary, {name: r.summary for name, r in refs.items()}, alpha, signed,
-                       {name: r.spp for name, r in refs.items()}, reference, closed_form)
+                       {name: r.spp for name, r in refs.items()}, reference, oracle, shown)
     check = _strategy_check(strategies, alpha)
     verdict = "FAIL" if check is not None and check.disagree else _decided(comparisons, finding, None)
     note, budget = None, ""

@@ -13,6 +13,7 @@ from harness.engines.base import RenderFailed, RenderResult
 from harness.images.case_renders import CaseRenders
 from harness.images.evaluate import RenderFailure
 from harness.images.references import CLOSED_FORM, Reference, load_reference
+from harness.images.scale_twins import SCALE_TWIN, twin_case, twin_label
 from harness.images.strategy_renders import default_strategy
 from harness.images.suite import USER, ImageCase
 from harness.integrators import entry
@@ -73,7 +74,8 @@ def _strategies(case: ImageCase, renders: CaseRenders, seed: int,
 def gather(case: ImageCase, renders: CaseRenders, *, seed: int, closed_form: bool, strategies: bool = False,
            on_message: Callable[[str], None] | None = None) -> GatheredRenders:
     """The renders of `case` (none for a case with a `problem`): the reference engine's stored reference or,
-    without one, its render now; the tested engine's batches at `seed`; the closed form's where `closed_form`;
+    without one, its render now; the tested engine's batches at `seed`; the closed form's where `closed_form`, else the reference engine's
+    render of the scene's scale twin where it has one (harness/images/scale_twins.py);
     the tested engine's strategies of the integrator where `strategies`. `on_message` hears that a reference is
     rendered now."""
     out = GatheredRenders()
@@ -119,6 +121,15 @@ def gather(case: ImageCase, renders: CaseRenders, *, seed: int, closed_form: boo
             return out
         out.references[AnalyticEngine.name] = Reference(summarize(exact.batches), exact.spp, exact.seconds,
                                                         CLOSED_FORM)
+    elif (twin := twin_case(case)) is not None:
+        label = twin_label(case, name)
+        try:
+            found, _ = load_reference(twin, renders.reference_engine)
+            found = found or renders.reference(twin)
+        except Exception as e:
+            out.references[label] = failure_of(f"{name.capitalize()} reference of {twin.key}", e)
+            return out
+        out.references[label] = Reference(found.summary, found.spp, found.seconds, SCALE_TWIN)
     if strategies:
         out.strategies = _strategies(case, renders, seed, out.tested)
     return out

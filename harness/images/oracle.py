@@ -1,10 +1,11 @@
-"""The closed form as the oracle between the tested engine and the reference engine.
+"""An oracle between the tested engine and the reference engine: the closed form, or where a case has none the
+reference engine's own render of the scene's scale twin (harness/images/scale_twins.py).
 
-Where a scene has a closed form and the tested render agrees with it but not with the reference engine's, the
-disagreement is the reference's: its comparison is overruled (harness/images/evaluate.py then leaves it out of
-the verdict), with a finding that says what the reference breaks and the evidence (the reference's own
-comparison with the closed form, and each engine's image-mean ratio to it). Where the tested render disagrees
-with the closed form, nothing is overruled.
+Where the tested render agrees with the oracle but not with the reference engine's, the disagreement is the
+reference's: its comparison is overruled (harness/images/evaluate.py then leaves it out of the verdict), with a
+finding that says what the reference breaks and the evidence (the reference's own comparison with the oracle,
+and each engine's image-mean ratio to it). Where the tested render disagrees with the oracle, nothing is
+overruled.
 """
 from __future__ import annotations
 
@@ -53,12 +54,12 @@ def _fmt(ratio: list[float]) -> str:
 
 def overrule(comparisons: dict[str, Comparison], tested: Summary, references: dict[str, Summary],
              alpha: float, signed: bool, samples: dict[str, int], reference: str,
-             closed_form: str) -> Finding | None:
-    """A finding when the tested render agrees with the closed form and fails against the reference engine;
-    else None.
+             closed_form: str, shown_oracle: str = "the closed form") -> Finding | None:
+    """A finding when the tested render agrees with the oracle and fails against the reference engine; else
+    None.
 
     `comparisons`, `references` (summaries) and `samples` (samples per pixel) are keyed by engine name, the
-    reference engine's `reference` and the closed form's `closed_form`."""
+    reference engine's `reference` and the oracle's `closed_form` (`shown_oracle` in the finding's words)."""
     exact, other = comparisons.get(closed_form), comparisons.get(reference)
     if exact is None or other is None or not exact.passed or other.passed:
         return None
@@ -72,10 +73,10 @@ def overrule(comparisons: dict[str, Comparison], tested: Summary, references: di
               "tested": _ratio(tested, references[closed_form])}
     shown = reference.capitalize()
     if evidence.passed:
-        what = "disagrees with the tested engine, though the closed form does not reject either"
+        what = f"disagrees with the tested engine, though {shown_oracle} does not reject either"
     else:
-        what = f"breaks the closed form: {shown} against it {_where(evidence)}"
-    text = (f"reference {what}; image mean over the closed form: {shown} {_fmt(ratios[reference])}, tested "
-            f"{_fmt(ratios['tested'])} (the tested engine agrees with the closed form; against {shown} it "
+        what = f"breaks {shown_oracle}: {shown} against it {_where(evidence)}"
+    text = (f"reference {what}; image mean over {shown_oracle}: {shown} {_fmt(ratios[reference])}, tested "
+            f"{_fmt(ratios['tested'])} (the tested engine agrees with {shown_oracle}; against {shown} it "
             f"{_where(other)})")
     return Finding(overruled=reference, text=text, reference_vs_closed_form=evidence.to_json(), mean_ratio=ratios)

@@ -6,7 +6,9 @@ from rich.markup import escape
 from rich.table import Table
 
 from harness.comparison.finite import SIDES
+from harness.images.references import CLOSED_FORM
 from harness.images.result import ImageResult
+from harness.images.scale_twins import SCALE_TWIN
 from harness.report.idiff_text import LEGEND, idiff_short
 
 
@@ -40,6 +42,12 @@ def _cell(result: ImageResult) -> str:
     return f"[bold red]FAIL[/] {','.join(failed)}".rstrip()
 
 
+def _oracle_cell(result: ImageResult) -> str:
+    """The oracle compared beside the reference engine: " (+exact)" a closed form, " (+twin)" a scale twin."""
+    sources = {r.source for r in result.references.values()}
+    return " (+exact)" if CLOSED_FORM in sources else " (+twin)" if SCALE_TWIN in sources else ""
+
+
 def _strategies_cell(result: ImageResult) -> str:
     """The strategy check beside the verdict: "ems differs", "strategies agree", ... ("" where it did not run)."""
     check = result.strategies
@@ -69,12 +77,13 @@ def image_table(results: list[ImageResult], alpha: float) -> Table:
             table.add_row(r.case.scene, r.case.integrator, "[bold red]FAIL[/] render failed", "—", "—", "—", "—", idiff_short(r.idiff),
                           f"{r.tested.seconds['total']:.2f}" if r.tested else "—", "—")
             continue
-        verdicts = _cell(r) + (" (+exact)" if len(r.comparisons) > 1 else "") + _strategies_cell(r)
+        verdicts = _cell(r) + _oracle_cell(r) + _strategies_cell(r)
         table.add_row(r.case.scene, r.case.integrator, verdicts, f"{m.metrics['mean_ratio']:.4f}",
                       f"{m.metrics['relmse']:.1e}", f"{m.metrics['flip_mean']:.3f}", f"{m.detectable_bias:.1e}", idiff_short(r.idiff),
                       f"{r.tested.seconds['total']:.2f}", f"{next(iter(r.references.values())).seconds.get('total', 0):.2f}")
     table.caption = (f"mean ratio: {tested} / {reference} image mean; min bias: smallest relative bias of the image mean "
-                     "detected half of the time; +exact: also compared with the closed form; s: wall seconds of all "
+                     "detected half of the time; +exact: also compared with the closed form; +twin: also with the reference's "
+                     "render of the scale twin (the same scene at another scale); s: wall seconds of all "
                      "the case's renders, loading included (a stored reference: those that made it)\n" + LEGEND)
     for r in results:  # where the bad pixels are: one line per case and distinct finding
         found: dict[str, list[str]] = {}
