@@ -32,7 +32,8 @@ QUIET_SECONDS = 0.25
 
 #: (scene, integrator, resolution, spp): the cases timed side by side.
 CASES = (("highpoly", "simple", 768, 32), ("highpoly", "ao", 768, 16), ("highpoly", "direct", 768, 16),
-         ("cornell", "simple", 128, 64), ("cornell", "ao", 128, 64), ("cornell", "direct", 128, 64))
+         ("highpoly", "path", 768, 16), ("cornell", "simple", 128, 64), ("cornell", "ao", 128, 64),
+         ("cornell", "direct", 128, 64), ("cornell", "path", 128, 64))
 
 
 @dataclass

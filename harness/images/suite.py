@@ -75,7 +75,7 @@ INTEGRATORS = _Integrators()
 #: Cases of scenes/ whose estimators are so heavy-tailed (a point light 0.02 from a wall: 1/r^2 within a
 #: pixel) that at the integrator's tested samples a 5 % bias stays below what the family-wise level detects:
 #: their tested renders take this many times the samples, enough to decide them.
-SPP_FACTOR = {"close_light:simple": 4, "close_light:direct": 16}
+SPP_FACTOR = {"close_light:simple": 4, "close_light:direct": 16, "close_light:path": 16}
 #: Samples per pixel per batch: the tested engine's in every run, the reference engine's for stored references.
 TESTED_SPP = _Budget("tested_spp")
 REFERENCE_SPP = _Budget("reference_spp")

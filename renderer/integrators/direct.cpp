@@ -8,6 +8,8 @@
 #include "../emitters/scene_emitters.h"
 #include "../frame.h"
 #include "../xml_props.h"
+#include "hidden_emitters.h"
+#include "mis.h"
 #include "registry.h"
 
 namespace mcval {
@@ -16,19 +18,6 @@ namespace {
 
 /// The most samples of each strategy per camera sample.
 constexpr int kMaxShadingSamples = 1024;
-/// The most emitting surfaces a hidden-emitter camera ray passes through.
-constexpr int kMaxSkippedEmitters = 64;
-
-/// Mitsuba's mis_weight: the power heuristic, 0 where it is not finite.
-float misWeight(float pdfA, float pdfB) {
-    pdfA *= pdfA;
-    pdfB *= pdfB;
-    const float w = pdfA / (pdfA + pdfB);
-    return std::isfinite(w) ? w : 0.f;
-}
-
-/// v in the frame's local coordinates (z: its normal).
-Vec3f toLocal(const Frame &frame, const Vec3f &v) { return {dot(v, frame.s), dot(v, frame.t), dot(v, frame.n)}; }
 
 class DirectIntegrator final : public Integrator {
 public:
@@ -45,12 +34,7 @@ public:
         bool found = first != nullptr;
         if (found) hit = *first;
         if (m_hideEmitters) {
-            // The camera ray passes through emitting surfaces to what lies behind them.
-            for (int k = 0; found && hit.emitter >= 0 && k < kMaxSkippedEmitters; ++k) {
-                found = m_embree.intersect(spawnRay(hit, ray.d, 1e30f), hit);
-                counts.shadow += 1;
-            }
-            if (found && hit.emitter >= 0) return result;
+            found = skipAreaEmitters(m_embree, ray.d, hit, found, counts);
         } else {
             result = result + visible(ray.d, found ? &hit : nullptr);
         }

@@ -107,12 +107,12 @@ TEST(IntegratorRegistry, UnknownNameListsTheChoices) {
     const std::string path = (fs::path(MCVAL_SOURCE_DIR) / "scenes" / "plane_ao.xml").string();
     SceneDescription scene = loadScene(path, {{"res", "8"}});
     RenderOptions options;
-    options.integrator = "path";
+    options.integrator = "bdpt";
     try {
         render(scene, options);
         FAIL() << "an unknown integrator rendered";
     } catch (const SceneError &e) {
-        EXPECT_NE(std::string(e.what()).find("unknown integrator \"path\": expected " + joined(linkedIntegrators())),
+        EXPECT_NE(std::string(e.what()).find("unknown integrator \"bdpt\": expected " + joined(linkedIntegrators())),
                   std::string::npos) << e.what();
     }
 }

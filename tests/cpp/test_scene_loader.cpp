@@ -113,9 +113,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"missing_mesh", std::string(kHeader) + sensor() +
                 "  <shape type=\"ply\"><string name=\"filename\" value=\"nowhere.ply\"/></shape>\n</scene>\n",
                 "nowhere.ply", 3},
-        BadCase{"bad_integrator", std::string(kHeader) + sensor() + kShape + "  <integrator type=\"path\"/>\n</scene>\n",
+        BadCase{"bad_integrator", std::string(kHeader) + sensor() + kShape + "  <integrator type=\"bdpt\"/>\n</scene>\n",
                 // The start of the sorted list of choices (test_integrator_registry.cpp checks it whole).
-                "unsupported integrator type \"path\": expected albedo, ao, ao_uniform, ", 4},
+                "unsupported integrator type \"bdpt\": expected albedo, ao, ao_uniform, ", 4},
         BadCase{"bad_rfilter", std::string(kHeader) +
                 "  <sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n    <film type=\"hdrfilm\">\n"
                 "      <rfilter type=\"lanczos\"/></film></sensor>\n" + kShape + "</scene>\n",
@@ -194,7 +194,7 @@ TEST(SceneLoader, EveryShippedSceneLoads) {
 TEST(SceneLoader, TheCallersIntegratorOverridesTheFilesWhateverItsType) {
     const std::string path = writeScene(
         "override", std::string(kHeader) + sensor("<float name=\"focus_distance\" value=\"2\"/>") + kShape +
-                        "  <integrator type=\"path\"><integer name=\"max_depth\" value=\"8\"/></integrator>\n</scene>\n");
+                        "  <integrator type=\"bdpt\"><integer name=\"max_depth\" value=\"8\"/></integrator>\n</scene>\n");
     EXPECT_NO_THROW(loadScene(path, {}, "ao"));
     EXPECT_NO_THROW(loadScene(path, {}, "normals"));
     try {
@@ -202,7 +202,7 @@ TEST(SceneLoader, TheCallersIntegratorOverridesTheFilesWhateverItsType) {
         FAIL() << "an unknown file integrator without override must be an error";
     } catch (const SceneError &e) {
         EXPECT_NE(std::string(e.what()).find(":4:"), std::string::npos) << e.what();
-        EXPECT_NE(std::string(e.what()).find("\"path\""), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("\"bdpt\""), std::string::npos) << e.what();
     }
 }
 
@@ -327,7 +327,7 @@ TEST(SceneLoader, AnEmittingShapeWithoutABsdfIsBlackAsMitsubasWhereItsEmitterIsR
     const auto albedo = [](const SceneDescription &scene, uint32_t index) {
         return scene.bsdfs.at(index)->lambertianAlbedo(true).value().x;
     };
-    for (const char *integrator : {"direct"}) {
+    for (const char *integrator : {"direct", "path"}) {
         const SceneDescription scene = loadScene(path, {}, integrator);
         EXPECT_EQ(albedo(scene, scene.meshes.at(0).bsdf), 0.f) << integrator;
         EXPECT_FLOAT_EQ(albedo(scene, scene.disks.at(0).bsdf), 0.3f) << integrator;

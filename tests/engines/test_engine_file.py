@@ -74,8 +74,8 @@ def test_a_program_that_is_not_executable_is_refused(tmp_path):
 
 
 def test_an_integrator_mcval_does_not_have_is_refused(tmp_path):
-    message = _error(tmp_path, GOOD + 'path = "path"\n')
-    assert ":6: integrators: 'path' is not an integrator of mcval" in message
+    message = _error(tmp_path, GOOD + 'bdpt = "bdpt"\n')
+    assert ":6: integrators: 'bdpt' is not an integrator of mcval" in message
 
 
 def test_other_estimators_says_which_integrators_are_judged_by_their_mean_only(tmp_path):

@@ -35,7 +35,7 @@ PLANE = """<scene version="3.0.0">
 """
 
 
-def scene(tmp_path, integrator="path", sensor_extra="", film_extra="", shape_extra=""):
+def scene(tmp_path, integrator="bdpt", sensor_extra="", film_extra="", shape_extra=""):
     path = tmp_path / "scene.xml"
     path.write_text(PLANE.format(integrator=integrator, sensor_extra=sensor_extra, film_extra=film_extra,
                                  shape_extra=shape_extra))
@@ -84,8 +84,10 @@ def test_cornell_box_with_simple_is_one_line_error(tmp_path):
     assert not (tmp_path / "o.exr").exists()
 
 
-def test_the_files_path_integrator_is_an_error_without_override(tmp_path):
-    one_error(run(CORNELL, "-o", tmp_path / "o.exr", "-q"), CORNELL, "path")
+def test_the_files_own_path_integrator_renders_without_override(tmp_path):
+    # Its own <integrator type="path"> with the file's max_depth, at a small size and budget.
+    res = run(CORNELL, "-o", tmp_path / "o.exr", "-q", "--spp", "1", "-D", "res=16")
+    assert res.returncode == 0, res.stderr
 
 
 def test_python_api_override(tmp_path):
@@ -160,7 +162,7 @@ def test_an_area_emitter_loads_where_the_integrator_ignores_it(tmp_path):
 
 def test_unknown_file_integrator_without_override_names_file_and_line(tmp_path):
     path = scene(tmp_path)
-    one_error(run(path, "-o", tmp_path / "o.exr", "-q"), path, ":2:", 'unsupported integrator type "path"')
+    one_error(run(path, "-o", tmp_path / "o.exr", "-q"), path, ":2:", 'unsupported integrator type "bdpt"')
 
 
 def test_the_written_cornell_box_is_mitsubas_own():

@@ -62,8 +62,8 @@ def test_a_bad_scene_fails_with_file_and_line_and_writes_nothing(tmp_path):
 
 
 def test_unknown_integrator_is_rejected_by_the_command_line(tmp_path):
-    res = run(SCENES[0], "--integrator", "path", "-o", tmp_path / "x.exr")
-    assert res.returncode != 0 and "path" in res.stderr
+    res = run(SCENES[0], "--integrator", "bdpt", "-o", tmp_path / "x.exr")
+    assert res.returncode != 0 and "bdpt" in res.stderr
     assert not (tmp_path / "x.exr").exists()
 
 
@@ -80,7 +80,7 @@ def test_python_module_renders_numpy_arrays():
     assert np.allclose(out["mean"], out["batches"].mean(axis=0), rtol=1e-5, atol=1e-7)
     assert out["stats"]["shadow_rays"] > 0
     with pytest.raises(ValueError, match=f"expected {name_list(PRODUCT)}"):
-        mcval_renderer.render(str(SCENES[0]), integrator="path")
+        mcval_renderer.render(str(SCENES[0]), integrator="bdpt")
 
 
 @pytest.mark.parametrize("kind", ["fifo", "folder", "device", "missing_folder"])
