@@ -14,6 +14,7 @@
 #include "embree_scene.h"
 #include "error.h"
 #include "integrators/registry.h"
+#include "radiance_estimate.h"
 #include "scene.h"
 #include "warp.h"
 
@@ -40,32 +41,6 @@ SceneDescription load(const std::string &name, const std::string &lights, const 
 std::string samples(int emitter, int bsdf) {
     return "<integer name=\"emitter_samples\" value=\"" + std::to_string(emitter) +
            "\"/><integer name=\"bsdf_samples\" value=\"" + std::to_string(bsdf) + "\"/>";
-}
-
-/// The mean and standard error of n estimates of the radiance along the ray from o along d (red channel).
-struct Estimate {
-    double mean = 0.0, error = 0.0;
-};
-
-Estimate estimate(const SceneDescription &scene, const Vec3f &o, const Vec3f &d, int n) {
-    const EmbreeScene embree(scene.meshes, scene.spheres, scene.disks, scene.cylinders, scene.bsdfs);
-    const std::unique_ptr<Integrator> integrator = createIntegrator(scene.integrator, scene, embree);
-    Ray ray;
-    ray.o = o;
-    ray.d = d;
-    Hit hit;
-    const bool found = embree.intersect(ray, hit);
-    Sampler sampler(SamplerType::Independent, 1, 0, 0);
-    RayCounts counts;
-    double sum = 0.0, sum2 = 0.0;
-    for (int k = 0; k < n; ++k) {
-        sampler.startSample(uint32_t(k), 1);
-        const double v = integrator->Li(ray, found ? &hit : nullptr, sampler, counts).x;
-        sum += v;
-        sum2 += v * v;
-    }
-    const double mean = sum / n;
-    return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n)};
 }
 
 /// Whether the estimate agrees with the expected value: within 5 standard errors and 1 %.

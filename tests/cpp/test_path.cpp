@@ -1,9 +1,9 @@
 // path: Mitsuba's path tracer, checked against the furnace's closed form. Inside a closed sphere whose inner
 // side is diffuse of albedo a and emits radiance 1, every ray sees 1 + a + ... + a^(d-1) with d = max_depth
 // vertices, and 1 / (1 - a) without a limit (Nori's furnaces: 2 at a = 0.5, 5 at a = 0.8). Each strategy
-// (emitter samples, BSDF samples, MIS) must give it, Russian roulette included; the planted defects a path
-// tracer's author makes (roulette without dividing by the survival probability, a max_depth off by one) must
-// miss it.
+// (emitter samples, BSDF samples, MIS) must give it, Russian roulette included; the planted twins of
+// tests/cpp/path_twins_integrator.cpp (roulette without dividing by the survival probability, MIS that counts
+// the light twice, a missing cosine, a max_depth off by one) must miss it.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +14,7 @@
 #include "embree_scene.h"
 #include "error.h"
 #include "integrators/registry.h"
+#include "radiance_estimate.h"
 #include "scene.h"
 
 using namespace mcval;
@@ -25,9 +26,11 @@ const char *kSensor = "<sensor type=\"perspective\"><float name=\"fov\" value=\"
                       "<integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/></film></sensor>\n";
 
 /// The furnace: a unit sphere at the origin, facing inward, diffuse of albedo `albedo`, emitting 1 inside.
-SceneDescription furnace(const std::string &name, double albedo, const std::string &properties) {
+SceneDescription furnace(const std::string &name, double albedo, const std::string &properties,
+                         const std::string &integrator = "path") {
     const fs::path path = fs::temp_directory_path() / ("mcval_path_" + name + ".xml");
-    std::ofstream(path) << "<scene version=\"3.0.0\">\n" << kSensor << "<integrator type=\"path\">" << properties
+    std::ofstream(path) << "<scene version=\"3.0.0\">\n" << kSensor << "<integrator type=\"" << integrator << "\">"
+                        << properties
                         << "</integrator>\n<shape type=\"sphere\"><boolean name=\"flip_normals\" value=\"true\"/>"
                         << "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"" << albedo << "\"/></bsdf>"
                         << "<emitter type=\"area\"><rgb name=\"radiance\" value=\"1\"/></emitter></shape>\n</scene>\n";
@@ -47,33 +50,9 @@ SceneDescription diskOverPlane(const std::string &name, const std::string &prope
     return loadScene(path.string());
 }
 
-struct Estimate {
-    double mean = 0.0, error = 0.0;
-};
-
-/// n estimates of the radiance along the ray from o along d (red channel); by default from near the furnace's
-/// centre.
-Estimate estimate(const SceneDescription &scene, int n, const Vec3f &o = {0.1f, -0.2f, 0.05f},
-                  const Vec3f &d = normalize(Vec3f(0.3f, 0.4f, -0.8f))) {
-    const EmbreeScene embree(scene.meshes, scene.spheres, scene.disks, scene.cylinders, scene.bsdfs);
-    const std::unique_ptr<Integrator> integrator = createIntegrator(scene.integrator, scene, embree);
-    Ray ray;
-    ray.o = o;
-    ray.d = d;
-    Hit hit;
-    const bool found = embree.intersect(ray, hit);
-    EXPECT_TRUE(found);
-    Sampler sampler(SamplerType::Independent, 1, 0, 0);
-    RayCounts counts;
-    double sum = 0.0, sum2 = 0.0;
-    for (int k = 0; k < n; ++k) {
-        sampler.startSample(uint32_t(k), 1);
-        const double v = integrator->Li(ray, found ? &hit : nullptr, sampler, counts).x;
-        sum += v;
-        sum2 += v * v;
-    }
-    const double mean = sum / n;
-    return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n)};
+/// The furnace's estimates, along a ray from near its centre.
+Estimate estimate(const SceneDescription &scene, int n) {
+    return mcval::estimate(scene, {0.1f, -0.2f, 0.05f}, normalize(Vec3f(0.3f, 0.4f, -0.8f)), n);
 }
 
 /// Within 5 standard errors and 0.5 %.
@@ -133,21 +112,40 @@ TEST(Path, RouletteWithoutDividingBySurvivalMissesTheFurnace) {
     EXPECT_FALSE(agrees(got, undivided));
 }
 
+TEST(Path, EachPlantedWrongTwinMissesTheFurnace) {
+    // The twins of tests/cpp/path_twins_integrator.cpp, where path itself gives the closed form.
+    const std::string rr = "<integer name=\"rr_depth\" value=\"1\"/>";
+    const struct {
+        const char *twin;
+        std::string properties;
+        double expected;
+    } cases[] = {{"path_rr_undivided", rr, 2.0},
+                 {"path_double_mis", "", 2.0},
+                 {"path_no_cosine", "<integer name=\"max_depth\" value=\"3\"/>", partialSum(0.5, 3)},
+                 {"path_depth_plus_one", "<integer name=\"max_depth\" value=\"3\"/>", partialSum(0.5, 3)}};
+    for (const auto &c : cases) {
+        const Estimate right = estimate(furnace("right", 0.5, c.properties), 20000);
+        EXPECT_TRUE(agrees(right, c.expected)) << c.twin << ": path gives " << right.mean;
+        const Estimate wrong = estimate(furnace(c.twin, 0.5, c.properties, c.twin), 20000);
+        EXPECT_FALSE(agrees(wrong, c.expected)) << c.twin << ": " << wrong.mean << " +- " << wrong.error;
+    }
+}
+
 TEST(Path, HiddenEmittersAreNoVertexOfThePath) {
     // From above the disk, looking down through it at the plane: the disk's back (black, emitting downward
     // only) ends the path; with hide_emitters the camera ray passes through it, and max_depth 2 is then the
     // plane's direct light, rho / pi * pi L sin^2 alpha, as Mitsuba's (the pass-through is no vertex).
     const Vec3f above{0.f, 0.f, 3.f}, down{0.f, 0.f, -1.f};
-    EXPECT_EQ(estimate(diskOverPlane("shown", props("mis", 2)), 100, above, down).mean, 0.0);
+    EXPECT_EQ(estimate(diskOverPlane("shown", props("mis", 2)), above, down, 100).mean, 0.0);
     const std::string hide = "<boolean name=\"hide_emitters\" value=\"true\"/>";
     const double direct = 0.5 * 3.0 * (1.5 * 1.5) / (1.5 * 1.5 + 2.0 * 2.0);
-    const Estimate hidden = estimate(diskOverPlane("hidden", hide + props("mis", 2)), 40000, above, down);
+    const Estimate hidden = estimate(diskOverPlane("hidden", hide + props("mis", 2)), above, down, 40000);
     EXPECT_TRUE(agrees(hidden, direct)) << hidden.mean << " +- " << hidden.error << ", expected " << direct;
-    EXPECT_EQ(estimate(diskOverPlane("hidden1", hide + props("mis", 1)), 100, above, down).mean, 0.0);
+    EXPECT_EQ(estimate(diskOverPlane("hidden1", hide + props("mis", 1)), above, down, 100).mean, 0.0);
     // From below, the disk's emitting side: seen as its radiance, unless hidden (then the empty sky).
     const Vec3f below{0.f, 0.f, 0.5f}, up{0.f, 0.f, 1.f};
-    EXPECT_NEAR(estimate(diskOverPlane("seen", props("mis", 1)), 10, below, up).mean, 3.0, 1e-6);
-    EXPECT_EQ(estimate(diskOverPlane("seen_hidden", hide + props("mis", -1)), 100, below, up).mean, 0.0);
+    EXPECT_NEAR(estimate(diskOverPlane("seen", props("mis", 1)), below, up, 10).mean, 3.0, 1e-6);
+    EXPECT_EQ(estimate(diskOverPlane("seen_hidden", hide + props("mis", -1)), below, up, 100).mean, 0.0);
 }
 
 TEST(Path, RefusesSettingsMitsubaRefuses) {

@@ -15,10 +15,9 @@ def _names(files) -> list[str]:
 
 #: The product's integrators, sorted (renderer/integrators/*.cpp).
 PRODUCT = _names(sorted((ROOT / "renderer" / "integrators").glob("*.cpp")))
-#: The test build's: the product's and those of tests/cpp/ linked into it (render_with_test_integrators).
-TEST_BUILD = sorted(PRODUCT + _names(ROOT / "tests" / "cpp" / f for f in ("albedo_integrator.cpp",
-                                                                         "ao_uniform_integrator.cpp",
-                                                                         "direct_twins_integrator.cpp")))
+#: The test build's: the product's and those of tests/cpp/*_integrator.cpp, which CMake links into it
+#: (render_with_test_integrators).
+TEST_BUILD = sorted(PRODUCT + _names(sorted((ROOT / "tests" / "cpp").glob("*_integrator.cpp"))))
 
 
 def name_list(names: list[str]) -> str:
