@@ -129,7 +129,8 @@ def _metrics(test: np.ndarray, reference: np.ndarray, signed: bool,
 def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFICANCE, signed: bool = False,
                       rounding: float = ROUNDING_TOLERANCE,
                       samples: tuple[int | None, int | None] = (None, None), metrics: bool = True,
-                      power: bool = True, same_estimator: bool = False, tile_power: bool = True) -> Comparison:
+                      power: bool = True, same_estimator: bool = False, tile_power: bool = True,
+                      heavy_tail: str = "") -> Comparison:
     """compare_batches on summaries (see there). The finite check looks at the summaries: a non-finite
     mean or variance, a negative variance, and unless `signed` a negative value in any batch (the
     summary's minimum; the mean for a stored summary, which keeps no minimum).
@@ -140,7 +141,8 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     `tile_power` False only the tile's is (NaN), for callers that report the image's alone.
     `same_estimator`: the reference draws the test's estimator sample for sample, so that test batches all
     alike where the reference's vary fail as not independent (`IndependenceCheck`), and a per-sample variance
-    beyond the noise fails (`VarianceCheck`, then a fourth member of the family beside the scales)."""
+    beyond the noise fails (`VarianceCheck`, then a fourth member of the family beside the scales);
+    `heavy_tail` says why its pixels' excess over the reference's neighbourhood is not tested there."""
     if test.pixel.mean.shape != reference.pixel.mean.shape or test.tile_size != reference.tile_size:
         raise ValueError(f"images differ in size: {test.pixel.mean.shape} and {reference.pixel.mean.shape}")
     finite = FiniteCheck(damage_of_summary(test, signed), damage_of_summary(reference, signed), signed)
@@ -150,7 +152,7 @@ def compare_summaries(test: Summary, reference: Summary, alpha: float = SIGNIFIC
     # Against the same estimator the variance test is a verdict: a fourth member of the family, at a scale's share.
     judged_noise = same_estimator and None not in samples
     per_scale = sidak_level(alpha, len(SCALES) + judged_noise)
-    variance = VarianceCheck.of(test, reference, samples, per_scale, same_estimator)
+    variance = VarianceCheck.of(test, reference, samples, per_scale, same_estimator, heavy_tail)
     ref = reference.pixel.mean[np.isfinite(reference.pixel.mean)]
     magnitude = float(np.mean(np.abs(ref))) if ref.size else 0.0
     # Moderation is for the pixel scale, where the variances of K batches of a few samples scatter widely; a

@@ -43,19 +43,26 @@ class VarianceCheck:
     same_estimator: bool
     #: The per-pixel and per-tile excess; None unless the reference draws the same estimator.
     excess: ExcessSpread | None = None
+    #: Why the excess is not tested though the estimator is the same (`heavy_tail`), or "".
+    no_excess: str = ""
 
     @classmethod
     def of(cls, test: Summary, reference: Summary, spp: tuple[int | None, int | None], level: float,
-           same_estimator: bool) -> VarianceCheck | None:
-        """None where the sample counts are unknown or neither test can be made."""
+           same_estimator: bool, heavy_tail: str = "") -> VarianceCheck | None:
+        """None where the sample counts are unknown or neither test can be made. `heavy_tail`: why the
+        estimator's own rare samples lie far above its pixels' means (a light path the reference's neighbourhoods
+        meet a few times), where a pixel's variance, estimated from one such sample, says nothing of a firefly:
+        the excess is then not tested."""
         if spp[0] is None or spp[1] is None:
             return None
         counts = (spp[0], spp[1])
-        each = sidak_level(level, 2) if same_estimator else level
+        tested = same_estimator and not heavy_tail
+        each = sidak_level(level, 2) if tested else level
         result = variance_ratio(test.pixel, reference.pixel, counts, each)
         excess = (excess_spread(test.pixel, reference.pixel, test.tile, reference.tile, counts, each)
-                  if same_estimator else None)
-        return None if result is None and excess is None else cls(result, same_estimator, excess)
+                  if tested else None)
+        no_excess = heavy_tail if same_estimator else ""
+        return None if result is None and excess is None else cls(result, same_estimator, excess, no_excess)
 
     @property
     def verdict(self) -> str:
@@ -91,11 +98,13 @@ class VarianceCheck:
         what = (f"per-sample variance {r.ratio:.3g}x the reference's (p = {r.p_value:.2g}, level {r.level:.2g}; "
                 f"a ratio of {r.found_half:.3g} is found half of the time)")
         if self.same_estimator:
-            return what + ("; the same estimator: the ratio must be 1" if not self.passed else "")
+            untested = f"; fireflies not tested: {self.no_excess}" if self.no_excess else ""
+            return what + ("; the same estimator: the ratio must be 1" if not self.passed else "") + untested
         return what + ("; another estimator: its efficiency is lower" if self.verdict == "WARN" else
                        "; another estimator: reported, not judged")
 
     def to_json(self) -> dict:
         return {**(self.result.to_json() if self.result else {}), "same_estimator": self.same_estimator,
-                "excess": self.excess.to_json() if self.excess else None, "verdict": self.verdict,
+                "excess": self.excess.to_json() if self.excess else None, "no_excess": self.no_excess,
+                "verdict": self.verdict,
                 "summary": self.summary}

@@ -134,7 +134,7 @@ def evaluate(case: ImageCase, tested: RenderResult | RenderFailure | None,
             or ((name == reference or r.source == SCALE_TWIN) and reference_draws_estimator)
             for name, r in refs.items()}
     comparisons = {name: compare_summaries(summary, r.summary, alpha, signed=signed, samples=(tested.spp, r.spp),
-                                           same_estimator=same[name])
+                                           same_estimator=same[name], heavy_tail=case.heavy_tail)
                    for name, r in refs.items()}
     oracle = next((name for name, r in refs.items() if r.source in (CLOSED_FORM, SCALE_TWIN)), "")
     shown = "the closed form" if not oracle or refs[oracle].source == CLOSED_FORM else f"its own render of the scale twin ({oracle})"

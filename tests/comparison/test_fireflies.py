@@ -54,3 +54,20 @@ def test_a_planted_firefly_fails(renders, key, seed, factor, batches):
     assert "firefly" in c.variance.summary and f"(row {y}, column {x}" in c.variance.summary, c.variance.summary
     if batches == 1 and factor > 100:
         assert not c.no_outlier and c.outliers.test.batch == 0
+
+
+@pytest.mark.parametrize("seed", SEEDS)
+def test_a_heavy_tailed_case_makes_no_firefly_test_and_says_so(renders, seed):
+    # The firefly (10x, one batch) that fails above passes the spread check where the case declares its own
+    # rare far samples; the check says the test was not made, and a bias still fails on the mean.
+    clean, spp, reference = renders["cornell:simple", seed]
+    planted = clean.copy()
+    y, x = np.unravel_index(np.argmax(clean.mean(axis=(0, 3))), clean.shape[1:3])
+    planted[:1, y, x] *= 10.0
+    c = compare_summaries(summarize(planted), reference.summary, ALPHA, samples=(spp, reference.spp),
+                          same_estimator=True, metrics=False, heavy_tail="rare far samples")
+    assert c.variance.excess is None and "fireflies not tested: rare far samples" in c.variance.summary
+    assert c.variance.to_json()["no_excess"] == "rare far samples"
+    biased = compare_summaries(summarize(clean * 1.05), reference.summary, ALPHA, samples=(spp, reference.spp),
+                               same_estimator=True, metrics=False, heavy_tail="rare far samples")
+    assert not biased.passed and "image" in biased.failed_scales

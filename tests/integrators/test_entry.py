@@ -56,6 +56,13 @@ def test_a_heavy_tailed_scene_of_the_suite_takes_more_tested_samples():
     assert ImageCase("close_light", "simple", spp=20).test_spp == 20  # a budget chose them
 
 
+def test_only_the_suites_heavy_tailed_case_goes_without_the_firefly_test():
+    assert ImageCase("close_light", "path").heavy_tail.startswith("light off the wall")
+    assert ImageCase("close_light", "direct").heavy_tail == ""
+    assert ImageCase("cornell", "path").heavy_tail == ""
+    assert ImageCase("close_light", "path", group="user").heavy_tail == ""  # a user's is not ours
+
+
 def test_an_entry_from_the_path_is_found_and_an_error_without_a_renderer_integrator(extra_folder):
     (extra_folder / "sparkle.py").write_text(EXTRA.format(name="sparkle"))
     assert entries()["sparkle"].source == str(extra_folder / "sparkle.py")
