@@ -24,7 +24,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                      "step, one job at a time; write bench.html.")
     add_common(p)
     p.add_argument("--scenes", "--only", dest="scenes", nargs="+", metavar="CASE",
-                   help="as for `images` (default: the simple and ao cases of every scene)")
+                   help="as for `images` (default: the cases of scenes/ whose integrator is benchmarked: simple, ao, "
+                        "direct and path; the real scenes are validated, not benchmarked)")
     add_scene_files(p)
     add_engines(p)
     p.add_argument("--engines", nargs="+", metavar="NAME",
@@ -127,7 +128,7 @@ def run(args: argparse.Namespace, run: RunFolder) -> Verdict:
     args.engines = args.engines or [args.engine, *TIMED_AGAINST]
     args.engine = args.engines[0]
     run_dir = run.start()
-    # By default the simple and ao cases of our own scenes (the real scenes are validated, not benchmarked).
+    # By default the benchmarked integrators' cases of our own scenes (the real scenes are validated, not benchmarked).
     from harness.commands.options import case_selection
 
     selected = select_cases(args.scenes, **case_selection(args))
