@@ -3,10 +3,10 @@
 `evaluate` takes what the case's renders gave (the tested engine's RenderResult, each reference's Reference, or
 the RenderFailure of any of them) and returns the whole verdict: the comparisons, an oracle's overrule (a
 closed form's or a scale twin's: harness/images/oracle.py), the notes (a failure's named cause, the budget that
-would decide an INCONCLUSIVE case) and PASS, FAIL or INCONCLUSIVE. It renders nothing and reads no file; whatever it needs of the scene
-comes in as data. `against_image` does the same for a case judged against a reference image, `failure` for a
-case that ends otherwise (its task or its report), and `with_scene_notes` adds what the run learns of each
-case's scene.
+would decide an INCONCLUSIVE case) and PASS, FAIL or INCONCLUSIVE. It renders nothing and reads no file;
+whatever it needs of the scene comes in as data. `against_image` does the same for a case judged against a
+reference image, `failure` for a case that ends otherwise (its task or its report), and `with_scene_notes` adds
+what the run learns of each case's scene.
 """
 from __future__ import annotations
 
@@ -137,7 +137,8 @@ def evaluate(case: ImageCase, tested: RenderResult | RenderFailure | None,
                                            same_estimator=same[name], heavy_tail=case.heavy_tail)
                    for name, r in refs.items()}
     oracle = next((name for name, r in refs.items() if r.source in (CLOSED_FORM, SCALE_TWIN)), "")
-    shown = "the closed form" if not oracle or refs[oracle].source == CLOSED_FORM else f"its own render of the scale twin ({oracle})"
+    shown = ("the closed form" if not oracle or refs[oracle].source == CLOSED_FORM
+             else f"its own render of the scale twin ({oracle})")
     finding = overrule(comparisons, summary, {name: r.summary for name, r in refs.items()}, alpha, signed,
                        {name: r.spp for name, r in refs.items()}, reference, oracle, shown)
     check = _strategy_check(strategies, alpha)

@@ -74,10 +74,10 @@ def _strategies(case: ImageCase, renders: CaseRenders, seed: int,
 def gather(case: ImageCase, renders: CaseRenders, *, seed: int, closed_form: bool, strategies: bool = False,
            on_message: Callable[[str], None] | None = None) -> GatheredRenders:
     """The renders of `case` (none for a case with a `problem`): the reference engine's stored reference or,
-    without one, its render now; the tested engine's batches at `seed`; the closed form's where `closed_form`, else the reference engine's
-    render of the scene's scale twin where it has one (harness/images/scale_twins.py);
-    the tested engine's strategies of the integrator where `strategies`. `on_message` hears that a reference is
-    rendered now."""
+    without one, its render now; the tested engine's batches at `seed`; the closed form's where `closed_form`,
+    else the reference engine's render of the scene's scale twin where it has one
+    (harness/images/scale_twins.py); the tested engine's strategies of the integrator where `strategies`.
+    `on_message` hears that a reference is rendered now."""
     out = GatheredRenders()
     if case.problem:  # a --scene file no engine can be given (what its preparation refused)
         return out

@@ -23,7 +23,7 @@ class Finding:
 
     overruled: str                 # the reference engine whose failed comparison no longer decides
     text: str                      # one line for the terminal and results.json
-    reference_vs_closed_form: dict  # the reference's own comparison with the closed form (Comparison.to_json)
+    reference_vs_closed_form: dict  # the reference's own comparison with the oracle (Comparison.to_json)
     mean_ratio: dict[str, list[float]]  # image mean over the closed form's, per channel: the reference's, "tested"
 
     def to_json(self) -> dict:
@@ -54,23 +54,23 @@ def _fmt(ratio: list[float]) -> str:
 
 def overrule(comparisons: dict[str, Comparison], tested: Summary, references: dict[str, Summary],
              alpha: float, signed: bool, samples: dict[str, int], reference: str,
-             closed_form: str, shown_oracle: str = "the closed form") -> Finding | None:
+             oracle: str, shown_oracle: str = "the closed form") -> Finding | None:
     """A finding when the tested render agrees with the oracle and fails against the reference engine; else
     None.
 
     `comparisons`, `references` (summaries) and `samples` (samples per pixel) are keyed by engine name, the
-    reference engine's `reference` and the oracle's `closed_form` (`shown_oracle` in the finding's words)."""
-    exact, other = comparisons.get(closed_form), comparisons.get(reference)
+    reference engine's `reference` and the oracle's `oracle` (`shown_oracle` in the finding's words)."""
+    exact, other = comparisons.get(oracle), comparisons.get(reference)
     if exact is None or other is None or not exact.passed or other.passed:
         return None
     noise = "variance" in other.failed_checks or (other.independence is not None and not other.independence.test.passed)
     if noise and exact.variance is not None and not exact.variance.same_estimator:
         return None  # a closed form that does not draw the tested estimator knows the mean, not its noise
-    evidence = compare_summaries(references[reference], references[closed_form], alpha, signed=signed,
-                                 samples=(samples[reference], samples[closed_form]),
+    evidence = compare_summaries(references[reference], references[oracle], alpha, signed=signed,
+                                 samples=(samples[reference], samples[oracle]),
                                  same_estimator=exact.variance is None or exact.variance.same_estimator)
-    ratios = {reference: _ratio(references[reference], references[closed_form]),
-              "tested": _ratio(tested, references[closed_form])}
+    ratios = {reference: _ratio(references[reference], references[oracle]),
+              "tested": _ratio(tested, references[oracle])}
     shown = reference.capitalize()
     if evidence.passed:
         what = f"disagrees with the tested engine, though {shown_oracle} does not reject either"

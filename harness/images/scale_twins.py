@@ -14,18 +14,17 @@ from harness.images.suite import ImageCase
 
 #: The source of a reference that is the reference engine's render of the case's scale twin.
 SCALE_TWIN = "scale twin"
-#: Scene -> (its twin, the factor from the twin's lengths to its own), among the suite's own scenes.
-TWINS = {"sphere_floor_milli": ("sphere_floor_unit", 1e-3), "sphere_floor_kilo": ("sphere_floor_unit", 1e3)}
+#: Scene -> its twin, among the suite's own scenes.
+TWINS = {"sphere_floor_milli": "sphere_floor_unit", "sphere_floor_kilo": "sphere_floor_unit"}
 
 
 def twin_case(case: ImageCase) -> ImageCase | None:
     """The case of the same integrator on the scale twin of `case`'s scene, or None (a user's scene has none)."""
     if case.group != "synthetic" or case.scene not in TWINS:
         return None
-    return replace(case, scene=TWINS[case.scene][0], spp=None)
+    return replace(case, scene=TWINS[case.scene], spp=None)
 
 
 def twin_label(case: ImageCase, engine: str) -> str:
     """The reference's name for `engine`'s render of the twin: "mitsuba at unit scale"."""
-    twin, _ = TWINS[case.scene]
-    return f"{engine} at {twin.rsplit('_', 1)[-1]} scale"
+    return f"{engine} at {TWINS[case.scene].rsplit('_', 1)[-1]} scale"

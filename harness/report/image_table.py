@@ -82,8 +82,8 @@ def image_table(results: list[ImageResult], alpha: float) -> Table:
                       f"{m.metrics['relmse']:.1e}", f"{m.metrics['flip_mean']:.3f}", f"{m.detectable_bias:.1e}", idiff_short(r.idiff),
                       f"{r.tested.seconds['total']:.2f}", f"{next(iter(r.references.values())).seconds.get('total', 0):.2f}")
     table.caption = (f"mean ratio: {tested} / {reference} image mean; min bias: smallest relative bias of the image mean "
-                     "detected half of the time; +exact: also compared with the closed form; +twin: also with the reference's "
-                     "render of the scale twin (the same scene at another scale); s: wall seconds of all "
+                     "detected half of the time; +exact: also compared with the closed form; +twin: also with the "
+                     "reference's render of the scale twin (the same scene at another scale); s: wall seconds of all "
                      "the case's renders, loading included (a stored reference: those that made it)\n" + LEGEND)
     for r in results:  # where the bad pixels are: one line per case and distinct finding
         found: dict[str, list[str]] = {}

@@ -29,9 +29,8 @@ def _generator():
 def test_the_twins_are_the_scales_the_generator_writes():
     scales = _generator().SCALES
     assert scales["unit"] == 1.0
-    assert TWINS == {f"sphere_floor_{name}": ("sphere_floor_unit", factor) for name, factor in scales.items()
-                     if name != "unit"}
-    assert all((SCENES_DIR / f"{scene}.xml").is_file() for pair in TWINS.items() for scene in (pair[0], pair[1][0]))
+    assert TWINS == {f"sphere_floor_{name}": "sphere_floor_unit" for name in scales if name != "unit"}
+    assert all((SCENES_DIR / f"{scene}.xml").is_file() for pair in TWINS.items() for scene in pair)
 
 
 def test_a_twin_case_keeps_the_integrator_and_a_users_scene_has_none():
