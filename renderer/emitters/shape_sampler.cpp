@@ -82,8 +82,7 @@ public:
         const float r = m_sphere.radius;
         const Vec3f dc = c - ref;
         const float dc2 = squaredNorm(dc);
-        const float adjusted = r * (m_sphere.flipNormals ? 1.f + kRayEpsilon : 1.f - kRayEpsilon);
-        if (dc2 > adjusted * adjusted) {
+        if (seesCone(dc2)) {
             const float invDc = 1.f / std::sqrt(dc2), sinMax = r * invDc, sinMax2 = sinMax * sinMax,
                         invSinMax = 1.f / sinMax, cosMax = detail::safeSqrt(1.f - sinMax2);
             // A Taylor expansion below 1.5 degrees, where the direct formula cancels.
@@ -101,14 +100,25 @@ public:
         return seenFrom(ref, c + n * r, front(n), front(n), 1.f / area());
     }
     float pdf(const Vec3f &ref, const EmitterHit &at) const override {
-        const float sinAlpha = m_sphere.radius / norm(m_sphere.center - ref);
-        if (sinAlpha < kOneMinusEpsilon) return coneDensity(detail::safeSqrt(1.f - sinAlpha * sinAlpha));
+        const float dc2 = squaredNorm(m_sphere.center - ref);
+        if (seesCone(dc2)) {
+            const float sinAlpha = m_sphere.radius / std::sqrt(dc2);
+            return coneDensity(detail::safeSqrt(1.f - sinAlpha * sinAlpha));
+        }
         return areaToSolidAngle(1.f / area(), at.dist, at.d, at.ng);
     }
 
 private:
     /// Mitsuba's RayEpsilon (float32): the margin of the inside test.
     static constexpr float kRayEpsilon = 0x1p-24f * 1500.f;
+    /// Whether ref, at squared distance dc2 from the centre, is sampled by the cone (else by area). sample() and
+    /// pdf() ask this one test: Mitsuba's pdf_direction tests another margin (sin alpha < 1 - 2^-24), so that a
+    /// point within 9e-5 r outside a sphere's inside, as float rounding puts its own hits there, gets the
+    /// cone's density for a direction drawn by area, and MIS counts light off the inside twice.
+    bool seesCone(float dc2) const {
+        const float adjusted = m_sphere.radius * (m_sphere.flipNormals ? 1.f + kRayEpsilon : 1.f - kRayEpsilon);
+        return dc2 > adjusted * adjusted;
+    }
     static float sq(float x) { return x * x; }
     /// square_to_uniform_cone_pdf: 1 / (2 pi (1 - cos theta_max)).
     static float coneDensity(float cosMax) { return kInv2Pi / (1.f - cosMax); }

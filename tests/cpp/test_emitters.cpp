@@ -2,6 +2,7 @@
 // (the sampler and its density agree); the irradiance a Monte Carlo estimate draws from a disk, a rectangle,
 // a sphere and the environment is the closed form; delta lights report delta; and the wrong twins (a pdf
 // left in area measure, without distance^2 / cos) fail the same checks.
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -11,6 +12,7 @@
 #include "emitters/area.h"
 #include "emitters/delta_lights.h"
 #include "emitters/scene_emitters.h"
+#include "emitters/shape_sampler.h"
 #include "mesh.h"
 #include "warp.h"
 
@@ -181,6 +183,36 @@ TEST(Emitters, ASphereSeenFromInsideIsSampledByArea) {
     // Inside a sphere of radiance L every direction sees L: E = pi L.
     EXPECT_NEAR(irradiance((*s.emitters)[0], {0.3f, 0.5f, -0.4f}, {0.f, 0.f, 1.f}, 200000, 4), kPi * kL.x,
                 0.01 * kPi * kL.x);
+}
+
+TEST(Emitters, ASphereGivesAPointOnItsOwnSurfaceTheDensityItSampledWith) {
+    // A furnace's wall far from the origin: float rounding puts its own hits up to a few 1e-6 off the sphere,
+    // inside or out. The density pdf() gives each sampled direction must be the one it was drawn with,
+    // or MIS weights do not sum to 1 (Mitsuba's pdf_direction tests another margin than its sample_direction).
+    for (const bool flip : {true, false}) {
+        Sphere sphere;
+        sphere.center = {10.f, -20.f, 30.f};
+        sphere.radius = 1.f;
+        sphere.flipNormals = flip;
+        const auto sampler = makeShapeSampler(sphere);
+        Uniforms u(11);
+        int bad = 0;
+        for (int k = 0; k < 4000; ++k) {
+            const Vec3f n = squareToUniformSphere(u.next2D());
+            const float off = std::array<float, 5>{0.f, 1e-6f, 1e-5f, 5e-5f, -1e-5f}[k % 5];
+            const Vec3f ref = sphere.center + n * (sphere.radius * (1.f + off));
+            const ShapeSample s = sampler->sample(ref, u.next2D());
+            if (!(s.pdf > 0.f)) continue;
+            EmitterHit at;
+            at.p = s.p;
+            at.ng = s.ng;
+            at.ns = s.ns;
+            at.d = s.d;
+            at.dist = s.dist;
+            bad += !close(sampler->pdf(ref, at), s.pdf, 1e-4f);
+        }
+        EXPECT_EQ(bad, 0) << (flip ? "inside" : "outside");
+    }
 }
 
 TEST(Emitters, HitsNameTheirEmitterInGeometryOrder) {
