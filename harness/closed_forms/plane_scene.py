@@ -100,53 +100,57 @@ def _transform(el: ET.Element | None) -> np.ndarray:
     return m
 
 
-def _prop(el: ET.Element, tag: str, name: str) -> ET.Element | None:
+def prop(el: ET.Element, tag: str, name: str) -> ET.Element | None:
+    """el's child <tag name="name">, or None."""
     return next((c for c in el if c.tag == tag and c.get("name") == name), None)
 
 
-def _color(el: ET.Element, name: str, default: float) -> np.ndarray:
+def color(el: ET.Element, name: str, default: float) -> np.ndarray:
+    """The RGB (3,) of el's child named `name` (a gray `default` without one)."""
     c = next((c for c in el if c.get("name") == name), None)
     return np.full(3, default) if c is None else _triple(c)
 
 
-def _reflectance(shape: ET.Element, bsdfs: dict[str, ET.Element]) -> np.ndarray:
+def reflectance(shape: ET.Element, bsdfs: dict[str, ET.Element]) -> np.ndarray:
+    """A shape's diffuse reflectance (its own <bsdf> or one it refers to; 0.5 without); NotAnalytic for another
+    BSDF."""
     bsdf = shape.find("bsdf")
     if bsdf is None and shape.find("ref") is not None:
         bsdf = bsdfs[shape.find("ref").get("id")]
     if bsdf is not None and bsdf.get("type") != "diffuse":
         raise NotAnalytic(f"bsdf {bsdf.get('type')}: closed forms are for diffuse surfaces")
-    return _color(bsdf, "reflectance", 0.5) if bsdf is not None else np.full(3, 0.5)
+    return color(bsdf, "reflectance", 0.5) if bsdf is not None else np.full(3, 0.5)
 
 
 def shape_to_world(shape: ET.Element) -> np.ndarray:
     """A shape's to_world as a 4x4 matrix, its steps composed in file order (the identity without one)."""
-    return _transform(_prop(shape, "transform", "to_world"))
+    return _transform(prop(shape, "transform", "to_world"))
 
 
 def sphere_geometry(shape: ET.Element) -> tuple[np.ndarray, float]:
     """Mitsuba's sphere in world space, (centre, radius): center and radius, then to_world (a uniform
     scale, rotation and translation)."""
-    m = _transform(_prop(shape, "transform", "to_world"))
+    m = _transform(prop(shape, "transform", "to_world"))
     scales = np.linalg.svd(m[:3, :3], compute_uv=False)
     if not np.allclose(scales, scales[0], rtol=1e-9):
         raise NotAnalytic("a sphere's to_world that is not a similarity (an ellipsoid)")
-    center = _prop(shape, "point", "center")
-    radius = _prop(shape, "float", "radius")
+    center = prop(shape, "point", "center")
+    radius = prop(shape, "float", "radius")
     c = _triple(center) if center is not None else np.zeros(3)
     r = float(radius.get("value")) if radius is not None else 1.0
     return m[:3, :3] @ c + m[:3, 3], abs(r) * float(scales[0])
 
 
 def _sphere(shape: ET.Element, bsdfs: dict[str, ET.Element]) -> Sphere:
-    return Sphere(*sphere_geometry(shape), _reflectance(shape, bsdfs))
+    return Sphere(*sphere_geometry(shape), reflectance(shape, bsdfs))
 
 
 def _tiled_plane(planes: list[ET.Element], bsdfs: dict[str, ET.Element]) -> tuple[np.ndarray, np.ndarray]:
     """One rectangle's to_world and reflectance for rectangles that tile one: coplanar, edges parallel,
     the same reflectance, no overlap and no gap (a floor may be tiled so that the part the camera sees
     has small float32 vertices). Raises NotAnalytic otherwise."""
-    mats = [_transform(_prop(s, "transform", "to_world")) for s in planes]
-    rho = _reflectance(planes[0], bsdfs)
+    mats = [_transform(prop(s, "transform", "to_world")) for s in planes]
+    rho = reflectance(planes[0], bsdfs)
     if len(mats) == 1:
         return mats[0], rho
     m0 = mats[0]
@@ -154,7 +158,7 @@ def _tiled_plane(planes: list[ET.Element], bsdfs: dict[str, ET.Element]) -> tupl
     n = np.cross(u, v)
     boxes = []
     for m, shape in zip(mats, planes):
-        if not np.allclose(_reflectance(shape, bsdfs), rho):
+        if not np.allclose(reflectance(shape, bsdfs), rho):
             raise NotAnalytic("floor tiles of different reflectance")
         a, b = m[:3, 0], m[:3, 1]
         if not (np.allclose(np.cross(a, b) / np.linalg.norm(np.cross(a, b)), n, atol=1e-9)
@@ -191,13 +195,24 @@ def load_plane_scene(path: str | Path, params: dict[str, str] | None = None) -> 
         raise NotAnalytic(f"not a scene file the closed forms read ({type(e).__name__}: {e})") from e
 
 
-def _read_plane_scene(path: str | Path, params: dict[str, str] | None) -> PlaneScene:
-    root = ET.fromstring(Path(path).read_text())
+def resolved_root(path: str | Path, params: dict[str, str] | None) -> ET.Element:
+    """The scene file's root with its $name parameters (in attribute values) replaced: `params` first, then the
+    file's <default>s."""
+    return resolve(ET.fromstring(Path(path).read_text()), params)
+
+
+def resolve(root: ET.Element, params: dict[str, str] | None) -> ET.Element:
+    """`root` with its $name parameters replaced in place, as resolved_root."""
     values = {d.get("name"): d.get("value") for d in root.iter("default")}
     values.update({k: str(v) for k, v in (params or {}).items()})
-    for el in root.iter():  # $name parameters, in attribute values only
+    for el in root.iter():
         for key, value in el.attrib.items():
             el.set(key, re.sub(r"\$(\w+)", lambda m: values[m.group(1)], value))
+    return root
+
+
+def _read_plane_scene(path: str | Path, params: dict[str, str] | None) -> PlaneScene:
+    root = resolved_root(path, params)
     sensor = root.find("sensor")
     film = sensor.find("film") if sensor is not None else None
     if film is None:
@@ -213,7 +228,7 @@ def _read_plane_scene(path: str | Path, params: dict[str, str] | None) -> PlaneS
                or (e.get("name") == "sample_border" and e.get("value", "").strip().lower() == "true")]
     if framing:
         raise NotAnalytic(f"closed forms cover the whole film through a centred pinhole, not {framing[0]}")
-    if (_prop(sensor, "string", "fov_axis") is not None) and _prop(sensor, "string", "fov_axis").get("value") != "x":
+    if (prop(sensor, "string", "fov_axis") is not None) and prop(sensor, "string", "fov_axis").get("value") != "x":
         raise NotAnalytic("fov_axis other than x")
     emitting = [s for s in root.findall("shape") if s.find("emitter") is not None]
     shapes = [s for s in root.findall("shape") if s.find("emitter") is None]
@@ -225,20 +240,20 @@ def _read_plane_scene(path: str | Path, params: dict[str, str] | None) -> PlaneS
         raise NotAnalytic("area lights beside other emitters")
     bsdfs = {b.get("id"): b for b in root.findall("bsdf")}
     plane, rho = _tiled_plane(planes, bsdfs)
-    far = _prop(sensor, "float", "far_clip")
-    cam = _transform(_prop(sensor, "transform", "to_world"))
-    near = _prop(sensor, "float", "near_clip")
+    far = prop(sensor, "float", "far_clip")
+    cam = _transform(prop(sensor, "transform", "to_world"))
+    near = prop(sensor, "float", "near_clip")
     lights, env = [], np.ones(3)
     for e in root.findall("emitter"):
         if e.get("type") == "point":
-            lights.append((_triple(_prop(e, "point", "position")), _color(e, "intensity", 1.0)))
+            lights.append((_triple(prop(e, "point", "position")), color(e, "intensity", 1.0)))
         elif e.get("type") == "constant":
-            env = _color(e, "radiance", 1.0)
+            env = color(e, "radiance", 1.0)
     scene = PlaneScene(
         origin=cam[:3, 3], to_world=cam[:3, :3] / np.linalg.norm(cam[:3, :3], axis=0),
-        tan_half_x=float(np.tan(np.radians(float(_prop(sensor, "float", "fov").get("value"))) / 2)),
-        width=int(_prop(film, "integer", "width").get("value")),
-        height=int(_prop(film, "integer", "height").get("value")),
+        tan_half_x=float(np.tan(np.radians(float(prop(sensor, "float", "fov").get("value"))) / 2)),
+        width=int(prop(film, "integer", "width").get("value")),
+        height=int(prop(film, "integer", "height").get("value")),
         near_clip=float(near.get("value")) if near is not None else 1e-2,
         plane=plane, reflectance=rho, lights=lights, environment=env,
         far_clip=float(far.get("value")) if far is not None else 1e4,
@@ -249,6 +264,6 @@ def _read_plane_scene(path: str | Path, params: dict[str, str] | None) -> PlaneS
         for shape in emitting:
             if shape.find("emitter").get("type") != "area":
                 raise NotAnalytic(f"a shape's {shape.find('emitter').get('type')} emitter")
-        scene.area_lights = tuple(lit_plane.area_light(s, _color(s.find("emitter"), "radiance", 1.0)) for s in emitting)
+        scene.area_lights = tuple(lit_plane.area_light(s, color(s.find("emitter"), "radiance", 1.0)) for s in emitting)
         lit_plane.check_lit(scene)
     return scene

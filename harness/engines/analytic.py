@@ -1,6 +1,7 @@
 """The analytic engine: closed-form radiance on one plane, or on a sphere resting on it, integrated over each
-pixel by jittered camera rays (numpy). Its noise is the pixel footprint, and where a closed form is a
-probability (ao's visibility) one draw of it per ray, as the renderers' estimators have; the expectation is exact.
+pixel by jittered camera rays (numpy), and the one value of a furnace (harness/closed_forms/furnace.py). Its
+noise is the pixel footprint, and where a closed form is a probability (ao's visibility) one draw of it per ray,
+as the renderers' estimators have; the expectation is exact.
 Each integrator's closed form is in its entry (harness/integrators/<name>.py, `analytic`), with the scene
 kinds it covers; one without has none here. The sphere's geometry and visibility: analytic_sphere.py.
 """
@@ -11,6 +12,7 @@ import time
 
 import numpy as np
 
+from harness.closed_forms.furnace import Furnace, load_furnace
 from harness.closed_forms.plane_scene import NotAnalytic, PlaneScene, load_plane_scene
 from harness.closed_forms.sphere import check_resting, nearest_hit
 from harness.engines.base import Engine, RenderResult
@@ -27,8 +29,20 @@ BLOCK_PIXELS = 1 << 15
 YXZ = [1, 0, 2]
 
 
-def load(scene: str, params: dict[str, str] | None = None, integrator: str | None = None) -> PlaneScene:
+def load(scene: str, params: dict[str, str] | None = None, integrator: str | None = None) -> PlaneScene | Furnace:
     """The scene, if the engine has its image (with `integrator`'s closed form, if given); else NotAnalytic."""
+    try:
+        f = load_furnace(scene, params)
+    except NotAnalytic:
+        pass
+    else:
+        if integrator is not None:
+            form = entry(integrator).analytic
+            if form is None or form.furnace is None:
+                raise NotAnalytic(f"integrator {integrator} has no closed form in a furnace "
+                                  f"({entry(integrator).source})")
+            form.furnace(f)  # raises NotAnalytic where it has none for this furnace
+        return f
     s = load_plane_scene(scene, params)
     if s.sphere is not None:
         check_resting(s)
@@ -43,7 +57,8 @@ def load(scene: str, params: dict[str, str] | None = None, integrator: str | Non
 
 
 class AnalyticEngine(Engine):
-    """Closed forms for a lone plane and a sphere resting on it; `render` raises NotAnalytic otherwise."""
+    """Closed forms for a lone plane, a sphere resting on it and a furnace; `render` raises NotAnalytic
+    otherwise."""
 
     name = "analytic"
 
@@ -67,8 +82,8 @@ class AnalyticEngine(Engine):
 
     @staticmethod
     def supports(scene: str, params: dict[str, str] | None = None, integrator: str | None = None) -> bool:
-        """Whether `scene` is a lone plane or a sphere resting on one (and `integrator`, if given, has a
-        closed form for that kind of scene)."""
+        """Whether `scene` is a lone plane, a sphere resting on one or a furnace (and `integrator`, if given, has
+        a closed form for that kind of scene)."""
         try:
             load(scene, params, integrator)
         except NotAnalytic:
@@ -83,6 +98,12 @@ class AnalyticEngine(Engine):
         form = entry(integrator).analytic
         rng = np.random.default_rng([seed, 0xA11])
         seconds = {"load": time.perf_counter() - start}
+        if isinstance(s, Furnace):  # one value everywhere, without noise
+            value = np.asarray(form.furnace(s), dtype=float)
+            images = np.broadcast_to(value, (batches, s.height, s.width, 3)).astype(np.float32)
+            seconds["render"] = time.perf_counter() - start - seconds["load"]
+            seconds["total"] = time.perf_counter() - start
+            return RenderResult(self.name, str(scene), integrator, spp, seed, images, seconds)
         tracer = _Tracer(s, form)
         pixels = s.width * s.height
         chunk = max(1, CHUNK_PIXELS // pixels)

@@ -1,4 +1,5 @@
 """ao: ambient occlusion under a constant environment (radiance 1 when the scene has none)."""
+from harness.closed_forms.furnace import is_furnace
 from harness.closed_forms.sphere import ao_visible
 from harness.closed_forms.vectors import times
 from harness.integrators.entry import AnalyticForm, IntegratorEntry
@@ -21,4 +22,8 @@ ENTRY = IntegratorEntry(
                                                                    u < ao_visible(scene, p, normal))),
     linear_in=("light", "reflectance"),
     default_environment=True,
+    # Inside a closed sphere no environment reaches a surface: the image is black, which proves nothing.
+    requirements=(("a view of the environment",
+                   lambda root: "a furnace: the camera is enclosed, no environment reaches it" if is_furnace(root)
+                   else None),),
 )

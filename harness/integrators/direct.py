@@ -2,7 +2,7 @@
 sampling between them (Mitsuba 3's `direct`)."""
 import xml.etree.ElementTree as ET
 
-from harness.closed_forms import lit_plane
+from harness.closed_forms import furnace, lit_plane
 from harness.integrators.entry import AnalyticForm, IntegratorEntry, Strategies
 
 #: The emitters it reads: delta lights, the constant environment and area emitters on shapes.
@@ -47,8 +47,9 @@ ENTRY = IntegratorEntry(
     # Mitsuba's defaults: shading_samples = 1 of each strategy.
     parameters=(("integer", "emitter_samples", "1"), ("integer", "bsdf_samples", "1")),
     analytic=AnalyticForm("rho/pi * E under one rectangle, disk or sphere light (Lambert's polygon formula, the "
-                          "disk's off-axis form factor, pi L (r/d)^2 cos)", lit_plane.radiance,
-                          scenes=("lit_plane",), draws_estimator=False),
+                          "disk's off-axis form factor, pi L (r/d)^2 cos); Le (1 + a) in a furnace",
+                          lit_plane.radiance, scenes=("lit_plane",), furnace=furnace.direct_radiance,
+                          draws_estimator=False),
     requirements=(("an emitter", has_emitter),),
     strategies=STRATEGIES,
     # Linear in the light only: where the camera sees an area light, its pixels keep their radiance when every

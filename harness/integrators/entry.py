@@ -29,9 +29,13 @@ class AnalyticForm:
     """The integrator's exact image of the analytic scenes of the kinds in `scenes`."""
 
     summary: str
-    shade: Shade
+    #: None: it has no closed form on a plane (`scenes` is then empty), a furnace's only.
+    shade: Shade | None
     #: "plane" (a lone plane), "sphere_floor" (a sphere resting on it: analytic_sphere.py).
     scenes: tuple[str, ...] = ("plane",)
+    #: Its image of a furnace (harness/closed_forms/furnace.py), furnace -> the radiance (3,) every camera ray
+    #: sees; None: none.
+    furnace: Callable[[object], np.ndarray] | None = None
     #: One sample of the estimator the renderers use, drawn with the closed form's exact probabilities (ao: one
     #: visibility ray, lit with probability V), or None where `shade` is noiseless per camera ray. Where a
     #: contribution is rare, all K batches of the tested engine can miss it; only a reference with the

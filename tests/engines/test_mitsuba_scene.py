@@ -49,7 +49,8 @@ def _applicable_cases():
 @pytest.mark.parametrize("path, integrator", _applicable_cases())
 def test_scene_renders_in_mitsuba(path, integrator, meshes, mi):
     text = path.read_text()
-    assert 'type="$integrator"' in text
+    # The furnace names path, whose max_depth it sets; the mapping replaces it as it replaces $integrator.
+    assert 'type="$integrator"' in text or '<integrator type="path">' in text
     scene = load_scene(path, integrator, spp=4, res=32)
     image = np.array(mi.render(scene, seed=0))
     assert image.shape[:2] == (32, 32)

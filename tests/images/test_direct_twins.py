@@ -15,50 +15,25 @@ Each case at 16 samples per pixel (the suite's 128 x 128, where the references a
 from __future__ import annotations
 
 import dataclasses
-from pathlib import Path
 
 import pytest
 
-from harness.engines.mcval import McvalEngine
 from harness.images.run import run_images
 from harness.images.suite import select_cases
+from tests.helpers.twin_engine import TwinEngine
 
-TEST_RENDER = Path(__file__).resolve().parents[2] / "build" / "render_with_test_integrators"
 SCENE = "plane_rect_light"
 SPP = 16
 TWINS = ("direct_area_pdf", "direct_double_mis", "direct_no_cosine")
 
 
-class TwinEngine(McvalEngine):
-    """Our renderer's test build rendering `twin` wherever the harness asks for direct (None: direct itself).
-    A scene copy whose <integrator> is direct (a strategy's settings) is given to the twin retyped, beside
-    it, so that the twin reads those settings as direct would."""
-
-    def __init__(self, twin: str | None) -> None:
-        super().__init__(binary=TEST_RENDER)
-        self.twin = twin
-
-    def __reduce__(self):
-        return TwinEngine, (self.twin,)
-
-    def render(self, scene, integrator, spp, batches, seed, params=None):
-        if integrator == "direct" and self.twin:
-            text = Path(scene).read_text()
-            if '<integrator type="direct"' in text:
-                copy = Path(scene).with_name(f"{Path(scene).stem}-{self.twin}.xml")
-                copy.write_text(text.replace('<integrator type="direct"', f'<integrator type="{self.twin}"'))
-                scene = str(copy)
-            integrator = self.twin
-        return super().render(scene, integrator, spp, batches, seed, params)
-
-
 @pytest.fixture(scope="module")
-def results(mitsuba):
-    """The case's result per twin (and "direct" for the correct integrator), rendered at SPP samples per pixel with seed 0."""
+def results(mitsuba, tmp_path_factory):
+    """The case's result per twin (and "direct" for the correct integrator), at SPP samples per pixel, seed 0."""
     (case,) = [dataclasses.replace(c, spp=SPP) for c in select_cases([f"{SCENE}:direct"])]
     out = {}
     for twin in (None, *TWINS):
-        (result,), _ = run_images([case], TwinEngine(twin), mitsuba)
+        (result,), _ = run_images([case], TwinEngine("direct", twin, tmp_path_factory.mktemp("twins")), mitsuba)
         out[twin or "direct"] = result
     return out
 

@@ -111,6 +111,8 @@ def test_simple_on_the_cornell_box_is_not_applicable_not_run():
     assert "cornell_box:simple" not in {c.key for c in select_cases(None)}
     assert {c.key for c in select_cases(["cornell_box"])} == {f"cornell_box:{n}" for n in PRODUCT if n != "simple"}
     assert [(c.key, why) for c, why in not_applicable_cases(None)] == [
+        ("furnace:ao", "a furnace: the camera is enclosed, no environment reaches it"),
+        ("furnace:simple", "no point light")] + [
         (f"{scene}:simple", "no point light")
         for scene in ("plane_disk_light", "plane_rect_light", "plane_sphere_light", "cornell_box", "cornell_measured")]
     with pytest.raises(ValueError, match="cornell_box:simple is not applicable: no point light"):

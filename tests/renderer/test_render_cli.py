@@ -25,7 +25,9 @@ def test_every_scene_and_integrator_writes_a_valid_exr(scene, integrator, tmp_pa
 
     out = tmp_path / "out.exr"
     res = run(scene, "--integrator", integrator, "--spp", 2, "-D", "res=24", "-o", out, "-q")
-    if entry(integrator).not_applicable(scene):  # the harness never runs it: the renderer refuses it with its line
+    # The harness never runs a case that is not applicable. Without a point light the renderer refuses simple
+    # with its line; an enclosed camera (ao in the furnace) sees black, which the renderer renders.
+    if entry(integrator).not_applicable(scene) == "no point light":
         assert res.returncode == 1 and f"{scene}:" in res.stderr and "no point light" in res.stderr, res.stderr
         return
     assert res.returncode == 0, res.stderr
@@ -34,7 +36,8 @@ def test_every_scene_and_integrator_writes_a_valid_exr(scene, integrator, tmp_pa
         assert {"RGB", "variance"} <= set(layers)
         rgb = layers["RGB"].pixels
         assert rgb.shape == (24, 24, 3) and rgb.dtype == np.float32
-        assert np.all(np.isfinite(rgb)) and np.any(rgb != 0)
+        # Not black, but where the harness does not run the case (ao in the furnace).
+        assert np.all(np.isfinite(rgb)) and (np.any(rgb != 0) or entry(integrator).not_applicable(scene))
         header = f.header()
         assert header["mcval.integrator"] == integrator
         assert int(header["mcval.cameraRays"]) == 24 * 24 * 2
