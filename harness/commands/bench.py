@@ -16,6 +16,16 @@ NAME = "bench"
 HELP = "speed against error: convergence curves and efficiency ratios"
 #: The engines the tested one is timed against unless --engines says otherwise (harness/engines/registry.py).
 TIMED_AGAINST = ("mitsuba-native", "mitsuba-scalar")
+#: Mitsuba as shipped traces with Embree's faster, non-robust triangle test. Where the tested engine's render
+#: throughput is measured against it, it is measured against Mitsuba with robust intersections too (Embree as
+#: mcval runs it): like for like beside as shipped.
+ALSO_TIMED = {"mitsuba-native": ("mitsuba-robust",)}
+
+
+def throughput_against(compared: str) -> tuple[str, ...]:
+    """The engines the tested one's render throughput is measured against, where its efficiency is compared
+    with `compared`: that engine, and the engines ALSO_TIMED names for it."""
+    return (compared, *ALSO_TIMED.get(compared, ()))
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -40,8 +50,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--runs", type=int, default=3, help="independent runs per step (default 3)")
     p.add_argument("--rays-json", type=Path, help="figures written by build/bench_rays --json, to include")
     p.add_argument("--throughput-runs", type=int, default=3,
-                   help="timed runs per case of the side-by-side render throughput (highpoly 768², cornell 128²; "
-                        "0 skips it; default 3)")
+                   help="timed runs per case of the side-by-side render throughput (highpoly 768², cornell 128²), "
+                        "against the engine the efficiency is compared with and, where that is Mitsuba as shipped, "
+                        "against Mitsuba with robust intersections too (0 skips it; default 3)")
     p.add_argument("--seed-runs", type=int, default=3,
                    help="runs at the seed document's settings (768x768; 0 skips them; default 3)")
     add_executor_options(p)
@@ -59,7 +70,8 @@ def _engines(args):
 
 def _measure(args, cases, engines, reference, ladder):
     """The ladders, the seed settings, the throughput and the sampler slopes, as asked. The tested engine
-    (the first of --engines) is timed against the next one (Mitsuba as shipped, by default), else --reference."""
+    (the first of --engines) is timed against the next one (Mitsuba as shipped, by default), else --reference;
+    its throughput against those throughput_against names (Mitsuba robust too, by default)."""
     from harness.bench.run import SAME_SAMPLER, run_bench, seed_comparison
     from harness.distributed.cluster import open_executor
     from harness.engines.registry import make_engine
@@ -84,12 +96,14 @@ def _measure(args, cases, engines, reference, ladder):
             # The tested engine as `images` runs it, where that is in another process (mcval's: its worker).
             worker = make_engine(tested_name, sampler=SAME_SAMPLER)
             worker = worker if worker.renders_elsewhere and not tested.renders_elsewhere else None
-            compared = make_engine(compared_name, sampler=SAME_SAMPLER)
+            against = [make_engine(name, sampler=SAME_SAMPLER) for name in throughput_against(compared_name)]
             throughput = []
             for case in CASES:
-                progress.console.print(f"throughput: {case[0]}:{case[1]} {case[2]}² {case[3]} spp")
-                throughput.append(measure(*case, tested, compared, worker, runs=args.throughput_runs,
-                                          sampler=SAME_SAMPLER).to_json())
+                for compared in against:
+                    progress.console.print(f"throughput: {case[0]}:{case[1]} {case[2]}² {case[3]} spp against "
+                                           f"{compared.label or compared.name}")
+                    throughput.append(measure(*case, tested, compared, worker, runs=args.throughput_runs,
+                                              sampler=SAME_SAMPLER).to_json())
         slopes = None
         samplers = make_engine(tested_name).samplers
         if len(samplers) > 1 and not args.same_sampler:  # the slopes compare the tested engine's samplers

@@ -36,7 +36,8 @@ def _throughput_html(throughput: list[dict] | None) -> str:
         return "<p>No side-by-side throughput (run <code>mcval bench</code> with both engines).</p>"
     nan = {TESTED: float("nan"), REFERENCE: float("nan")}
     rows = "".join(
-        f"<tr><td>{t['scene']}:{t['integrator']}</td><td>{t['resolution']}², {t['spp']} spp, {t['sampler']}</td>"
+        f"<tr><td>{t['scene']}:{t['integrator']}</td><td>{html.escape(t['engines'][REFERENCE])}</td>"
+        f"<td>{t['resolution']}², {t['spp']} spp, {t['sampler']}</td>"
         f"<td>{t['median_seconds'][TESTED]:.3f}</td><td>{t['median_seconds'][REFERENCE]:.3f}</td>"
         f"<td class='{'pass' if t['reference_over_tested'] >= 1 else 'fail'}'>{t['reference_over_tested']:.2f}</td>"
         + (f"<td>{t['median_seconds'][WORKER]:.3f}</td><td class='{'pass' if t['reference_over_tested_worker'] >= 1 else 'fail'}'>"
@@ -52,7 +53,7 @@ def _throughput_html(throughput: list[dict] | None) -> str:
             "reference). <em>In its worker</em> is the tested engine as "
             "<code>images</code> and <code>validate</code> run it: the <code>render --serve</code> call's wall clock "
             "(the request, the images written and read) less the scene load and BVH build. Rays/s divide the rays the tested engine traced, for "
-            "both engines (Mitsuba's direct traces about as many for simple; for ao it adds a BSDF-sampled ray per hit, its MIS).</p><table><tr><th>case</th><th>setting</th><th>tested s</th>"
+            "both engines (Mitsuba's direct traces about as many for simple; for ao it adds a BSDF-sampled ray per hit, its MIS).</p><table><tr><th>case</th><th>reference</th><th>setting</th><th>tested s</th>"
             "<th>reference s</th><th>reference/tested per sample</th><th>tested in its worker s</th>"
             "<th>reference/worker</th><th>tested Msamples/s</th><th>reference Msamples/s</th>"
             f"<th>tested Mrays/s</th><th>reference Mrays/s</th></tr>{rows}</table>")
