@@ -21,7 +21,8 @@ from harness.bsdfs.checks import draw, incident
 from harness.engines.base import BsdfFunctions
 from harness.statistics.constants import sidak_level
 from harness.statistics.cubature import integrate_cells
-from harness.statistics.distributions import chi2_sf, t_sf
+from harness.statistics.distributions import chi2_sf
+from harness.statistics.nori_ttest import students_t_test
 from harness.warps.checks import parameter_density
 from harness.warps.domains import SPHERE
 
@@ -111,12 +112,7 @@ def ttest(bsdf: BsdfFunctions, theta_degrees: float, reference: float, samples: 
           seed: int) -> tuple[bool, float | None, str]:
     """Nori's ttest of `bsdf`'s mean sample weight at polar angle theta (wi in the xz plane) against `reference`."""
     weight = draw(bsdf, incident(theta_degrees), samples, seed).weight
-    mean, variance = float(np.mean(weight)), float(np.var(weight, ddof=1))
-    statistic = abs(mean - reference) * np.sqrt(samples / max(variance, 1e-5))
-    p = float(2 * t_sf(statistic, samples - 1))
-    passed = bool(np.isfinite(p) and p >= level)
-    return passed, p, (f"mean {mean:.6g} (reference {reference:g}), variance {variance:.4g}, t = {statistic:.4g}, "
-                       f"p = {p:.4g} {'>=' if passed else '<'} level {level:.4g}")
+    return students_t_test(float(np.mean(weight)), float(np.var(weight, ddof=1)), reference, samples, level)
 
 
 def run_ttest(bsdfs: list[BsdfFunctions], angles: list[float], references: list[float], properties: dict,

@@ -6,6 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from harness.commands.output import console
+from harness.engines.nori.values import LUMINANCE
 from harness.verdict import Tally
 
 #: Nori's defaults of the BSDFs its tests use (src/microfacet.cpp, src/diffuse.cpp, src/dielectric.cpp).
@@ -16,8 +17,6 @@ NORI_DEFAULTS = {
 }
 #: Nori's property names as the ABI's BSDFs name them, where a library does not use Nori's own.
 NORI_NAMES = {"intIOR": "int_ior", "extIOR": "ext_ior", "albedo": "reflectance"}
-#: Nori's Color3f::getLuminance: what its tests judge of a coloured sample.
-LUMINANCE = (0.212671, 0.715160, 0.072169)
 
 
 def _luminance(v: tuple[float, ...]) -> float:
@@ -58,6 +57,10 @@ def run_nori_tests(paths: list[Path], library, seed: int) -> tuple[Tally, dict, 
     from harness.engines.nori.test_files import read_nori_test
 
     tests = [read_nori_test(p) for p in paths]  # every file read before any runs: a typo fails at once
+    scene_test = next((t for t in tests if t.scenes), None)
+    if scene_test is not None:
+        raise ValueError(f"{scene_test.path}: a ttest of scenes, not of BSDFs: run it with "
+                         f"`images --nori-test {scene_test.path}`")
     mapped = [[BsdfSpec(b.type, tuple(library_values(b, library.parameters(b.type)).items())) for b in t.bsdfs]
               for t in tests]
     block, specs, passed, failed = [], [], 0, 0

@@ -106,7 +106,7 @@ def test_a_coloured_kd_needs_a_ks_parameter(tmp_path):
 @pytest.mark.parametrize("text, message", [
     ('<test type="ttest"><string name="angles" value="0, 45"/><string name="references" value="0.2"/>'
      '<bsdf type="diffuse"/></test>', r"bad\.xml:1: <test type=\"ttest\">: expected one reference per angle and BSDF"),
-    ('<test type="chi2test">\n<scene/></test>', r"bad\.xml:2: <scene>: a ttest of scenes"),
+    ('<test type="chi2test">\n<scene/></test>', r"bad\.xml:2: <scene>: expected <bsdf> or a property of the chi2test"),
     ('<test type="chi2test">\n<float name="level" value="0.1"/><bsdf type="diffuse"/></test>',
      r"bad\.xml:2: <float name=\"level\" value=\"0\.1\">: chi2test has no property 'level'"),
     ('<test type="warptest"/>', r"expected <test type=\"\.\.\.\"> of type chi2test or ttest"),

@@ -4,7 +4,8 @@ how the translated scene must be lit for it. Nori's own assignment integrators i
 that camera rays do not see. Its direct-lighting integrators read the scene's emitters and the albedo:
 `direct_ems`, `direct_mats` and `direct_mis` are mcval's (and Mitsuba's) `direct` with one emitter sample, one
 BSDF sample, or one of each under MIS, and show the emitters to camera rays (Nori's sphere_ao reference shows
-its environment); `direct` (point lights, each summed exactly) is mcval's `simple`."""
+its environment); `direct` (point lights, each summed exactly) is mcval's `simple`. Its path tracers
+`path_mats`, `path_ems` and `path_mis` are mcval's `path` with the `strategy` of that name."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -14,13 +15,14 @@ NO_EQUIVALENT = {
     "av": "average visibility samples the hemisphere uniformly along rays of a finite `length`; mcval's ao is "
           "cosine-weighted and its rays are unbounded",
     "whitted": "it follows mirror and glass paths, which none of mcval's integrators do",
-    "path_mats": "path tracing adds indirect light, which none of mcval's integrators compute",
-    "path_ems": "path tracing adds indirect light, which none of mcval's integrators compute",
-    "path_mis": "path tracing adds indirect light, which none of mcval's integrators compute",
-    "path": "path tracing adds indirect light, which none of mcval's integrators compute",
+    "path": "Nori's course names its path tracers path_mats, path_ems and path_mis",
 }
 #: Nori's direct-lighting strategies as mcval's `direct`: (emitter_samples, bsdf_samples), one sample each.
 STRATEGIES = {"direct_ems": (1, 0), "direct_mats": (0, 1), "direct_mis": (1, 1)}
+#: Nori's path tracers as mcval's `path` without a depth limit, by its own `strategy` property (Mitsuba's path,
+#: which has none, is "mis": the same image). Their Russian roulette differs from Mitsuba's, which changes the
+#: noise, not the mean.
+PATH_STRATEGIES = {"path_mats": "mats", "path_ems": "ems", "path_mis": "mis"}
 
 
 @dataclass
@@ -56,6 +58,12 @@ def map_integrator(kind: str, emitters: set[str]) -> Mapping:
         return Mapping("direct", hide_emitters="false",
                        properties=(("integer", "emitter_samples", str(emitter_samples)),
                                    ("integer", "bsdf_samples", str(bsdf_samples))))
+    if kind in PATH_STRATEGIES:
+        if not emitters:
+            return Mapping("", why_not="the scene has no emitter")
+        if kind == "path_mats" and emitters == {"point"}:
+            return Mapping("", why_not="BSDF sampling never reaches a point light: the image is black")
+        return Mapping("path", properties=(("string", "strategy", PATH_STRATEGIES[kind]),))
     if kind == "direct":
         if emitters == {"point"}:
             return Mapping("simple")

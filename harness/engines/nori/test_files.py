@@ -1,6 +1,7 @@
-"""Nori's BSDF test files (`<test type="chi2test">`, `<test type="ttest">`, as the course's pa5 ships them) read as
-they are: the test's properties with Nori's defaults, and each `<bsdf>` with its properties. A refusal is one line,
-"FILE:LINE: <element>: why"."""
+"""Nori's test files read as they are: BSDF tests (`<test type="chi2test">`, `<test type="ttest">` of `<bsdf>`s) and
+scene tests (a `<test type="ttest">` of `<scene>`s, each with its reference): the test's properties with Nori's
+defaults, each `<bsdf>` with its properties, each `<scene>` as its element (harness/engines/nori/to_mitsuba.py reads
+it). A refusal is one line, "FILE:LINE: <element>: why"."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -38,6 +39,9 @@ class NoriTest:
     kind: str
     properties: dict[str, float | str]
     bsdfs: list[NoriBsdf] = field(default_factory=list)
+    #: A scene ttest's `<scene>` elements, in order, and the parsed file they belong to (their lines).
+    scenes: list = field(default_factory=list)
+    doc: LinedXml | None = None
 
     def floats(self, name: str) -> list[float]:
         """A ttest's list property ("angles", "references") as numbers."""
@@ -84,12 +88,12 @@ def read_nori_test(path: Path) -> NoriTest:
         raise doc.fail(root, f"expected <test type=\"...\"> of type {' or '.join(DEFAULTS)}")
     kind = root.get("type")
     properties: dict[str, float | str] = dict(DEFAULTS[kind])
-    bsdfs = []
+    bsdfs, scenes = [], []
     for e in root:
         if e.tag == "bsdf":
             bsdfs.append(_bsdf(doc, e))
-        elif e.tag == "scene":
-            raise doc.fail(e, "a ttest of scenes renders them: not a BSDF test (this reads BSDF tests only)")
+        elif e.tag == "scene" and kind == "ttest":
+            scenes.append(e)
         elif e.tag in _VALUE_TAGS:
             name, value = _value(doc, e, e.tag)
             if name not in properties:
@@ -97,10 +101,17 @@ def read_nori_test(path: Path) -> NoriTest:
             properties[name] = value if isinstance(value, str) else value[0]
         else:
             raise doc.fail(e, f"expected <bsdf> or a property of the {kind}")
-    if not bsdfs:
-        raise doc.fail(root, "no <bsdf> to test")
-    test = NoriTest(path, kind, properties, bsdfs)
-    if kind == "ttest":
+    if bsdfs and scenes:
+        raise doc.fail(scenes[0], "a test of BSDFs and scenes at once (Nori refuses it too)")
+    if not bsdfs and not scenes:
+        raise doc.fail(root, f"no {'<bsdf> or <scene>' if kind == 'ttest' else '<bsdf>'} to test")
+    test = NoriTest(path, kind, properties, bsdfs, scenes, doc)
+    if scenes:
+        references = test.floats("references")
+        if len(references) != len(scenes):
+            raise doc.fail(root, f"expected one reference per scene: {len(scenes)} scenes, {len(references)} "
+                                 "references")
+    elif kind == "ttest":
         angles, references = test.floats("angles"), test.floats("references")
         if not angles or len(references) != len(angles) * len(bsdfs):
             raise doc.fail(root, f"expected one reference per angle and BSDF: {len(angles)} angles x {len(bsdfs)} "

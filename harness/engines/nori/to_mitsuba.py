@@ -38,6 +38,8 @@ def _one(r: Reader, root: ET.Element, tag: str, required: bool) -> ET.Element | 
 
 #: Written for a Nori integrator that none of mcval's computes: every case of the suite names its own.
 UNMATCHED_INTEGRATOR = "path"
+#: The note on such an integrator says, after its place, that it is left out with these words.
+NOT_COMPARED = "not compared, no integrator of mcval's computes this"
 
 
 def nori_to_mitsuba(text: str, path: Path, notes: list[str] | None = None) -> ET.Element:
@@ -54,8 +56,15 @@ def nori_to_mitsuba(text: str, path: Path, notes: list[str] | None = None) -> ET
         scenes = sum(e.tag == "scene" for e in root)
         what = (f"{scenes} one-pixel scenes, each with the value Nori's t-test expects of it" if scenes else
                 "BSDFs for Nori's sampling tests, and no scene")
-        raise r.fail(root, f"a Nori test file, not a scene file: it holds {what}; mcval does not run Nori's tests "
-                           "(give a <scene> a file of its own to compare it)")
+        raise r.fail(root, f"a Nori test file, not a scene file: it holds {what}; run its tests with `images "
+                           "--nori-test` (scenes) or `bsdfs --nori-test` (BSDFs), or give a <scene> a file of its "
+                           "own to compare it")
+    return scene_to_mitsuba(r, root, notes)
+
+
+def scene_to_mitsuba(r: Reader, root: ET.Element, notes: list[str]) -> ET.Element:
+    """nori_to_mitsuba of one `<scene>` element of the file `r` reads (a scene file's root, or a scene of a test
+    file): file names relative to that file's folder, what is left out added to `notes`."""
     for e in root:
         if e.tag not in SCENE_CHILDREN:
             raise r.fail(e, f"a Nori scene holds only {', '.join(SCENE_CHILDREN)}")
@@ -70,9 +79,8 @@ def nori_to_mitsuba(text: str, path: Path, notes: list[str] | None = None) -> ET
     kinds = {kind for kind, _ in lights} | {"area" for m in root if m.tag == "mesh" for e in m if e.tag == "emitter"}
     mapping = map_integrator(integrator.get("type", ""), kinds)
     if mapping.why_not:
-        notes.append(f"{doc.where(integrator)}: <integrator type=\"{integrator.get('type', '')}\">: not compared, no "
-                     f"integrator of mcval's computes this: {mapping.why_not}; the suite's integrators render the "
-                     "scene's camera and geometry")
+        notes.append(f"{r.doc.where(integrator)}: <integrator type=\"{integrator.get('type', '')}\">: {NOT_COMPARED}: "
+                     f"{mapping.why_not}; the suite's integrators render the scene's camera and geometry")
         mapping = replace(mapping, integrator=UNMATCHED_INTEGRATOR)
     hide = mapping.hide_emitters
     if not mapping.light_from_integrator:  # whether camera rays see the environment: the file may say

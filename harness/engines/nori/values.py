@@ -5,6 +5,9 @@ from __future__ import annotations
 import math
 import re
 
+#: Nori's Color3f::getLuminance: what its tests judge of a colour.
+LUMINANCE = (0.212671, 0.715160, 0.072169)
+
 _SEPARATORS = re.compile(r"[,\s]+")
 
 

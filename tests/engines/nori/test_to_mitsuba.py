@@ -215,6 +215,14 @@ def test_noris_direct_strategies_are_mitsubas_direct_with_their_samples(tmp_path
     assert props(root.find("shape/emitter")) == {"radiance": "4, 5, 6"} and notes == []
 
 
+@pytest.mark.parametrize("kind", ["path_mats", "path_ems", "path_mis"])
+def test_noris_path_tracers_are_mcvals_path_with_their_strategy(tmp_path, kind):
+    notes: list[str] = []
+    integrator = translate(tmp_path, AREA_LIGHT, f'<integrator type="{kind}"/>', notes=notes).find("integrator")
+    assert integrator.get("type") == "path" and props(integrator) == {"strategy": kind[5:]} and notes == []
+    noted(tmp_path, "the scene has no emitter", integrator=f'<integrator type="{kind}"/>')
+
+
 def test_direct_lighting_from_point_lights(tmp_path):
     body = '<emitter type="point"><point name="position" value="0,1,2"/><color name="power" value="1,1,1"/>' \
            '</emitter>'
@@ -249,7 +257,8 @@ def test_noris_ao_is_pure_ambient_occlusion(tmp_path):
 
 
 @pytest.mark.parametrize("kind, why", [("av", "finite `length`"), ("whitted", "mirror and glass"),
-                                       ("path_mis", "indirect light"), ("photonmapper", "no such integrator")])
+                                       ("path", "path_mats, path_ems and path_mis"),
+                                       ("photonmapper", "no such integrator")])
 def test_integrators_without_an_equivalent_are_noted_on_their_line_and_the_scene_kept(tmp_path, kind, why):
     root, note = noted(tmp_path, why, integrator=f'<integrator type="{kind}"/>')
     assert f':2: <integrator type="{kind}">: not compared' in note
