@@ -48,9 +48,14 @@ TEST(Render, EverySceneAndIntegratorIsFinite) {
     for (const auto &entry : fs::directory_iterator(fs::path(MCVAL_SOURCE_DIR) / "scenes")) {
         if (entry.path().extension() != ".xml" || entry.path().filename().string()[0] == '.') continue;
         const SceneDescription scene = loadScene(entry.path().string(), {{"res", "32"}});
+        // Inside the furnace no environment reaches a surface: ao's image is black (the harness does not run it).
+        const bool enclosed = entry.path().filename() == "furnace.xml";
         for (const std::string &integrator : integratorNames()) {  // the test build's too
             // A scene lit only by an area light has no image under simple: its loader refuses it there.
             if (findIntegrator(integrator)->use.needsPointLight && scene.pointLights.empty()) continue;
+            // A path tracer without the cosine divides by it at grazing bounces: in the furnace, where every
+            // path bounces on, its variance overflows float32 and the renderer refuses the image, as it should.
+            if (enclosed && integrator == "path_no_cosine") continue;
             RenderOptions options;
             options.spp = 2;
             options.batches = 2;
@@ -61,7 +66,10 @@ TEST(Render, EverySceneAndIntegratorIsFinite) {
             const size_t nonzero = counts.nonZero;
             for (float v : out.variance.rgb) bad += !(std::isfinite(v) && v >= 0.f);
             EXPECT_EQ(bad, 0u) << entry.path() << " " << integrator;
-            EXPECT_GT(nonzero, out.mean.rgb.size() / 10) << entry.path() << " " << integrator;
+            if (enclosed && integrator.rfind("ao", 0) == 0)
+                EXPECT_EQ(nonzero, 0u) << entry.path() << " " << integrator;
+            else
+                EXPECT_GT(nonzero, out.mean.rgb.size() / 10) << entry.path() << " " << integrator;
             EXPECT_EQ(out.batches.size(), 2u);
         }
     }
