@@ -215,6 +215,23 @@ TEST(Emitters, ASphereGivesAPointOnItsOwnSurfaceTheDensityItSampledWith) {
     }
 }
 
+TEST(Emitters, TheSideAMeshsNormalsFaceEmitsWhateverItsWinding) {
+    // Nori's furnace box is wound outwards with its vertex normals inwards: the inside emits (eval reads the
+    // shading normal, as Mitsuba's), so light samples must find it there, with the density pdf() gives the hits.
+    EmittingScene s;
+    Mesh woundUp = makeRectangle(Transform::translate({0.f, 0.f, 2.f}) * Transform::scale({1.f, 0.5f, 1.f}));
+    woundUp.normals.assign(woundUp.positions.size(), Vec3f{0.f, 0.f, -1.f});
+    woundUp.areaRadiance = kL;
+    s.scene.meshes.push_back(woundUp);
+    s.build();
+    const Vec3f below{0.1f, -0.2f, 0.f}, above{0.1f, -0.2f, 4.f};
+    EXPECT_EQ(sampleMismatches((*s.emitters)[0], 0, *s.embree, below, 2000, 5), 0);
+    // The irradiance below is the rectangle's closed form; above, the back, nothing arrives.
+    EXPECT_NEAR(irradiance((*s.emitters)[0], {0.f, 0.f, 0.f}, {0.f, 0.f, 1.f}, 200000, 6),
+                rectangleIrradiance(kL.x, 1.0, 0.5, 2.0), 0.01 * rectangleIrradiance(kL.x, 1.0, 0.5, 2.0));
+    EXPECT_EQ(irradiance((*s.emitters)[0], above, {0.f, 0.f, -1.f}, 1000, 7), 0.0);
+}
+
 TEST(Emitters, HitsNameTheirEmitterInGeometryOrder) {
     EmittingScene s;
     s.scene.meshes.push_back(makeRectangle(Transform::translate({0.f, 0.f, -5.f})));  // does not emit
