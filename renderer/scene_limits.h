@@ -31,8 +31,9 @@ constexpr float kMinFilterStddev = 0.05f, kMaxFilterStddev = 4.f;
 constexpr float kMinTentRadius = 4.f * kMinFilterStddev, kMaxTentRadius = 4.f * kMaxFilterStddev;
 /// Largest |principal_point_offset_x| or |principal_point_offset_y|, in film widths and heights.
 constexpr float kMaxPrincipalOffset = 10.f;
-/// Range of the field of view, in degrees.
-constexpr float kMinFov = 1e-3f, kMaxFov = 179.9f;
+/// Range of the field of view, in degrees: Mitsuba's (0, 180), less what float cannot tell from its ends (Nori's
+/// test scenes look along one ray with a fov of 1e-6).
+constexpr float kMinFov = 1e-7f, kMaxFov = 179.9f;
 /// Largest scene file read, in bytes.
 constexpr long long kMaxSceneFileBytes = 64ll << 20;
 
