@@ -16,8 +16,8 @@ from harness.images.nori_scene_tests import run_scene_test
 from tests.helpers.twin_engine import TwinEngine
 
 #: (Nori integrator, albedo, the file's reference): Nori's furnace values.
-FURNACES = (("direct_ems", 0.5, 1.5), ("direct_mats", 0.8, 1.8), ("direct_mis", 0.5, 1.5), ("path_mats", 0.5, 2.0),
-            ("path_ems", 0.8, 5.0), ("path_mis", 0.5, 2.0))
+FURNACES = (("direct_ems", 0.5, 1.5), ("direct_mats", 0.8, 1.8), ("direct_mis", 0.5, 1.5), ("whitted", 0.8, 1.8),
+            ("path_mats", 0.5, 2.0), ("path_ems", 0.8, 5.0), ("path_mis", 0.5, 2.0))
 
 
 def _box(folder: Path) -> None:
@@ -69,7 +69,52 @@ def test_our_renderer_passes_noris_furnaces(tmp_path, seed):
     verdicts = run_scene_test(read_nori_test(_test_file(tmp_path)), make_engine("mcval"), tmp_path, seed)
     assert [v.passed for v in verdicts] == [True] * len(FURNACES), [v.message for v in verdicts]
     assert [v.integrator for v in verdicts] == [i for i, _, _ in FURNACES]
-    assert verdicts[3].message.startswith("path (20000 spp): mean ")
+    assert verdicts[4].message.startswith("path (20000 spp): mean ")
+
+
+def _floor_test(folder: Path, integrators: tuple[str, ...]) -> tuple[Path, float]:
+    """Nori's floor test as its course writes it: one ray (fov 1e-6) straight down onto a floor of albedo 0.5
+    under a black rectangle emitting 1, 1 above; and the radiance there, rho / pi * E (Lambert's polygon)."""
+    import numpy as np
+
+    from harness.closed_forms.area_lights import PolygonLight, irradiance
+    (folder / "floor.obj").write_text("v -10 0 -10\nv 10 0 -10\nv 10 0 10\nv -10 0 10\nf 1 3 2\nf 1 4 3\n")
+    (folder / "light.obj").write_text("v -0.5 1 -0.3\nv 0.5 1 -0.3\nv 0.5 1 0.3\nv -0.5 1 0.3\nf 1 2 3\nf 1 3 4\n")
+    light = PolygonLight(np.array([[-0.5, 1, -0.3], [0.5, 1, -0.3], [0.5, 1, 0.3], [-0.5, 1, 0.3]]),
+                         np.array([0.0, -1.0, 0.0]), np.ones(3))
+    value = float(0.5 / np.pi * irradiance([light], np.zeros(3), np.array([0.0, 1.0, 0.0]))[0])
+    scene = """  <scene>
+    <integrator type="{}"/>
+    <camera type="perspective">
+      <transform name="toWorld"><lookat origin="0, 0.01, 0" target="0, 0, 0" up="0, 0, 1"/></transform>
+      <float name="fov" value="1e-6"/><integer name="width" value="1"/><integer name="height" value="1"/>
+    </camera>
+    <mesh type="obj">
+      <string name="filename" value="floor.obj"/>
+      <bsdf type="diffuse"><color name="albedo" value="0.5, 0.5, 0.5"/></bsdf>
+    </mesh>
+    <mesh type="obj">
+      <string name="filename" value="light.obj"/>
+      <bsdf type="diffuse"><color name="albedo" value="0, 0, 0"/></bsdf>
+      <emitter type="area"><color name="radiance" value="1, 1, 1"/></emitter>
+    </mesh>
+  </scene>
+"""
+    path = folder / "test-floor.xml"
+    references = ", ".join([str(value)] * len(integrators))
+    path.write_text(f'<test type="ttest">\n  <string name="references" value="{references}"/>\n'
+                    + "".join(scene.format(i) for i in integrators) + "</test>\n")
+    return path, value
+
+
+def test_noris_floor_test_looks_along_one_ray(tmp_path):
+    """A camera of fov 1e-6 renders (Mitsuba's open interval, not a hundredth of a degree); whitted on diffuse
+    surfaces is direct light by light samples, and path adds nothing where the floor sees only a black light."""
+    integrators = ("whitted", "direct_mis", "path_mats", "path_ems", "path_mis")
+    path, value = _floor_test(tmp_path, integrators)
+    verdicts = run_scene_test(read_nori_test(path), make_engine("mcval"), tmp_path, 0)
+    assert [v.passed for v in verdicts] == [True] * len(integrators), [v.message for v in verdicts]
+    assert 0.02 < value < 0.1
 
 
 def test_a_wrong_reference_fails_that_scene_only(tmp_path):
@@ -92,25 +137,25 @@ def test_planted_wrong_path_tracers_fail_the_path_scenes(tmp_path, twin):
 
 
 def test_an_integrator_without_a_counterpart_is_not_run(tmp_path):
-    cases = (("whitted", 0.5, 1.5), ("direct_ems", 0.5, 1.5))
+    cases = (("av", 0.5, 1.5), ("direct_ems", 0.5, 1.5))
     verdicts = run_scene_test(read_nori_test(_test_file(tmp_path, cases)), make_engine("mcval"), tmp_path, 0)
     assert [v.passed for v in verdicts] == [None, True]
-    assert verdicts[0].message.startswith("not run: ") and "mirror and glass" in verdicts[0].message
+    assert verdicts[0].message.startswith("not run: ") and "finite `length`" in verdicts[0].message
 
 
 def test_the_command_runs_the_file_and_writes_the_verdicts(tmp_path, capsys):
     path = _test_file(tmp_path)
     assert main(["images", "--nori-test", str(path), "--out", str(tmp_path / "r")]) == 0
     out = capsys.readouterr().out
-    assert "Passed 6/6 tests." in out
+    assert "Passed 7/7 tests." in out
     results = json.loads((tmp_path / "r" / "latest" / "results.json").read_text())
-    assert results["verdict"] == "PASS" and len(results["nori_tests"][0]["tests"]) == 6
+    assert results["verdict"] == "PASS" and len(results["nori_tests"][0]["tests"]) == 7
     assert sorted((tmp_path / "r" / "latest" / "nori_tests").iterdir())[0].name == "test-furnace-scene1.xml"
 
 
 def test_a_wrong_reference_fails_the_command(tmp_path):
     cases = list(FURNACES)
-    cases[4] = ("path_ems", 0.8, 4.5)
+    cases[5] = ("path_ems", 0.8, 4.5)
     assert main(["images", "--nori-test", str(_test_file(tmp_path, cases)), "--out", str(tmp_path / "r")]) == 1
 
 
@@ -127,5 +172,5 @@ def test_one_reference_per_scene(tmp_path):
     path = _test_file(tmp_path)
     path.write_text(path.read_text().replace('value="1.5, 1.8,', 'value="1.8,', 1))
     with pytest.raises(ValueError, match=r"test-furnace\.xml:2: <test type=\"ttest\">: expected one reference per "
-                                         "scene: 6 scenes, 5 references"):
+                                         "scene: 7 scenes, 6 references"):
         read_nori_test(path)

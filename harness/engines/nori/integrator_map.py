@@ -4,7 +4,8 @@ how the translated scene must be lit for it. Nori's own assignment integrators i
 that camera rays do not see. Its direct-lighting integrators read the scene's emitters and the albedo:
 `direct_ems`, `direct_mats` and `direct_mis` are mcval's (and Mitsuba's) `direct` with one emitter sample, one
 BSDF sample, or one of each under MIS, and show the emitters to camera rays (Nori's sphere_ao reference shows
-its environment); `direct` (point lights, each summed exactly) is mcval's `simple`. Its path tracers
+its environment); `direct` (point lights, each summed exactly) is mcval's `simple`; `whitted` on a scene
+without mirror or glass is `direct_ems`. Its path tracers
 `path_mats`, `path_ems` and `path_mis` are mcval's `path` with the `strategy` of that name."""
 from __future__ import annotations
 
@@ -14,7 +15,8 @@ from dataclasses import dataclass
 NO_EQUIVALENT = {
     "av": "average visibility samples the hemisphere uniformly along rays of a finite `length`; mcval's ao is "
           "cosine-weighted and its rays are unbounded",
-    "whitted": "it follows mirror and glass paths, which none of mcval's integrators do",
+    "whitted": "it follows mirror and glass paths, which none of mcval's integrators do (this scene has such "
+               "surfaces)",
     "path": "Nori's course names its path tracers path_mats, path_ems and path_mis",
 }
 #: Nori's direct-lighting strategies as mcval's `direct`: (emitter_samples, bsdf_samples), one sample each.
@@ -40,15 +42,17 @@ class Mapping:
     why_not: str | None = None        # set: there is no mapping, and this is why
 
 
-def map_integrator(kind: str, emitters: set[str]) -> Mapping:
+def map_integrator(kind: str, emitters: set[str], specular: bool = False) -> Mapping:
     """The mapping for Nori's <integrator type=`kind`> in a scene whose emitters are of the kinds `emitters`
-    ("point", "environment", "area")."""
+    ("point", "environment", "area"); `specular`: whether a surface is a mirror or glass."""
     if kind == "normals":
         return Mapping("normals")
     if kind == "simple":
         return Mapping("simple", albedo_one=True, own_lights_only=True, light_from_integrator=True)
     if kind == "ao":
         return Mapping("ao", albedo_one=True, own_lights_only=True, unit_environment=True)
+    if kind == "whitted" and not specular:  # on diffuse surfaces: the light seen, and direct light by light samples
+        kind = "direct_ems"
     if kind in STRATEGIES:
         if not emitters:
             return Mapping("", why_not="the scene has no emitter")

@@ -215,6 +215,15 @@ def test_noris_direct_strategies_are_mitsubas_direct_with_their_samples(tmp_path
     assert props(root.find("shape/emitter")) == {"radiance": "4, 5, 6"} and notes == []
 
 
+def test_whitted_is_direct_ems_where_no_surface_is_a_mirror_or_glass(tmp_path):
+    integrator = translate(tmp_path, AREA_LIGHT, '<integrator type="whitted"/>').find("integrator")
+    assert integrator.get("type") == "direct" and props(integrator) == \
+        {"emitter_samples": "1", "bsdf_samples": "0", "hide_emitters": "false"}
+    mirror = '<mesh type="obj"><string name="filename" value="quad.obj"/><bsdf type="mirror"/></mesh>'
+    _, note = noted(tmp_path, "mirror and glass", body=AREA_LIGHT + mirror, integrator='<integrator type="whitted"/>')
+    assert ':2: <integrator type="whitted">: not compared' in note
+
+
 @pytest.mark.parametrize("kind", ["path_mats", "path_ems", "path_mis"])
 def test_noris_path_tracers_are_mcvals_path_with_their_strategy(tmp_path, kind):
     notes: list[str] = []
@@ -256,7 +265,7 @@ def test_noris_ao_is_pure_ambient_occlusion(tmp_path):
     assert [(e.get("type"), props(e)) for e in root.findall("emitter")] == [("constant", {"radiance": "1, 1, 1"})]
 
 
-@pytest.mark.parametrize("kind, why", [("av", "finite `length`"), ("whitted", "mirror and glass"),
+@pytest.mark.parametrize("kind, why", [("av", "finite `length`"),
                                        ("path", "path_mats, path_ems and path_mis"),
                                        ("photonmapper", "no such integrator")])
 def test_integrators_without_an_equivalent_are_noted_on_their_line_and_the_scene_kept(tmp_path, kind, why):
