@@ -26,13 +26,14 @@ def test_a_one_percent_bias_is_found_about_90_percent_of_the_time(cornell_ao):
     budget = plan_budget(case, mcval, mitsuba, 0.01, ALPHA, seed=12345)
     assert budget.spp is not None and budget.spp < budget.pilot_spp and budget.planned_bias <= 0.01 < budget.pilot_bias * 4
     reference, _ = load_reference(case, mitsuba)
-    found, runs = 0, 100
+    found, runs = 0, 60
     for i in range(runs):
         batches = mcval.render(str(case.path), "ao", budget.spp, budget.batches, 60_000 + i, render_params(case)).batches
         c = compare_summaries(summarize(batches * 1.01), reference.summary, ALPHA, samples=(budget.spp, reference.spp),
                               metrics=False, power=False, same_estimator=True)
         found += not c.scales[2].passed  # the image scale: the bias the budget is for
-    assert 85 <= found <= 95, found
+    # 90 % of 60: 54, within 2.2 binomial standard deviations (2.3 each).
+    assert 49 <= found <= 59, found
 
 
 def test_a_target_below_the_references_noise_is_refused_with_the_reason(cornell_ao):
