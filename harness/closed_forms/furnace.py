@@ -21,8 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-from harness.closed_forms.plane_scene import (NotAnalytic, color, prop, reflectance, resolve, resolved_root,
-                                              shape_to_world, sphere_geometry)
+from harness.closed_forms.plane_scene import (NotAnalytic, check_framing, color, prop, reflectance, resolve,
+                                              resolved_root, shape_to_world, sphere_geometry)
 
 
 @dataclass(frozen=True)
@@ -104,6 +104,7 @@ def _read(root: ET.Element) -> Furnace:
     film = sensor.find("film") if sensor is not None else None
     if film is None:
         raise NotAnalytic("no <sensor> with a <film>")
+    check_framing(sensor, film)
     size = {n: prop(film, "integer", n) for n in ("width", "height")}
     width, height = (int(size[n].get("value")) if size[n] is not None else d for n, d in (("width", 768),
                                                                                          ("height", 576)))

@@ -182,6 +182,15 @@ def _tiled_plane(planes: list[ET.Element], bsdfs: dict[str, ET.Element]) -> tupl
     return whole, rho
 
 
+def check_framing(sensor: ET.Element, film: ET.Element) -> None:
+    """NotAnalytic unless the film is rendered whole through a centred pinhole: a crop window, a principal point
+    offset or a sampled border would give another image than the closed forms' (or one of another size)."""
+    framing = [e.get("name") for e in (*film, *sensor) if e.get("name", "").startswith(("crop_", "principal_point"))
+               or (e.get("name") == "sample_border" and e.get("value", "").strip().lower() == "true")]
+    if framing:
+        raise NotAnalytic(f"closed forms cover the whole film through a centred pinhole, not {framing[0]}")
+
+
 def load_plane_scene(path: str | Path, params: dict[str, str] | None = None) -> PlaneScene:
     """Reads a one-plane scene (the plane possibly tiled), or one plane and one sphere; raises NotAnalytic
     for anything else, a file that is no scene file included (its case then fails where it renders, with
@@ -222,12 +231,7 @@ def _read_plane_scene(path: str | Path, params: dict[str, str] | None) -> PlaneS
     rfilter = film.find("rfilter")
     if rfilter is None or rfilter.get("type") != "box":
         raise NotAnalytic("closed forms are integrated over pixels with a box filter")
-    # The closed forms integrate the whole film through a centred pinhole: a crop window, a principal point
-    # offset or a sampled border would give another image than theirs.
-    framing = [e.get("name") for e in (*film, *sensor) if e.get("name", "").startswith(("crop_", "principal_point"))
-               or (e.get("name") == "sample_border" and e.get("value", "").strip().lower() == "true")]
-    if framing:
-        raise NotAnalytic(f"closed forms cover the whole film through a centred pinhole, not {framing[0]}")
+    check_framing(sensor, film)
     if (prop(sensor, "string", "fov_axis") is not None) and prop(sensor, "string", "fov_axis").get("value") != "x":
         raise NotAnalytic("fov_axis other than x")
     emitting = [s for s in root.findall("shape") if s.find("emitter") is not None]

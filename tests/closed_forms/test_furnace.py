@@ -83,6 +83,7 @@ def test_an_emitting_sphere_without_a_bsdf_is_black_inside(tmp_path):
     ((r'<float name="fov" value="60"/>', '<float name="fov" value="60"/><float name="far_clip" value="1.5"/>'),
      "far"),
     ((r'<sensor type="perspective">', '<sensor type="orthographic">'), "perspective"),
+    ((r'<rfilter type="box"/>', '<rfilter type="box"/><integer name="crop_width" value="8"/>'), "crop_width"),
     ((r'<bsdf type="diffuse">\s*<rgb name="reflectance" value="[^"]*"/>\s*</bsdf>', '<ref id="x"/>'), "KeyError"),
     ((r'<scene version="3.0.0">', '<scene version="3.0.0"><shape type="rectangle"/>'), "no other shape"),
 ])
