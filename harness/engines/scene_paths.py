@@ -56,6 +56,8 @@ def _expand(parent: ET.Element, file: Path, folders: list[Path], chain: tuple[Pa
                 missing = "no such file" if Path(name).is_absolute() else \
                     f"not found in {', '.join(str(f) for f in folders)}"
                 raise SceneFileError(f"{where}: <include filename=\"{name}\">: {missing}")
+            if not found.is_file():  # a named pipe would block the reader for ever, a device never end
+                raise SceneFileError(f"{where}: <include filename=\"{name}\">: not a regular file ({found})")
             if found in chain or len(chain) >= MAX_INCLUDE_DEPTH:
                 raise SceneFileError(f"{where}: <include filename=\"{name}\">: includes itself "
                                      f"({' -> '.join(p.name for p in (*chain, found))})")

@@ -176,3 +176,18 @@ def test_a_mesh_that_is_no_regular_file_is_refused_with_its_line(tmp_path, kind)
                     '\n</shape>\n</scene>')
     scene, = prepare_scenes([path], tmp_path / "cache", 16)
     assert scene.problem.startswith(f"{path}:3:") and "not a regular file" in scene.problem, scene.problem
+
+
+@pytest.mark.parametrize("kind", ["fifo", "device", "folder"])
+def test_an_include_that_is_no_regular_file_is_refused_with_its_line(tmp_path, kind):
+    """An <include> is followed before the file names are checked: a named pipe there blocked the harness."""
+    import os
+    target = {"fifo": tmp_path / "FIFO", "device": "/dev/zero", "folder": tmp_path / "DIR"}[kind]
+    if kind == "fifo":
+        os.mkfifo(target)
+    elif kind == "folder":
+        target.mkdir()
+    path = tmp_path / "s.xml"
+    path.write_text(f'<scene version="3.0.0">\n<include filename="{target}"/>\n</scene>')
+    scene, = prepare_scenes([path], tmp_path / "cache", 16)
+    assert scene.problem.startswith(f"{path}:2:") and "not a regular file" in scene.problem, scene.problem
