@@ -158,7 +158,8 @@ def test_a_file_the_scene_names_that_cannot_be_read_is_its_scenes_problem_in_wor
     path = tmp_path / "s.xml"
     path.write_text(f'<scene version="3.0.0"><include filename="{name}"/></scene>')
     scene, = prepare_scenes([path], tmp_path / "cache", 16)
-    assert "cannot read" in scene.problem or "no such file" in scene.problem, scene.problem
+    why = "not a regular file" if name == "DIR" else "no such file"
+    assert why in scene.problem or "cannot read" in scene.problem, scene.problem
     assert "Error" not in scene.problem and "\n" not in scene.problem
 
 
