@@ -163,32 +163,25 @@ def test_a_file_the_scene_names_that_cannot_be_read_is_its_scenes_problem_in_wor
     assert "Error" not in scene.problem and "\n" not in scene.problem
 
 
+#: How a scene names a file, and the line that names it: a mesh's file name, or an <include> (followed before the
+#: file names are checked).
+NAMED_BY = {"mesh": ('<shape type="ply">\n<string name="filename" value="{}"/>\n</shape>', 3),
+            "include": ('<include filename="{}"/>', 2)}
+
+
+@pytest.mark.parametrize("named_by", NAMED_BY)
 @pytest.mark.parametrize("kind", ["fifo", "device", "folder"])
-def test_a_mesh_that_is_no_regular_file_is_refused_with_its_line(tmp_path, kind):
-    """Reading a named pipe blocks for ever and /dev/zero never ends: refused before any engine opens them."""
+def test_a_file_that_is_no_regular_file_is_refused_with_its_line(tmp_path, kind, named_by):
+    """Reading a named pipe blocks for ever and /dev/zero never ends: refused before any engine opens them, or
+    the harness reads them."""
     import os
     target = {"fifo": tmp_path / "FIFO", "device": "/dev/zero", "folder": tmp_path / "DIR"}[kind]
     if kind == "fifo":
         os.mkfifo(target)
     elif kind == "folder":
         target.mkdir()
+    element, line = NAMED_BY[named_by]
     path = tmp_path / "s.xml"
-    path.write_text(f'<scene version="3.0.0">\n<shape type="ply">\n<string name="filename" value="{target}"/>'
-                    '\n</shape>\n</scene>')
+    path.write_text(f'<scene version="3.0.0">\n{element.format(target)}\n</scene>')
     scene, = prepare_scenes([path], tmp_path / "cache", 16)
-    assert scene.problem.startswith(f"{path}:3:") and "not a regular file" in scene.problem, scene.problem
-
-
-@pytest.mark.parametrize("kind", ["fifo", "device", "folder"])
-def test_an_include_that_is_no_regular_file_is_refused_with_its_line(tmp_path, kind):
-    """An <include> is followed before the file names are checked: a named pipe there blocked the harness."""
-    import os
-    target = {"fifo": tmp_path / "FIFO", "device": "/dev/zero", "folder": tmp_path / "DIR"}[kind]
-    if kind == "fifo":
-        os.mkfifo(target)
-    elif kind == "folder":
-        target.mkdir()
-    path = tmp_path / "s.xml"
-    path.write_text(f'<scene version="3.0.0">\n<include filename="{target}"/>\n</scene>')
-    scene, = prepare_scenes([path], tmp_path / "cache", 16)
-    assert scene.problem.startswith(f"{path}:2:") and "not a regular file" in scene.problem, scene.problem
+    assert scene.problem.startswith(f"{path}:{line}:") and "not a regular file" in scene.problem, scene.problem
