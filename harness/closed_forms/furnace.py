@@ -21,8 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-from harness.closed_forms.plane_scene import (NotAnalytic, check_framing, color, prop, reflectance, resolve,
-                                              resolved_root, shape_to_world, sphere_geometry)
+from harness.closed_forms.plane_scene import (UNREADABLE, NotAnalytic, check_framing, color, is_true, prop,
+                                              reflectance, resolve, resolved_root, shape_to_world, sphere_geometry)
 
 
 @dataclass(frozen=True)
@@ -40,11 +40,6 @@ class Furnace:
     @property
     def kind(self) -> str:
         return "furnace"
-
-
-def _flipped(shape) -> bool:
-    flip = prop(shape, "boolean", "flip_normals")
-    return flip is not None and flip.get("value", "").strip().lower() == "true"
 
 
 def _camera_fits(sensor, center: np.ndarray, radius: float, width: int, height: int) -> None:
@@ -70,12 +65,12 @@ def _camera_fits(sensor, center: np.ndarray, radius: float, width: int, height: 
 
 
 def load_furnace(path: str | Path, params: dict[str, str] | None = None) -> Furnace:
-    """Reads a furnace (the module's conditions); NotAnalytic for anything else."""
+    """Reads a furnace (the module's conditions); NotAnalytic for anything else, a broken file included."""
     try:
         return _read(resolved_root(path, params))
     except NotAnalytic:
         raise
-    except (AttributeError, KeyError, TypeError, ValueError, IndexError) as e:
+    except UNREADABLE as e:
         raise NotAnalytic(f"not a furnace the closed forms read ({type(e).__name__}: {e})") from e
 
 
@@ -83,22 +78,21 @@ def is_furnace(root: ET.Element) -> bool:
     """Whether a scene's root (its $name parameters at their defaults) is a furnace."""
     try:
         _read(resolve(copy.deepcopy(root), None))
-    except (NotAnalytic, AttributeError, KeyError, TypeError, ValueError, IndexError):
+    except (NotAnalytic, *UNREADABLE):
         return False
     return True
 
 
 def _read(root: ET.Element) -> Furnace:
     shapes = [e for e in root if e.tag == "shape"]
-    if len(shapes) != 1 or shapes[0].get("type") != "sphere" or not _flipped(shapes[0]):
+    if len(shapes) != 1 or shapes[0].get("type") != "sphere" or not is_true(shapes[0], "flip_normals"):
         raise NotAnalytic("a furnace is one sphere with flip_normals, and no other shape")
     (sphere,) = shapes
     emitter = sphere.find("emitter")
     if emitter is None or emitter.get("type") != "area" or any(True for e in root if e.tag == "emitter"):
         raise NotAnalytic("a furnace's only light is the area emitter on its sphere")
     own = next((e for e in root if e.tag == "integrator"), None)
-    hide = prop(own, "boolean", "hide_emitters") if own is not None else None
-    if hide is not None and hide.get("value", "").strip().lower() == "true":
+    if own is not None and is_true(own, "hide_emitters"):
         raise NotAnalytic("hidden emitters: a camera ray then passes through the furnace's wall")
     sensor = root.find("sensor")
     film = sensor.find("film") if sensor is not None else None

@@ -14,15 +14,10 @@ import xml.etree.ElementTree as ET
 import numpy as np
 
 from harness.closed_forms.area_lights import AreaLight, DiskLight, PolygonLight, SphereLight, irradiance, lowest_height
-from harness.closed_forms.plane_scene import NotAnalytic, PlaneScene, shape_to_world, sphere_geometry
+from harness.closed_forms.plane_scene import NotAnalytic, PlaneScene, is_true, shape_to_world, sphere_geometry
 
 #: The largest |cos| between a disk light's normal and the floor's plane for it to count as parallel.
 PARALLEL_TOLERANCE = 1e-9
-
-
-def _flipped(shape: ET.Element) -> bool:
-    flip = next((c for c in shape if c.tag == "boolean" and c.get("name") == "flip_normals"), None)
-    return flip is not None and flip.get("value", "").strip().lower() == "true"
 
 
 def _unit(v: np.ndarray) -> np.ndarray:
@@ -34,7 +29,7 @@ def area_light(shape: ET.Element, radiance: np.ndarray) -> AreaLight:
     and sphere), in world space; NotAnalytic for any other shape."""
     kind = shape.get("type")
     if kind == "sphere":
-        if _flipped(shape):
+        if is_true(shape, "flip_normals"):
             raise NotAnalytic("a sphere light with flip_normals (it emits inwards)")
         center, radius = sphere_geometry(shape)
         return SphereLight(center, radius, radiance)
@@ -42,7 +37,7 @@ def area_light(shape: ET.Element, radiance: np.ndarray) -> AreaLight:
         raise NotAnalytic(f"an emitting {kind}: the closed forms know rectangle, disk and sphere lights")
     m = shape_to_world(shape)
     normal = _unit(np.linalg.inv(m[:3, :3]).T @ np.array([0.0, 0.0, 1.0]))  # a normal goes by the inverse transpose
-    normal = -normal if _flipped(shape) else normal
+    normal = -normal if is_true(shape, "flip_normals") else normal
     if kind == "disk":
         scales = np.linalg.norm(m[:3, :2], axis=0)
         if abs(m[:3, 0] @ m[:3, 1]) > 1e-9 * scales.prod() or not np.isclose(scales[0], scales[1], rtol=1e-9):

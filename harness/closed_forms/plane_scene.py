@@ -18,6 +18,11 @@ class NotAnalytic(ValueError):
     """The scene has no closed form (more than one plane, a filter other than box, ...)."""
 
 
+#: What reading a file that is no scene the closed forms know raises (broken XML, a property missing or malformed):
+#: each reader turns it into NotAnalytic.
+UNREADABLE = (ET.ParseError, AttributeError, KeyError, TypeError, ValueError, IndexError)
+
+
 @dataclass(frozen=True)
 class Sphere:
     """An exact sphere in world space."""
@@ -103,6 +108,12 @@ def _transform(el: ET.Element | None) -> np.ndarray:
 def prop(el: ET.Element, tag: str, name: str) -> ET.Element | None:
     """el's child <tag name="name">, or None."""
     return next((c for c in el if c.tag == tag and c.get("name") == name), None)
+
+
+def is_true(el: ET.Element, name: str) -> bool:
+    """Whether el's <boolean name="name"> says true (absent: false)."""
+    flag = prop(el, "boolean", name)
+    return flag is not None and flag.get("value", "").strip().lower() == "true"
 
 
 def color(el: ET.Element, name: str, default: float) -> np.ndarray:
@@ -200,7 +211,7 @@ def load_plane_scene(path: str | Path, params: dict[str, str] | None = None) -> 
         return _read_plane_scene(path, params)
     except NotAnalytic:
         raise
-    except (ET.ParseError, AttributeError, KeyError, TypeError, ValueError, IndexError) as e:
+    except UNREADABLE as e:
         raise NotAnalytic(f"not a scene file the closed forms read ({type(e).__name__}: {e})") from e
 
 

@@ -111,3 +111,12 @@ def test_ao_is_not_applicable_in_a_furnace_only():
     assert entry("ao").not_applicable(SCENE.with_name("cornell.xml")) is None
     assert is_furnace(ET.parse(SCENE).getroot())
     assert not is_furnace(ET.parse(SCENE.with_name("sphere_floor_unit.xml")).getroot())
+
+
+def test_a_broken_file_is_no_furnace_and_no_error(tmp_path):
+    """A file that is not XML: NotAnalytic, as the plane scenes' reader says, so that supports() answers False."""
+    broken = tmp_path / "broken.xml"
+    broken.write_text('<scene version="3.0.0"><shape')
+    with pytest.raises(NotAnalytic, match="ParseError"):
+        load_furnace(broken)
+    assert not AnalyticEngine.supports(str(broken), None, "path")
