@@ -51,19 +51,20 @@ class SceneVerdict:
                 "level": self.level, "message": self.message}
 
 
-def _written(test: NoriTest, k: int, scene: ET.Element, folder: Path) -> tuple[Path | None, str]:
-    """The scene's Mitsuba copy in `folder` and mcval's integrator for it, or (None, why no integrator computes
-    what the scene's does)."""
+def _written(test: NoriTest, k: int, scene: ET.Element, folder: Path) -> tuple[Path | None, str, int]:
+    """The scene's Mitsuba copy in `folder`, mcval's integrator for it and the film's pixels, or (None, why no
+    integrator computes what the scene's does, 0)."""
     notes: list[str] = []
     root = scene_to_mitsuba(Reader(test.doc), scene, notes)
     unmatched = next((n for n in notes if NOT_COMPARED in n), None)
     if unmatched is not None:
-        return None, unmatched
+        return None, unmatched, 0
     absolute_paths(root, test.path)
     ET.indent(root)
     file = folder / f"{test.path.stem}-scene{k + 1}.xml"
     file.write_text(ET.tostring(root, encoding="unicode") + "\n")
-    return file, root.find("integrator").get("type")
+    width, height = film_size(root)
+    return file, root.find("integrator").get("type"), width * height
 
 
 def run_scene_test(test: NoriTest, engine: Engine, folder: Path, seed: int) -> list[SceneVerdict]:
@@ -75,12 +76,11 @@ def run_scene_test(test: NoriTest, engine: Engine, folder: Path, seed: int) -> l
     for k, (scene, reference) in enumerate(zip(test.scenes, references)):
         where = test.doc.where(scene)
         own = next((e.get("type", "") for e in scene if e.tag == "integrator"), "")
-        file, integrator = _written(test, k, scene, folder)
+        file, integrator, pixels = _written(test, k, scene, folder)
         if file is None:
             out.append(SceneVerdict(where, own, None, None, level, f"not run: {integrator}"))
             continue
-        width, height = film_size(ET.parse(file).getroot())
-        spp = max(1, math.ceil(wanted / (BATCHES * width * height)))
+        spp = max(1, math.ceil(wanted / (BATCHES * pixels)))
         try:
             result = engine.render(str(file), integrator, spp, BATCHES, seed + k)
         except RenderFailed as e:
@@ -88,7 +88,7 @@ def run_scene_test(test: NoriTest, engine: Engine, folder: Path, seed: int) -> l
             continue
         luminance = np.asarray(result.batches[..., :3], dtype=float) @ np.asarray(LUMINANCE)
         means = luminance.reshape(BATCHES, -1).mean(axis=1)
-        per_batch = spp * width * height
+        per_batch = spp * pixels
         passed, p, message = students_t_test(float(means.mean()), float(means.var(ddof=1)) * per_batch, reference,
                                              per_batch * BATCHES, level, dof=BATCHES - 1)
         out.append(SceneVerdict(where, own, passed, p, level, f"{integrator} ({spp * BATCHES} spp): {message}"))
