@@ -22,7 +22,7 @@ from pyrender_lights import LightError, scene_lights
 
 VERSION = "pyrender 0.1"
 INTEGRATORS = ("normals", "simple", "ao", "direct")
-BUGS = ("bright", "ao-uniform", "simple-no-cosine", "offset", "direct-no-cosine", "area-pdf")
+BUGS = ("bright", "ao-uniform", "ao-albedo", "simple-no-cosine", "offset", "direct-no-cosine", "area-pdf")
 MAX_RAYS = 1 << 21          # camera rays traced at once (memory bound)
 MAX_RAYS_DIRECT = 1 << 18   # direct keeps a dozen float64 arrays per camera ray
 SPAWN_EPS = 1e-6            # relative offset of secondary rays (see spawn_origin)
@@ -179,7 +179,9 @@ def shade(scene, lights, env, integrator, ray, si, rng, n_rays, bug):
         r = dr.safe_sqrt(1.0 - z * z)
         d = si.sh_frame.to_world(mi.Vector3f(r * dr.cos(phi), r * dr.sin(phi), z))
         seen = active & ~scene.ray_test(spawn(si, d, bug), active)
-        result = dr.select(seen, rho * color(env), 0.0)
+        # ao reads no material: a visible direction counts L, whatever the surface's reflectance.
+        lit = rho * color(env) if bug == "ao-albedo" else color(env)
+        result = dr.select(seen, lit, 0.0)
     return result
 
 

@@ -1,14 +1,14 @@
 """A sphere of radius R resting on a diffuse floor (tangent at one point): its exact geometry and the two
 visibility terms the closed forms need.
 
-Unoccluded cosine-weighted fraction of the hemisphere, the only thing ao integrates (L = rho * L_env * V):
+Unoccluded cosine-weighted fraction of the hemisphere, the only thing ao integrates (L = L_env * V):
   - floor point at distance D from the centre: the sphere, wholly above the horizon, subtends the
     cosine-weighted form factor (R/D)^2 cos(theta) with cos(theta) = R/D (the centre is R above the floor),
     so V = 1 - (R/D)^3;
   - sphere point with normal n: the sphere cannot occlude itself (convex) and the floor cuts the cosine lobe
     at the horizon, so V = (1 + n.up) / 2 (up = the floor's normal).
 The floor is finite: from a sphere point (height <= 2R) it misses the directions within 2R/L of the
-horizon (L the floor's half-size). MIN_FLOOR_RATIO keeps that below 1.3e-4 of rho * L_env anywhere on the
+horizon (L the floor's half-size). MIN_FLOOR_RATIO keeps that below 1.3e-4 of L_env anywhere on the
 sphere ((2/pi) * 2R/L), under what a 128x128 image can detect.
 
 Point lights (simple): a floor point is lit unless the segment to the light crosses the sphere; a sphere

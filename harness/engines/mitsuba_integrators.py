@@ -36,6 +36,8 @@ class MitsubaMapping:
     drop_emitters: tuple[str, ...] = ()            # top-level <emitter type> removed
     drop_area_emitters: bool = False               # <emitter type="area"> inside shapes removed
     add_environment: bool = False                  # a constant emitter (radiance 1) when the scene has none
+    #: Every material made white and opaque (harness/engines/white_materials.py): the integrator reads none.
+    white_materials: bool = False
     #: Properties whose value the scene file's own <integrator> gives when it is of type `plugin`
     #: (hide_emitters is always the file's, from any <integrator>: written_scene.file_hide_emitters).
     file_values: tuple[str, ...] = ()
@@ -55,6 +57,8 @@ class MitsubaMapping:
             parts.append("drops area emitters in shapes")
         if self.add_environment:
             parts.append("adds constant emitter if none")
+        if self.white_materials:
+            parts.append("every material white diffuse")
         return "; ".join(parts)
 
     def draws_same_estimator(self, scene: Path) -> bool:
@@ -99,8 +103,9 @@ OTHER_PLUGINS = {
     # deterministic shading of each hit.
     "simple": _Plugin("direct", (("integer", "emitter_samples", "1"), ("integer", "bsdf_samples", "0")),
                       same_estimator=True, estimator_differs=_several_point_lights),
-    # One BSDF sample and no emitter sample: the diffuse BSDF samples the cosine-weighted hemisphere, so each
-    # sample is rho * L_env * V, our ao sample for sample (Mitsuba's default adds an emitter sample under MIS).
+    # One BSDF sample and no emitter sample: the white diffuse BSDF (every material is made one) samples the
+    # cosine-weighted hemisphere, so each sample is L_env * V, our ao sample for sample (Mitsuba's default adds
+    # an emitter sample under MIS).
     "ao": _Plugin("direct", (("boolean", "hide_emitters", "true"), ("integer", "emitter_samples", "0"),
                              ("integer", "bsdf_samples", "1")),
                   same_estimator=True, estimator_differs=_several_rays),
@@ -109,7 +114,8 @@ OTHER_PLUGINS = {
 
 def _drops(e: IntegratorEntry) -> dict:
     return {"drop_emitters": tuple(t for t in EMITTER_TYPES if t not in e.emitters),
-            "drop_area_emitters": "area" not in e.emitters, "add_environment": e.default_environment}
+            "drop_area_emitters": "area" not in e.emitters, "add_environment": e.default_environment,
+            "white_materials": not e.reads_materials}
 
 
 def mitsuba_mapping(integrator: str) -> MitsubaMapping:

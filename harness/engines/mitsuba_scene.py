@@ -1,7 +1,7 @@
 """Our scene files, made into Mitsuba scenes: each integrator mapped onto its Mitsuba equivalent
 (harness/engines/mitsuba_integrators.py): the <integrator> replaced (keeping the file's `hide_emitters`),
 and removed what our loader skips for that integrator (emitter types, area emitters inside shapes), a constant
-emitter added where mcval's integrator assumes one.
+emitter added where mcval's integrator assumes one, every material made white where it reads none.
 A sampler Mitsuba does not have (mcval's `sobol`) becomes its closest one (MITSUBA_SAMPLER).
 
 The film stores float32 (Mitsuba's hdrfilm default is float16). Nothing is written into the scene's folder.
@@ -13,6 +13,7 @@ from pathlib import Path
 
 from harness.engines import mitsuba_direct
 from harness.engines.scene_paths import absolute_paths
+from harness.engines.white_materials import white_materials
 from harness.engines.written_scene import file_hide_emitters
 from harness.engines.xml_lines import remove_keeping_lines, replace_keeping_lines
 from harness.engines.mitsuba_integrators import mitsuba_mapping
@@ -88,6 +89,8 @@ def load_scene(path: str | Path, integrator: str, sampler: str | None = None, ti
         root = ET.fromstring(mitsuba_xml(path.read_text(), integrator, sampler, tight, robust))
     except ET.ParseError as e:
         raise ValueError(f"{path}: not an XML scene file ({e})") from None
-    absolute_paths(root, path)
+    absolute_paths(root, path)  # includes inlined: the materials they hold are the scene's too
+    if mitsuba_mapping(integrator).white_materials:
+        white_materials(root)
     return mi.load_string(ET.tostring(root, encoding="unicode"), optimize=False,
                           **{k: str(v) for k, v in params.items()})

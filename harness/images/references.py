@@ -5,7 +5,7 @@ that rendered it: `references/<engine>/<scene>/<integrator>.exr` holds the mean 
 variance of that mean (variance.R/G/B) in float32; the `.json` beside it holds
 the provenance and the tile and image batch statistics. A reference is reused
 only when its provenance (the hash of the scene file and every mesh it names,
-Mitsuba's version and variant, samples, batches, seed, resolution) matches what
+Mitsuba's version and variant, how it renders the integrator, samples, batches, seed, resolution) matches what
 the run asks for; otherwise the run renders a fresh one and says so. Only
 `mcval references` (make references) writes them.
 
@@ -80,7 +80,9 @@ def expected_provenance(case: ImageCase, engine: Engine) -> dict:
     """What a reference for `case` must have been made from to be reused."""
     scene = engine.scene_file(case.path)
     return {"scene": scene.name, "scene_sha256": scene_hash(scene),
-            "integrator": case.integrator, "engine": engine.version(), "spp": REFERENCE_SPP[case.integrator],
+            "integrator": case.integrator, "engine": engine.version(),
+            # Its plugin and what its copy of the scene changes: a new mapping makes a new image.
+            "mapping": engine.integrator_mapping(case.integrator), "spp": REFERENCE_SPP[case.integrator],
             "batches": REFERENCE_BATCHES, "seed": REFERENCE_SEED, "resolution": RESOLUTION, "tile": TILE_SIZE,
             "summary_format": SUMMARY_FORMAT}
 

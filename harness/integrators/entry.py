@@ -95,6 +95,12 @@ class IntegratorEntry:
     #: The rewrites its image is linear in: "light" (every emitter scaled), "reflectance" (every diffuse
     #: reflectance scaled). The invariance suite checks that the image scales by the same factor.
     linear_in: tuple[str, ...] = ()
+    #: The rewrites that leave its image unchanged though they change the scene (ao reads no material:
+    #: "reflectance"). The invariance suite checks that they do.
+    independent_of: tuple[str, ...] = ()
+    #: It reads the scene's materials. False (ao): every surface is an opaque white diffuse one, lit on its back
+    #: where its bsdf is twosided; an engine whose integrator reads them renders a copy with such materials.
+    reads_materials: bool = True
     #: Its image is a direction in world space (normals): a rotated scene rotates every pixel's value.
     rotates_with_scene: bool = False
     #: Lit by a constant environment of radiance 1 where the scene has none (ao), which no rewrite scales.
@@ -109,8 +115,9 @@ class IntegratorEntry:
     source: str = field(default="", compare=False)  # the file it was read from (set by the registry)
 
     def invariances(self) -> tuple[str, ...]:
-        """The invariances that apply to it: the geometric ones always, plus the rewrites it is linear in."""
-        return GEOMETRIC_INVARIANCES + self.linear_in
+        """The invariances that apply to it: the geometric ones always, plus the rewrites it is linear in or
+        independent of."""
+        return GEOMETRIC_INVARIANCES + self.linear_in + self.independent_of
 
     def not_applicable(self, scene: Path) -> str | None:
         """Why `scene` cannot be rendered with this integrator, or None if it can."""

@@ -34,7 +34,7 @@ CHECK_SOURCES = ("harness/invariance/check.py", "harness/invariance/cell.py", "h
                  "harness/comparison", "harness/statistics", "harness/integrators",
                  "harness/engines/base.py", "harness/engines/mitsuba.py", "harness/engines/mitsuba_scene.py",
                  "harness/engines/mitsuba_direct.py", "harness/engines/scene_paths.py",
-                 "harness/engines/written_scene.py")
+                 "harness/engines/written_scene.py", "harness/engines/white_materials.py")
 
 
 def check_sha256(root: Path = SOURCE_ROOT) -> str:

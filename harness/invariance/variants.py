@@ -85,7 +85,7 @@ INVARIANCES = (
     Invariance("light", "every emitter's intensity or radiance x 2: image x 2 (ao without a constant emitter "
                         "lights with a fixed radiance 1: unchanged)",
                (Variant("light", "light", 2.0, "x2"),)),
-    Invariance("reflectance", "every diffuse reflectance x 1/2: image x 1/2",
+    Invariance("reflectance", "every diffuse reflectance x 1/2: image x 1/2 (ao reads no material: unchanged)",
                (Variant("reflectance", "reflectance", 0.5, "x0.5"),)),
 )
 

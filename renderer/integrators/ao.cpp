@@ -1,5 +1,6 @@
 // ao: ambient occlusion under the constant emitter (radiance 1 without one), cosine-weighted:
-// L = rho * L_env * mean(V(w_i)) over `samples` occlusion rays per camera sample. A camera ray that
+// L = L_env * mean(V(w_i)) over `samples` occlusion rays per camera sample. It reads no material: every
+// surface is an opaque white diffuse one, lit on its back only where its bsdf is twosided. A camera ray that
 // escapes sees black, or L_env where the file's integrator says hide_emitters = false (Mitsuba's and
 // Nori's convention; black is the suite's, so that the image is the occlusion alone).
 #include "../frame.h"
@@ -61,7 +62,7 @@ MCVAL_HOT void aoPacket(const EmbreeScene &embree, const Color &environment, con
             }
             for (int i = 0; i < kPacketSize; ++i) {
                 // Cosine-weighted sampling cancels the cosine over its pdf: each unoccluded ray
-                // counts rho * L_env.
+                // counts L_env.
                 const Vec3f l = squareToCosineHemisphere({ux[i], uy[i]});
                 // Frame::toWorld: s l.x + t l.y + n l.z.
                 const Vec3f wi{sx[i] * l.x + tx[i] * l.y + nx[i] * l.z, sy[i] * l.x + ty[i] * l.y + ny[i] * l.z,
@@ -80,8 +81,7 @@ MCVAL_HOT void aoPacket(const EmbreeScene &embree, const Color &environment, con
         counts.shadow += static_cast<uint64_t>(traced) * static_cast<uint64_t>(samples);
     }
     for (int i = 0; i < packet.count; ++i) {
-        const Color &rho = back[i] ? embree.backReflectance(h.geom[i]) : embree.reflectance(h.geom[i]);
-        out[i] = front[i] ? rho * environment *
+        out[i] = front[i] ? environment *
                                 (static_cast<float>(visible[i]) / static_cast<float>(samples))
                  : h.found[i] ? Color(0.f, 0.f, 0.f)
                               : background;
@@ -109,7 +109,7 @@ private:
 MCVAL_REGISTER_INTEGRATOR({
     "ao",
     "ambient occlusion under the constant emitter, cosine-weighted (properties: samples, hide_emitters = true)",
-    SceneUse{/*needsPointLight=*/false, /*emitters=*/EmitterKinds{EmitterKind::Constant}, /*readsReflectance=*/true},
+    SceneUse{/*needsPointLight=*/false, /*emitters=*/EmitterKinds{EmitterKind::Constant}, /*readsReflectance=*/false},
     [](XmlProps *props) -> IntegratorMaker {
         int samples = 1;
         if (props) {

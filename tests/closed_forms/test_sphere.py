@@ -152,8 +152,8 @@ def _brute_force_pixel(s, integrator: str, row: int, col: int, n: int, rng) -> t
     normal = np.where(on_sphere[:, None], (p - c) / r, [0.0, 0.0, 1.0])
     rho = np.where(on_sphere, s.sphere.reflectance[2], s.reflectance[2])
     spawn = p + 1e-9 * r * normal
-    if integrator == "ao":
-        value = rho * ~_blocked(spawn, _cosine_dirs(rng, normal), c, r, 2e4 * r)
+    if integrator == "ao":  # it reads no material
+        value = (~_blocked(spawn, _cosine_dirs(rng, normal), c, r, 2e4 * r)).astype(np.float64)
     else:
         light, intensity = s.lights[0]
         to_light = light - p

@@ -1,6 +1,6 @@
 // ao_uniform (test build only): ambient occlusion with directions drawn uniformly on the hemisphere and
 // weighted by 2 cos, the seed document's estimator. Its mean is ao's, its variance larger (an unoccluded
-// point: rho^2 L^2 / 3 where ao's is 0), so every test of the mean passes it: the known-wrong twin of the
+// point: L^2 / 3 where ao's is 0), so every test of the mean passes it: the known-wrong twin of the
 // variance test (tests/images/test_variance_twin.py).
 #include "frame.h"
 #include "warp.h"
@@ -25,8 +25,8 @@ public:
         const Vec3f wi = Frame(n).toWorld(local);
         counts.shadow += 1;
         if (m_embree.occluded(spawnRay(*hit, wi, 1e30f))) return Color(0.f, 0.f, 0.f);
-        // f cos / pdf = (rho / pi) cos / (1 / (2 pi)) = 2 rho cos.
-        return m_embree.reflectance(hit->geom) * m_environment * (2.f * local.z);
+        // ao's white surface: f cos / pdf = (1 / pi) cos / (1 / (2 pi)) = 2 cos.
+        return m_environment * (2.f * local.z);
     }
 
 private:

@@ -129,12 +129,13 @@ TEST(MitsubaFiles, AReferenceMayPrecedeItsBsdfAndNameANestedOne) {
 }
 
 TEST(MitsubaFiles, ABsdfNoShapeRefersToIsNotRead) {
-    // As no integrator reads it: a plastic one loads under ao, with a note.
+    // As no integrator reads it: a plastic one loads under direct, with a note.
     const std::string body = scene(kRectangle + "  <bsdf type=\"plastic\" id=\"unused\"/>\n");
-    EXPECT_EQ(errorOf("unreferenced", body, "ao"), "");
+    EXPECT_EQ(errorOf("unreferenced", body, "direct"), "");
     const std::string used = scene("  <shape type=\"cube\"><ref id=\"unused\"/></shape>\n  <bsdf type=\"plastic\" "
                                    "id=\"unused\"/>\n");
-    EXPECT_TRUE(contains(errorOf("referenced", used, "ao"), "mcval_mitsuba_referenced.xml:4: <bsdf>: unsupported bsdf"));
+    EXPECT_TRUE(contains(errorOf("referenced", used, "direct"), "mcval_mitsuba_referenced.xml:4: <bsdf>: unsupported bsdf"));
+    EXPECT_EQ(errorOf("referenced", used, "ao"), "");  // ao reads no material
 }
 
 TEST(MitsubaFiles, TwosidedDiffuseIsDiffuseOnBothSides) {
@@ -150,11 +151,12 @@ TEST(MitsubaFiles, TwosidedDiffuseIsDiffuseOnBothSides) {
     EXPECT_EQ(test::frontAlbedo(s, s.meshes.at(1)).x, 0.5f);
     EXPECT_EQ(test::backAlbedo(s, s.meshes.at(1))->x, 0.2f);
     EXPECT_FALSE(test::backAlbedo(s, s.spheres.at(0)).has_value());
-    // Around a bsdf we cannot model it is refused where the reflectance is read, skipped under normals.
+    // Around a bsdf we cannot model it is refused where the reflectance is read, skipped under normals and ao.
     const std::string plastic = scene("  <shape type=\"rectangle\"><bsdf type=\"twosided\">\n    <bsdf "
                                       "type=\"plastic\"/></bsdf></shape>\n");
     EXPECT_EQ(errorOf("twosided_plastic", plastic), "");
-    EXPECT_TRUE(contains(errorOf("twosided_plastic", plastic, "ao"), "mcval_mitsuba_twosided_plastic.xml:4:"));
+    EXPECT_EQ(errorOf("twosided_plastic", plastic, "ao"), "");
+    EXPECT_TRUE(contains(errorOf("twosided_plastic", plastic, "direct"), "mcval_mitsuba_twosided_plastic.xml:4:"));
 }
 
 TEST(MitsubaFiles, TheBackOfATwosidedSurfaceIsLitAndAOneSidedOneIsBlack) {

@@ -28,7 +28,7 @@ def _direct(monkeypatch):
 def test_the_suite_integrators_keep_their_plugins():
     assert mitsuba_mapping("normals").summary().startswith("aov(aovs=nn:sh_normal); drops point, constant")
     assert mitsuba_mapping("simple").summary().startswith("direct(emitter_samples=1, bsdf_samples=0); drops constant")
-    assert mitsuba_mapping("ao").summary().endswith("adds constant emitter if none")
+    assert mitsuba_mapping("ao").summary().endswith("adds constant emitter if none; every material white diffuse")
 
 
 def test_a_new_integrator_of_mitsubas_name_is_mapped_from_its_entry(monkeypatch):

@@ -140,13 +140,14 @@ def test_bad_component_format_is_an_error(tmp_path):
     assert f"{path}:8:" in line  # the <film> element's line
 
 
-def test_non_diffuse_bsdf_is_a_note_for_normals_and_an_error_for_simple_and_ao(tmp_path):
+def test_non_diffuse_bsdf_is_a_note_for_normals_and_ao_and_an_error_for_simple_and_direct(tmp_path):
     path = scene(tmp_path, shape_extra='<bsdf type="conductor"/>')
-    res = run(path, "--integrator", "normals", "-o", tmp_path / "o.exr", "-q")
-    assert res.returncode == 0
-    notes = res.stderr.strip().splitlines()
-    assert len(notes) == 1 and notes[0].startswith("note: ") and "conductor" in notes[0]
-    for integrator in ("simple", "ao"):
+    for integrator in ("normals", "ao"):  # neither reads a material
+        res = run(path, "--integrator", integrator, "-o", tmp_path / "o.exr", "-q")
+        assert res.returncode == 0
+        notes = res.stderr.strip().splitlines()
+        assert len(notes) == 1 and notes[0].startswith("note: ") and "conductor" in notes[0]
+    for integrator in ("simple", "direct"):
         line = one_error(run(path, "--integrator", integrator, "-o", tmp_path / "o.exr", "-q"), path,
                          "conductor", integrator, "diffuse")
         assert f"{path}:15:" in line

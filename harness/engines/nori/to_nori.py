@@ -70,18 +70,17 @@ def _nori_simple(doc: LinedXml, root: ET.Element, integrator: ET.Element, lights
     integrator.append(write.color_element("energy", [4 * math.pi * i * r for i, r in zip(intensity, rho)]))
 
 
-def _nori_ao(doc: LinedXml, lights: list[Light], albedos: list[list[float]]) -> None:
-    """Nori's own ao integrator: an environment of radiance 1 and albedo 1 that escaping camera rays do not
-    see; nothing to set."""
+def _nori_ao(doc: LinedXml, lights: list[Light]) -> None:
+    """Nori's own ao integrator: an environment of radiance 1 that escaping camera rays do not see, and no
+    material read (as mcval's ao); nothing to set."""
     if file_hide_emitters(doc.root) == "false":
         integrator = next(e for e in doc.root if e.tag == "integrator")
         raise doc.fail(integrator, "Nori's ao integrator shows nothing to a camera ray that escapes; this scene "
                                    "shows it the environment (hide_emitters false)")
     radiance = lights[0][2]
-    for a in albedos:
-        if any(not math.isclose(x * r, 1.0, rel_tol=1e-6) for x, r in zip(a, radiance)):
-            raise doc.fail(lights[0][0], "Nori's ao integrator computes reflectance x radiance = 1; this scene has "
-                                         f"{triple_text([x * r for x, r in zip(a, radiance)])}")
+    if any(not math.isclose(r, 1.0, rel_tol=1e-6) for r in radiance):
+        raise doc.fail(lights[0][0], f"Nori's ao integrator lights with radiance 1; this scene has "
+                                     f"{triple_text(radiance)}")
 
 
 def reads_direct_strategy(integrator: str, theirs: str) -> bool:
@@ -146,7 +145,7 @@ def mitsuba_to_nori(doc: LinedXml, mcval_integrator: str, theirs: str,
     if mcval_integrator == "simple" and theirs == "simple":
         _nori_simple(doc, root, integrator, lights, albedos)
     elif mcval_integrator == "ao" and theirs == "ao":
-        _nori_ao(doc, lights, albedos)
+        _nori_ao(doc, lights)
     else:
         for _, position, value in lights:
             if position:  # Nori's point lights are given by their power: 4 pi I

@@ -146,10 +146,9 @@ def test_a_nori_file_without_a_translation_fails_its_case_in_one_line(tmp_path):
     assert entry["error"].startswith(f"{path}:") and "Nori's camera is perspective" in entry["error"]
 
 
-#: A Nori build's integrators for the suite's: emitter sampling is exact for a point light, and BSDF sampling of a
-#: diffuse surface under an environment is ao's cosine-weighted estimator (direct_ems would sample the whole sphere,
-#: a noisier estimator than ao's, which the variance check fails).
-NORI_BUILD = "normals = \"normals\"\nsimple = \"direct_ems\"\nao = \"direct_mats\"\n"
+#: A Nori build's integrators for the suite's: emitter sampling is exact for a point light, and Nori's own ao, which
+#: reads no material either, for ao.
+NORI_BUILD = "normals = \"normals\"\nsimple = \"direct_ems\"\nao = \"ao\"\n"
 
 
 def _engine_file(tmp_path, *bug: str, integrators: str = NORI_BUILD) -> Path:
