@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """pyrender: a small Monte Carlo renderer for mcval's engine contract (docs/engines.md).
 
-Mitsuba 3 (variant llvm_ad_rgb) loads the scene and traces rays; the four
-integrators (normals, simple, ao, and direct in pyrender_direct.py with its
-lights in pyrender_lights.py), the pixel sampling, the random numbers and the
-image accumulation are pyrender's own, vectorised over pixels x samples.
+Mitsuba 3 (variant llvm_ad_rgb) loads the scene and traces rays; the five
+integrators (normals, simple, ao, direct in pyrender_direct.py with its lights
+in pyrender_lights.py, and path in pyrender_path.py), the pixel sampling, the
+random numbers and the image accumulation are pyrender's own, vectorised over
+pixels x samples.
 
     pyrender.py SCENE --integrator NAME --spp N --seed S --width W --height H
                 -o OUT.exr [--batches K] [--threads T] [--bug NAME] [--sphere-sampling cone|area]
@@ -19,12 +20,13 @@ import xml.etree.ElementTree as ET
 
 from pyrender_direct import Hits, Tracer, direct, direct_settings
 from pyrender_lights import LightError, scene_lights
+from pyrender_path import path, path_settings
 
 VERSION = "pyrender 0.1"
-INTEGRATORS = ("normals", "simple", "ao", "direct")
-BUGS = ("bright", "ao-uniform", "ao-albedo", "simple-no-cosine", "offset", "direct-no-cosine", "area-pdf")
+INTEGRATORS = ("normals", "simple", "ao", "direct", "path")
+BUGS = ("bright", "ao-uniform", "ao-albedo", "simple-no-cosine", "offset", "direct-no-cosine", "area-pdf", "path-rr")
 MAX_RAYS = 1 << 21          # camera rays traced at once (memory bound)
-MAX_RAYS_DIRECT = 1 << 18   # direct keeps a dozen float64 arrays per camera ray
+MAX_RAYS_DIRECT = 1 << 18   # direct and path keep a dozen float64 arrays per camera ray
 SPAWN_EPS = 1e-6            # relative offset of secondary rays (see spawn_origin)
 BUG_OFFSET = 1e-2           # the 'offset' bug's absolute spawn offset
 
@@ -65,7 +67,7 @@ def scene_xml(path, width, height, integrator):
     """The scene XML with the <integrator> and <sampler> removed (pyrender has
     its own) and the film size set to width x height, the stddev of the film's
     gaussian reconstruction filter (None for a box filter), and, for direct,
-    its parameters from the <integrator> (None for the others)."""
+    its parameters or path's from the <integrator> (None for the others)."""
     try:
         root = ET.parse(path).getroot()
     except (OSError, ET.ParseError) as e:
@@ -73,7 +75,8 @@ def scene_xml(path, width, height, integrator):
     if root.tag != "scene":
         fail(f"{path}: the root element is <{root.tag}>, not <scene>")
     try:
-        settings = direct_settings(root.find("integrator")) if integrator == "direct" else None
+        readers = {"direct": direct_settings, "path": path_settings}
+        settings = readers[integrator](root.find("integrator")) if integrator in readers else None
     except ValueError as e:
         fail(f"{path}: {e}")
     for el in root.findall("integrator"):
@@ -211,32 +214,33 @@ def splat(acc, wsum, value, px, py, sx, sy, w, h, stddev):
             wsum += np.bincount(target, weights=wt, minlength=w * h)
 
 
-def direct_shader(scene, args, rng, settings):
-    """direct's value of camera rays (pyrender_direct.py), with the scene's lights."""
+def light_shader(scene, args, rng, settings):
+    """direct's or path's value of camera rays (pyrender_direct.py, pyrender_path.py), with the scene's lights."""
     try:
         lights = scene_lights(scene, mi, dr, area_measure=args.bug == "area-pdf",
                               sphere_by_area=args.sphere_sampling == "area")
     except LightError as e:
-        fail(f"{args.scene}: direct does not render this scene: it has {e}")
+        fail(f"{args.scene}: {args.integrator} does not render this scene: it has {e}")
+    estimate = path if args.integrator == "path" else direct
 
     def offset(p, t):  # spawn_origin's, in numpy
         return np.full_like(t, BUG_OFFSET) if args.bug == "offset" else SPAWN_EPS * (np.max(np.abs(p), axis=0) + t)
 
     tracer = Tracer(scene, mi, dr, offset)
 
-    def shade_direct(ray, si, n_rays):
+    def shade(ray, si, n_rays):
         if not lights:
             return np.zeros((3, n_rays))
         ray_o, ray_d = (np.array(v, dtype=np.float64) for v in (ray.o, ray.d))
-        return direct(tracer, lights, ray_o, ray_d, Hits.of(si, mi, dr), rng, settings, args.bug)
-    return shade_direct
+        return estimate(tracer, lights, ray_o, ray_d, Hits.of(si, mi, dr), rng, settings, args.bug)
+    return shade
 
 
 def render(scene, args, rng, stddev, settings):
     w, h, spp = args.width, args.height, args.spp
     sensor = scene.sensors()[0]
-    if args.integrator == "direct":
-        shader, max_rays = direct_shader(scene, args, rng, settings), MAX_RAYS_DIRECT
+    if args.integrator in ("direct", "path"):
+        shader, max_rays = light_shader(scene, args, rng, settings), MAX_RAYS_DIRECT
     else:
         lights, env = emitters(scene)
         shader, max_rays = (lambda ray, si, n_rays: shade(scene, lights, env, args.integrator, ray, si, rng,

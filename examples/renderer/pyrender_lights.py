@@ -79,12 +79,13 @@ class AreaLight:
     `area_measure`: the planted bug that leaves the pdf in area measure (1 / area, no dist^2 / cos)."""
     delta = False
 
-    def __init__(self, to_world, radiance, shape_id, kind="Rectangle", area_measure=False):
+    def __init__(self, to_world, radiance, shape_id, kind="Rectangle", area_measure=False, flipped=False):
         self.radiance, self.shape_id, self.kind, self.area_measure = radiance[:, None], shape_id, kind, area_measure
         m = np.asarray(to_world, dtype=np.float64)
         self.linear, self.origin = m[:3, :3], m[:3, 3:4]
-        # The unit square [-1, 1]^2 or the unit disk in z = 0, mapped by to_world (normals by its inverse transpose).
-        normal = np.linalg.inv(self.linear).T @ np.array([0.0, 0.0, 1.0])
+        # The unit square [-1, 1]^2 or the unit disk in z = 0, mapped by to_world (normals by its inverse transpose);
+        # flip_normals turns its front (the side that emits) around.
+        normal = np.linalg.inv(self.linear).T @ np.array([0.0, 0.0, -1.0 if flipped else 1.0])
         self.normal = (normal / np.linalg.norm(normal))[:, None]
         side = np.linalg.norm(np.cross(self.linear[:, 0], self.linear[:, 1]))
         self.area = side * (4 if kind == "Rectangle" else math.pi)
@@ -123,18 +124,25 @@ class AreaLight:
 
 class SphereLight(AreaLight):
     """Constant radiance on a sphere: from a point outside it, directions uniform in the cone it subtends
-    (as Mitsuba samples it; by area, half the samples land on its far side); from inside, uniform by area."""
+    (as Mitsuba samples it; by area, half the samples land on its far side); from inside, or on it, uniform by
+    area. The sphere's own hits lie on either side of it by float32 rounding: within INSIDE_MARGIN of the
+    radius a point counts as on it (the cone's near side would be the point itself), in sample() and pdf()
+    alike, so that the two agree."""
 
-    def __init__(self, to_world, radiance, shape_id, area_measure=False, by_area=False):
+    #: Relative distance from the surface within which a point counts as on the sphere.
+    INSIDE_MARGIN = 1e-3
+
+    def __init__(self, to_world, radiance, shape_id, area_measure=False, by_area=False, flipped=False):
         m = np.asarray(to_world, dtype=np.float64)
         self.radiance, self.shape_id, self.area_measure = radiance[:, None], shape_id, area_measure
+        self.side = -1.0 if flipped else 1.0  # flip_normals: it emits inwards
         self.by_area = by_area  # uniform over the whole surface: the far half's samples are wasted
         self.center, self.radius = m[:3, 3:4], float(np.linalg.norm(m[:3, 0]))
         self.area = 4 * math.pi * self.radius**2
 
     def _point(self, u):
         n = uniform_sphere(u)
-        return self.center + self.radius * n, n
+        return self.center + self.radius * n, self.side * n
 
     def _cone(self, x):
         """Unit axis toward the centre, distance to it, the cosine of the cone's half-angle (0 inside) and the
@@ -149,7 +157,10 @@ class SphereLight(AreaLight):
         if self.by_area:
             return super().pdf(x, dist, cos_light)
         _, dc, _, cone_pdf = self._cone(x)
-        return np.where(dc > self.radius, cone_pdf, super().pdf(x, dist, cos_light))
+        return np.where(self._outside(dc), cone_pdf, super().pdf(x, dist, cos_light))
+
+    def _outside(self, dc):
+        return dc > self.radius * (1 + self.INSIDE_MARGIN)
 
     def sample(self, x, u):
         by_area = super().sample(x, u)
@@ -166,10 +177,23 @@ class SphereLight(AreaLight):
         t = np.stack([b, sign + w[1] ** 2 * a, -w[1]])
         d = s * (sin_t * np.cos(phi)) + t * (sin_t * np.sin(phi)) + w * cos_t
         dist = dc * cos_t - np.sqrt(np.maximum(0, self.radius**2 - (dc * sin_t) ** 2))  # the near side
-        outside = dc > self.radius
+        outside = self._outside(dc)
         pick = lambda a, b: np.where(outside, a, b)  # noqa: E731
         return LightSample(pick(d, by_area.d), pick(dist, by_area.dist), pick(self.radiance, by_area.radiance),
                            pick(cone_pdf, by_area.pdf), False)
+
+
+def _flipped(shape, to_world, mi):
+    """Whether the shape's flip_normals is set (Mitsuba does not list it among its parameters): the normal of a
+    point it samples against the one its to_world gives there (outward for a sphere, +z mapped for the others)."""
+    ps = shape.sample_position(0.0, mi.Point2f(0.3, 0.6))
+    n, p = (np.array(v, dtype=np.float64).ravel() for v in (ps.n, ps.p))
+    m = np.asarray(to_world, dtype=np.float64)
+    if shape.class_name() == "Sphere":
+        unflipped = p - m[:3, 3]
+    else:
+        unflipped = np.linalg.inv(m[:3, :3]).T @ np.array([0.0, 0.0, 1.0])
+    return float(n @ unflipped) < 0
 
 
 def scene_lights(scene, mi, dr, area_measure=False, sphere_by_area=False):
@@ -192,8 +216,10 @@ def scene_lights(scene, mi, dr, area_measure=False, sphere_by_area=False):
             shape_id = int(np.array(dr.reinterpret_array(mi.UInt32, mi.ShapePtr(shape)))[0])
             matrix = np.array(mi.traverse(shape)["to_world"].matrix)[..., 0]
             radiance = rgb(params["radiance.value"])
-            lights.append(SphereLight(matrix, radiance, shape_id, area_measure, sphere_by_area) if shape.class_name() == "Sphere"
-                          else AreaLight(matrix, radiance, shape_id, shape.class_name(), area_measure))
+            flipped = _flipped(shape, matrix, mi)
+            lights.append(SphereLight(matrix, radiance, shape_id, area_measure, sphere_by_area, flipped)
+                          if shape.class_name() == "Sphere"
+                          else AreaLight(matrix, radiance, shape_id, shape.class_name(), area_measure, flipped))
         else:
             raise LightError(f"a {kind} emitter (pyrender's direct reads point, constant and area lights)")
     return lights
