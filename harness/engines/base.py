@@ -158,7 +158,8 @@ class Engine(ABC):
 
     def reads_integrator_parameters(self, integrator: str) -> bool:
         """Whether it renders `integrator` with the values that a scene file's own <integrator> of that type gives
-        its parameters (the entry's `parameters`: direct's emitter_samples and bsdf_samples). Then a suite asks
+        every one of its parameters (the entry's `parameters`: direct's emitter_samples and bsdf_samples, path's
+        strategy too). Then a suite asks
         for one of the integrator's settings (its strategies: harness/images/strategy_renders.py) by writing
         it into a copy of the scene. False unless the engine knows it does."""
         return False

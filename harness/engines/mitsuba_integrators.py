@@ -129,6 +129,8 @@ def mitsuba_mapping(integrator: str) -> MitsubaMapping:
                               estimator_differs=other.estimator_differs)
     if e.aov is not None:  # a first-hit value: Mitsuba's aov plugin writes it under its own name
         return MitsubaMapping("aov", (("string", "aovs", f"{e.aov}:{e.aov}"),), **_drops(e))
-    # Mitsuba's plugin of the same name, with the same parameters, draws the integrator's estimator.
-    return MitsubaMapping(integrator, e.parameters, **_drops(e), file_values=tuple(n for _, n, _ in e.parameters),
+    # Mitsuba's plugin of the same name, with the same parameters (not mcval's own), draws the integrator's
+    # estimator at their defaults.
+    common = e.common_parameters()
+    return MitsubaMapping(integrator, common, **_drops(e), file_values=tuple(n for _, n, _ in common),
                           same_estimator=True)

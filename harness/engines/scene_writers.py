@@ -13,8 +13,10 @@ Writer = Callable[[Path, dict[str, str], str, str, int], tuple[str, int, int, di
 
 
 def _parameter_names(integrator: str) -> tuple[str, ...]:
+    """The parameters a renderer of the scene format reads, in its names (not mcval's own, such as path's
+    strategy, which a renderer that follows Mitsuba does not know)."""
     from harness.integrators import entry
-    return tuple(name for _, name, _ in entry(integrator).parameters)
+    return tuple(name for _, name, _ in entry(integrator).common_parameters())
 
 
 def _mitsuba(path: Path, params: dict[str, str], integrator: str, theirs: str,
@@ -26,10 +28,17 @@ def _mitsuba(path: Path, params: dict[str, str], integrator: str, theirs: str,
 SCENE_WRITERS: dict[str, Writer] = {"mitsuba": _mitsuba, "nori": written_nori_scene}
 
 
-#: scene_format -> whether its writer passes the scene's own values of an integrator's parameters on, for
+def _passes_every_parameter(integrator: str) -> bool:
+    """Whether Mitsuba's writer passes every parameter of the integrator on: it has some, and none of mcval's own."""
+    from harness.integrators import entry
+    e = entry(integrator)
+    return bool(e.parameters) and not e.own_parameters
+
+
+#: scene_format -> whether its writer passes the scene's own values of every parameter of an integrator on, for
 #: (mcval's integrator, the renderer's name for it): Mitsuba's writer copies them, in Mitsuba's names, into
-#: the renderer's <integrator> (written_scene); Nori's writes the direct strategy the values select
-#: (nori/to_nori.py).
+#: the renderer's <integrator> (written_scene), all but mcval's own (path's strategy); Nori's writes the
+#: direct strategy the values select (nori/to_nori.py).
 READS_PARAMETERS: dict[str, Callable[[str, str], bool]] = {
-    "mitsuba": lambda integrator, theirs: bool(_parameter_names(integrator)),
+    "mitsuba": lambda integrator, theirs: _passes_every_parameter(integrator),
     "nori": reads_direct_strategy}

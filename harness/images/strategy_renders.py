@@ -17,7 +17,7 @@ from pathlib import Path
 
 from harness.engines.base import Engine
 from harness.engines.scene_paths import absolute_paths
-from harness.engines.written_scene import file_hide_emitters
+from harness.engines.written_scene import file_hide_emitters, file_parameters
 from harness.images.suite import ImageCase
 from harness.integrators import entry
 from harness.integrators.entry import Parameter
@@ -38,7 +38,8 @@ def not_judged(case: ImageCase, engine: Engine) -> str | None:
     if strategies is None or case.problem:
         return "no strategies" if strategies is None else case.problem
     if not engine.reads_integrator_parameters(case.integrator):
-        return f"{engine.name} takes no {case.integrator} parameters from a scene file"
+        names = sorted({name for _, parameters in strategies.settings for _, name, _ in parameters})
+        return f"{engine.name} takes no {case.integrator} {' or '.join(names)} from a scene file"
     try:
         why = strategies.applies(_expanded(engine.scene_file(case.path)))
     except (ET.ParseError, ValueError, OSError):
@@ -46,24 +47,35 @@ def not_judged(case: ImageCase, engine: Engine) -> str | None:
     return f"the strategies see different light: {why}" if why else None
 
 
+def _selecting(integrator: str) -> set[str]:
+    """The names of the parameters that select the integrator's strategies."""
+    return {name for _, parameters in entry(integrator).strategies.settings for _, name, _ in parameters}
+
+
 def default_strategy(case: ImageCase, scene: Path) -> str | None:
     """The strategy that the case's own render draws (its integrator's defaults, where the scene file's
-    <integrator> sets nothing else), or None."""
+    <integrator> sets nothing but hide_emitters and the parameters no strategy sets, such as path's max_depth),
+    or None."""
     e = entry(case.integrator)
     try:
         root = ET.parse(scene).getroot()
     except ET.ParseError:
         return None
-    if any(p.get("name") != "hide_emitters" for i in root if i.tag == "integrator" for p in i):
+    allowed = {"hide_emitters"} | ({name for _, name, _ in e.parameters} - _selecting(case.integrator))
+    if any(p.get("name") not in allowed for i in root if i.tag == "integrator" for p in i):
         return None
-    return next((name for name, parameters in e.strategies.settings if set(parameters) == set(e.parameters)), None)
+    # The setting whose parameters all keep the integrator's defaults (direct's emitter and BSDF sample, path's mis).
+    return next((name for name, parameters in e.strategies.settings if set(parameters) <= set(e.parameters)), None)
 
 
 def strategy_scene(path: Path, integrator: str, parameters: tuple[Parameter, ...], out: Path) -> Path:
     """Write `path` to `out` with its <integrator> replaced by `integrator` with `parameters` (the file's
-    `hide_emitters` kept), its <default>s kept and its file names absolute."""
+    `hide_emitters` kept, and its values of the integrator's other parameters, such as path's max_depth), its
+    <default>s kept and its file names absolute."""
     root = _expanded(path)
     hide = file_hide_emitters(root)
+    others = tuple(name for _, name, _ in entry(integrator).parameters if name not in {n for _, n, _ in parameters})
+    kept = file_parameters(root, integrator, others)
     old = [e for e in root if e.tag == "integrator"]
     at = list(root).index(old[0]) if old else 0
     for e in old:
@@ -71,6 +83,7 @@ def strategy_scene(path: Path, integrator: str, parameters: tuple[Parameter, ...
     new = ET.Element("integrator", type=integrator)
     if hide is not None:
         ET.SubElement(new, "boolean", name="hide_emitters", value=hide)
+    new.extend(kept)
     for tag, name, value in parameters:
         ET.SubElement(new, tag, name=name, value=value)
     root.insert(at, new)

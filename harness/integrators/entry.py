@@ -77,6 +77,9 @@ class IntegratorEntry:
     emitters: tuple[str, ...] = ()
     #: The parameters it reads from the scene's <integrator>, with their defaults.
     parameters: tuple[Parameter, ...] = ()
+    #: Those of its parameters that are mcval's own (path's `strategy`), which Mitsuba's plugin of its name does not
+    #: have: Mitsuba's copy and an engine file's scene leave them out (an unknown property would fail the load).
+    own_parameters: tuple[str, ...] = ()
     #: Its image is this value of the first hit, no light (an AOV, in the scene format's names: "albedo",
     #: "sh_normal"); None: it computes radiance.
     aov: str | None = None
@@ -113,6 +116,10 @@ class IntegratorEntry:
     #: Its speed against error is measured by `bench` (a noiseless image has no convergence to measure).
     benchmarked: bool = True
     source: str = field(default="", compare=False)  # the file it was read from (set by the registry)
+
+    def common_parameters(self) -> tuple[Parameter, ...]:
+        """Its parameters other than its own: those the scene format's plugin of its name reads too."""
+        return tuple(p for p in self.parameters if p[1] not in self.own_parameters)
 
     def invariances(self) -> tuple[str, ...]:
         """The invariances that apply to it: the geometric ones always, plus the rewrites it is linear in or

@@ -22,6 +22,14 @@ class TwinEngine(McvalEngine):
     def __reduce__(self):
         return TwinEngine, (self.imitated, self.twin, self.copies)
 
+    def reads_integrator_parameters(self, integrator: str) -> bool:
+        """A twin reads the parameters Mitsuba's plugin has, not our renderer's own (path's strategy): its
+        strategies are not compared."""
+        from harness.integrators import entry
+        if integrator == self.imitated and self.twin and entry(integrator).own_parameters:
+            return False
+        return super().reads_integrator_parameters(integrator)
+
     def render(self, scene, integrator, spp, batches, seed, params=None):
         if integrator == self.imitated and self.twin:
             text = Path(scene).read_text()

@@ -56,6 +56,8 @@ def test_our_path_passes_against_the_closed_form(results):
     assert correct.verdict == "PASS", correct.why
     assert correct.comparisons["analytic"].passed
     assert np.allclose(_ratios(correct, "analytic"), 1, atol=1e-3)
+    # Emitter samples alone, BSDF samples alone and MIS estimate one image (the twins have no strategy to ask for).
+    assert correct.strategies.verdict == "AGREE" and not correct.strategies.disagree, correct.strategies.reason
 
 
 def test_mitsubas_path_in_the_furnace_is_overruled_by_the_closed_form(results):

@@ -33,7 +33,7 @@ def test_direct_on_an_area_light_compares_its_strategies():
 def test_the_reasons_a_case_does_not():
     assert not_judged(ImageCase("plane_rect_light", "ao"), Reader()) == "no strategies"
     assert not_judged(ImageCase("plane_rect_light", "direct"), Reader(reads=False)) == \
-        "reader takes no direct parameters from a scene file"
+        "reader takes no direct bsdf_samples or emitter_samples from a scene file"
     # cornell: point lights beside its environment, which only emitter samples find.
     assert not_judged(ImageCase("cornell", "direct"), Reader()) == \
         "the strategies see different light: point lights, which BSDF sampling never finds"
@@ -43,6 +43,23 @@ def test_mcval_and_mitsuba_read_directs_parameters_from_the_file(mcval, mitsuba)
     assert mcval.reads_integrator_parameters("direct")
     assert mitsuba.reads_integrator_parameters("direct")
     assert not mitsuba.reads_integrator_parameters("ao")  # set values: direct with bsdf_samples 1
+
+
+def test_only_our_renderer_reads_paths_strategy(mcval, mitsuba):
+    """Mitsuba's path has no `strategy` (its copy leaves it out), nor a Mitsuba-dialect engine file's renderer."""
+    assert mcval.reads_integrator_parameters("path")
+    assert not mitsuba.reads_integrator_parameters("path")
+    assert not_judged(ImageCase("plane_rect_light", "path"), mitsuba) == \
+        "mitsuba takes no path strategy from a scene file"
+    assert not_judged(ImageCase("plane_rect_light", "path"), mcval) is None
+
+
+def test_a_path_strategy_copy_keeps_the_files_depth(tmp_path):
+    copy = strategy_scene(SCENES / "furnace.xml", "path", (("string", "strategy", "ems"),), tmp_path / "out.xml")
+    (integrator,) = ET.parse(copy).getroot().iter("integrator")
+    assert {e.get("name"): e.get("value") for e in integrator} == {"max_depth": "8", "rr_depth": "5", "strategy": "ems"}
+    # The case's own render is path's MIS at the file's depth: not rendered twice.
+    assert default_strategy(ImageCase("furnace", "path"), SCENES / "furnace.xml") == "mis"
 
 
 def test_the_copy_sets_the_strategy_and_keeps_the_rest(tmp_path):
