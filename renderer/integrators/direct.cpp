@@ -54,14 +54,15 @@ public:
             if (!(s.pdf > 0.f) || (s.weight.x == 0.f && s.weight.y == 0.f && s.weight.z == 0.f)) continue;
             s.pdf *= c.pmf;
             s.weight = s.weight / c.pmf;
+            const Vec3f wo = toLocal(frame, s.d);
+            const Color f = bsdf.eval(wi, wo);
+            if (passesNothing(f, s.weight)) continue;
             // Toward a point: aimed from the offset origin, stopping just short of the emitter (nothing behind
             // it may shadow); toward an infinitely far emitter, to the end.
             const Ray shadow = std::isfinite(s.dist) ? spawnRayTo(hit, s.p)
                                                      : spawnRay(hit, s.d, std::numeric_limits<float>::infinity());
             counts.shadow += 1;
             if (m_embree.occluded(shadow)) continue;
-            const Vec3f wo = toLocal(frame, s.d);
-            const Color f = bsdf.eval(wi, wo);
             const float bsdfPdf = bsdf.pdf(wi, wo);
             // A delta light takes the whole weight (no BSDF sample can find it), over the samples drawn.
             const float mis = (s.delta ? 1.f : misWeight(s.pdf * m_fracLum, bsdfPdf * m_fracBsdf)) * m_weightLum;

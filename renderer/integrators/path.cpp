@@ -109,14 +109,16 @@ private:
         if (!(s.pdf > 0.f) || maxComponent(s.weight) <= 0.f) return {};
         s.pdf *= c.pmf;
         s.weight = s.weight / c.pmf;
+        const Vec3f wo = toLocal(frame, s.d);
+        const Color f = bsdf.eval(wi, wo);
+        if (passesNothing(f, s.weight)) return {};
         const Ray shadow = std::isfinite(s.dist) ? spawnRayTo(hit, s.p)
                                                  : spawnRay(hit, s.d, std::numeric_limits<float>::infinity());
         counts.shadow += 1;
         if (m_embree.occluded(shadow)) return {};
-        const Vec3f wo = toLocal(frame, s.d);
         // A delta light takes the whole weight: no BSDF sample finds it.
         const float weight = s.delta || m_strategy == Strategy::Ems ? 1.f : misWeight(s.pdf, bsdf.pdf(wi, wo));
-        return bsdf.eval(wi, wo) * s.weight * weight;
+        return f * s.weight * weight;
     }
 
     const EmbreeScene &m_embree;

@@ -124,3 +124,26 @@ def test_the_most_batches_a_render_takes_are_still_readable(tmp_path):
     assert read_render_exr(out, 1363).batches.shape == (1363, 2, 2, 3)
     refused = run(SCENES[0], "--spp", 1, "--batches", 1364, "-D", "res=2", "-o", tmp_path / "more.exr", "-q")
     assert refused.returncode != 0 and "1363" in refused.stderr
+
+
+def test_a_light_sample_below_the_surface_traces_no_shadow_ray(tmp_path):
+    """Half of a constant emitter's light samples lie below a floor: they carry nothing whatever a shadow ray
+    finds, and are not traced (direct and path), while the image is the same."""
+    import mcval_renderer
+    scene = tmp_path / "floor.xml"
+    scene.write_text("""<scene version="3.0.0">
+    <integrator type="direct"><integer name="emitter_samples" value="1"/><integer name="bsdf_samples" value="0"/>
+    </integrator>
+    <sensor type="perspective"><float name="fov" value="30"/>
+        <transform name="to_world"><lookat origin="0, 3, 0" target="0, 0, 0" up="0, 0, 1"/></transform>
+        <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/></film>
+    </sensor>
+    <shape type="rectangle"><transform name="to_world"><scale value="10"/><rotate x="1" angle="-90"/></transform>
+    </shape>
+    <emitter type="constant"/>
+</scene>""")
+    out = mcval_renderer.render(str(scene), spp=64, batches=1, integrator="direct")
+    share = out["stats"]["shadow_rays"] / out["stats"]["camera_rays"]
+    assert 0.45 < share < 0.55, share
+    # Diffuse 0.5 under radiance 1, every light sample above the floor unblocked: 2 * 0.5 * cos.
+    assert abs(out["mean"].mean() - 0.5) < 0.02
