@@ -50,6 +50,13 @@ class Hits:
         return cls(valid, np.where(valid, p, 0.0), n, sh_s, sh_t, sh_n, np.where(valid, t, 0.0), shape, rho)
 
 
+def hide_emitters(value):
+    """The value of <boolean name="hide_emitters"> (the text given); ValueError unless true or false."""
+    if value.lower() not in ("true", "false"):
+        raise ValueError(f"<boolean name='hide_emitters'> is {value!r}, not true or false")
+    return value.lower() == "true"
+
+
 def direct_settings(integrator):
     """The parameters of an <integrator> element (None: none) as Mitsuba's `direct` reads them
     (`shading_samples` sets both sample counts unless they are given); ValueError for a bad value."""
@@ -61,9 +68,7 @@ def direct_settings(integrator):
                 raise ValueError(f"<integer name={name!r}> is {value!r}, not a count of at least 0")
             values[name] = int(value)
         elif el.tag == "boolean" and name == "hide_emitters":
-            if value.lower() not in ("true", "false"):
-                raise ValueError(f"<boolean name='hide_emitters'> is {value!r}, not true or false")
-            values[name] = value.lower() == "true"
+            values[name] = hide_emitters(value)
     emitter, bsdf = (values["shading_samples"] if values[k] is None else values[k]
                      for k in ("emitter_samples", "bsdf_samples"))
     if emitter + bsdf == 0:

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pyrender_direct import cosine_hemisphere, emitted, light_sample, power_heuristic
+from pyrender_direct import cosine_hemisphere, emitted, hide_emitters, light_sample, power_heuristic
 from pyrender_lights import dot
 
 #: Russian roulette's highest survival probability (Mitsuba's), so that a path of full throughput ends too.
@@ -43,9 +43,7 @@ def path_settings(integrator):
             if values[name] < (-1 if name == "max_depth" else 1):
                 raise ValueError(f"<integer name={name!r}> is {value}: max_depth is at least -1, rr_depth at least 1")
         elif el.tag == "boolean" and name == "hide_emitters":
-            if value.lower() not in ("true", "false"):
-                raise ValueError(f"<boolean name='hide_emitters'> is {value!r}, not true or false")
-            values[name] = value.lower() == "true"
+            values[name] = hide_emitters(value)
     return PathSettings(**values)
 
 

@@ -38,8 +38,8 @@ def not_judged(case: ImageCase, engine: Engine) -> str | None:
     if strategies is None or case.problem:
         return "no strategies" if strategies is None else case.problem
     if not engine.reads_integrator_parameters(case.integrator):
-        names = sorted({name for _, parameters in strategies.settings for _, name, _ in parameters})
-        return f"{engine.name} takes no {case.integrator} {' or '.join(names)} from a scene file"
+        return f"{engine.name} takes no {case.integrator} {' or '.join(sorted(_selecting(case.integrator)))} from a " \
+               f"scene file"
     try:
         why = strategies.applies(_expanded(engine.scene_file(case.path)))
     except (ET.ParseError, ValueError, OSError):
