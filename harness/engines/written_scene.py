@@ -29,6 +29,13 @@ def resolve_defaults(root: ET.Element, params: dict[str, str], source: str) -> N
                 e.set(key, _PARAMETER.sub(fill, value))
 
 
+def integrator_type(root: ET.Element, integrator: ET.Element) -> str:
+    """The type of the file's <integrator> as the file's loader reads it: a $name filled from the file's
+    <default>s (`type="$integrator"` with a default of path is a path integrator, and its properties are path's)."""
+    values = {e.get("name"): e.get("value", "") for e in root if e.tag == "default"}
+    return _PARAMETER.sub(lambda m: values.get(m.group(1), m.group(0)), integrator.get("type", ""))
+
+
 def _set_property(parent: ET.Element, tag: str, name: str, value: str) -> None:
     for e in [e for e in parent if e.get("name") == name]:
         parent.remove(e)
@@ -64,7 +71,7 @@ def file_parameters(root: ET.Element, integrator: str, names: tuple[str, ...]) -
     gives mcval's integrator's parameters, written in Mitsuba's names. None (an empty list) where its <integrator> is another
     (the same names may mean something else there)."""
     own = next((e for e in root if e.tag == "integrator"), None)
-    if own is None or own.get("type") != integrator:
+    if own is None or integrator_type(root, own) != integrator:
         return []
     return [ET.Element(e.tag, name=e.get("name"), value=e.get("value", "")) for e in own if e.get("name") in names]
 

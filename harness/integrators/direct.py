@@ -10,6 +10,9 @@ EMITTERS = ("point", "spot", "directional", "constant", "area")
 #: Those that sit at a point or along a direction: no BSDF sample finds them (a projector too, which an engine
 #: that models it may be given: the requirement lets every emitter through).
 DELTA_EMITTERS = ("point", "spot", "directional", "projector")
+#: BSDFs with a delta lobe (a mirror's, a glass's, a plastic's coat): the light they pass on from an emitter is
+#: found by BSDF samples only.
+DELTA_BSDFS = ("conductor", "dielectric", "thindielectric", "plastic")
 
 
 def has_emitter(root: ET.Element) -> str | None:
@@ -19,11 +22,20 @@ def has_emitter(root: ET.Element) -> str | None:
     return None if any(True for _ in root.iter("emitter")) else "no emitter"
 
 
-def strategies_agree(root: ET.Element) -> str | None:
-    """Where emitter sampling alone, BSDF sampling alone and MIS estimate one image: a delta light's light
-    reaches emitter samples only."""
+def no_delta_lights(root: ET.Element) -> str | None:
+    """Where emitter samples and BSDF samples can each find every light: a delta light's light reaches emitter
+    samples only."""
     delta = sorted({e.get("type") for e in root.iter("emitter") if e.get("type") in DELTA_EMITTERS})
     return f"{' and '.join(delta)} lights, which BSDF sampling never finds" if delta else None
+
+
+def strategies_agree(root: ET.Element) -> str | None:
+    """Where emitter sampling alone, BSDF sampling alone and MIS estimate one image: no delta light, and no delta
+    lobe, through which only a BSDF sample finds an emitter."""
+    if why := no_delta_lights(root):
+        return why
+    delta = sorted({b.get("type") for b in root.iter("bsdf") if b.get("type") in DELTA_BSDFS})
+    return f"{' and '.join(delta)} bsdfs, whose delta lobes emitter sampling never follows" if delta else None
 
 
 def _samples(emitter: int, bsdf: int) -> tuple:

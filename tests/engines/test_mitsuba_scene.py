@@ -103,3 +103,21 @@ def test_the_robust_engine_is_named_and_versioned_apart():
     assert "robust" in robust.version() and "robust" not in native.version()
     result = robust.render(str(SCENES / "plane_ao.xml"), "ao", 2, 1, 0, {"res": "8"})
     assert result.batches.shape == (1, 8, 8, 3) and np.isfinite(result.batches).all()
+
+
+def test_a_parameterised_integrator_type_keeps_the_files_values():
+    """`<integrator type="$integrator">` with a default of path is a path integrator to our loader and to Mitsuba:
+    its max_depth reaches Mitsuba's copy and a strategy copy. Read as the literal "$integrator", it was dropped
+    and Mitsuba traced paths without a limit where ours stopped at 8: a false FAIL on glass."""
+    from harness.engines.written_scene import file_parameters
+
+    text = ('<scene version="3.0.0"><default name="integrator" value="path"/>'
+            '<integrator type="$integrator"><integer name="max_depth" value="8"/></integrator></scene>')
+    mapped = ET.fromstring(mitsuba_xml(text, "path")).find("integrator")
+    assert {e.get("name"): e.get("value") for e in mapped}["max_depth"] == "8"
+    assert [e.get("value") for e in file_parameters(ET.fromstring(text), "path", ("max_depth",))] == ["8"]
+    # Another integrator's properties are not path's.
+    other = text.replace('value="path"', 'value="direct"')
+    assert {e.get("name"): e.get("value") for e in ET.fromstring(mitsuba_xml(other, "path")).find("integrator")
+            }["max_depth"] == "-1"
+    assert file_parameters(ET.fromstring(other), "path", ("max_depth",)) == []

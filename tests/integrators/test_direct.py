@@ -23,3 +23,14 @@ def test_a_projector_is_a_delta_light_for_the_strategy_check():
     strategies = entry("direct").strategies
     assert strategies.applies(ET.fromstring('<scene><emitter type="projector"/></scene>')) is not None
     assert strategies.applies(ET.fromstring('<scene><shape type="obj"><emitter type="area"/></shape></scene>')) is None
+
+
+def test_a_delta_lobe_keeps_directs_strategies_apart_but_not_paths():
+    """Through a mirror or glass only a BSDF sample finds the light: direct's emitter samples alone see it black.
+    path's "ems" counts the emission found after a delta lobe, so its strategies still estimate one image."""
+    lit = '<shape type="obj"><emitter type="area"/></shape>'
+    for bsdf, apart in (("conductor", True), ("dielectric", True), ("plastic", True), ("roughconductor", False),
+                        ("roughdielectric", False), ("diffuse", False)):
+        root = ET.fromstring(f'<scene>{lit}<shape type="sphere"><bsdf type="{bsdf}"/></shape></scene>')
+        assert (entry("direct").strategies.applies(root) is not None) == apart, bsdf
+        assert entry("path").strategies.applies(root) is None, bsdf
