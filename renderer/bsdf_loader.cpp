@@ -5,6 +5,7 @@
 
 #include "bsdfs/diffuse.h"
 #include "bsdfs/twosided.h"
+#include "scene_bsdfs.h"
 
 namespace mcval {
 
@@ -27,7 +28,7 @@ Material readDiffuse(const XmlContext &ctx, const pugi::xml_node &node, Deferred
         unread = "a per-wavelength <spectrum>" + at(ctx, given);
     if (!unread.empty()) {
         deferred.unreadReflectances.push_back(
-            {node, "<bsdf type=\"diffuse\">" + at(ctx, node) + " (reflectance: " + unread + ")", unread});
+            {node, "<bsdf type=\"diffuse\">" + at(ctx, node) + " (reflectance: " + unread + ")", unread, true});
         return defaultBsdf();
     }
     const Color rho = props.getColor("reflectance", {0.5f, 0.5f, 0.5f});
@@ -50,6 +51,11 @@ Material readTwoSided(const XmlContext &ctx, const pugi::xml_node &node, Definit
         if (tag != "bsdf" && tag != "ref")
             ctx.fail(child, "unexpected element inside <bsdf type=\"twosided\">: expected <bsdf> or <ref>");
         if (sides.size() == 2) ctx.fail(child, "a twosided bsdf holds at most two bsdfs (front, back)");
+        // Mitsuba's twosided mirrors directions to the front side, which a transmitted one would leave.
+        const auto named = tag == "ref" ? defs.bsdfNodes.find(ctx.attr(child, "id")) : defs.bsdfNodes.end();
+        const std::string sideType = ctx.attr(named != defs.bsdfNodes.end() ? named->second : child, "type");
+        if (sideType == "dielectric" || sideType == "roughdielectric" || sideType == "thindielectric")
+            ctx.fail(child, "a twosided bsdf holds only bsdfs that transmit no light (as Mitsuba), not a " + sideType);
         sides.push_back(tag == "bsdf" ? loadBsdf(ctx, child, defs, deferred, depth + 1)
                                       : resolveBsdfRef(ctx, child, defs, deferred, depth + 1));
     }
@@ -66,8 +72,20 @@ Material readBsdf(const XmlContext &ctx, const pugi::xml_node &node, Definitions
                        "reads and this renderer does not model");
     if (type == "twosided") return readTwoSided(ctx, node, defs, deferred, depth);
     if (type == "diffuse") return readDiffuse(ctx, node, deferred);
-    // Only `normals` can ignore it; whether that is allowed is decided when the integrator is known.
-    deferred.nonDiffuseBsdfs.emplace_back(node, "<bsdf type=\"" + type + "\">" + at(ctx, node));
+    if (isScatteringBsdf(type)) {
+        std::string unread;
+        const Material material = readScatteringBsdf(ctx, node, unread);
+        const std::string what = "<bsdf type=\"" + type + "\">" + at(ctx, node);
+        if (!material) {
+            deferred.unreadReflectances.push_back({node, what + " (" + unread + ")", unread, false});
+            return defaultBsdf();
+        }
+        // Read by the integrators that read any BSDF; one that reads Lambertian albedos refuses it.
+        deferred.nonDiffuseBsdfs.emplace_back(node, what);
+        return material;
+    }
+    // Only integrators that read no material can ignore it; which is decided when the integrator is known.
+    deferred.unmodelledBsdfs.emplace_back(node, "<bsdf type=\"" + type + "\">" + at(ctx, node));
     return defaultBsdf();
 }
 

@@ -1,4 +1,5 @@
-// A shape's <bsdf>: Mitsuba's diffuse, a twosided around diffuse ones, and <ref>s to bsdfs anywhere in the file.
+// A shape's <bsdf>: Mitsuba's diffuse, the scattering BSDFs of scene_bsdfs.h, a twosided around them, and <ref>s
+// to bsdfs anywhere in the file.
 #pragma once
 
 #include "load_state.h"
@@ -14,8 +15,9 @@ constexpr int kMaxBsdfDepth = 64;
 /// given twice fails, as in Mitsuba.
 void registerBsdfs(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs);
 
-/// A <bsdf>'s material (one with an id is read once and remembered in defs). A type other than diffuse and
-/// twosided is deferred: only some integrators can ignore it. `depth`: the bsdfs and references around it.
+/// A <bsdf>'s material (one with an id is read once and remembered in defs). A type this renderer does not
+/// model, or one with a parameter it cannot read, is deferred: only some integrators can ignore it. `depth`: the
+/// bsdfs and references around it.
 Material loadBsdf(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs, Deferred &deferred,
                   int depth = 0);
 

@@ -23,12 +23,15 @@ struct Deferred {
     /// then read where it stands, or kept aside to be skipped with a note.
     EmitterKinds reads;
     bool known = false;
-    std::vector<std::pair<pugi::xml_node, std::string>> nonDiffuseBsdfs, areaEmitters;
-    /// A diffuse BSDF whose reflectance we cannot read (`given`: a texture, a per-wavelength spectrum):
-    /// refused where the integrator reads the reflectance, skipped elsewhere (`what` in the note).
+    /// BSDFs whose surfaces are not Lambertian: read (a scattering BSDF, scene_bsdfs.h) or not modelled.
+    std::vector<std::pair<pugi::xml_node, std::string>> nonDiffuseBsdfs, unmodelledBsdfs, areaEmitters;
+    /// A BSDF with a parameter we cannot read (`given`: a texture, a per-wavelength spectrum, ...): refused
+    /// where the integrator reads the reflectance, skipped elsewhere (`what` in the note). `diffuse`: the
+    /// parameter is a diffuse BSDF's reflectance.
     struct UnreadReflectance {
         pugi::xml_node node;
         std::string what, given;
+        bool diffuse = true;
     };
     std::vector<UnreadReflectance> unreadReflectances;
     /// Top-level <texture>s: read only through a BSDF, which then is an unread reflectance.
@@ -56,8 +59,8 @@ struct ShapeGroup {
     std::vector<Cylinder> cylinders;
 };
 
-/// A surface's material as the loader reads it: its BSDF (Mitsuba's diffuse, black from behind, or a twosided
-/// around diffuse ones).
+/// A surface's material as the loader reads it: its BSDF (Mitsuba's diffuse, black from behind, a scattering
+/// BSDF of scene_bsdfs.h, or a twosided around them).
 using Material = std::shared_ptr<const Bsdf>;
 
 /// What the file defines, for a <ref id>: bsdfs (their material) and shapegroups, which only an instance may

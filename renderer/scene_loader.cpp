@@ -186,7 +186,7 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     const IntegratorInfo *info = findIntegrator(chosen);
     if (!info) {
         // No or an unknown integrator: render() names that error; a bsdf we cannot model is one too.
-        for (const auto &[node, what] : deferred.nonDiffuseBsdfs) ctx.fail(node, "unsupported bsdf type: expected \"diffuse\"");
+        for (const auto &[node, what] : deferred.unmodelledBsdfs) ctx.fail(node, "unsupported bsdf type " + what);
         return scene;
     }
     if (info->use.needsPointLight && scene.pointLights.empty())
@@ -198,16 +198,26 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     for (const auto &[node, what] : deferred.unreferencedBsdfs) skipped.push_back(what);
     for (const auto &[node, what] : deferred.textures) skipped.push_back(what);
     for (const auto &unread : deferred.unreadReflectances) {
-        if (info->use.readsReflectance)
+        if (info->use.readsReflectance && unread.diffuse)
             ctx.fail(unread.node, "the " + chosen + " integrator reads the reflectance, given here as " + unread.given +
                                       "; this renderer reads an <rgb>, a <float> or a constant <spectrum>");
+        if (info->use.readsReflectance)
+            ctx.fail(unread.node, "the " + chosen + " integrator reads this material, given here with " + unread.given +
+                                      "; this renderer reads its parameters as constants");
         skipped.push_back(unread.what);
     }
-    for (const auto &[node, what] : deferred.nonDiffuseBsdfs) {
+    for (const auto &[node, what] : deferred.unmodelledBsdfs) {
         if (info->use.readsReflectance)
-            ctx.fail(node, "unsupported bsdf type \"" + typeOf(ctx, node) + "\": the " + chosen +
-                               " integrator needs \"diffuse\"");
+            ctx.fail(node, "unsupported bsdf type \"" + typeOf(ctx, node) + "\": the " + chosen + " integrator needs "
+                           "diffuse" + std::string(info->use.readsAnyBsdf ? ", conductor, dielectric, plastic or "
+                                                                            "their rough kinds" : ""));
         skipped.push_back(what);
+    }
+    for (const auto &[node, what] : deferred.nonDiffuseBsdfs) {
+        if (info->use.readsReflectance && !info->use.readsAnyBsdf)
+            ctx.fail(node, "the " + chosen + " integrator reads diffuse surfaces only, not <bsdf type=\"" +
+                               typeOf(ctx, node) + "\">: direct and path read it");
+        if (!info->use.readsReflectance) skipped.push_back(what);
     }
     if (!skipped.empty()) {
         std::string note = "note: " + path + ": skipped, not used by the " + chosen + " integrator:";

@@ -31,7 +31,8 @@ from harness.invariance.cell import Cell, InvarianceCase, VariantResult
 from harness.invariance.float32 import float32_limit
 from harness.invariance.reference_noise import judge_against_references
 from harness.invariance.signal import BaseSignal, structure, widely
-from harness.invariance.rewrite import rewrite
+from harness.invariance.rewrite import rewrite, unscaled_bsdfs
+from harness.engines.scene_paths import absolute_paths
 from harness.invariance.variants import Invariance, Variant
 from harness.statistics.constants import IMAGE_BATCHES, SIGNIFICANCE, sidak_level
 
@@ -199,8 +200,19 @@ def run_invariances(engines: list[Engine], cases: list[InvarianceCase], invarian
 
 
 def applicable(invariances: list[Invariance], case: InvarianceCase) -> list[Invariance]:
-    """The invariances that can change the image of the case's integrator."""
-    return [inv for inv in invariances if inv.applies_to(entry(case.integrator))]
+    """The invariances that can change the image of the case's integrator. Halving the diffuse reflectances
+    halves an image linear in them only where no other BSDF reflects light: on a scene with one, that check is
+    not made (an integrator independent of the reflectance is still checked)."""
+    chosen = [inv for inv in invariances if inv.applies_to(entry(case.integrator))]
+    if "reflectance" in entry(case.integrator).linear_in and any(inv.name == "reflectance" for inv in chosen):
+        try:
+            root = ET.parse(case.scene).getroot()
+            absolute_paths(root, case.scene)
+        except (ET.ParseError, OSError, ValueError):
+            return chosen  # the renderer reports a broken file as the case's failure
+        if unscaled_bsdfs(root):
+            chosen = [inv for inv in chosen if inv.name != "reflectance"]
+    return chosen
 
 
 def cell_group_task(engine: Engine, case: InvarianceCase, chosen: list[Invariance], alpha: float, seed: int,

@@ -185,8 +185,15 @@ def scale_lights(root: ET.Element, factor: float) -> None:
         _scale_property(emitter, "intensity" if kind == "point" else "radiance", factor, DEFAULT_EMISSION)
 
 
+def unscaled_bsdfs(root: ET.Element) -> list[str]:
+    """The types of the scene's BSDFs whose reflectance scale_reflectance leaves as it is (all but diffuse and
+    twosided): an image linear in the diffuse reflectance is not halved where they reflect light."""
+    return sorted({b.get("type", "") for b in root.iter("bsdf")} - {"diffuse", "twosided"})
+
+
 def scale_reflectance(root: ET.Element, factor: float) -> None:
-    """Every diffuse reflectance times `factor`; a shape with no material gets the default one, scaled."""
+    """Every diffuse reflectance times `factor`; a shape with no material gets the default one, scaled. Other
+    BSDFs are left as they are (unscaled_bsdfs): an integrator that reads no material sees no change either way."""
     for shape in root.iter("shape"):
         if shape.get("type") in ("shapegroup", "instance"):  # their members carry the materials
             continue
@@ -196,8 +203,6 @@ def scale_reflectance(root: ET.Element, factor: float) -> None:
         kind = bsdf.get("type")
         if kind == "diffuse":
             _scale_property(bsdf, "reflectance", factor, DEFAULT_REFLECTANCE)
-        elif kind != "twosided":  # twosided wraps a diffuse one, scaled where it is met
-            raise ValueError(f"cannot scale the reflectance of <bsdf type=\"{kind}\">")
 
 
 def rewrite(scene: Path, out: Path, kind: str, value) -> Path:

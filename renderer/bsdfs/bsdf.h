@@ -14,10 +14,16 @@ namespace mcval {
 
 using Color = Vec3f;  ///< linear RGB
 
+/// The mean of a colour's channels (Mitsuba's mean() of an RGB texture).
+inline float meanOf(const Color &c) { return (c.x + c.y + c.z) / 3.f; }
+
 struct BsdfSample {
     Vec3f wo;             ///< the sampled direction, local frame
     Color weight;         ///< eval(wi, wo) / pdf; 0 where nothing is sampled; on a delta lobe, its weight
     float pdf = 0.f;      ///< density of wo by solid angle; infinite on a delta lobe (a mirror's, a glass's)
+    /// The relative index of refraction crossed (Mitsuba's bs.eta): the far side's over wi's side where wo
+    /// refracts, 1 where it reflects. A path tracer's Russian roulette undoes the radiance it scales by.
+    float eta = 1.f;
 };
 
 class Bsdf {
@@ -29,6 +35,13 @@ public:
     virtual float pdf(const Vec3f &wi, const Vec3f &wo) const = 0;
     /// A direction wo drawn with u in [0, 1)^2.
     virtual BsdfSample sample(const Vec3f &wi, const Vec2f &u) const = 0;
+    /// As above, with a uniform of its own to choose the lobe (Mitsuba's sample1) where the lobe's probability
+    /// depends on the direction drawn, so that u cannot be rescaled for it: the integrators' call. A BSDF that
+    /// needs none ignores it.
+    virtual BsdfSample sample(const Vec3f &wi, const Vec2f &u, float uLobe) const {
+        (void)uLobe;
+        return sample(wi, u);
+    }
     /// The albedo rho of the side seen from the front (the side the shading normal points to) or from behind,
     /// where that side is Lambertian (eval = rho / pi cos theta_o; a side that reflects nothing is Lambertian
     /// with rho 0); none where it is not. Packet paths (simple, ao) multiply by it instead of calling eval.

@@ -70,7 +70,7 @@ DielectricBsdf makeDielectric(const float *params) { return DielectricBsdf(param
 
 /// int_ior, ext_ior, diffuse_reflectance, nonlinear (0 or 1).
 PlasticBsdf makePlastic(const float *params) {
-    return PlasticBsdf(params[0], params[1], params[2], params[3] != 0.f);
+    return PlasticBsdf(params[0], params[1], Color(params[2], params[2], params[2]), params[3] != 0.f);
 }
 
 /// alpha, eta, k, ggx (0: Beckmann, 1: GGX), sample_visible (0 or 1).
@@ -91,7 +91,7 @@ RoughDielectricBsdf makeRoughDielectric(const float *params) {
 RoughPlasticBsdf makeRoughPlastic(const float *params) {
     const auto type = params[5] != 0.f ? MicrofacetDistribution::Type::GGX : MicrofacetDistribution::Type::Beckmann;
     return RoughPlasticBsdf(MicrofacetDistribution(type, params[0], params[6] != 0.f), params[1], params[2],
-                            params[3], params[4] != 0.f);
+                            Color(params[3], params[3], params[3]), params[4] != 0.f);
 }
 
 /// alpha, kd, ks, int_ior, ext_ior (Nori's microfacet, kd and ks given apart).

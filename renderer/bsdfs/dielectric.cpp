@@ -35,6 +35,7 @@ BsdfSample DielectricBsdf::sample(const Vec3f &wi, const Vec2f &u) const {
         s.wo = Vec3f(-f.etaTi * wi.x, -f.etaTi * wi.y, f.cosThetaT);
         const float factor = f.etaTi * f.etaTi;
         s.weight = Color(factor, factor, factor);
+        s.eta = 1.f / f.etaTi;
     }
     return s;
 }

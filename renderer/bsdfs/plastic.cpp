@@ -14,8 +14,8 @@ float fresnelDiffuseReflectance(float eta) {
     return 0.919317f + inv * (-3.4793f + inv * (6.75335f + inv * (-7.80989f + inv * (4.98554f - 1.36881f * inv))));
 }
 
-PlasticBsdf::PlasticBsdf(float intIor, float extIor, float diffuse, bool nonlinear)
-    : m_eta(intIor / extIor), m_diffuse(diffuse), m_specularWeight(1.f / (diffuse + 1.f)),
+PlasticBsdf::PlasticBsdf(float intIor, float extIor, const Color &diffuse, bool nonlinear)
+    : m_eta(intIor / extIor), m_diffuse(diffuse), m_specularWeight(1.f / (meanOf(diffuse) + 1.f)),
       m_invEta2(1.f / (m_eta * m_eta)), m_fdrInt(fresnelDiffuseReflectance(1.f / m_eta)), m_nonlinear(nonlinear) {}
 
 float PlasticBsdf::specularProbability(float cosThetaI) const {
@@ -24,17 +24,16 @@ float PlasticBsdf::specularProbability(float cosThetaI) const {
     return specular / (specular + diffuse);
 }
 
-float PlasticBsdf::diffuseValue(float cosThetaI, float cosThetaO) const {
+Color PlasticBsdf::diffuseValue(float cosThetaI, float cosThetaO) const {
     const float ti = 1.f - fresnelDielectric(cosThetaI, m_eta).reflectance;
     const float to = 1.f - fresnelDielectric(cosThetaO, m_eta).reflectance;
-    const float rho = m_diffuse / (1.f - (m_nonlinear ? m_diffuse * m_fdrInt : m_fdrInt));
-    return rho * kInvPi * cosThetaO * m_invEta2 * ti * to;
+    const auto rho = [&](float d) { return d / (1.f - (m_nonlinear ? d * m_fdrInt : m_fdrInt)); };
+    return Color(rho(m_diffuse.x), rho(m_diffuse.y), rho(m_diffuse.z)) * (kInvPi * cosThetaO * m_invEta2 * ti * to);
 }
 
 Color PlasticBsdf::eval(const Vec3f &wi, const Vec3f &wo) const {
     if (!(wi.z > 0.f && wo.z > 0.f)) return {0.f, 0.f, 0.f};
-    const float v = diffuseValue(wi.z, wo.z);
-    return {v, v, v};
+    return diffuseValue(wi.z, wo.z);
 }
 
 float PlasticBsdf::pdf(const Vec3f &wi, const Vec3f &wo) const {
@@ -62,8 +61,7 @@ BsdfSample PlasticBsdf::sample(const Vec3f &wi, const Vec2f &u) const {
         return s;
     }
     s.pdf = (1.f - p) * squareToCosineHemispherePdf(s.wo);
-    const float w = diffuseValue(wi.z, s.wo.z) / s.pdf;
-    s.weight = Color(w, w, w);
+    s.weight = diffuseValue(wi.z, s.wo.z) / s.pdf;
     return s;
 }
 

@@ -1,4 +1,4 @@
-// Mitsuba's `plastic`: a diffuse base under a smooth dielectric coating (gray here): the coating reflects by
+// Mitsuba's `plastic`: a diffuse base (RGB) under a smooth dielectric coating: the coating reflects by
 // Fresnel's law as a mirror, light that enters scatters diffusely and leaves through it again.
 #pragma once
 
@@ -13,7 +13,7 @@ float fresnelDiffuseReflectance(float eta);
 class PlasticBsdf final : public Bsdf {
 public:
     /// `nonlinear`: the diffuse reflectance darkened by internal scattering (Mitsuba's `nonlinear`).
-    PlasticBsdf(float intIor, float extIor, float diffuse, bool nonlinear);
+    PlasticBsdf(float intIor, float extIor, const Color &diffuse, bool nonlinear);
     /// The diffuse part: rho' / pi cos theta_o (1 - F_i)(1 - F_o) / eta^2, rho' the reflectance over its internal
     /// reflections; the specular part is a delta.
     Color eval(const Vec3f &wi, const Vec3f &wo) const override;
@@ -26,9 +26,11 @@ public:
 
 private:
     float specularProbability(float cosThetaI) const;
-    float diffuseValue(float cosThetaI, float cosThetaO) const;
+    Color diffuseValue(float cosThetaI, float cosThetaO) const;
 
-    float m_eta, m_diffuse, m_specularWeight, m_invEta2, m_fdrInt;
+    float m_eta;
+    Color m_diffuse;
+    float m_specularWeight, m_invEta2, m_fdrInt;
     bool m_nonlinear;
 };
 

@@ -117,6 +117,7 @@ BsdfSample RoughDielectricBsdf::sample(const Vec3f &wi, const Vec2f &u, float uL
     s.wo = wo;
     s.weight = Color(weight, weight, weight);
     s.pdf = pdf;
+    if (wo.z * wi.z < 0.f) s.eta = 1.f / fresnel.etaTi;
     return s;
 }
 

@@ -20,7 +20,7 @@ public:
     float pdf(const Vec3f &wi, const Vec3f &wo) const override;
     /// A microfacet normal drawn with u, then reflection on it where uLobe <= F (its Fresnel reflectance) and
     /// refraction through it otherwise (uLobe is Mitsuba's sample1: the C ABI's third uniform).
-    BsdfSample sample(const Vec3f &wi, const Vec2f &u, float uLobe) const;
+    BsdfSample sample(const Vec3f &wi, const Vec2f &u, float uLobe) const override;
     /// As above with uLobe hashed from u's bits, where only two uniforms are given: the lobe's probability
     /// depends on the normal drawn from u, so u cannot be rescaled for it.
     BsdfSample sample(const Vec3f &wi, const Vec2f &u) const override;

@@ -9,9 +9,9 @@
 namespace mcval {
 
 RoughPlasticBsdf::RoughPlasticBsdf(const MicrofacetDistribution &distribution, float intIor, float extIor,
-                                   float diffuse, bool nonlinear)
+                                   const Color &diffuse, bool nonlinear)
     : m_distribution(distribution), m_eta(intIor / extIor), m_invEta2(1.f / (m_eta * m_eta)), m_diffuse(diffuse),
-      m_specularWeight(1.f / (diffuse + 1.f)), m_nonlinear(nonlinear),
+      m_specularWeight(1.f / (meanOf(diffuse) + 1.f)), m_nonlinear(nonlinear),
       m_coating(roughCoating(distribution.type(), distribution.alpha(), m_eta)) {}
 
 float RoughPlasticBsdf::specularProbability(float cosThetaI) const {
@@ -25,11 +25,10 @@ Color RoughPlasticBsdf::eval(const Vec3f &wi, const Vec3f &wo) const {
     const Vec3f h = normalize(wo + wi);
     const float specular = fresnelDielectric(dot(wi, h), m_eta).reflectance * m_distribution.eval(h) *
                            m_distribution.G(wi, wo, h) / (4.f * wi.z);
-    const float rho = m_diffuse / (1.f - (m_nonlinear ? m_diffuse : 1.f) * m_coating->internalReflectance);
-    const float diffuse = rho * kInvPi * m_invEta2 * wo.z * m_coating->transmittance(wi.z) *
-                          m_coating->transmittance(wo.z);
-    const float value = specular + diffuse;
-    return {value, value, value};
+    const auto rho = [&](float d) { return d / (1.f - (m_nonlinear ? d : 1.f) * m_coating->internalReflectance); };
+    const float diffuse = kInvPi * m_invEta2 * wo.z * m_coating->transmittance(wi.z) * m_coating->transmittance(wo.z);
+    return Color(specular + rho(m_diffuse.x) * diffuse, specular + rho(m_diffuse.y) * diffuse,
+                 specular + rho(m_diffuse.z) * diffuse);
 }
 
 float RoughPlasticBsdf::pdf(const Vec3f &wi, const Vec3f &wo) const {

@@ -1,4 +1,4 @@
-// Mitsuba's `roughplastic` (isotropic): a diffuse base under a rough dielectric coating (gray here). The coating's
+// Mitsuba's `roughplastic` (isotropic): a diffuse base (RGB) under a rough dielectric coating. The coating's
 // microfacets (Beckmann or GGX) reflect by Fresnel's law; light that crosses it scatters diffusely and leaves
 // through it again, both crossings weighted by the coating's tabulated transmittance (rough_coating.h).
 #pragma once
@@ -14,7 +14,7 @@ namespace mcval {
 class RoughPlasticBsdf final : public Bsdf {
 public:
     /// `nonlinear`: the diffuse reflectance darkened by internal scattering (Mitsuba's `nonlinear`).
-    RoughPlasticBsdf(const MicrofacetDistribution &distribution, float intIor, float extIor, float diffuse,
+    RoughPlasticBsdf(const MicrofacetDistribution &distribution, float intIor, float extIor, const Color &diffuse,
                      bool nonlinear);
     /// F D G / (4 cos theta_i) plus rho' / pi cos theta_o T(theta_i) T(theta_o) / eta^2, rho' the reflectance over
     /// its internal reflections; wi and wo above the surface.
@@ -24,7 +24,7 @@ public:
     /// The specular lobe where uLobe is below its probability (Mitsuba's specular sampling weight times 1 - T(wi),
     /// normalised), a microfacet reflection drawn with u; else the cosine hemisphere with u. The weight is the
     /// whole BSDF's value over the whole pdf.
-    BsdfSample sample(const Vec3f &wi, const Vec2f &u, float uLobe) const;
+    BsdfSample sample(const Vec3f &wi, const Vec2f &u, float uLobe) const override;
     /// As above, u.x choosing the lobe and, rescaled, drawing the direction with u.y.
     BsdfSample sample(const Vec3f &wi, const Vec2f &u) const override;
     std::optional<Color> lambertianAlbedo(bool) const override { return std::nullopt; }
@@ -33,7 +33,9 @@ private:
     float specularProbability(float cosThetaI) const;
 
     MicrofacetDistribution m_distribution;
-    float m_eta, m_invEta2, m_diffuse, m_specularWeight;
+    float m_eta, m_invEta2;
+    Color m_diffuse;
+    float m_specularWeight;
     bool m_nonlinear;
     std::shared_ptr<const RoughCoating> m_coating;
 };

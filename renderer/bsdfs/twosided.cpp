@@ -25,4 +25,11 @@ BsdfSample TwoSidedBsdf::sample(const Vec3f &wi, const Vec2f &u) const {
     return s;
 }
 
+BsdfSample TwoSidedBsdf::sample(const Vec3f &wi, const Vec2f &u, float uLobe) const {
+    if (wi.z > 0.f) return m_front->sample(wi, u, uLobe);
+    BsdfSample s = m_back->sample(mirrored(wi), u, uLobe);
+    s.wo = mirrored(s.wo);
+    return s;
+}
+
 }  // namespace mcval

@@ -15,6 +15,7 @@ public:
     Color eval(const Vec3f &wi, const Vec3f &wo) const override;
     float pdf(const Vec3f &wi, const Vec3f &wo) const override;
     BsdfSample sample(const Vec3f &wi, const Vec2f &u) const override;
+    BsdfSample sample(const Vec3f &wi, const Vec2f &u, float uLobe) const override;
     /// Each side: its own BSDF's front.
     std::optional<Color> lambertianAlbedo(bool front) const override {
         return (front ? m_front : m_back)->lambertianAlbedo(true);

@@ -71,7 +71,8 @@ public:
 
         // BSDF sampling.
         for (int i = 0; i < m_bsdfSamples; ++i) {
-            const BsdfSample bs = bsdf.sample(wi, sampler.next2D());
+            const Vec2f u = sampler.next2D();
+            const BsdfSample bs = bsdf.sample(wi, u, sampler.next2D().x);
             if (bs.weight.x == 0.f && bs.weight.y == 0.f && bs.weight.z == 0.f) continue;
             const Vec3f d = frame.toWorld(bs.wo);
             Hit next;
@@ -112,7 +113,8 @@ MCVAL_REGISTER_INTEGRATOR({
     "direct",
     "direct illumination from every emitter, emitter and BSDF samples with MIS (properties: emitter_samples, "
     "bsdf_samples, shading_samples = 1, hide_emitters = false)",
-    SceneUse{/*needsPointLight=*/false, /*emitters=*/EmitterKinds::all(), /*readsReflectance=*/true},
+    SceneUse{/*needsPointLight=*/false, /*emitters=*/EmitterKinds::all(), /*readsReflectance=*/true,
+             /*readsAnyBsdf=*/true},
     [](XmlProps *props) -> IntegratorMaker {
         int emitterSamples = 1, bsdfSamples = 1;
         if (props) {

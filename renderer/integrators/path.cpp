@@ -54,6 +54,8 @@ public:
         // (no emitter sample could have found what it sees).
         Vec3f prevP;
         float prevPdf = 1.f;
+        // The relative index of refraction the path has crossed: the radiance scale (1 / eta^2) it carries.
+        float eta = 1.f;
         bool prevDelta = true;
 
         for (uint32_t depth = 0;; ++depth) {
@@ -76,19 +78,21 @@ public:
             if (m_strategy != Strategy::Mats) result = result + throughput * emitterSample(hit, frame, wi, bsdf,
                                                                                           sampler, counts);
 
-            // The BSDF sample that continues the path.
-            const BsdfSample bs = bsdf.sample(wi, sampler.next2D());
+            // The BSDF sample that continues the path; `choice` picks Russian roulette's fate (x) and the lobe (y).
+            const Vec2f u = sampler.next2D(), choice = sampler.next2D();
+            const BsdfSample bs = bsdf.sample(wi, u, choice.y);
             throughput = throughput * bs.weight;
             if (!(maxComponent(throughput) > 0.f)) break;
             prevP = hit.p;
             prevPdf = bs.pdf;
             prevDelta = std::isinf(bs.pdf);
+            eta *= bs.eta;
             const Vec3f d = frame.toWorld(bs.wo);
 
-            // Russian roulette on the throughput (Mitsuba's: eta^2 is 1 for the reflecting BSDFs read here).
+            // Russian roulette on the throughput without the radiance scale of refraction (Mitsuba's).
             if (depth + 1 >= m_rrDepth) {
-                const float survival = std::min(maxComponent(throughput), kMaxSurvival);
-                if (!(sampler.next2D().x < survival)) break;
+                const float survival = std::min(maxComponent(throughput) * eta * eta, kMaxSurvival);
+                if (!(choice.x < survival)) break;
                 throughput = throughput / survival;
             }
             ray = spawnRay(hit, d, 1e30f);
@@ -143,7 +147,8 @@ MCVAL_REGISTER_INTEGRATOR({
     "path",
     "path tracing with next-event estimation and MIS, Russian roulette (properties: max_depth = -1, "
     "rr_depth = 5, hide_emitters = false, strategy = mis | ems | mats)",
-    SceneUse{/*needsPointLight=*/false, /*emitters=*/EmitterKinds::all(), /*readsReflectance=*/true},
+    SceneUse{/*needsPointLight=*/false, /*emitters=*/EmitterKinds::all(), /*readsReflectance=*/true,
+             /*readsAnyBsdf=*/true},
     [](XmlProps *props) -> IntegratorMaker {
         int maxDepth = -1, rrDepth = 5;
         Strategy strategy = Strategy::Mis;

@@ -24,6 +24,9 @@ struct SceneUse {
     /// are read whatever the integrator.
     EmitterKinds emitters;
     bool readsReflectance = false;  ///< non-diffuse bsdfs would change its answer (refused) or not (skipped)
+    /// Whether it reads any BSDF the loader models through eval, pdf and sample; otherwise it reads the
+    /// Lambertian albedo alone and refuses the others where it reads the reflectance.
+    bool readsAnyBsdf = false;
 };
 
 struct IntegratorInfo {

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "error.h"
+#include "load_error.h"
 #include "integrators/registry.h"
 #include "scene.h"
 #include "xml_props.h"
@@ -51,14 +52,7 @@ std::string writeScene(const std::string &name, const std::string &emitters) {
     return path.string();
 }
 
-std::string errorOf(const std::string &path, const std::string &integrator) {
-    try {
-        loadScene(path, {}, integrator);
-    } catch (const SceneError &e) {
-        return e.what();
-    }
-    return "";
-}
+std::string errorOf(const std::string &path, const std::string &integrator) { return test::loadError(path, integrator); }
 
 const std::string kLights =
     "<emitter type=\"spot\"><rgb name=\"intensity\" value=\"5\"/><float name=\"cutoff_angle\" value=\"30\"/>"

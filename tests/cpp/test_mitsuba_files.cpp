@@ -129,10 +129,10 @@ TEST(MitsubaFiles, AReferenceMayPrecedeItsBsdfAndNameANestedOne) {
 }
 
 TEST(MitsubaFiles, ABsdfNoShapeRefersToIsNotRead) {
-    // As no integrator reads it: a plastic one loads under direct, with a note.
-    const std::string body = scene(kRectangle + "  <bsdf type=\"plastic\" id=\"unused\"/>\n");
+    // As no integrator reads it: one of a type no integrator models loads under direct, with a note.
+    const std::string body = scene(kRectangle + "  <bsdf type=\"principled\" id=\"unused\"/>\n");
     EXPECT_EQ(errorOf("unreferenced", body, "direct"), "");
-    const std::string used = scene("  <shape type=\"cube\"><ref id=\"unused\"/></shape>\n  <bsdf type=\"plastic\" "
+    const std::string used = scene("  <shape type=\"cube\"><ref id=\"unused\"/></shape>\n  <bsdf type=\"principled\" "
                                    "id=\"unused\"/>\n");
     EXPECT_TRUE(contains(errorOf("referenced", used, "direct"), "mcval_mitsuba_referenced.xml:4: <bsdf>: unsupported bsdf"));
     EXPECT_EQ(errorOf("referenced", used, "ao"), "");  // ao reads no material
@@ -153,7 +153,7 @@ TEST(MitsubaFiles, TwosidedDiffuseIsDiffuseOnBothSides) {
     EXPECT_FALSE(test::backAlbedo(s, s.spheres.at(0)).has_value());
     // Around a bsdf we cannot model it is refused where the reflectance is read, skipped under normals and ao.
     const std::string plastic = scene("  <shape type=\"rectangle\"><bsdf type=\"twosided\">\n    <bsdf "
-                                      "type=\"plastic\"/></bsdf></shape>\n");
+                                      "type=\"principled\"/></bsdf></shape>\n");
     EXPECT_EQ(errorOf("twosided_plastic", plastic), "");
     EXPECT_EQ(errorOf("twosided_plastic", plastic, "ao"), "");
     EXPECT_TRUE(contains(errorOf("twosided_plastic", plastic, "direct"), "mcval_mitsuba_twosided_plastic.xml:4:"));

@@ -54,7 +54,8 @@ TEST(RoughPlastic, HardInputsGiveNoNanAndNoNegative) {
     for (const auto type : {MicrofacetDistribution::Type::Beckmann, MicrofacetDistribution::Type::GGX})
         for (const bool visible : {false, true})
             for (const float alpha : {1e-4f, 0.1f, 1.f}) {
-                const RoughPlasticBsdf bsdf(MicrofacetDistribution(type, alpha, visible), 1.5f, 1.f, 0.9f, true);
+                const RoughPlasticBsdf bsdf(MicrofacetDistribution(type, alpha, visible), 1.5f, 1.f,
+                                            Color(0.9f, 0.9f, 0.9f), true);
                 for (const float cosTheta : {1.f, 0.5f, 0.0175f, 1e-6f, 0.f, -0.5f}) {
                     const Vec3f wi(std::sqrt(1.f - cosTheta * cosTheta), 0.f, cosTheta);
                     for (const float u1 : ends)
@@ -75,7 +76,7 @@ TEST(RoughPlastic, HardInputsGiveNoNanAndNoNegative) {
 
 TEST(RoughPlastic, TwoUniformsDrawBothLobesEachWeightValueOverPdf) {
     const RoughPlasticBsdf bsdf(MicrofacetDistribution(MicrofacetDistribution::Type::Beckmann, 0.1f, true), 1.5f, 1.f,
-                                0.5f, false);
+                                Color(0.5f, 0.5f, 0.5f), false);
     const Vec3f wi(std::sqrt(0.75f), 0.f, 0.5f);
     const Vec3f mirror(-wi.x, -wi.y, wi.z);
     constexpr int kSide = 100;

@@ -226,8 +226,8 @@ TEST(SceneLoader, ComponentFormatIsHonouredOrRefused) {
 
 TEST(SceneLoader, UnusedElementsAreSkippedAndAnswerChangingOnesRefused) {
     const std::string path = writeScene(
-        "area_conductor", std::string(kHeader) + sensor() +
-                              "  <shape type=\"rectangle\"><bsdf type=\"conductor\"/>"
+        "area_principled", std::string(kHeader) + sensor() +
+                              "  <shape type=\"rectangle\"><bsdf type=\"principled\"/>"
                               "<emitter type=\"area\"><rgb name=\"radiance\" value=\"1\"/></emitter></shape>\n"
                               "  <emitter type=\"point\"/>\n</scene>\n");
     EXPECT_NO_THROW(loadScene(path, {}, "normals"));

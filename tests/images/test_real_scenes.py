@@ -140,16 +140,24 @@ def test_bad_component_format_is_an_error(tmp_path):
     assert f"{path}:8:" in line  # the <film> element's line
 
 
-def test_non_diffuse_bsdf_is_a_note_for_normals_and_ao_and_an_error_for_simple_and_direct(tmp_path):
+def test_non_diffuse_bsdf_is_a_note_for_normals_and_ao_read_by_direct_and_path_and_an_error_for_simple(tmp_path):
     path = scene(tmp_path, shape_extra='<bsdf type="conductor"/>')
     for integrator in ("normals", "ao"):  # neither reads a material
         res = run(path, "--integrator", integrator, "-o", tmp_path / "o.exr", "-q")
         assert res.returncode == 0
         notes = res.stderr.strip().splitlines()
         assert len(notes) == 1 and notes[0].startswith("note: ") and "conductor" in notes[0]
-    for integrator in ("simple", "direct"):
+    for integrator in ("direct", "path"):  # they read every BSDF of the BSDF matrix
+        res = run(path, "--integrator", integrator, "-o", tmp_path / "o.exr", "-q")
+        assert res.returncode == 0 and "conductor" not in res.stderr, res.stderr
+    line = one_error(run(path, "--integrator", "simple", "-o", tmp_path / "o.exr", "-q"), path,
+                     "conductor", "simple", "diffuse")
+    assert f"{path}:15:" in line
+    # A type no integrator models is an error for each that reads the material.
+    path = scene(tmp_path, shape_extra='<bsdf type="principled"/>')
+    for integrator in ("simple", "direct", "path"):
         line = one_error(run(path, "--integrator", integrator, "-o", tmp_path / "o.exr", "-q"), path,
-                         "conductor", integrator, "diffuse")
+                         "principled", integrator, "diffuse")
         assert f"{path}:15:" in line
 
 

@@ -56,10 +56,13 @@ def test_a_heavy_tailed_scene_of_the_suite_takes_more_tested_samples():
     assert ImageCase("close_light", "simple", spp=20).test_spp == 20  # a budget chose them
 
 
-def test_only_the_suites_heavy_tailed_case_goes_without_the_firefly_test():
+def test_only_the_suites_heavy_tailed_cases_go_without_the_firefly_test():
     assert ImageCase("close_light", "path").heavy_tail.startswith("light off the wall")
     assert ImageCase("close_light", "direct").heavy_tail == ""
-    assert ImageCase("cornell", "path").heavy_tail == ""
+    assert ImageCase("cornell", "path").heavy_tail.startswith("green light on the red wall")
+    assert ImageCase("cornell", "direct").heavy_tail == ""
+    assert ImageCase("cornell_measured", "path", group="real").heavy_tail.startswith("green light")
+    assert ImageCase("cornell_box", "path", group="real").heavy_tail == ""
     assert ImageCase("close_light", "path", group="user").heavy_tail == ""  # a user's is not ours
 
 
@@ -114,7 +117,8 @@ def test_simple_on_the_cornell_box_is_not_applicable_not_run():
         ("furnace:ao", "a furnace: the camera is enclosed, no environment reaches it"),
         ("furnace:simple", "no point light")] + [
         (f"{scene}:simple", "no point light")
-        for scene in ("plane_disk_light", "plane_rect_light", "plane_sphere_light", "cornell_box", "cornell_measured")]
+        for scene in ("materials", "plane_disk_light", "plane_rect_light", "plane_sphere_light", "cornell_box",
+                      "cornell_measured")]
     with pytest.raises(ValueError, match="cornell_box:simple is not applicable: no point light"):
         select_cases(["cornell_box:simple"])
 

@@ -84,6 +84,25 @@ def test_light_and_reflectance_factors(tmp_path):
     np.testing.assert_allclose(reds[0], [0.315, 0.0325, 0.025])
 
 
+def test_other_bsdfs_keep_their_values_and_a_linear_integrator_is_not_checked_on_them(tmp_path):
+    """The materials scene: its floor's diffuse reflectance is halved, its conductors, glass and plastics are not.
+    ao (which reads no material) is still checked for an unchanged image; an integrator linear in the diffuse
+    reflectance would not be halved there, so its reflectance check is not made."""
+    from harness.invariance.cell import InvarianceCase
+    from harness.invariance.check import applicable
+
+    root = _variant(tmp_path, "materials", "reflectance", 0.5)
+    floor = next(b for b in root.iter("bsdf") if b.get("type") == "diffuse")  # the light's shape gets one too
+    np.testing.assert_allclose(_floats(_prop(floor, "reflectance")), [0.3, 0.25, 0.2])
+    plastic = next(b for b in root.iter("bsdf") if b.get("type") == "plastic")
+    np.testing.assert_allclose(_floats(_prop(plastic, "diffuse_reflectance")), [0.1, 0.27, 0.36])
+    names = {(s, i): [inv.name for inv in applicable(list(INVARIANCES), InvarianceCase(SCENES / f"{s}.xml", i, 4, 8))]
+             for s, i in (("materials", "ao"), ("materials", "simple"), ("sphere_plane", "simple"))}
+    assert "reflectance" in names[("materials", "ao")]
+    assert "reflectance" not in names[("materials", "simple")] and "light" in names[("materials", "simple")]
+    assert "reflectance" in names[("sphere_plane", "simple")]
+
+
 def test_defaults_are_written_before_scaling(tmp_path):
     scene = tmp_path / "bare.xml"
     scene.write_text('<scene version="3.0.0"><sensor type="perspective"/>'

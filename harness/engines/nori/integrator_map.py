@@ -42,9 +42,22 @@ class Mapping:
     why_not: str | None = None        # set: there is no mapping, and this is why
 
 
-def map_integrator(kind: str, emitters: set[str], specular: bool = False) -> Mapping:
+#: Nori's BSDFs whose Mitsuba translation is not known to be the same material: its microfacet is its course's
+#: own model (a diffuse term plus a Beckmann lobe, not Mitsuba's roughplastic), and its dielectric's weights are
+#: what each student writes. Only a mirror is Mitsuba's (a conductor of material "none").
+UNMATCHED_BSDFS = ("microfacet", "dielectric")
+
+
+def map_integrator(kind: str, emitters: set[str], specular: bool = False,
+                   bsdfs: frozenset[str] = frozenset()) -> Mapping:
     """The mapping for Nori's <integrator type=`kind`> in a scene whose emitters are of the kinds `emitters`
-    ("point", "environment", "area"); `specular`: whether a surface is a mirror or glass."""
+    ("point", "environment", "area"); `specular`: whether a surface is a mirror or glass; `bsdfs`: the Nori
+    BSDF types its surfaces have."""
+    unmatched = sorted(set(bsdfs) & set(UNMATCHED_BSDFS))
+    reads_material = kind in STRATEGIES or kind in PATH_STRATEGIES or (kind == "whitted" and not specular)
+    if reads_material and unmatched:
+        return Mapping("", why_not=f"it reads the material, and Nori's {' and '.join(unmatched)} has no Mitsuba "
+                                   "BSDF known to be the same (its microfacet is not roughplastic)")
     if kind == "normals":
         return Mapping("normals")
     if kind == "simple":

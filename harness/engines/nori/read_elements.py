@@ -117,7 +117,8 @@ OTHER_BSDFS = {
 
 def _other_bsdf(r: Reader, e: ET.Element) -> ET.Element:
     """A Nori BSDF other than diffuse as Mitsuba's of the same kind. None of mcval's integrators models it:
-    normals does not read it, and ao and simple refuse it (the engines say so)."""
+    normals and ao do not read it, simple refuses it (the engines say so), and direct and path read the mirror
+    only (integrator_map.UNMATCHED_BSDFS)."""
     kind, reads = OTHER_BSDFS[e.get("type")]
     p = r.props(e, {name: tag for name, (tag, _, _) in reads.items()})
     out = ET.Element("bsdf", type=kind)

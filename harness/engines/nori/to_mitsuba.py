@@ -79,7 +79,8 @@ def scene_to_mitsuba(r: Reader, root: ET.Element, notes: list[str]) -> ET.Elemen
     kinds = {kind for kind, _ in lights} | {"area" for m in root if m.tag == "mesh" for e in m if e.tag == "emitter"}
     specular = any(b.get("type") in ("dielectric", "mirror") for m in root if m.tag == "mesh" for b in m
                    if b.tag == "bsdf")
-    mapping = map_integrator(integrator.get("type", ""), kinds, specular)
+    bsdfs = frozenset(b.get("type", "") for m in root if m.tag == "mesh" for b in m if b.tag == "bsdf")
+    mapping = map_integrator(integrator.get("type", ""), kinds, specular, bsdfs)
     if mapping.why_not:
         notes.append(f"{r.doc.where(integrator)}: <integrator type=\"{integrator.get('type', '')}\">: {NOT_COMPARED}: "
                      f"{mapping.why_not}; the suite's integrators render the scene's camera and geometry")

@@ -224,6 +224,20 @@ def test_whitted_is_direct_ems_where_no_surface_is_a_mirror_or_glass(tmp_path):
     assert ':2: <integrator type="whitted">: not compared' in note
 
 
+@pytest.mark.parametrize("kind", ["path_mis", "direct_mats", "whitted"])
+def test_a_nori_microfacet_or_glass_leaves_an_integrator_that_reads_it_uncompared(tmp_path, kind):
+    """Nori's microfacet is its course's model, not Mitsuba's roughplastic: compared through that translation, a
+    correct Nori renderer would fail. A mirror is Mitsuba's own (a conductor of material none) and is compared."""
+    for bsdf in ('<bsdf type="microfacet"/>', '<bsdf type="dielectric"/>'):
+        body = AREA_LIGHT + f'<mesh type="obj"><string name="filename" value="quad.obj"/>{bsdf}</mesh>'
+        _, note = noted(tmp_path, "not compared", body=body, integrator=f'<integrator type="{kind}"/>')
+        assert "no Mitsuba BSDF known to be the same" in note or kind == "whitted", note
+    mirror = AREA_LIGHT + '<mesh type="obj"><string name="filename" value="quad.obj"/><bsdf type="mirror"/></mesh>'
+    if kind != "whitted":
+        root = translate(tmp_path, mirror, f'<integrator type="{kind}"/>')
+        assert root.find("integrator").get("type") in ("path", "direct")
+
+
 @pytest.mark.parametrize("kind", ["path_mats", "path_ems", "path_mis"])
 def test_noris_path_tracers_are_mcvals_path_with_their_strategy(tmp_path, kind):
     notes: list[str] = []
