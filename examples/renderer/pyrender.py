@@ -285,6 +285,17 @@ def write_exr(path, images, seconds):
         fail(f"cannot write {path!r}: {out.geterror()}")
 
 
+def refuse_non_diffuse(scene, path):
+    """This renderer shades every surface as Mitsuba's diffuse: a glossy, specular or transmitting one is refused
+    where the integrator reads the material, rather than rendered as something else."""
+    other = (mi.BSDFFlags.Glossy, mi.BSDFFlags.Delta, mi.BSDFFlags.Transmission)
+    for shape in scene.shapes():
+        bsdf = shape.bsdf()
+        if bsdf is not None and any(mi.has_flag(bsdf.flags(), flag) for flag in other):
+            fail(f"{path}: the shape {shape.id() or '(unnamed)'} has a {bsdf.class_name()} BSDF: "
+                 "this renderer models diffuse surfaces only")
+
+
 def main(argv):
     version = argv == ["--version"]
     args = None if version else parse_args(argv)
@@ -310,6 +321,8 @@ def main(argv):
         scene = mi.load_string(xml)
     except Exception as e:  # noqa: BLE001 - Mitsuba raises RuntimeError and others
         fail(f"cannot load scene {args.scene!r}: {e}")
+    if args.integrator in ("simple", "direct", "path"):
+        refuse_non_diffuse(scene, args.scene)
     start = time.perf_counter()  # renderSeconds: rendering only, as docs/engines.md asks
     # Batch k draws from the stream (seed, k): independent of every other batch of this call and of other seeds.
     rngs = [np.random.default_rng(args.seed)] if args.batches == 1 else \

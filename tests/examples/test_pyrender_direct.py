@@ -60,6 +60,22 @@ def test_direct_refuses_a_light_it_does_not_model_in_one_line(tmp_path):
         "(pyrender's direct samples area lights on Rectangle, Disk, Sphere only)"]
 
 
+@pytest.mark.parametrize("integrator, refused", [("direct", True), ("path", True), ("simple", True), ("ao", False)])
+def test_a_glossy_or_specular_surface_is_refused_where_the_material_is_read(tmp_path, integrator, refused):
+    """It shades every surface as Mitsuba's diffuse: the materials scene's mirrors, glass and plastics would be
+    rendered as something else, so direct, path and simple refuse them in one line; ao reads no material."""
+    out = tmp_path / "out.exr"
+    res = subprocess.run([str(EXAMPLE / "pyrender"), str(SCENES / "materials.xml"), "--integrator", integrator,
+                          "--spp", "1", "--seed", "0", "--width", "8", "--height", "8", "-o", str(out)],
+                         capture_output=True, text=True, timeout=300)
+    if refused:
+        assert res.returncode == 1 and not out.exists()
+        (line,) = res.stderr.strip().splitlines()
+        assert line.endswith("BSDF: this renderer models diffuse surfaces only") and "Conductor" in line, line
+    else:
+        assert res.returncode == 0 and out.exists(), res.stderr
+
+
 @pytest.mark.slow
 @pytest.mark.mitsuba
 def test_direct_passes_against_mitsuba_and_the_closed_forms(tmp_path):
