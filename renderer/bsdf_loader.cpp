@@ -24,8 +24,8 @@ Material readDiffuse(const XmlContext &ctx, const pugi::xml_node &node, Deferred
         else if (std::string(child.name()) == "ref")
             unread = "a reference to \"" + ctx.attr(child, "id") + "\" (a texture)" + at(ctx, child);
     const pugi::xml_node given = props.node("reflectance");
-    if (given && std::string(given.name()) == "spectrum" && isPerWavelength(given))
-        unread = "a per-wavelength <spectrum>" + at(ctx, given);
+    if (given && std::string(given.name()) == "spectrum" && given.attribute("filename"))
+        unread = "a <spectrum> read from a file" + at(ctx, given);
     if (!unread.empty()) {
         deferred.unreadReflectances.push_back(
             {node, "<bsdf type=\"diffuse\">" + at(ctx, node) + " (reflectance: " + unread + ")", unread, true});

@@ -35,7 +35,7 @@ void noObjects(const XmlContext &ctx, const XmlProps &props) {
     if (std::string(child.name()) == "texture" || std::string(child.name()) == "ref")
         ctx.fail(child, "textured emission" + (name.empty() ? std::string() : " (\"" + name + "\")") +
                             " is not modelled, such as a spot light's projected image: this renderer's emitters "
-                            "read an <rgb>, a <float> or a constant <spectrum>");
+                            "read an <rgb>, a <float> or a <spectrum> given by its values");
     ctx.fail(child, "unexpected element inside <emitter>");
 }
 

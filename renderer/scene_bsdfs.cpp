@@ -42,7 +42,8 @@ public:
             const std::string tag = child.name();
             const std::string name = child.attribute("name") ? " (" + ctx.attr(child, "name") + ")" : "";
             if (tag == "texture") note("a " + ctx.attr(child, "type") + " texture" + name + at(ctx, child));
-            else if (tag == "ref") note("a reference to \"" + ctx.attr(child, "id") + "\" (a texture)" + name + at(ctx, child));
+            else if (tag == "ref")
+                note("a reference to \"" + ctx.attr(child, "id") + "\" (a texture)" + name + at(ctx, child));
             else ctx.fail(child, "unexpected element inside <bsdf type=\"" + ctx.attr(node, "type") + "\">");
         }
     }
@@ -50,16 +51,18 @@ public:
     bool complete() const { return m_unread.empty(); }
     XmlProps &props() { return m_props; }
 
-    /// A colour (an <rgb>, a <float>, a constant <spectrum>) in [lo, hi].
+    /// A colour (an <rgb>, a <float>, a <spectrum>) in [lo, hi].
     Color color(const std::string &name, const Color &def, float lo, float hi) {
-        if (perWavelength(name)) return def;
+        if (fromFile(name)) return def;
         const Color c = m_props.getColor(name, def);
         m_props.requireRange(name, c, lo, hi);
         return c;
     }
 
-    /// One value for every channel: a colour whose channels differ is noted unread.
+    /// One value for every channel: a colour whose channels differ, or a per-wavelength spectrum (which Mitsuba's
+    /// RGB variants would clamp to [0, 1] as a reflectance), is noted unread.
     float scalar(const std::string &name, float def, float lo, float hi) {
+        if (perWavelength(name)) return def;
         const Color c = color(name, Color(def, def, def), lo, hi);
         if (c.x != c.y || c.y != c.z) note(name + " that differs by channel" + at(m_ctx, m_props.node(name)));
         return c.x;
@@ -127,6 +130,13 @@ public:
     }
 
 private:
+    bool fromFile(const std::string &name) {
+        const pugi::xml_node node = m_props.node(name);
+        if (!node || std::string(node.name()) != "spectrum" || !node.attribute("filename")) return false;
+        m_props.ignore(name);
+        note("a <spectrum> read from a file (" + name + ")" + at(m_ctx, node));
+        return true;
+    }
     bool perWavelength(const std::string &name) {
         const pugi::xml_node node = m_props.node(name);
         if (!node || std::string(node.name()) != "spectrum" || !isPerWavelength(node)) return false;

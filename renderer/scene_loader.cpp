@@ -200,7 +200,7 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     for (const auto &unread : deferred.unreadReflectances) {
         if (info->use.readsReflectance && unread.diffuse)
             ctx.fail(unread.node, "the " + chosen + " integrator reads the reflectance, given here as " + unread.given +
-                                      "; this renderer reads an <rgb>, a <float> or a constant <spectrum>");
+                                      "; this renderer reads an <rgb>, a <float> or a <spectrum> given by its values");
         if (info->use.readsReflectance)
             ctx.fail(unread.node, "the " + chosen + " integrator reads this material, given here with " + unread.given +
                                       "; this renderer reads its parameters as constants");

@@ -166,6 +166,29 @@ Vec3f XmlProps::parseTriple(const pugi::xml_node &node, const std::string &text)
     return {parseFloat(node, parts[0]), parseFloat(node, parts[1]), parseFloat(node, parts[2])};
 }
 
+Vec3f XmlProps::parseSpectrum(const pugi::xml_node &node, const std::string &text, SpectrumUse use) const {
+    std::vector<float> wavelengths, values;
+    std::string entry;
+    std::istringstream in(text);
+    while (std::getline(in, entry, ',')) {
+        const size_t colon = entry.find(':');
+        if (colon == std::string::npos)
+            m_ctx.fail(node, "expected wavelength:value pairs (\"400:0.2, 500:0.4\"), got \"" + entry + "\"");
+        const auto trimmed = [](const std::string &t) {
+            const size_t first = t.find_first_not_of(" \t\r\n"), last = t.find_last_not_of(" \t\r\n");
+            return first == std::string::npos ? std::string() : t.substr(first, last - first + 1);
+        };
+        const float nm = parseFloat(node, trimmed(entry.substr(0, colon)));
+        const float v = parseFloat(node, trimmed(entry.substr(colon + 1)));
+        if (!(nm > 0.f) || (!wavelengths.empty() && !(nm > wavelengths.back())))
+            m_ctx.fail(node, "the wavelengths of a <spectrum> must be positive and increase, as in Mitsuba");
+        wavelengths.push_back(nm);
+        values.push_back(v);
+    }
+    if (wavelengths.size() < 2) m_ctx.fail(node, "a <spectrum> given per wavelength needs at least two of them");
+    return spectrumToRgb(wavelengths, values, use);
+}
+
 float XmlProps::getFloat(const std::string &name, float def) {
     // Mitsuba reads an <integer> where it reads a float (Properties::get converts it).
     const auto node = find(name, "float", "integer");
@@ -233,14 +256,19 @@ Vec3f XmlProps::getColor(const std::string &name, const Vec3f &def) {
         return {v, v, v};
     }
     if (tag == "spectrum") {
-        // A constant spectrum is that value in RGB too; per-wavelength values become RGB by Mitsuba's own
-        // colour matching, which this renderer does not model.
+        // A constant spectrum is that value in RGB too; one given per wavelength becomes RGB as Mitsuba's RGB
+        // variants make it (spectrum_rgb.h), as light inside an <emitter> and as a reflectance elsewhere.
+        if (it->second.attribute("filename"))
+            m_ctx.fail(it->second, "property \"" + name + "\": a <spectrum> read from a file is not read here: give "
+                                   "its values (value=\"400:0.2, 500:0.4, ...\") or an <rgb>");
         const std::string value = m_ctx.attr(it->second, "value");
-        if (isPerWavelength(it->second))
-            m_ctx.fail(it->second, "property \"" + name + "\": a <spectrum> given per wavelength becomes RGB by "
-                                   "Mitsuba's colour matching, which this renderer does not model: give an <rgb>");
-        const float v = parseFloat(it->second, value);
-        return {v, v, v};
+        if (!isPerWavelength(it->second)) {
+            const float v = parseFloat(it->second, value);
+            return {v, v, v};
+        }
+        bool emission = false;
+        for (pugi::xml_node n = m_element; n && !emission; n = n.parent()) emission = std::string(n.name()) == "emitter";
+        return parseSpectrum(it->second, value, emission ? SpectrumUse::Emission : SpectrumUse::Reflectance);
     }
     if (tag != "rgb")
         m_ctx.fail(it->second, "property \"" + name + "\" must be an <rgb>, a <spectrum>, a <float> or an <integer>");

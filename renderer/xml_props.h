@@ -9,6 +9,7 @@
 
 #include <pugixml.hpp>
 
+#include "spectrum_rgb.h"
 #include "transform.h"
 #include "vector.h"
 
@@ -100,6 +101,8 @@ private:
     int parseInt(const pugi::xml_node &node, const std::string &text) const;
     float parseFloat(const pugi::xml_node &node, const std::string &text) const;
     Vec3f parseTriple(const pugi::xml_node &node, const std::string &text) const;
+    /// "400:0.2, 500:0.4, ..." (increasing wavelengths in nm, at least two) as RGB.
+    Vec3f parseSpectrum(const pugi::xml_node &node, const std::string &text, SpectrumUse use) const;
     Transform parseTransform(const pugi::xml_node &node) const;
     Transform parseTransformStep(const pugi::xml_node &step) const;
 

@@ -107,6 +107,13 @@ def _scale_value(node: ET.Element, factor: float) -> None:
         raise ValueError(f"cannot scale <{node.tag} name=\"{node.get('name')}\">: expected an <rgb> or <float> value")
     if node.tag == "integer":  # a length written as a whole number (focus_distance="10"): scaled, it is a float
         node.tag = "float"
+    if node.tag == "spectrum" and ":" in node.get("value", ""):
+        # Given per wavelength: each value scaled, which scales its RGB (linear but for clamping out of gamut).
+        pairs = [entry.split(":") for entry in node.get("value").split(",")]
+        if any(len(pair) != 2 for pair in pairs):
+            raise ValueError(f"cannot scale <spectrum name=\"{node.get('name')}\">: expected wavelength:value pairs")
+        node.set("value", ", ".join(f"{nm.strip()}:{_fmt(float(v) * factor)}" for nm, v in pairs))
+        return
     v = _numbers(node) * factor
     if node.tag == "spectrum" and v.size != 1:
         raise ValueError(f"cannot scale a sampled <spectrum name=\"{node.get('name')}\">")

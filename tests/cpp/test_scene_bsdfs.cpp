@@ -91,8 +91,9 @@ TEST(SceneBsdfs, IndicesOfRefractionAreNumbersOrMitsubasNamesWithItsDefaults) {
 }
 
 TEST(SceneBsdfs, PlasticReadsAnRgbDiffuseReflectanceChannelByChannel) {
-    const auto loaded = sphereBsdf(writeScene("plastic_rgb", "<bsdf type=\"roughplastic\"><rgb name=\"diffuse_reflectance\" "
-                                                             "value=\"0.1, 0.2, 0.4\"/><float name=\"alpha\" value=\"0.3\"/></bsdf>"));
+    const auto loaded = sphereBsdf(writeScene("plastic_rgb", "<bsdf type=\"roughplastic\"><rgb "
+                                                             "name=\"diffuse_reflectance\" value=\"0.1, 0.2, 0.4\"/>"
+                                                             "<float name=\"alpha\" value=\"0.3\"/></bsdf>"));
     const Bsdf &bsdf = *loaded;
     // Away from the specular lobe the diffuse base dominates: each channel in proportion to its reflectance.
     const Color f = bsdf.eval(Vec3f(0.f, 0.f, 1.f), normalize(Vec3f(0.9f, 0.f, 0.2f)));

@@ -290,6 +290,7 @@ TEST(SceneLoader, ASensorWithoutFovHasMitsubasFocalLength) {
 }
 
 TEST(SceneLoader, ASpectrumIsReadWhenConstantAndAnUnreadableReflectanceIsRefusedOnlyWhereItIsRead) {
+    // (A spectrum given per wavelength is read too: test_spectrum_rgb.cpp.)
     // ao reads no material: only simple, direct and path refuse a reflectance they cannot read.
     const std::string constant = std::string(kHeader) + sensor() +
                                  "  <shape type=\"rectangle\"><bsdf type=\"diffuse\">"
@@ -298,7 +299,7 @@ TEST(SceneLoader, ASpectrumIsReadWhenConstantAndAnUnreadableReflectanceIsRefused
     EXPECT_EQ(test::frontAlbedo(scene, scene.meshes.at(0)).x, 0.25f);
     EXPECT_EQ(test::frontAlbedo(scene, scene.meshes.at(0)).z, 0.25f);
     for (const std::string &reflectance :
-         {std::string("<spectrum name=\"reflectance\" value=\"400:0.78, 700:0.78\"/>"),
+         {std::string("<spectrum name=\"reflectance\" filename=\"paint.spd\"/>"),
           std::string("<texture type=\"bitmap\" name=\"reflectance\"><string name=\"filename\" value=\"x.png\"/>"
                       "</texture>")}) {
         const std::string body = std::string(kHeader) + sensor() + "  <texture type=\"checkerboard\" id=\"c\"/>\n" +

@@ -103,6 +103,17 @@ def test_other_bsdfs_keep_their_values_and_a_linear_integrator_is_not_checked_on
     assert "reflectance" in names[("sphere_plane", "simple")]
 
 
+def test_a_spectrum_given_per_wavelength_is_scaled_value_by_value(tmp_path):
+    scene = tmp_path / "spectral.xml"
+    scene.write_text('<scene version="3.0.0"><shape type="rectangle"><bsdf type="diffuse"><spectrum name="reflectance" '
+                     'value="400:0.5, 700:0.8"/></bsdf><emitter type="area"><spectrum name="radiance" '
+                     'value="400:2, 550:4,700:6"/></emitter></shape></scene>')
+    root = ET.parse(rewrite(scene, tmp_path / "light.xml", "light", 2.0)).getroot()
+    assert _prop(root.find("shape/emitter"), "radiance").get("value") == "400:4.0, 550:8.0, 700:12.0"
+    root = ET.parse(rewrite(scene, tmp_path / "refl.xml", "reflectance", 0.5)).getroot()
+    assert _prop(root.find("shape/bsdf"), "reflectance").get("value") == "400:0.25, 700:0.4"
+
+
 def test_defaults_are_written_before_scaling(tmp_path):
     scene = tmp_path / "bare.xml"
     scene.write_text('<scene version="3.0.0"><sensor type="perspective"/>'
