@@ -11,24 +11,19 @@ namespace mcval {
 
 namespace {
 
-std::string at(const XmlContext &ctx, const pugi::xml_node &node) { return " at line " + std::to_string(ctx.line(node)); }
-
 /// The diffuse bsdf's reflectance; one we cannot read (a texture, a per-wavelength spectrum) is deferred:
 /// whether it may go unread is decided when the integrator is known.
 Material readDiffuse(const XmlContext &ctx, const pugi::xml_node &node, Deferred &deferred) {
     XmlProps props(ctx, node);
     std::string unread;
     for (const auto &child : props.objects())
-        if (std::string(child.name()) == "texture")
-            unread = "a " + ctx.attr(child, "type") + " texture" + at(ctx, child);
-        else if (std::string(child.name()) == "ref")
-            unread = "a reference to \"" + ctx.attr(child, "id") + "\" (a texture)" + at(ctx, child);
+        if (const std::string texture = textureGiven(ctx, child); !texture.empty()) unread = texture + ctx.at(child);
     const pugi::xml_node given = props.node("reflectance");
     if (given && std::string(given.name()) == "spectrum" && given.attribute("filename"))
-        unread = "a <spectrum> read from a file" + at(ctx, given);
+        unread = "a <spectrum> read from a file" + ctx.at(given);
     if (!unread.empty()) {
         deferred.unreadReflectances.push_back(
-            {node, "<bsdf type=\"diffuse\">" + at(ctx, node) + " (reflectance: " + unread + ")", unread, true});
+            {node, "<bsdf type=\"diffuse\">" + ctx.at(node) + " (reflectance: " + unread + ")", unread, true});
         return defaultBsdf();
     }
     const Color rho = props.getColor("reflectance", {0.5f, 0.5f, 0.5f});
@@ -75,7 +70,7 @@ Material readBsdf(const XmlContext &ctx, const pugi::xml_node &node, Definitions
     if (isScatteringBsdf(type)) {
         std::string unread;
         const Material material = readScatteringBsdf(ctx, node, unread);
-        const std::string what = "<bsdf type=\"" + type + "\">" + at(ctx, node);
+        const std::string what = "<bsdf type=\"" + type + "\">" + ctx.at(node);
         if (!material) {
             deferred.unreadReflectances.push_back({node, what + " (" + unread + ")", unread, false});
             return defaultBsdf();
@@ -85,7 +80,7 @@ Material readBsdf(const XmlContext &ctx, const pugi::xml_node &node, Definitions
         return material;
     }
     // Only integrators that read no material can ignore it; which is decided when the integrator is known.
-    deferred.unmodelledBsdfs.emplace_back(node, "<bsdf type=\"" + type + "\">" + at(ctx, node));
+    deferred.unmodelledBsdfs.emplace_back(node, "<bsdf type=\"" + type + "\">" + ctx.at(node));
     return defaultBsdf();
 }
 
@@ -101,7 +96,7 @@ void registerBsdfs(const XmlContext &ctx, const pugi::xml_node &node, Definition
             const std::string id = ctx.attr(n, "id");
             const auto [it, added] = defs.bsdfNodes.emplace(id, n);
             if (!added)
-                ctx.fail(n, "the id \"" + id + "\" is already defined (in " + ctx.fileOf(it->second) + at(ctx, it->second) +
+                ctx.fail(n, "the id \"" + id + "\" is already defined (in " + ctx.fileOf(it->second) + ctx.at(it->second) +
                                 ")");
         }
         for (pugi::xml_node child = n.last_child(); child; child = child.previous_sibling())

@@ -30,8 +30,6 @@ constexpr std::pair<const char *, float> kIors[] = {
     {"pet", 1.5750f},           {"diamond", 2.419f},
 };
 
-std::string at(const XmlContext &ctx, const pugi::xml_node &node) { return " at line " + std::to_string(ctx.line(node)); }
-
 /// One <bsdf>'s properties, read as constants; the first form it cannot read is kept in `unread`.
 class BsdfReader {
 public:
@@ -39,12 +37,10 @@ public:
         : m_ctx(ctx), m_props(ctx, node), m_unread(unread) {
         // A texture or a reference to one stands for a property that then varies over the surface.
         for (const auto &child : m_props.objects()) {
-            const std::string tag = child.name();
-            const std::string name = child.attribute("name") ? " (" + ctx.attr(child, "name") + ")" : "";
-            if (tag == "texture") note("a " + ctx.attr(child, "type") + " texture" + name + at(ctx, child));
-            else if (tag == "ref")
-                note("a reference to \"" + ctx.attr(child, "id") + "\" (a texture)" + name + at(ctx, child));
-            else ctx.fail(child, "unexpected element inside <bsdf type=\"" + ctx.attr(node, "type") + "\">");
+            const std::string texture = textureGiven(ctx, child);
+            if (texture.empty())
+                ctx.fail(child, "unexpected element inside <bsdf type=\"" + ctx.attr(node, "type") + "\">");
+            note(texture + (child.attribute("name") ? " (" + ctx.attr(child, "name") + ")" : "") + ctx.at(child));
         }
     }
 
@@ -53,7 +49,7 @@ public:
 
     /// A colour (an <rgb>, a <float>, a <spectrum>) in [lo, hi].
     Color color(const std::string &name, const Color &def, float lo, float hi) {
-        if (fromFile(name)) return def;
+        if (unreadSpectrum(name, false)) return def;
         const Color c = m_props.getColor(name, def);
         m_props.requireRange(name, c, lo, hi);
         return c;
@@ -62,9 +58,9 @@ public:
     /// One value for every channel: a colour whose channels differ, or a per-wavelength spectrum (which Mitsuba's
     /// RGB variants would clamp to [0, 1] as a reflectance), is noted unread.
     float scalar(const std::string &name, float def, float lo, float hi) {
-        if (perWavelength(name)) return def;
+        if (unreadSpectrum(name, true)) return def;
         const Color c = color(name, Color(def, def, def), lo, hi);
-        if (c.x != c.y || c.y != c.z) note(name + " that differs by channel" + at(m_ctx, m_props.node(name)));
+        if (c.x != c.y || c.y != c.z) note(name + " that differs by channel" + m_ctx.at(m_props.node(name)));
         return c.x;
     }
 
@@ -116,7 +112,7 @@ public:
             if (m_props.has("eta") || m_props.has("k"))
                 m_props.failAt("material", "give a material or eta and k, not both (as Mitsuba)");
             note("the named conductor \"" + material + "\" (its per-wavelength eta and k)" +
-                 at(m_ctx, m_props.node("material")));
+                 m_ctx.at(m_props.node("material")));
             return {0.f, 1.f};
         }
         return {scalar("eta", 0.f, 0.f, 1e4f), scalar("k", 1.f, 0.f, 1e4f)};
@@ -126,22 +122,20 @@ public:
     void unitOnly(const std::string &name) {
         if (!m_props.has(name)) return;
         const Color c = color(name, Color(1.f, 1.f, 1.f), 0.f, 1.f);
-        if (c.x != 1.f || c.y != 1.f || c.z != 1.f) note(name + " other than 1" + at(m_ctx, m_props.node(name)));
+        if (c.x != 1.f || c.y != 1.f || c.z != 1.f) note(name + " other than 1" + m_ctx.at(m_props.node(name)));
     }
 
 private:
-    bool fromFile(const std::string &name) {
+    /// Whether property `name` is a <spectrum> read from a file or, with `valuesToo`, one given per wavelength:
+    /// then it is noted unread.
+    bool unreadSpectrum(const std::string &name, bool valuesToo) {
         const pugi::xml_node node = m_props.node(name);
-        if (!node || std::string(node.name()) != "spectrum" || !node.attribute("filename")) return false;
+        if (!node || std::string(node.name()) != "spectrum") return false;
+        const bool file = node.attribute("filename");
+        if (!file && !(valuesToo && isPerWavelength(node))) return false;
         m_props.ignore(name);
-        note("a <spectrum> read from a file (" + name + ")" + at(m_ctx, node));
-        return true;
-    }
-    bool perWavelength(const std::string &name) {
-        const pugi::xml_node node = m_props.node(name);
-        if (!node || std::string(node.name()) != "spectrum" || !isPerWavelength(node)) return false;
-        m_props.ignore(name);
-        note("a per-wavelength <spectrum> (" + name + ")" + at(m_ctx, node));
+        note(std::string(file ? "a <spectrum> read from a file" : "a per-wavelength <spectrum>") + " (" + name + ")" +
+             m_ctx.at(node));
         return true;
     }
     void note(const std::string &what) {
@@ -198,6 +192,13 @@ Material readPlastic(BsdfReader &r, bool rough) {
 }
 
 }  // namespace
+
+std::string textureGiven(const XmlContext &ctx, const pugi::xml_node &child) {
+    const std::string tag = child.name();
+    if (tag == "texture") return "a " + ctx.attr(child, "type") + " texture";
+    if (tag == "ref") return "a reference to \"" + ctx.attr(child, "id") + "\" (a texture)";
+    return "";
+}
 
 bool isScatteringBsdf(const std::string &type) {
     return type == "conductor" || type == "roughconductor" || type == "dielectric" || type == "roughdielectric" ||

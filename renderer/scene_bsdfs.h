@@ -9,6 +9,10 @@
 
 namespace mcval {
 
+/// What a <texture> or a <ref> (to a texture) inside a <bsdf> gives its property: "a bitmap texture", "a reference
+/// to \"t\" (a texture)"; "" for any other element.
+std::string textureGiven(const XmlContext &ctx, const pugi::xml_node &child);
+
 /// Whether a <bsdf type> is one of them.
 bool isScatteringBsdf(const std::string &type);
 

@@ -186,7 +186,8 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     const IntegratorInfo *info = findIntegrator(chosen);
     if (!info) {
         // No or an unknown integrator: render() names that error; a bsdf we cannot model is one too.
-        for (const auto &[node, what] : deferred.unmodelledBsdfs) ctx.fail(node, "unsupported bsdf type " + what);
+        for (const auto &[node, what] : deferred.unmodelledBsdfs)
+            ctx.fail(node, "unsupported bsdf type \"" + typeOf(ctx, node) + "\"");
         return scene;
     }
     if (info->use.needsPointLight && scene.pointLights.empty())

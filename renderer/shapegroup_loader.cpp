@@ -12,10 +12,6 @@ namespace {
 
 constexpr uint64_t kMaxInstancedTriangles = uint64_t(1) << 28, kMaxInstancedShapes = uint64_t(1) << 20;
 
-std::string at(const XmlContext &ctx, const pugi::xml_node &node) {
-    return " at line " + std::to_string(ctx.line(node));
-}
-
 /// The members of a <shape type="shapegroup">, each loaded as a top-level shape would be.
 ShapeGroup readGroup(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs, Deferred &deferred) {
     XmlProps props(ctx, node);
@@ -69,7 +65,7 @@ void loadInstance(const XmlContext &ctx, const pugi::xml_node &node, Definitions
         ctx.fail(node, "the instances so far copy " + std::to_string(defs.instancedTriangles) + " triangles and " +
                            std::to_string(defs.instancedShapes) + " shapes: at most 2^28 triangles and 2^20 shapes "
                            "are supported (instances are flattened, each a copy)");
-    const std::string suffix = " (instance" + at(ctx, node) + ")";
+    const std::string suffix = " (instance" + ctx.at(node) + ")";
     for (const Mesh &member : group->meshes) {
         Mesh mesh = transformMesh(member, toWorld);
         requireFiniteMesh(ctx, node, mesh);

@@ -31,6 +31,8 @@ struct XmlContext {
     std::list<Included> included;
 
     int line(const pugi::xml_node &node) const;
+    /// " at line N": where `node` stands, for messages that name several elements.
+    std::string at(const pugi::xml_node &node) const { return " at line " + std::to_string(line(node)); }
     /// The file the node was read from: the scene file or an included one.
     const std::string &fileOf(const pugi::xml_node &node) const;
     /// `name` as Mitsuba finds it: absolute as it is, else in the first of `folders` that has it (the scene
