@@ -9,7 +9,7 @@ SUDO  := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 APT_PACKAGES := build-essential cmake ninja-build python3 python3-venv python3-dev \
 	libembree-dev libopenexr-dev libtbb-dev libpugixml-dev libtinyobjloader-dev \
-	libcli11-dev zlib1g-dev libllvm19 googletest libgtest-dev chromium
+	libcli11-dev zlib1g-dev libopenimageio-dev libllvm19 googletest libgtest-dev chromium
 
 # Mitsuba's llvm variants need LLVM 19 (Debian's libllvm19; 15 and 16 crash).
 export DRJIT_LIBLLVM_PATH ?= $(firstword $(wildcard /usr/lib/*/libLLVM.so.19* /usr/lib/*/libLLVM-19.so))

@@ -4,20 +4,53 @@
 #include <vector>
 
 #include "bsdfs/diffuse.h"
+#include "bsdfs/textured_diffuse.h"
 #include "bsdfs/twosided.h"
 #include "scene_bsdfs.h"
+#include "textures/texture_loader.h"
 
 namespace mcval {
 
 namespace {
 
-/// The diffuse bsdf's reflectance; one we cannot read (a texture, a per-wavelength spectrum) is deferred:
-/// whether it may go unread is decided when the integrator is known.
+/// The <texture> a diffuse reflectance is given as: the child itself, or the top-level one a <ref> names; an
+/// empty node for another element or an unknown id.
+pugi::xml_node textureNode(const XmlContext &ctx, const pugi::xml_node &child, const Deferred &deferred) {
+    if (std::string(child.name()) == "texture") return child;
+    if (std::string(child.name()) != "ref") return {};
+    const std::string id = ctx.attr(child, "id");
+    for (const auto &[node, what] : deferred.textures)
+        if (node.attribute("id") && ctx.attr(node, "id") == id) return node;
+    return {};
+}
+
+/// A texture the diffuse reflectance is given as, where the integrator reads textures (or is not known yet):
+/// the textured surface, or nullptr where the texture is of a type this renderer does not read.
+Material readTexturedDiffuse(const XmlContext &ctx, const pugi::xml_node &node, const pugi::xml_node &child,
+                             Deferred &deferred) {
+    if (deferred.known && !deferred.readsTextures) return nullptr;
+    const pugi::xml_node texture = textureNode(ctx, child, deferred);
+    if (!texture || !isModelledTexture(ctx.attr(texture, "type"))) return nullptr;
+    if (ctx.propertyName(child) != "reflectance")
+        ctx.fail(child, "unexpected texture \"" + ctx.propertyName(child) + "\" inside <bsdf type=\"diffuse\">: "
+                        "expected reflectance");
+    XmlProps(ctx, node).finish("reflectance");
+    deferred.texturedBsdfs.emplace_back(node, "<bsdf type=\"diffuse\">" + ctx.at(node) + " (reflectance: a " +
+                                                  ctx.attr(texture, "type") + " texture)");
+    return std::make_shared<TexturedDiffuseBsdf>(loadTexture(ctx, texture, 1.f));
+}
+
+/// The diffuse bsdf's reflectance: a value, or a bitmap or checkerboard texture for the integrators that read
+/// them. One we cannot read (another texture, a per-wavelength spectrum from a file) is deferred: whether it may
+/// go unread is decided when the integrator is known.
 Material readDiffuse(const XmlContext &ctx, const pugi::xml_node &node, Deferred &deferred) {
     XmlProps props(ctx, node);
     std::string unread;
-    for (const auto &child : props.objects())
+    for (const auto &child : props.objects()) {
+        if (props.objects().size() == 1)
+            if (Material textured = readTexturedDiffuse(ctx, node, child, deferred)) return textured;
         if (const std::string texture = textureGiven(ctx, child); !texture.empty()) unread = texture + ctx.at(child);
+    }
     const pugi::xml_node given = props.node("reflectance");
     if (given && std::string(given.name()) == "spectrum" && given.attribute("filename"))
         unread = "a <spectrum> read from a file" + ctx.at(given);
@@ -53,6 +86,8 @@ Material readTwoSided(const XmlContext &ctx, const pugi::xml_node &node, Definit
             ctx.fail(child, "a twosided bsdf holds only bsdfs that transmit no light (as Mitsuba), not a " + sideType);
         sides.push_back(tag == "bsdf" ? loadBsdf(ctx, child, defs, deferred, depth + 1)
                                       : resolveBsdfRef(ctx, child, defs, deferred, depth + 1));
+        if (dynamic_cast<const TexturedDiffuseBsdf *>(sides.back().get()))
+            ctx.fail(child, "a twosided bsdf around a textured diffuse one is not modelled");
     }
     if (sides.empty()) ctx.fail(node, "a twosided bsdf needs a nested <bsdf> or <ref> (its one-sided material)");
     return std::make_shared<TwoSidedBsdf>(sides[0], sides.back());

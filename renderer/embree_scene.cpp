@@ -1,5 +1,7 @@
 #include "embree_scene.h"
 
+#include "bsdfs/textured_diffuse.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -126,11 +128,36 @@ void EmbreeScene::addMaterial(const BsdfList &bsdfs, uint32_t index, bool emits)
     m_emitterOf.push_back(emits ? m_areaEmitters++ : -1);
     const std::shared_ptr<const Bsdf> &bsdf = index < bsdfs.size() ? bsdfs[index] : defaultBsdf();
     m_bsdf.push_back(bsdf);
+    m_textured.push_back(dynamic_cast<const TexturedDiffuseBsdf *>(bsdf.get()));
     // The packet paths' tables: a side that is not Lambertian reads 0 there (its integrator refused it).
     const Color black(0.f, 0.f, 0.f);
     m_reflectance.push_back(bsdf->lambertianAlbedo(true).value_or(black));
     m_twoSided.push_back(bsdf->twoSided() ? 1 : 0);
     m_backReflectance.push_back(bsdf->twoSided() ? bsdf->lambertianAlbedo(false).value_or(black) : black);
+}
+
+const Bsdf &EmbreeScene::bsdfAt(const Hit &hit, DiffuseBsdf &scratch) const {
+    const TexturedDiffuseBsdf *textured = m_textured[hit.geom];
+    if (!textured) return *m_bsdf[hit.geom];
+    scratch = textured->at(uvAt(hit));
+    return scratch;
+}
+
+Vec2f EmbreeScene::uvAt(const Hit &hit) const {
+    if (hit.geom >= m_meshes.size()) return {};
+    const Mesh &mesh = m_meshes[hit.geom];
+    if (mesh.texcoords.empty()) return {};
+    const uint32_t *corner = &mesh.indices[3 * size_t(hit.prim)];
+    const Vec3f a = mesh.positions[corner[0]], b = mesh.positions[corner[1]], c = mesh.positions[corner[2]];
+    // Barycentrics of p from the areas it makes with each edge, in double: p lies on the triangle.
+    const Vec3f n = cross(b - a, c - a);
+    const double area = dot(n, n);
+    if (!(area > 0.0)) return mesh.texcoords[corner[0]];
+    const double b1 = double(dot(cross(hit.p - a, c - a), n)) / area;
+    const double b2 = double(dot(cross(b - a, hit.p - a), n)) / area;
+    const Vec2f t0 = mesh.texcoords[corner[0]], t1 = mesh.texcoords[corner[1]], t2 = mesh.texcoords[corner[2]];
+    const double b0 = 1.0 - b1 - b2;
+    return {float(b0 * t0.x + b1 * t1.x + b2 * t2.x), float(b0 * t0.y + b1 * t1.y + b2 * t2.y)};
 }
 
 EmbreeScene::~EmbreeScene() {

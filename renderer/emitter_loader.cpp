@@ -1,8 +1,11 @@
 // The <emitter> elements: Mitsuba's point, constant, spot, directional and area emitters, with their
-// parameter names and defaults; projector and envmap are known by name and not modelled.
+// parameter names and defaults, and envmap's image; projector is known by name and not modelled.
 #include "emitter_loader.h"
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <memory>
 #include <string>
 
 #include "scene_limits.h"
@@ -11,12 +14,13 @@ namespace mcval {
 
 namespace {
 
-/// Mitsuba 3's top-level emitter types that only some integrators read (spot, directional) or that this
-/// renderer does not model (projector, envmap); their kind, or false for another type.
+/// Mitsuba 3's top-level emitter types that only some integrators read (spot, directional, envmap) or that
+/// this renderer does not model (projector); their kind, or false for another type.
 bool deferredKind(const std::string &type, EmitterKind &kind) {
     if (type == "spot") kind = EmitterKind::Spot;
     else if (type == "directional") kind = EmitterKind::Directional;
-    else if (type == "projector" || type == "envmap") kind = EmitterKind::Unmodelled;
+    else if (type == "envmap") kind = EmitterKind::Envmap;
+    else if (type == "projector") kind = EmitterKind::Unmodelled;
     else return false;
     return true;
 }
@@ -75,13 +79,65 @@ DirectionalLight readDirectional(const XmlContext &ctx, const pugi::xml_node &no
     return light;
 }
 
+/// Whether the linear part of `t` is orthonormal: it maps unit directions to unit directions.
+bool isRotation(const Transform &t) {
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            const float d = t.m[0][i] * t.m[0][j] + t.m[1][i] * t.m[1][j] + t.m[2][i] * t.m[2][j];
+            if (!(std::abs(d - (i == j ? 1.f : 0.f)) <= 1e-4f)) return false;
+        }
+    return true;
+}
+
+/// The first pixel value that is negative, too large or not finite, as " (x, y)", or "".
+std::string badPixel(const RgbImage &image) {
+    for (size_t i = 0; i < image.rgb.size(); ++i)
+        if (!(image.rgb[i] >= 0.f && image.rgb[i] <= kMaxEmission)) {
+            const size_t pixel = i / 3;
+            return " (" + std::to_string(pixel % size_t(image.width)) + ", " +
+                   std::to_string(pixel / size_t(image.width)) + ")";
+        }
+    return "";
+}
+
+EnvironmentMap readEnvmap(const XmlContext &ctx, const pugi::xml_node &node, const std::vector<std::string> &folders) {
+    XmlProps props(ctx, node);
+    EnvironmentMap map;
+    const std::string name = props.getStringRequired("filename");
+    std::string extension = std::filesystem::path(name).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (extension != ".exr")
+        props.failAt("filename", "an envmap's image is read from an OpenEXR file (.exr), not \"" + name + "\"");
+    try {
+        map.image = std::make_shared<const RgbImage>(readExrRgb(XmlContext::resolve(name, folders)));
+    } catch (const std::exception &e) {
+        props.failAt("filename", std::string("cannot read the envmap's image: ") + e.what());
+    }
+    if (map.image->width < 2 || map.image->height < 3)
+        props.failAt("filename", "an envmap's image must have at least 2 x 3 pixels, as Mitsuba requires");
+    if (const std::string where = badPixel(*map.image); !where.empty())
+        props.failAt("filename", "the envmap's pixel" + where + " is negative, not finite or above " +
+                                     std::to_string(kMaxEmission) + " (a radiance is read)");
+    map.scale = props.getFloat("scale", 1.f);
+    props.requireRange("scale", map.scale, 0.f, kMaxEmission);
+    map.toWorld = props.getTransform("to_world");
+    if (!isRotation(map.toWorld))
+        props.failAt("to_world", "an envmap's to_world must be a rotation: Mitsuba's directions are not unit under "
+                                 "a scale or shear");
+    // MIS compensation changes how directions are drawn, not what the image converges to.
+    props.ignore("mis_compensation");
+    props.finish("filename, scale, to_world, mis_compensation");
+    noObjects(ctx, props);
+    return map;
+}
+
 }  // namespace
 
 void loadEmitter(const XmlContext &ctx, const pugi::xml_node &node, SceneDescription &scene, Deferred &deferred) {
     const std::string type = ctx.attr(node, "type");
     if (EmitterKind kind; deferredKind(type, kind)) {
         deferred.otherEmitters.push_back(
-            {node, "<emitter type=\"" + type + "\"> at line " + std::to_string(ctx.line(node)), kind});
+            {node, "<emitter type=\"" + type + "\"> at line " + std::to_string(ctx.line(node)), kind, ctx.folders});
         return;
     }
     XmlProps props(ctx, node);
@@ -127,10 +183,15 @@ void judgeOtherEmitters(const XmlContext &ctx, const Deferred &deferred, const s
             scene.spotLights.push_back(readSpot(ctx, other.node));
         } else if (other.kind == EmitterKind::Directional) {
             scene.directionalLights.push_back(readDirectional(ctx, other.node));
+        } else if (other.kind == EmitterKind::Envmap) {
+            // Mitsuba: "Only one environment emitter can be specified per scene."
+            if (scene.environment || scene.envmap)
+                ctx.fail(other.node, "only one environment emitter (constant or envmap) is allowed in a scene");
+            scene.envmap = readEnvmap(ctx, other.node, other.folders);
         } else {
             ctx.fail(other.node, "the " + chosen + " integrator would be lit by this " +
                                      ctx.attr(other.node, "type") + " emitter, which this renderer does not model "
-                                     "(it models point, spot, directional, constant and area emitters)");
+                                     "(it models point, spot, directional, constant, envmap and area emitters)");
         }
     }
 }

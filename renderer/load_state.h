@@ -23,6 +23,8 @@ struct Deferred {
     /// then read where it stands, or kept aside to be skipped with a note.
     EmitterKinds reads;
     bool known = false;
+    /// Whether it reads a textured diffuse reflectance (the integrators that read any BSDF), once `known`.
+    bool readsTextures = false;
     /// BSDFs whose surfaces are not Lambertian: read (a scattering BSDF, scene_bsdfs.h) or not modelled.
     std::vector<std::pair<pugi::xml_node, std::string>> nonDiffuseBsdfs, unmodelledBsdfs, areaEmitters;
     /// A BSDF with a parameter we cannot read (`given`: a texture, a per-wavelength spectrum, ...): refused
@@ -34,14 +36,18 @@ struct Deferred {
         bool diffuse = true;
     };
     std::vector<UnreadReflectance> unreadReflectances;
-    /// Top-level <texture>s: read only through a BSDF, which then is an unread reflectance.
+    /// Diffuse BSDFs whose reflectance is a texture read (bitmap, checkerboard): refused by an integrator that
+    /// reads one albedo per surface, skipped by those that read none.
+    std::vector<std::pair<pugi::xml_node, std::string>> texturedBsdfs;
+    /// Top-level <texture>s: read only through a BSDF (a textured reflectance, or an unread one).
     std::vector<std::pair<pugi::xml_node, std::string>> textures;
-    /// Top-level emitters read only by the integrators that declare their kind (spot, directional), or by none
-    /// (projector, envmap: Unmodelled): read, refused or skipped with a note once the integrator is known.
+    /// Top-level emitters read only by the integrators that declare their kind (spot, directional, envmap), or
+    /// by none (projector: Unmodelled): read, refused or skipped with a note once the integrator is known.
     struct OtherEmitter {
         pugi::xml_node node;
         std::string what;
         EmitterKind kind;
+        std::vector<std::string> folders;  ///< where the file resolver looked at the element (an envmap's image)
     };
     std::vector<OtherEmitter> otherEmitters;
     /// <medium>s and references to them: no integrator of ours traces media, nor do the Mitsuba integrators

@@ -102,6 +102,8 @@ void addQuad(Mesh &m, const Vec3f &a, const Vec3f &b, const Vec3f &c, const Vec3
 Mesh makeRectangle(const Transform &toWorld) {
     Mesh m;
     addQuad(m, {-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0});
+    // Mitsuba's rectangle: (u, v) = ((x + 1) / 2, (y + 1) / 2), which the triangles interpolate exactly.
+    m.texcoords = {{0.f, 0.f}, {1.f, 0.f}, {1.f, 1.f}, {0.f, 1.f}};
     return transformMesh(std::move(m), toWorld);
 }
 

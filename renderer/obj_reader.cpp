@@ -41,11 +41,12 @@ struct CornerHash {
 /// What the callbacks collect; the first error stops collecting (exceptions must not cross the library).
 struct ObjState {
     std::vector<Vec3f> positions, normals;
+    std::vector<Vec2f> texcoords;
     size_t texcoordCount = 0;
     std::unordered_map<Corner, uint32_t, CornerHash> vertexOf;  // corner -> mesh vertex
     std::vector<Corner> vertices;                               // mesh vertex -> corner
     std::vector<uint32_t> indices;
-    bool everyCornerHasNormal = true;
+    bool everyCornerHasNormal = true, everyCornerHasTexcoord = true;
     size_t faceCount = 0;
     std::string error;
 };
@@ -66,8 +67,13 @@ void onNormal(void *user, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t 
     s.normals.emplace_back(x, y, z);
 }
 
-void onTexcoord(void *user, tinyobj::real_t, tinyobj::real_t, tinyobj::real_t) {
-    ++static_cast<ObjState *>(user)->texcoordCount;
+void onTexcoord(void *user, tinyobj::real_t u, tinyobj::real_t v, tinyobj::real_t) {
+    auto &s = *static_cast<ObjState *>(user);
+    ++s.texcoordCount;
+    if (!s.error.empty()) return;
+    if (!std::isfinite(u) || !std::isfinite(v)) s.error = "texcoord " + std::to_string(s.texcoordCount) + " is not finite";
+    // Mitsuba's OBJ reader turns v upside down (its flip_tex_coords), so that row 0 of an image is at v = 1.
+    s.texcoords.emplace_back(u, 1.f - v);
 }
 
 /// An OBJ index (1-based, negative = relative to the count so far, 0 = absent) as 0-based, or -1
@@ -99,6 +105,7 @@ void onFace(void *user, tinyobj::index_t *corners, int count) {
                          resolve(s, c.normal_index, s.normals.size(), "normal")};
         if (!s.error.empty()) return;
         s.everyCornerHasNormal &= key.vn >= 0;
+        s.everyCornerHasTexcoord &= key.vt >= 0;
         const auto [it, isNew] = s.vertexOf.try_emplace(key, uint32_t(s.vertices.size()));
         if (isNew) s.vertices.push_back(key);
         if (s.vertices.size() > kMaxVertices) s.error = "more than 2^28 distinct face corners";
@@ -130,6 +137,10 @@ Mesh readObj(const std::string &path, std::string_view bytes) {
     if (state.everyCornerHasNormal && !state.vertices.empty()) {
         mesh.normals.reserve(state.vertices.size());
         for (const Corner &c : state.vertices) mesh.normals.push_back(state.normals[size_t(c.vn)]);
+    }
+    if (state.everyCornerHasTexcoord && !state.vertices.empty()) {
+        mesh.texcoords.reserve(state.vertices.size());
+        for (const Corner &c : state.vertices) mesh.texcoords.push_back(state.texcoords[size_t(c.vt)]);
     }
     mesh.indices = std::move(state.indices);
     return mesh;

@@ -11,6 +11,7 @@
 
 #include "affine.h"
 #include "bsdfs/bsdf.h"
+#include "exr_input.h"
 #include "sampler.h"
 #include "transform.h"
 #include "vector.h"
@@ -23,6 +24,9 @@ struct Mesh {
     std::string name;                ///< what the scene called it (for messages)
     std::vector<Vec3f> positions;
     std::vector<Vec3f> normals;      ///< per vertex; empty for flat shading
+    /// Per vertex, Mitsuba's (u, v): an OBJ's vt with v turned upside down (row 0 of an image at v = 0), a
+    /// rectangle's corners at 0 and 1; empty where the file gives none.
+    std::vector<Vec2f> texcoords;
     std::vector<uint32_t> indices;   ///< three per triangle, counter-clockwise seen from the front
     uint32_t bsdf = 0;               ///< its BSDF: an index into SceneDescription::bsdfs (0: the default)
     std::optional<Color> areaRadiance;     ///< its <emitter type="area">'s radiance, where the integrator reads it
@@ -75,6 +79,14 @@ struct SpotLight {
 struct DirectionalLight {
     Vec3f direction{0.f, 0.f, 1.f};  ///< where the light travels (unit)
     Color irradiance{1.f, 1.f, 1.f};
+};
+
+/// Mitsuba's `envmap`: radiance from a latitude-longitude image (u = atan2(x, -z) / 2 pi, v = acos(y) / pi in
+/// the frame of to_world, a rotation), infinitely far away.
+struct EnvironmentMap {
+    std::shared_ptr<const RgbImage> image;  ///< at least 2 x 3 pixels, finite and non-negative
+    Transform toWorld;
+    float scale = 1.f;
 };
 
 /// Mitsuba's `perspective` or `orthographic` sensor.
@@ -141,6 +153,7 @@ struct SceneDescription {
     std::vector<SpotLight> spotLights;                ///< read where the integrator reads spot lights
     std::vector<DirectionalLight> directionalLights;  ///< read where the integrator reads directional lights
     std::optional<Color> environment;  ///< radiance of the `constant` emitter, if any
+    std::optional<EnvironmentMap> envmap;  ///< read where the integrator reads envmaps; never with `environment`
     /// The file's <integrator>'s `hide_emitters`, whatever its type (nested ones included): every Mitsuba
     /// integrator reads it with one meaning, so it holds for the chosen integrator too. Unset: not given.
     std::optional<bool> hideEmitters;

@@ -38,6 +38,17 @@ void loadIntegrator(const XmlContext &ctx, const pugi::xml_node &node, SceneDesc
     scene.integrator.type = type;
 }
 
+/// The integrator whose image a file's <integrator> renders: itself, or the first it wraps if it is Mitsuba's
+/// `moment` (which adds the second moment of each pixel beside that integrator's image).
+pugi::xml_node imageIntegrator(const XmlContext &ctx, pugi::xml_node node) {
+    while (typeOf(ctx, node) == "moment") {
+        const pugi::xml_node nested = node.child("integrator");
+        if (!nested) ctx.fail(node, "a moment integrator wraps another <integrator>, and this one wraps none");
+        node = nested;
+    }
+    return node;
+}
+
 /// The `hide_emitters` of the file's integrator or of one nested in it (`moment`, `aov`), if given.
 std::optional<bool> fileHideEmitters(const XmlContext &ctx, const pugi::xml_node &integrator) {
     const pugi::xml_node flag = integrator.find_node([&ctx](const pugi::xml_node &n) {
@@ -125,7 +136,8 @@ void walkElements(XmlContext &ctx, const pugi::xml_node &parent, Walk &w, const 
             // An integrator given by the caller overrides the file's, whatever its type; the file's
             // parameters are read only when it names the same integrator. The caller asked for the
             // override, so it needs no note.
-            if (w.integrator.empty() || typeOf(ctx, node) == w.integrator) loadIntegrator(ctx, node, w.scene);
+            const pugi::xml_node own = imageIntegrator(ctx, node);
+            if (w.integrator.empty() || typeOf(ctx, own) == w.integrator) loadIntegrator(ctx, own, w.scene);
             w.scene.hideEmitters = fileHideEmitters(ctx, node);
             w.hasIntegrator = true;
         } else if (tag == "camera" || tag == "mesh" || tag == "sampler") {
@@ -171,6 +183,7 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
     if (const IntegratorInfo *known = findIntegrator(integrator.empty() ? scene.integrator.type : integrator)) {
         w.deferred.known = true;
         w.deferred.reads = known->use.emitters;
+        w.deferred.readsTextures = known->use.readsAnyBsdf;
     }
     loadSetAside(ctx, w);
     scene.bsdfs = w.defs.list;
@@ -213,6 +226,12 @@ SceneDescription loadScene(const std::string &path, const std::map<std::string, 
                            "diffuse" + std::string(info->use.readsAnyBsdf ? ", conductor, dielectric, plastic or "
                                                                             "their rough kinds" : ""));
         skipped.push_back(what);
+    }
+    for (const auto &[node, what] : deferred.texturedBsdfs) {
+        if (info->use.readsReflectance && !info->use.readsAnyBsdf)
+            ctx.fail(node, "the " + chosen + " integrator reads one reflectance per surface, not a texture: direct "
+                           "and path read it");
+        if (!info->use.readsReflectance) skipped.push_back(what);
     }
     for (const auto &[node, what] : deferred.nonDiffuseBsdfs) {
         if (info->use.readsReflectance && !info->use.readsAnyBsdf)

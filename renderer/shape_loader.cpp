@@ -1,5 +1,7 @@
 #include "shape_loader.h"
 
+#include "bsdfs/textured_diffuse.h"
+
 #include <climits>
 #include <cmath>
 #include <filesystem>
@@ -78,6 +80,13 @@ ShapeChildren loadShapeChildren(const XmlContext &ctx, const XmlProps &props, De
     return out;
 }
 
+/// A textured material needs the surface's (u, v): this renderer has them on meshes with texture coordinates.
+void requireTexcoords(const XmlContext &ctx, const pugi::xml_node &node, const Material &material, bool has) {
+    if (has || !dynamic_cast<const TexturedDiffuseBsdf *>(material.get())) return;
+    ctx.fail(node, "a textured bsdf needs the surface's texture coordinates, which this renderer reads from an OBJ's "
+                   "vt lines and a rectangle's corners, not from a " + ctx.attr(node, "type"));
+}
+
 /// An exact shape (sphere, disk, cylinder), already read from `props`, with its name and its bsdf's
 /// reflectance, appended to `list`.
 template <typename Shape>
@@ -85,6 +94,7 @@ void appendExact(std::vector<Shape> &list, Shape shape, const std::string &name,
                  const XmlProps &props, Definitions &defs, Deferred &deferred) {
     shape.name = name;
     const ShapeChildren children = loadShapeChildren(ctx, props, defs, deferred);
+    requireTexcoords(ctx, props.element(), children.material, false);
     shape.bsdf = defs.indexOf(children.material);
     shape.areaRadiance = children.areaRadiance;
     list.push_back(std::move(shape));
@@ -157,6 +167,7 @@ void loadShape(const XmlContext &ctx, const pugi::xml_node &node, Definitions &d
     requireFiniteMesh(ctx, node, mesh);
     mesh.name = name;
     const ShapeChildren children = loadShapeChildren(ctx, props, defs, deferred);
+    requireTexcoords(ctx, node, children.material, !mesh.texcoords.empty());
     mesh.bsdf = defs.indexOf(children.material);
     mesh.areaRadiance = children.areaRadiance;
     out.meshes.push_back(std::move(mesh));

@@ -51,7 +51,7 @@ const std::string &XmlContext::fileOf(const pugi::xml_node &node) const {
     return inc ? inc->file : file;
 }
 
-std::string XmlContext::resolve(const std::string &name) const {
+std::string XmlContext::resolve(const std::string &name, const std::vector<std::string> &folders) {
     const std::filesystem::path given(name);
     if (given.is_absolute() || folders.empty()) return name;
     std::error_code ec;

@@ -37,7 +37,9 @@ struct XmlContext {
     const std::string &fileOf(const pugi::xml_node &node) const;
     /// `name` as Mitsuba finds it: absolute as it is, else in the first of `folders` that has it (the scene
     /// file's folder when none does, so that the error names where it was expected).
-    std::string resolve(const std::string &name) const;
+    std::string resolve(const std::string &name) const { return resolve(name, folders); }
+    /// The same with the folders the resolver held at an earlier element (one read after the whole file).
+    static std::string resolve(const std::string &name, const std::vector<std::string> &folders);
     /// Throws SceneError at the node's line.
     [[noreturn]] void fail(const pugi::xml_node &node, const std::string &message) const;
     /// A property element's name as Mitsuba 3 reads it: in a file older than version 2.0.0 (Mitsuba 0.5, 0.6)
@@ -90,6 +92,8 @@ public:
     }
     void requireRange(const std::string &name, int value, int lo, int hi) const;
 
+    /// The element whose properties these are.
+    const pugi::xml_node &element() const { return m_element; }
     /// Child elements that are objects (film, sampler, bsdf, ref, ...), for the caller to handle.
     const std::vector<pugi::xml_node> &objects() const { return m_objects; }
     /// Throws if a property was given that nothing asked for.

@@ -14,7 +14,7 @@ from pathlib import Path
 from harness.engines import mitsuba_direct
 from harness.engines.scene_paths import absolute_paths
 from harness.engines.white_materials import white_materials
-from harness.engines.written_scene import file_hide_emitters, integrator_type
+from harness.engines.written_scene import file_hide_emitters, image_integrator, integrator_type
 from harness.engines.xml_lines import remove_keeping_lines, replace_keeping_lines
 from harness.engines.mitsuba_integrators import mitsuba_mapping
 
@@ -41,7 +41,8 @@ def mitsuba_xml(text: str, integrator: str, sampler: str | None = None, tight: b
     # the others where the file's integrator is the mapped plugin itself.
     given = {"hide_emitters": file_hide_emitters(root)}
     if old and integrator_type(root, old[0]) == mapping.plugin:
-        given.update({e.get("name"): e.get("value") for e in old[0] if e.get("name") in mapping.file_values})
+        given.update({e.get("name"): e.get("value") for e in image_integrator(old[0])
+                      if e.get("name") in mapping.file_values})
     plugin = TIGHT_PLUGINS.get(mapping.plugin, mapping.plugin) if tight else mapping.plugin
     new = ET.Element("integrator", type=plugin)
     for tag, name, value in mapping.properties:

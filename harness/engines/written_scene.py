@@ -29,11 +29,19 @@ def resolve_defaults(root: ET.Element, params: dict[str, str], source: str) -> N
                 e.set(key, _PARAMETER.sub(fill, value))
 
 
+def image_integrator(integrator: ET.Element) -> ET.Element:
+    """The <integrator> whose image `integrator` renders: itself, or the first it wraps if it is Mitsuba's `moment`
+    (which adds each pixel's second moment beside that integrator's image): its properties are the file's."""
+    while integrator.get("type") == "moment" and integrator.find("integrator") is not None:
+        integrator = integrator.find("integrator")
+    return integrator
+
+
 def integrator_type(root: ET.Element, integrator: ET.Element) -> str:
     """The type of the file's <integrator> as the file's loader reads it: a $name filled from the file's
     <default>s (`type="$integrator"` with a default of path is a path integrator, and its properties are path's)."""
     values = {e.get("name"): e.get("value", "") for e in root if e.tag == "default"}
-    return _PARAMETER.sub(lambda m: values.get(m.group(1), m.group(0)), integrator.get("type", ""))
+    return _PARAMETER.sub(lambda m: values.get(m.group(1), m.group(0)), image_integrator(integrator).get("type", ""))
 
 
 def _set_property(parent: ET.Element, tag: str, name: str, value: str) -> None:
@@ -73,6 +81,7 @@ def file_parameters(root: ET.Element, integrator: str, names: tuple[str, ...]) -
     own = next((e for e in root if e.tag == "integrator"), None)
     if own is None or integrator_type(root, own) != integrator:
         return []
+    own = image_integrator(own)
     return [ET.Element(e.tag, name=e.get("name"), value=e.get("value", "")) for e in own if e.get("name") in names]
 
 

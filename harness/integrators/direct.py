@@ -5,8 +5,8 @@ import xml.etree.ElementTree as ET
 from harness.closed_forms import furnace, lit_plane
 from harness.integrators.entry import AnalyticForm, IntegratorEntry, Strategies
 
-#: The emitters it reads: delta lights, the constant environment and area emitters on shapes.
-EMITTERS = ("point", "spot", "directional", "constant", "area")
+#: The emitters it reads: delta lights, the environment (constant or an envmap's image) and area emitters on shapes.
+EMITTERS = ("point", "spot", "directional", "constant", "envmap", "area")
 #: Those that sit at a point or along a direction: no BSDF sample finds them (a projector too, which an engine
 #: that models it may be given: the requirement lets every emitter through).
 DELTA_EMITTERS = ("point", "spot", "directional", "projector")

@@ -11,8 +11,8 @@
 namespace mcval {
 
 /// The kinds of emitter a scene file holds. `Unmodelled` stands for the types this renderer reads no
-/// model of (envmap, projector): an integrator that declares it is one whose image they would change.
-enum class EmitterKind : uint8_t { Point, Spot, Directional, Constant, Area, Unmodelled };
+/// model of (projector): an integrator that declares it is one whose image they would change.
+enum class EmitterKind : uint8_t { Point, Spot, Directional, Constant, Area, Envmap, Unmodelled };
 
 /// A set of emitter kinds: those an integrator reads (IntegratorInfo's SceneUse).
 class EmitterKinds {
@@ -24,7 +24,7 @@ public:
     /// Every kind, the unmodelled ones included: an integrator that any light of the scene lights.
     static constexpr EmitterKinds all() {
         return {EmitterKind::Point, EmitterKind::Spot, EmitterKind::Directional, EmitterKind::Constant,
-                EmitterKind::Area, EmitterKind::Unmodelled};
+                EmitterKind::Area, EmitterKind::Envmap, EmitterKind::Unmodelled};
     }
     constexpr bool has(EmitterKind k) const { return (m_bits & bit(k)) != 0; }
     constexpr bool empty() const { return m_bits == 0; }

@@ -3,6 +3,7 @@
 #include "area.h"
 #include "constant.h"
 #include "delta_lights.h"
+#include "envmap.h"
 
 namespace mcval {
 
@@ -17,7 +18,7 @@ void addAreaEmitters(const std::vector<Shape> &shapes, std::vector<std::unique_p
 /// How many emitters list the area emitters before them (SceneEmitters' order).
 size_t countEmitters(const SceneDescription &scene) {
     size_t n = scene.pointLights.size() + scene.spotLights.size() + scene.directionalLights.size() +
-               (scene.environment ? 1 : 0);
+               (scene.environment ? 1 : 0) + (scene.envmap ? 1 : 0);
     const auto count = [&n](const auto &shapes) {
         for (const auto &shape : shapes) n += shape.areaRadiance ? 1 : 0;
     };
@@ -43,6 +44,9 @@ SceneEmitters::SceneEmitters(const SceneDescription &scene) : m_sampler(countEmi
     if (scene.environment) {
         m_environment = int(m_emitters.size());
         m_emitters.push_back(std::make_unique<ConstantEmitter>(*scene.environment));
+    } else if (scene.envmap) {
+        m_environment = int(m_emitters.size());
+        m_emitters.push_back(std::make_unique<EnvmapEmitter>(*scene.envmap));
     }
 }
 

@@ -1,6 +1,6 @@
 // The emitters of a scene as models (emitter.h), in one list an integrator indexes: the area emitters
 // first, in Embree's geometry order (so that Hit::emitter indexes this list), then the point, spot and
-// directional lights and the constant environment.
+// directional lights and the environment (constant or envmap).
 #pragma once
 
 #include <memory>
@@ -18,7 +18,7 @@ public:
     explicit SceneEmitters(const SceneDescription &scene);
     size_t size() const { return m_emitters.size(); }
     const Emitter &operator[](size_t i) const { return *m_emitters[i]; }
-    /// The index of the constant environment, which rays that escape the scene reach, or -1.
+    /// The index of the environment (constant or envmap), which rays that escape the scene reach, or -1.
     int environment() const { return m_environment; }
     /// How a light sample chooses its emitter.
     const EmitterSampler &sampler() const { return m_sampler; }

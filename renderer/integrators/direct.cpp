@@ -42,7 +42,8 @@ public:
 
         const Frame frame(hit.ns);
         const Vec3f wi = toLocal(frame, -ray.d);
-        const Bsdf &bsdf = m_embree.bsdf(hit.geom);
+        DiffuseBsdf textured({});
+        const Bsdf &bsdf = m_embree.bsdfAt(hit, textured);
         const EmitterSampler &choose = m_emitters.sampler();
 
         // Emitter sampling.

@@ -74,7 +74,8 @@ public:
 
             const Frame frame(hit.ns);
             const Vec3f wi = toLocal(frame, -ray.d);
-            const Bsdf &bsdf = m_embree.bsdf(hit.geom);
+            DiffuseBsdf textured({});
+            const Bsdf &bsdf = m_embree.bsdfAt(hit, textured);
             if (m_strategy != Strategy::Mats) result = result + throughput * emitterSample(hit, frame, wi, bsdf,
                                                                                           sampler, counts);
 

@@ -13,9 +13,15 @@
 
 namespace mcval::test {
 
+/// temp/<prefix><pid>, not created: what a TempFolderCleanup is given at static initialisation (a run that only
+/// lists the tests then leaves no folder behind).
+inline std::filesystem::path tempFolderPath(const std::string &prefix) {
+    return std::filesystem::temp_directory_path() / (prefix + std::to_string(::getpid()));
+}
+
 /// temp/<prefix><pid>, created if missing.
 inline std::filesystem::path tempFolder(const std::string &prefix) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / (prefix + std::to_string(::getpid()));
+    const std::filesystem::path dir = tempFolderPath(prefix);
     std::filesystem::create_directories(dir);
     return dir;
 }

@@ -175,5 +175,5 @@ TEST(Direct, SpotAndDirectionalLightsLightAsMitsubaDefinesThem) {
                             "<rgb name=\"irradiance\" value=\"3\"/></emitter>\n";
     EXPECT_NEAR(estimate(load("sun", sun, ""), {0.f, 0.f, 0.5f}, {0.f, 0.f, -1.f}, 10).mean, kRho / kPi * 3.0, 1e-5);
     // An emitter it does not model would light its image: refused.
-    EXPECT_THROW(load("envmap", "<emitter type=\"envmap\"/>\n", ""), SceneError);
+    EXPECT_THROW(load("projector", "<emitter type=\"projector\"/>\n", ""), SceneError);
 }

@@ -117,8 +117,8 @@ TEST(EmitterLoader, WhatAnIntegratorReadsIsCheckedWhatItSkipsIsNot) {
 
 TEST(EmitterLoader, AnEmitterNotModelledIsRefusedOnlyWhereItWouldLightTheImage) {
     const std::string path = writeScene(
-        "envmap", "<emitter type=\"envmap\"><string name=\"filename\" value=\"sky.exr\"/></emitter>\n"
-                  "<shape type=\"rectangle\"/>\n");
+        "projector", "<emitter type=\"projector\"/>\n"
+                     "<shape type=\"rectangle\"/>\n");
     EXPECT_EQ(errorOf(path, "simple"), "");
     const std::string error = errorOf(path, "every_emitter");
     EXPECT_NE(error.find(".xml:4:"), std::string::npos) << error;

@@ -33,7 +33,8 @@ namespace {
 /// A folder of its own per process, removed after the last test.
 fs::path tempDir() { return mcval::test::tempFolder("mcval_mesh_"); }
 [[maybe_unused]] ::testing::Environment *const kCleanup =
-    ::testing::AddGlobalTestEnvironment(new mcval::test::TempFolderCleanup(tempDir()));
+    ::testing::AddGlobalTestEnvironment(
+        new mcval::test::TempFolderCleanup(mcval::test::tempFolderPath("mcval_mesh_")));
 
 std::string writeFile(const std::string &name, const std::string &bytes) {
     return mcval::test::writeFileIn(tempDir(), name, bytes);

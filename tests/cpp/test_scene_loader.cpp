@@ -291,7 +291,8 @@ TEST(SceneLoader, ASensorWithoutFovHasMitsubasFocalLength) {
 
 TEST(SceneLoader, ASpectrumIsReadWhenConstantAndAnUnreadableReflectanceIsRefusedOnlyWhereItIsRead) {
     // (A spectrum given per wavelength is read too: test_spectrum_rgb.cpp.)
-    // ao reads no material: only simple, direct and path refuse a reflectance they cannot read.
+    // ao reads no material: only simple, direct and path refuse a reflectance they cannot read (a bitmap or a
+    // checkerboard is read by direct and path: test_textures.cpp).
     const std::string constant = std::string(kHeader) + sensor() +
                                  "  <shape type=\"rectangle\"><bsdf type=\"diffuse\">"
                                  "<spectrum name=\"reflectance\" value=\"0.25\"/></bsdf></shape>\n</scene>\n";
@@ -300,8 +301,8 @@ TEST(SceneLoader, ASpectrumIsReadWhenConstantAndAnUnreadableReflectanceIsRefused
     EXPECT_EQ(test::frontAlbedo(scene, scene.meshes.at(0)).z, 0.25f);
     for (const std::string &reflectance :
          {std::string("<spectrum name=\"reflectance\" filename=\"paint.spd\"/>"),
-          std::string("<texture type=\"bitmap\" name=\"reflectance\"><string name=\"filename\" value=\"x.png\"/>"
-                      "</texture>")}) {
+          std::string("<texture type=\"mesh_attribute\" name=\"reflectance\"><string name=\"name\" "
+                      "value=\"vertex_color\"/></texture>")}) {
         const std::string body = std::string(kHeader) + sensor() + "  <texture type=\"checkerboard\" id=\"c\"/>\n" +
                                  "  <shape type=\"rectangle\">\n    <bsdf type=\"diffuse\">" + reflectance +
                                  "</bsdf></shape>\n</scene>\n";

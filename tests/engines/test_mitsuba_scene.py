@@ -121,3 +121,16 @@ def test_a_parameterised_integrator_type_keeps_the_files_values():
     assert {e.get("name"): e.get("value") for e in ET.fromstring(mitsuba_xml(other, "path")).find("integrator")
             }["max_depth"] == "-1"
     assert file_parameters(ET.fromstring(other), "path", ("max_depth",)) == []
+
+
+def test_the_integrator_a_moment_integrator_wraps_gives_its_values():
+    """Mitsuba's test scenes wrap theirs in `moment` (which adds each pixel's second moment): the wrapped path's
+    max_depth is the file's, for Mitsuba's copy and the strategy copies alike, as our loader reads it."""
+    from harness.engines.written_scene import file_parameters
+
+    text = ('<scene version="3.0.0"><default name="integrator" value="path"/><integrator type="moment">'
+            '<integrator type="$integrator"><integer name="max_depth" value="2"/></integrator></integrator></scene>')
+    mapped = ET.fromstring(mitsuba_xml(text, "path")).find("integrator")
+    assert mapped.get("type") == "path" and {e.get("name"): e.get("value") for e in mapped}["max_depth"] == "2"
+    assert [e.get("value") for e in file_parameters(ET.fromstring(text), "path", ("max_depth",))] == ["2"]
+    assert file_parameters(ET.fromstring(text), "direct", ("max_depth",)) == []

@@ -1,0 +1,27 @@
+// The <texture> elements a diffuse reflectance may be given: Mitsuba's `bitmap` (an image file read with
+// OpenImageIO) and `checkerboard`, with Mitsuba's parameter names and defaults.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <pugixml.hpp>
+
+#include "../xml_props.h"
+#include "texture.h"
+
+namespace mcval {
+
+/// Whether this renderer reads a <texture type="...">.
+inline bool isModelledTexture(const std::string &type) { return type == "bitmap" || type == "checkerboard"; }
+
+/// A <texture type="bitmap|checkerboard"> element. Throws SceneError at its line (or its property's): an image
+/// that cannot be read, an unknown wrap_mode or filter_type, a value outside [0, maxValue].
+std::shared_ptr<const Texture> loadTexture(const XmlContext &ctx, const pugi::xml_node &node, float maxValue);
+
+/// An image file as Mitsuba's bitmap texture reads it: 8- and 16-bit images taken from sRGB to linear (unless
+/// raw), then, as Mitsuba stores them, rounded to half precision; float images as they are. Throws
+/// std::runtime_error saying what is wrong.
+TextureImage readTextureImage(const std::string &path, bool raw);
+
+}  // namespace mcval

@@ -1,0 +1,188 @@
+// Textured reflectances: a bitmap's value at (u, v) is Mitsuba 3's (values Mitsuba 3.9.1's scalar_rgb bitmap gives
+// for the same 8-bit PNG, to_uv, wrap mode and filter), a checkerboard's too; a textured plane under a uniform sky
+// shows the texture's value where the camera ray meets it, through an OBJ's texture coordinates (v upside down, as
+// Mitsuba reads them) and a rectangle's; and the loader refuses, naming the line, what it does not model.
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include "error.h"
+#include "load_error.h"
+#include "radiance_estimate.h"
+#include "temp_files.h"
+#include "textures/texture_loader.h"
+
+using namespace mcval;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char *kPrefix = "mcval_textures_";
+fs::path folder() { return test::tempFolder(kPrefix); }
+const auto *const kCleanup =
+    ::testing::AddGlobalTestEnvironment(new test::TempFolderCleanup(test::tempFolderPath(kPrefix)));
+
+/// The 4 x 3 8-bit RGB PNG the Mitsuba values were taken of: pixel (x, y) = (20 + 60x, 30 + 100y, 37 (x + 3y) mod 256).
+std::string probePng() {
+    const std::string path = (folder() / "probe.png").string();
+    std::vector<unsigned char> px;
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 4; ++x)
+            px.insert(px.end(), {(unsigned char)(20 + 60 * x), (unsigned char)(30 + 100 * y),
+                                 (unsigned char)((37 * (x + 3 * y)) % 256)});
+    auto out = OIIO::ImageOutput::create(path);
+    EXPECT_TRUE(out && out->open(path, OIIO::ImageSpec(4, 3, 3, OIIO::TypeDesc::UINT8)));
+    out->write_image(OIIO::TypeDesc::UINT8, px.data());
+    out->close();
+    return path;
+}
+
+void expectColor(const Color &got, const Color &want, const std::string &what) {
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR((&got.x)[k], (&want.x)[k], 2e-3f * (&want.x)[k] + 2e-4f) << what << " " << k;
+}
+
+}  // namespace
+
+TEST(Textures, ABitmapIsMitsubasLookupForEveryWrapAndFilter) {
+    const auto image = std::make_shared<const TextureImage>(readTextureImage(probePng(), false));
+    const UvTransform toUv(Transform::translate({0.1f, 0.05f, 0.f}) * Transform::scale({1.5f, 1.25f, 1.f}));
+    const Vec2f uvs[5] = {{0.1f, 0.2f}, {0.5f, 0.5f}, {0.9f, 0.95f}, {-0.3f, 1.4f}, {1.7f, -0.6f}};
+    struct Case {
+        WrapMode wrap;
+        FilterMode filter;
+        Color want[5];
+    };
+    const Case cases[] = {
+        {WrapMode::Repeat, FilterMode::Bilinear,
+         {{0.043608f, 0.097081f, 0.09657f}, {0.546048f, 0.521465f, 0.371496f}, {0.134829f, 0.05766f, 0.101355f},
+          {0.293784f, 0.734491f, 0.074835f}, {0.293784f, 0.097081f, 0.250388f}}},
+        {WrapMode::Repeat, FilterMode::Nearest,
+         {{0.08022f, 0.012983f, 0.0185f}, {0.577581f, 0.791298f, 0.074214f}, {0.08022f, 0.012983f, 0.0185f},
+          {0.262251f, 0.791298f, 0.021219f}, {0.262251f, 0.012983f, 0.068478f}}},
+        {WrapMode::Mirror, FilterMode::Bilinear,
+         {{0.043608f, 0.097081f, 0.09657f}, {0.546048f, 0.521465f, 0.371496f}, {0.207641f, 0.670583f, 0.102957f},
+          {0.072897f, 0.034008f, 0.043227f}, {0.293784f, 0.56407f, 0.219784f}}},
+        {WrapMode::Mirror, FilterMode::Nearest,
+         {{0.08022f, 0.012983f, 0.0185f}, {0.577581f, 0.791298f, 0.074214f}, {0.262251f, 0.791298f, 0.021219f},
+          {0.08022f, 0.012983f, 0.0185f}, {0.262251f, 0.791298f, 0.021219f}}},
+        {WrapMode::Clamp, FilterMode::Bilinear,
+         {{0.043608f, 0.097081f, 0.09657f}, {0.546048f, 0.521465f, 0.371496f}, {0.577581f, 0.791298f, 0.074214f},
+          {0.006995f, 0.791298f, 0.730461f}, {0.577581f, 0.012983f, 0.158961f}}},
+        {WrapMode::Clamp, FilterMode::Nearest,
+         {{0.08022f, 0.012983f, 0.0185f}, {0.577581f, 0.791298f, 0.074214f}, {0.577581f, 0.791298f, 0.074214f},
+          {0.006995f, 0.791298f, 0.730461f}, {0.577581f, 0.012983f, 0.158961f}}},
+    };
+    for (const Case &c : cases) {
+        const BitmapTexture texture(image, c.wrap, c.filter, toUv);
+        for (int i = 0; i < 5; ++i)
+            expectColor(texture.eval(uvs[i]), c.want[i],
+                        "wrap " + std::to_string(int(c.wrap)) + " filter " + std::to_string(int(c.filter)) + " uv " +
+                            std::to_string(i));
+    }
+}
+
+TEST(Textures, ACheckerboardIsMitsubas) {
+    const CheckerboardTexture texture({0.4f, 0.4f, 0.4f}, {0.2f, 0.2f, 0.2f}, UvTransform(Transform::scale({3.f, 2.f, 1.f})));
+    const float want[5] = {0.4f, 0.4f, 0.4f, 0.2f, 0.2f};
+    const Vec2f uvs[5] = {{0.1f, 0.2f}, {0.5f, 0.5f}, {0.9f, 0.95f}, {-0.3f, 1.4f}, {1.7f, -0.6f}};
+    for (int i = 0; i < 5; ++i) EXPECT_EQ(texture.eval(uvs[i]).y, want[i]) << i;
+}
+
+namespace {
+
+/// A 2 x 2 checkerboard image, linear (an OpenEXR): (0.1, 0.2, 0.3) (0.9, 0.8, 0.7) on the top row, the other
+/// way round below.
+std::string checkerExr() {
+    const std::string path = (folder() / "checker.exr").string();
+    const std::vector<float> px = {0.1f, 0.2f, 0.3f, 0.9f, 0.8f, 0.7f, 0.9f, 0.8f, 0.7f, 0.1f, 0.2f, 0.3f};
+    auto out = OIIO::ImageOutput::create(path);
+    EXPECT_TRUE(out && out->open(path, OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::FLOAT)));
+    out->write_image(OIIO::TypeDesc::FLOAT, px.data());
+    out->close();
+    return path;
+}
+
+/// A unit square at z = 0 facing +z as an OBJ with texture coordinates: its corner (x, y) at (u, v) = (x, y).
+std::string squareObj() {
+    return test::writeFileIn(folder(), "square.obj",
+                             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
+}
+
+std::string scene(const std::string &name, const std::string &integrator, const std::string &shape) {
+    const fs::path path = folder() / (name + ".xml");
+    std::ofstream(path) << "<scene version=\"3.0.0\">\n<integrator type=\"" << integrator << "\"/>\n"
+                        << "<sensor type=\"perspective\"><film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/>"
+                           "<integer name=\"height\" value=\"8\"/></film></sensor>\n"
+                           "<emitter type=\"constant\"/>\n<emitter type=\"point\"/>\n"
+                        << shape << "</scene>\n";
+    return path.string();
+}
+
+std::string texturedBsdf(const std::string &texture) {
+    return "<bsdf type=\"diffuse\"><texture name=\"reflectance\" type=\"bitmap\"><string name=\"filename\" value=\"" +
+           texture + "\"/><string name=\"filter_type\" value=\"nearest\"/></texture></bsdf>";
+}
+
+}  // namespace
+
+TEST(Textures, APlaneShowsItsTexturesValueWhereTheRayMeetsIt) {
+    // Under a sky of radiance 1, a diffuse surface of albedo rho leaves rho toward every direction: the pixel of
+    // the texture at the point's (u, v). The OBJ's v = 0.25 is Mitsuba's 0.75: the bottom row of the image.
+    const std::string exr = checkerExr();
+    const std::string obj = "<shape type=\"obj\"><string name=\"filename\" value=\"" + squareObj() + "\"/>" +
+                            texturedBsdf(exr) + "</shape>\n";
+    for (const char *integrator : {"direct", "path"}) {
+        const SceneDescription s = loadScene(scene(std::string("obj_") + integrator, integrator, obj));
+        EXPECT_NEAR(estimate(s, {0.25f, 0.25f, 1.f}, {0.f, 0.f, -1.f}, 4000).mean, 0.9, 0.02) << integrator;
+        EXPECT_NEAR(estimate(s, {0.75f, 0.25f, 1.f}, {0.f, 0.f, -1.f}, 4000).mean, 0.1, 0.005) << integrator;
+        EXPECT_NEAR(estimate(s, {0.25f, 0.75f, 1.f}, {0.f, 0.f, -1.f}, 4000).mean, 0.1, 0.005) << integrator;
+    }
+    // A rectangle's (u, v) = ((x + 1) / 2, (y + 1) / 2), not turned upside down.
+    const std::string rectangle = "<shape type=\"rectangle\">" + texturedBsdf(exr) + "</shape>\n";
+    const SceneDescription s = loadScene(scene("rectangle", "direct", rectangle));
+    EXPECT_NEAR(estimate(s, {-0.5f, -0.5f, 1.f}, {0.f, 0.f, -1.f}, 4000).mean, 0.1, 0.005);
+    EXPECT_NEAR(estimate(s, {0.5f, -0.5f, 1.f}, {0.f, 0.f, -1.f}, 4000).mean, 0.9, 0.02);
+}
+
+TEST(Textures, TheLoaderRefusesWhatItDoesNotModelNamingTheLine) {
+    const std::string exr = checkerExr();
+    const auto expectError = [](const std::string &path, const std::string &integrator, const std::string &words) {
+        const std::string e = test::loadError(path, integrator);
+        EXPECT_NE(e.find(fs::path(path).filename().string() + ":"), std::string::npos) << e;
+        EXPECT_NE(e.find(words), std::string::npos) << e;
+    };
+    const std::string rectangle = "<shape type=\"rectangle\">" + texturedBsdf(exr) + "</shape>\n";
+    // One albedo per surface: simple refuses it; ao reads no material and skips it.
+    expectError(scene("simple", "simple", rectangle), "simple", "reflectance");
+    EXPECT_EQ(test::loadError(scene("ao", "ao", rectangle), "ao"), "");
+    EXPECT_EQ(test::loadError(scene("ao_missing", "ao", "<shape type=\"rectangle\">" +
+                                                             texturedBsdf("nowhere.png") + "</shape>\n"),
+                              "ao"),
+              "");
+    expectError(scene("sphere", "path", "<shape type=\"sphere\">" + texturedBsdf(exr) + "</shape>\n"), "path",
+                "texture coordinates");
+    expectError(scene("twosided", "path", "<shape type=\"rectangle\"><bsdf type=\"twosided\">" + texturedBsdf(exr) +
+                                              "</bsdf></shape>\n"),
+                "path", "twosided");
+    expectError(scene("missing", "path", "<shape type=\"rectangle\">" + texturedBsdf("nowhere.png") + "</shape>\n"),
+                "path", "cannot read the texture's image");
+    expectError(scene("wrap", "path",
+                      "<shape type=\"rectangle\"><bsdf type=\"diffuse\"><texture name=\"reflectance\" type=\"bitmap\">"
+                      "<string name=\"filename\" value=\"" + exr + "\"/><string name=\"wrap_mode\" value=\"tile\"/>"
+                      "</texture></bsdf></shape>\n"),
+                "path", "expected repeat, mirror or clamp");
+    const std::string bright = (folder() / "bright.exr").string();
+    {
+        const std::vector<float> px(2 * 2 * 3, 2.f);
+        auto out = OIIO::ImageOutput::create(bright);
+        ASSERT_TRUE(out && out->open(bright, OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::FLOAT)));
+        out->write_image(OIIO::TypeDesc::FLOAT, px.data());
+        out->close();
+    }
+    expectError(scene("bright", "path", "<shape type=\"rectangle\">" + texturedBsdf(bright) + "</shape>\n"), "path",
+                "outside [0, 1");
+}
