@@ -1,9 +1,11 @@
 #include "bsdf_loader.h"
 
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "bsdfs/diffuse.h"
+#include "bsdfs/mask.h"
 #include "bsdfs/textured_diffuse.h"
 #include "bsdfs/twosided.h"
 #include "scene_bsdfs.h"
@@ -86,11 +88,46 @@ Material readTwoSided(const XmlContext &ctx, const pugi::xml_node &node, Definit
             ctx.fail(child, "a twosided bsdf holds only bsdfs that transmit no light (as Mitsuba), not a " + sideType);
         sides.push_back(tag == "bsdf" ? loadBsdf(ctx, child, defs, deferred, depth + 1)
                                       : resolveBsdfRef(ctx, child, defs, deferred, depth + 1));
-        if (dynamic_cast<const TexturedDiffuseBsdf *>(sides.back().get()))
-            ctx.fail(child, "a twosided bsdf around a textured diffuse one is not modelled");
+        if (dynamic_cast<const TexturedBsdf *>(sides.back().get()))
+            ctx.fail(child, "a twosided bsdf around a textured diffuse or a mask is not modelled");
     }
     if (sides.empty()) ctx.fail(node, "a twosided bsdf needs a nested <bsdf> or <ref> (its one-sided material)");
     return std::make_shared<TwoSidedBsdf>(sides[0], sides.back());
+}
+
+/// Mitsuba's mask: an opacity (a value in [0, 1], or a bitmap or checkerboard texture, 0.5 by default) and one
+/// nested bsdf, read where the integrator reads any BSDF. Elsewhere it is left unread: simple refuses it (one albedo
+/// per surface) and ao and normals read no material.
+Material readMask(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs, Deferred &deferred,
+                  int depth) {
+    const std::string what = "<bsdf type=\"mask\">" + ctx.at(node);
+    deferred.nonDiffuseBsdfs.emplace_back(node, what);
+    if (deferred.known && !deferred.readsTextures) return defaultBsdf();
+    XmlProps props(ctx, node);
+    std::shared_ptr<const Texture> opacity;
+    Material nested;
+    for (const auto &child : props.objects()) {
+        const std::string tag = child.name();
+        if (ctx.propertyName(child) == "opacity" && (tag == "texture" || tag == "ref")) {
+            const pugi::xml_node texture = textureNode(ctx, child, deferred);
+            if (!texture || !isModelledTexture(ctx.attr(texture, "type")))
+                ctx.fail(child, "a mask's opacity is read as a value, a bitmap or a checkerboard texture");
+            opacity = loadTexture(ctx, texture, std::numeric_limits<float>::max());
+        } else if (tag == "bsdf" || tag == "ref") {
+            if (nested) ctx.fail(child, "a mask holds one bsdf");
+            nested = tag == "bsdf" ? loadBsdf(ctx, child, defs, deferred, depth + 1)
+                                   : resolveBsdfRef(ctx, child, defs, deferred, depth + 1);
+            if (dynamic_cast<const MaskBsdf *>(nested.get())) ctx.fail(child, "a mask inside a mask is not modelled");
+        } else {
+            ctx.fail(child, "unexpected element inside <bsdf type=\"mask\">: expected <bsdf>, <ref> or the opacity's "
+                            "<texture>");
+        }
+    }
+    if (!nested) ctx.fail(node, "a mask needs a nested <bsdf> or <ref> (the material where it is opaque)");
+    const float constant = opacity ? 1.f : props.getFloat("opacity", 0.5f);
+    props.requireRange("opacity", constant, 0.f, 1.f);
+    props.finish("opacity (and one nested bsdf)");
+    return std::make_shared<MaskBsdf>(opacity, constant, nested);
 }
 
 Material readBsdf(const XmlContext &ctx, const pugi::xml_node &node, Definitions &defs, Deferred &deferred,
@@ -102,6 +139,7 @@ Material readBsdf(const XmlContext &ctx, const pugi::xml_node &node, Definitions
                        "reads and this renderer does not model");
     if (type == "twosided") return readTwoSided(ctx, node, defs, deferred, depth);
     if (type == "diffuse") return readDiffuse(ctx, node, deferred);
+    if (type == "mask") return readMask(ctx, node, defs, deferred, depth);
     if (isScatteringBsdf(type)) {
         std::string unread;
         const Material material = readScatteringBsdf(ctx, node, unread);

@@ -1,6 +1,5 @@
 #include "embree_scene.h"
 
-#include "bsdfs/textured_diffuse.h"
 
 #include <algorithm>
 #include <cmath>
@@ -128,7 +127,7 @@ void EmbreeScene::addMaterial(const BsdfList &bsdfs, uint32_t index, bool emits)
     m_emitterOf.push_back(emits ? m_areaEmitters++ : -1);
     const std::shared_ptr<const Bsdf> &bsdf = index < bsdfs.size() ? bsdfs[index] : defaultBsdf();
     m_bsdf.push_back(bsdf);
-    m_textured.push_back(dynamic_cast<const TexturedDiffuseBsdf *>(bsdf.get()));
+    m_textured.push_back(dynamic_cast<const TexturedBsdf *>(bsdf.get()));
     // The packet paths' tables: a side that is not Lambertian reads 0 there (its integrator refused it).
     const Color black(0.f, 0.f, 0.f);
     m_reflectance.push_back(bsdf->lambertianAlbedo(true).value_or(black));
@@ -136,11 +135,9 @@ void EmbreeScene::addMaterial(const BsdfList &bsdfs, uint32_t index, bool emits)
     m_backReflectance.push_back(bsdf->twoSided() ? bsdf->lambertianAlbedo(false).value_or(black) : black);
 }
 
-const Bsdf &EmbreeScene::bsdfAt(const Hit &hit, DiffuseBsdf &scratch) const {
-    const TexturedDiffuseBsdf *textured = m_textured[hit.geom];
-    if (!textured) return *m_bsdf[hit.geom];
-    scratch = textured->at(uvAt(hit));
-    return scratch;
+const Bsdf &EmbreeScene::bsdfAt(const Hit &hit, BsdfScratch &scratch) const {
+    const TexturedBsdf *textured = m_textured[hit.geom];
+    return textured ? textured->at(uvAt(hit), scratch) : *m_bsdf[hit.geom];
 }
 
 Vec2f EmbreeScene::uvAt(const Hit &hit) const {

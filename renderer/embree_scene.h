@@ -5,14 +5,12 @@
 
 #include <embree3/rtcore.h>
 
-#include "bsdfs/diffuse.h"
+#include "bsdfs/textured_bsdf.h"
 #include "hit_packet.h"
 #include "ray.h"
 #include "scene.h"
 
 namespace mcval {
-
-class TexturedDiffuseBsdf;
 
 /// Up to kPacketSize occlusion rays in Embree's SoA layout, written lane by lane where they are made
 /// (no Ray structs copied in between: partial writes read back whole stall the store buffer).
@@ -92,9 +90,9 @@ public:
 
     /// The BSDF of geometry `geom` (Hit::geom), whatever the shape.
     const Bsdf &bsdf(uint32_t geom) const { return *m_bsdf[geom]; }
-    /// The BSDF at the hit: bsdf(hit.geom), or for a textured one the surface at the hit's (u, v), made in
-    /// `scratch` (which must outlive its use).
-    const Bsdf &bsdfAt(const Hit &hit, DiffuseBsdf &scratch) const;
+    /// The BSDF at the hit: bsdf(hit.geom), or for a textured one (a TexturedBsdf) the surface at the hit's
+    /// (u, v), made in `scratch` (which must outlive its use).
+    const Bsdf &bsdfAt(const Hit &hit, BsdfScratch &scratch) const;
     /// Mitsuba's (u, v) at a hit on a mesh with texture coordinates (Mesh::texcoords), interpolated by the
     /// barycentrics of hit.p; (0, 0) elsewhere (the loader gives textures only to such meshes).
     Vec2f uvAt(const Hit &hit) const;
@@ -148,7 +146,7 @@ private:
     void addMaterial(const BsdfList &bsdfs, uint32_t index, bool emits);
 
     std::vector<std::shared_ptr<const Bsdf>> m_bsdf;  ///< by geometry id
-    std::vector<const TexturedDiffuseBsdf *> m_textured;  ///< by geometry id: its BSDF if textured, else null
+    std::vector<const TexturedBsdf *> m_textured;  ///< by geometry id: its BSDF if textured, else null
     std::vector<Color> m_reflectance;  ///< by geometry id: one table whatever the shape
     std::vector<Color> m_backReflectance;
     std::vector<uint8_t> m_twoSided;

@@ -1,6 +1,6 @@
 #include "shape_loader.h"
 
-#include "bsdfs/textured_diffuse.h"
+#include "bsdfs/textured_bsdf.h"
 
 #include <climits>
 #include <cmath>
@@ -82,7 +82,8 @@ ShapeChildren loadShapeChildren(const XmlContext &ctx, const XmlProps &props, De
 
 /// A textured material needs the surface's (u, v): this renderer has them on meshes with texture coordinates.
 void requireTexcoords(const XmlContext &ctx, const pugi::xml_node &node, const Material &material, bool has) {
-    if (has || !dynamic_cast<const TexturedDiffuseBsdf *>(material.get())) return;
+    const auto *textured = dynamic_cast<const TexturedBsdf *>(material.get());
+    if (has || !textured || !textured->readsUv()) return;
     ctx.fail(node, "a textured bsdf needs the surface's texture coordinates, which this renderer reads from an OBJ's "
                    "vt lines and a rectangle's corners, not from a " + ctx.attr(node, "type"));
 }

@@ -76,6 +76,26 @@ def mitsuba_xml(text: str, integrator: str, sampler: str | None = None, tight: b
     return ET.tostring(root, encoding="unicode")
 
 
+#: Mitsuba's checkerboard defaults (color0, color1).
+_CHECKERBOARD = ("0.4", "0.2")
+
+
+def checkerboard_opacities(root: ET.Element) -> None:
+    """A finding in Mitsuba 3.9: its checkerboard read as one value (eval_1, how a mask reads its opacity) gives
+    color1 where read as a colour (eval) it gives color0, and the other way round. Mitsuba's copy swaps the two
+    colours of a mask's checkerboard opacity, so that Mitsuba renders the pattern the file describes, as a colour
+    checkerboard draws it (in place)."""
+    for mask in (b for b in root.iter("bsdf") if b.get("type") == "mask"):
+        for tex in (t for t in mask if t.tag == "texture" and t.get("type") == "checkerboard"
+                    and t.get("name") == "opacity"):
+            given = {e.get("name"): e for e in tex if e.get("name") in ("color0", "color1")}
+            for name, other, default in (("color0", "color1", _CHECKERBOARD[0]), ("color1", "color0", _CHECKERBOARD[1])):
+                if name in given:
+                    given[name].set("name", other)
+                else:
+                    ET.SubElement(tex, "float", name=other, value=default)
+
+
 def load_scene(path: str | Path, integrator: str, sampler: str | None = None, tight: bool = False,
                robust: bool = False, **params):
     """Load our scene file in Mitsuba (variant already set) with `integrator` mapped (`tight`, `robust`: see
@@ -91,6 +111,7 @@ def load_scene(path: str | Path, integrator: str, sampler: str | None = None, ti
     except ET.ParseError as e:
         raise ValueError(f"{path}: not an XML scene file ({e})") from None
     absolute_paths(root, path)  # includes inlined: the materials they hold are the scene's too
+    checkerboard_opacities(root)
     if mitsuba_mapping(integrator).white_materials:
         white_materials(root)
     return mi.load_string(ET.tostring(root, encoding="unicode"), optimize=False,

@@ -10,9 +10,9 @@ EMITTERS = ("point", "spot", "directional", "constant", "envmap", "area")
 #: Those that sit at a point or along a direction: no BSDF sample finds them (a projector too, which an engine
 #: that models it may be given: the requirement lets every emitter through).
 DELTA_EMITTERS = ("point", "spot", "directional", "projector")
-#: BSDFs with a delta lobe (a mirror's, a glass's, a plastic's coat): the light they pass on from an emitter is
-#: found by BSDF samples only.
-DELTA_BSDFS = ("conductor", "dielectric", "thindielectric", "plastic")
+#: BSDFs with a delta lobe (a mirror's, a glass's, a plastic's coat, a mask's hole): the light they pass on from an
+#: emitter is found by BSDF samples only.
+DELTA_BSDFS = ("conductor", "dielectric", "thindielectric", "plastic", "mask")
 
 
 def has_emitter(root: ET.Element) -> str | None:
@@ -27,6 +27,13 @@ def no_delta_lights(root: ET.Element) -> str | None:
     samples only."""
     delta = sorted({e.get("type") for e in root.iter("emitter") if e.get("type") in DELTA_EMITTERS})
     return f"{' and '.join(delta)} lights, which BSDF sampling never finds" if delta else None
+
+
+def no_masks(root: ET.Element) -> str | None:
+    """Where the light a path's emitter samples find is the light its BSDF samples find: a mask's holes let BSDF
+    samples through, while shadow rays stop at the mask (Mitsuba's path tests visibility so; ours follows it)."""
+    return "a mask, whose holes BSDF samples pass and shadow rays do not" if any(
+        b.get("type") == "mask" for b in root.iter("bsdf")) else None
 
 
 def strategies_agree(root: ET.Element) -> str | None:

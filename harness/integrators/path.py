@@ -1,14 +1,20 @@
 """path: path tracing with next-event estimation, multiple importance sampling and Russian roulette (Mitsuba 3's
 `path`). Its image is not linear in the reflectance (light bounces more than once), only in the light."""
 from harness.closed_forms import furnace
-from harness.integrators.direct import EMITTERS, has_emitter, no_delta_lights
+from harness.integrators.direct import EMITTERS, has_emitter, no_delta_lights, no_masks
 from harness.integrators.entry import AnalyticForm, IntegratorEntry, Strategies
+
+def strategies_agree(root) -> str | None:
+    """Where the three estimate one image: no delta light (BSDF samples never find one) and no mask (its holes
+    let BSDF samples through and stop shadow rays)."""
+    return no_delta_lights(root) or no_masks(root)
+
 
 #: The light reaching each vertex from emitter samples alone ("ems"), BSDF samples alone ("mats") or both under
 #: MIS ("mis", Mitsuba's path): Nori's path_ems, path_mats and path_mis, selected by our renderer's `strategy`.
 #: A delta lobe does not keep them apart: "ems" counts the emission a path finds after one (no emitter sample can).
 STRATEGIES = Strategies(settings=tuple((name, (("string", "strategy", name),)) for name in ("ems", "mats", "mis")),
-                        applies=no_delta_lights)
+                        applies=strategies_agree)
 
 ENTRY = IntegratorEntry(
     name="path",

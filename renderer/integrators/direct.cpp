@@ -42,7 +42,7 @@ public:
 
         const Frame frame(hit.ns);
         const Vec3f wi = toLocal(frame, -ray.d);
-        DiffuseBsdf textured({});
+        BsdfScratch textured;
         const Bsdf &bsdf = m_embree.bsdfAt(hit, textured);
         const EmitterSampler &choose = m_emitters.sampler();
 

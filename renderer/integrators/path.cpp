@@ -74,7 +74,7 @@ public:
 
             const Frame frame(hit.ns);
             const Vec3f wi = toLocal(frame, -ray.d);
-            DiffuseBsdf textured({});
+            BsdfScratch textured;
             const Bsdf &bsdf = m_embree.bsdfAt(hit, textured);
             if (m_strategy != Strategy::Mats) result = result + throughput * emitterSample(hit, frame, wi, bsdf,
                                                                                           sampler, counts);

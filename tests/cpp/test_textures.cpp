@@ -1,7 +1,8 @@
-// Textured reflectances: a bitmap's value at (u, v) is Mitsuba 3's (values Mitsuba 3.9.1's scalar_rgb bitmap gives
-// for the same 8-bit PNG, to_uv, wrap mode and filter), a checkerboard's too; a textured plane under a uniform sky
-// shows the texture's value where the camera ray meets it, through an OBJ's texture coordinates (v upside down, as
-// Mitsuba reads them) and a rectangle's; and the loader refuses, naming the line, what it does not model.
+// Textured reflectances and masks: a bitmap's value at (u, v) is Mitsuba 3's (values Mitsuba 3.9.1's scalar_rgb
+// bitmap gives for the same 8-bit PNG, to_uv, wrap mode and filter), a checkerboard's too; a textured plane under a
+// uniform sky shows the texture's value where the camera ray meets it, through an OBJ's texture coordinates (v upside
+// down, as Mitsuba reads them) and a rectangle's; a mask shows its surface and the sky through its holes in
+// proportion to its opacity; and the loader refuses, naming the line, what it does not model.
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -14,6 +15,7 @@
 #include "load_error.h"
 #include "radiance_estimate.h"
 #include "temp_files.h"
+#include "bsdfs/masked.h"
 #include "textures/texture_loader.h"
 
 using namespace mcval;
@@ -185,4 +187,52 @@ TEST(Textures, TheLoaderRefusesWhatItDoesNotModelNamingTheLine) {
     }
     expectError(scene("bright", "path", "<shape type=\"rectangle\">" + texturedBsdf(bright) + "</shape>\n"), "path",
                 "outside [0, 1");
+}
+
+TEST(Textures, AMaskIsItsSurfaceWhereOpaqueAndAHoleElsewhere) {
+    // A plane of opacity alpha over diffuse rho under a sky of radiance 1, nothing behind it: a camera ray sees
+    // alpha rho (the surface) + (1 - alpha) (the sky through the hole), through direct and path alike.
+    const std::string masked = "<shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"10\"/></transform>"
+                               "<bsdf type=\"mask\"><float name=\"opacity\" value=\"0.3\"/><bsdf type=\"diffuse\">"
+                               "<rgb name=\"reflectance\" value=\"0.6\"/></bsdf></bsdf></shape>\n";
+    for (const char *integrator : {"direct", "path"}) {
+        const SceneDescription s = loadScene(scene(std::string("mask_") + integrator, integrator, masked));
+        const Estimate got = estimate(s, {0.3f, 0.2f, 1.f}, {0.f, 0.f, -1.f}, 40000);
+        EXPECT_NEAR(got.mean, 0.3 * 0.6 + 0.7, 5.0 * got.error + 1e-3) << integrator;
+    }
+    // Its samples: the nested one's with alpha times its density (its weight unchanged), or straight on.
+    const DiffuseBsdf diffuse({0.6f, 0.6f, 0.6f});
+    const MaskedBsdf mask(0.3f, &diffuse);
+    const Vec3f wi = normalize(Vec3f(0.3f, 0.1f, 0.9f));
+    const BsdfSample surface = mask.sample(wi, {0.4f, 0.7f}, 0.2f);
+    EXPECT_NEAR(surface.pdf, 0.3f * diffuse.pdf(wi, surface.wo), 1e-6f);
+    EXPECT_NEAR(surface.pdf, mask.pdf(wi, surface.wo), 1e-6f);
+    EXPECT_NEAR(surface.weight.x, mask.eval(wi, surface.wo).x / surface.pdf, 1e-5f);
+    const BsdfSample hole = mask.sample(wi, {0.4f, 0.7f}, 0.5f);
+    EXPECT_TRUE(std::isinf(hole.pdf));
+    EXPECT_EQ(hole.wo.z, -wi.z);
+    EXPECT_EQ(hole.weight.y, 1.f);
+}
+
+TEST(Textures, AMaskTheLoaderCannotReadIsRefused) {
+    const auto mask = [](const std::string &inside) {
+        return "<shape type=\"rectangle\"><bsdf type=\"mask\">" + inside + "</bsdf></shape>\n";
+    };
+    const std::string diffuse = "<bsdf type=\"diffuse\"/>";
+    const auto expectError = [](const std::string &path, const std::string &integrator, const std::string &words) {
+        const std::string e = test::loadError(path, integrator);
+        EXPECT_NE(e.find(fs::path(path).filename().string() + ":"), std::string::npos) << e;
+        EXPECT_NE(e.find(words), std::string::npos) << e;
+    };
+    expectError(scene("mask_simple", "simple", mask(diffuse)), "simple", "diffuse surfaces only");
+    EXPECT_EQ(test::loadError(scene("mask_ao", "ao", mask("<texture name=\"opacity\" type=\"bitmap\"><string "
+                                                          "name=\"filename\" value=\"nowhere.png\"/></texture>" +
+                                                          diffuse)),
+                              "ao"),
+              "");
+    expectError(scene("mask_empty", "path", mask("")), "path", "nested");
+    expectError(scene("mask_mask", "path", mask("<bsdf type=\"mask\">" + diffuse + "</bsdf>")), "path",
+                "a mask inside a mask");
+    expectError(scene("mask_opacity", "path", mask("<float name=\"opacity\" value=\"1.5\"/>" + diffuse)), "path",
+                "opacity");
 }

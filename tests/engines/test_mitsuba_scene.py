@@ -134,3 +134,37 @@ def test_the_integrator_a_moment_integrator_wraps_gives_its_values():
     assert mapped.get("type") == "path" and {e.get("name"): e.get("value") for e in mapped}["max_depth"] == "2"
     assert [e.get("value") for e in file_parameters(ET.fromstring(text), "path", ("max_depth",))] == ["2"]
     assert file_parameters(ET.fromstring(text), "direct", ("max_depth",)) == []
+
+
+def test_a_masks_checkerboard_opacity_is_swapped_for_mitsuba():
+    """Mitsuba's checkerboard read as one value (a mask's opacity) swaps its colours: its copy swaps them back,
+    given ones keeping their element, defaults written out."""
+    from harness.engines.mitsuba_scene import checkerboard_opacities
+
+    root = ET.fromstring('<scene><bsdf type="mask"><texture name="opacity" type="checkerboard">'
+                         '<float name="color0" value="1"/></texture><bsdf type="diffuse"/></bsdf>'
+                         '<bsdf type="diffuse"><texture name="reflectance" type="checkerboard">'
+                         '<float name="color0" value="1"/></texture></bsdf></scene>')
+    checkerboard_opacities(root)
+    opacity, reflectance = root.iter("texture")
+    assert {e.get("name"): e.get("value") for e in opacity} == {"color1": "1", "color0": "0.2"}
+    assert {e.get("name"): e.get("value") for e in reflectance} == {"color0": "1"}
+
+
+@pytest.mark.mitsuba
+def test_mitsubas_checkerboard_read_as_one_value_swaps_its_colours():
+    """The finding the swap answers: where eval gives color0, eval_1 gives color1 (Mitsuba 3.9). When Mitsuba
+    mends it this test fails, and the swap must go."""
+    import drjit as dr
+    import mitsuba as mi
+
+    previous = mi.variant()
+    mi.set_variant("scalar_rgb")
+    try:
+        texture = mi.load_dict({"type": "checkerboard", "color0": 1.0, "color1": 0.0})
+        si = dr.zeros(mi.SurfaceInteraction3f)
+        si.uv = mi.Point2f(0.1, 0.1)
+        assert texture.eval(si)[0] == 1.0 and texture.eval_1(si) == 0.0
+    finally:
+        if previous:
+            mi.set_variant(previous)

@@ -1,11 +1,12 @@
-"""An environment map and textured reflectances through the image suite, on a scene of one's own (--scene): a
-quad from an OBJ with texture coordinates under an 8-bit PNG, a checkerboard rectangle, and an OpenEXR sky with
-a bright sun seen directly and lighting both. Our direct and path pass against Mitsuba rendering it, and a renderer
+"""An environment map, textured reflectances and a mask through the image suite, on a scene of one's own
+(--scene): a quad from an OBJ with texture coordinates under an 8-bit PNG, a checkerboard rectangle, a rectangle
+cut into a checkerboard by a mask, and an OpenEXR sky with a bright sun seen directly and lighting them. Our direct and path pass against Mitsuba rendering it, and a renderer
 that reads one of them wrong fails. The wrong readings are planted by handing our renderer the scene (or the mesh)
 with that reading made, as a loader with the defect would see it:
 - the sky turned half a turn about its vertical (longitude measured from the wrong side);
 - the OBJ's texture coordinates not turned upside down (Mitsuba's v is 1 - the file's);
-- the PNG taken as linear (its sRGB curve not undone).
+- the PNG taken as linear (its sRGB curve not undone);
+- the mask's holes not read (every square opaque).
 Each case at 32 pixels and its integrator's samples, seed 0."""
 from __future__ import annotations
 
@@ -46,6 +47,16 @@ SCENE = """<scene version="3.0.0">
         <rgb name="color0" value="0.8, 0.3, 0.1"/><rgb name="color1" value="0.1, 0.4, 0.7"/>
         <transform name="to_uv"><scale value="3"/></transform>
       </texture>
+    </bsdf>
+  </shape>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="0.5"/><rotate x="1" angle="90"/><translate value="-0.8, -0.5, 0.5"/></transform>
+    <bsdf type="mask">
+      <texture name="opacity" type="checkerboard">
+        <float name="color0" value="1"/><float name="color1" value="0"/>
+        <transform name="to_uv"><scale value="2"/></transform>
+      </texture>
+      <bsdf type="diffuse"><rgb name="reflectance" value="0.9, 0.9, 0.2"/></bsdf>
     </bsdf>
   </shape>
 </scene>
@@ -103,6 +114,7 @@ DEFECTS = {
     "v_not_flipped": (r"quad\.obj", "quad_flipped.obj"),
     "srgb_ignored": (r'(<string name="filename" value="[^"]*stripes\.png"\s*/>)',
                      r'\1<boolean name="raw" value="true"/>'),
+    "mask_opaque": (r'<float name="color1" value="0"\s*/>', '<float name="color1" value="1"/>'),
 }
 
 
