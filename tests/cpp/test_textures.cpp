@@ -28,19 +28,26 @@ fs::path folder() { return test::tempFolder(kPrefix); }
 const auto *const kCleanup =
     ::testing::AddGlobalTestEnvironment(new test::TempFolderCleanup(test::tempFolderPath(kPrefix)));
 
+/// An image file in the test's folder, written by OpenImageIO (its format from the name's extension).
+std::string writeImage(const std::string &name, int width, int height, OIIO::TypeDesc type, const void *pixels) {
+    const std::string path = (folder() / name).string();
+    auto out = OIIO::ImageOutput::create(path);
+    EXPECT_TRUE(out && out->open(path, OIIO::ImageSpec(width, height, 3, type)));
+    if (out) {
+        out->write_image(type, pixels);
+        out->close();
+    }
+    return path;
+}
+
 /// The 4 x 3 8-bit RGB PNG the Mitsuba values were taken of: pixel (x, y) = (20 + 60x, 30 + 100y, 37 (x + 3y) mod 256).
 std::string probePng() {
-    const std::string path = (folder() / "probe.png").string();
     std::vector<unsigned char> px;
     for (int y = 0; y < 3; ++y)
         for (int x = 0; x < 4; ++x)
             px.insert(px.end(), {(unsigned char)(20 + 60 * x), (unsigned char)(30 + 100 * y),
                                  (unsigned char)((37 * (x + 3 * y)) % 256)});
-    auto out = OIIO::ImageOutput::create(path);
-    EXPECT_TRUE(out && out->open(path, OIIO::ImageSpec(4, 3, 3, OIIO::TypeDesc::UINT8)));
-    out->write_image(OIIO::TypeDesc::UINT8, px.data());
-    out->close();
-    return path;
+    return writeImage("probe.png", 4, 3, OIIO::TypeDesc::UINT8, px.data());
 }
 
 void expectColor(const Color &got, const Color &want, const std::string &what) {
@@ -99,13 +106,8 @@ namespace {
 /// A 2 x 2 checkerboard image, linear (an OpenEXR): (0.1, 0.2, 0.3) (0.9, 0.8, 0.7) on the top row, the other
 /// way round below.
 std::string checkerExr() {
-    const std::string path = (folder() / "checker.exr").string();
     const std::vector<float> px = {0.1f, 0.2f, 0.3f, 0.9f, 0.8f, 0.7f, 0.9f, 0.8f, 0.7f, 0.1f, 0.2f, 0.3f};
-    auto out = OIIO::ImageOutput::create(path);
-    EXPECT_TRUE(out && out->open(path, OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::FLOAT)));
-    out->write_image(OIIO::TypeDesc::FLOAT, px.data());
-    out->close();
-    return path;
+    return writeImage("checker.exr", 2, 2, OIIO::TypeDesc::FLOAT, px.data());
 }
 
 /// A unit square at z = 0 facing +z as an OBJ with texture coordinates: its corner (x, y) at (u, v) = (x, y).
@@ -177,14 +179,8 @@ TEST(Textures, TheLoaderRefusesWhatItDoesNotModelNamingTheLine) {
                       "<string name=\"filename\" value=\"" + exr + "\"/><string name=\"wrap_mode\" value=\"tile\"/>"
                       "</texture></bsdf></shape>\n"),
                 "path", "expected repeat, mirror or clamp");
-    const std::string bright = (folder() / "bright.exr").string();
-    {
-        const std::vector<float> px(2 * 2 * 3, 2.f);
-        auto out = OIIO::ImageOutput::create(bright);
-        ASSERT_TRUE(out && out->open(bright, OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::FLOAT)));
-        out->write_image(OIIO::TypeDesc::FLOAT, px.data());
-        out->close();
-    }
+    const std::vector<float> twos(2 * 2 * 3, 2.f);
+    const std::string bright = writeImage("bright.exr", 2, 2, OIIO::TypeDesc::FLOAT, twos.data());
     expectError(scene("bright", "path", "<shape type=\"rectangle\">" + texturedBsdf(bright) + "</shape>\n"), "path",
                 "outside [0, 1");
 }
