@@ -9,6 +9,7 @@
 #include <string>
 
 #include "scene_limits.h"
+#include "textures/texture_loader.h"
 
 namespace mcval {
 
@@ -31,15 +32,16 @@ void requireFinitePlacement(const XmlContext &ctx, const pugi::xml_node &node, c
         ctx.fail(node, "the emitter's position must be finite and within " + std::to_string(kMaxCoordinate));
 }
 
-/// A nested element: a texture (a spot's projected image, a textured radiance) or anything else.
+/// A nested element: a texture (a textured radiance or intensity; a spot's projected image is read) or anything else.
 void noObjects(const XmlContext &ctx, const XmlProps &props) {
     if (props.objects().empty()) return;
     const pugi::xml_node child = props.objects()[0];
     const std::string name = child.attribute("name").as_string();
     if (std::string(child.name()) == "texture" || std::string(child.name()) == "ref")
         ctx.fail(child, "textured emission" + (name.empty() ? std::string() : " (\"" + name + "\")") +
-                            " is not modelled, such as a spot light's projected image: this renderer's emitters "
-                            "read an <rgb>, a <float> or a <spectrum> given by its values");
+                            " is not modelled, such as an area light's textured radiance: this renderer's emitters "
+                            "read an <rgb>, a <float> or a <spectrum> given by its values (and a spot's bitmap or "
+                            "checkerboard `texture`)");
     ctx.fail(child, "unexpected element inside <emitter>");
 }
 
@@ -56,7 +58,12 @@ SpotLight readSpot(const XmlContext &ctx, const pugi::xml_node &node) {
     // Mitsuba asserts beam_width <= cutoff_angle: the falloff runs from one to the other.
     props.requireRange("beam_width", light.beamWidth, 0.f, light.cutoffAngle);
     props.finish("intensity, cutoff_angle, beam_width, to_world");
-    noObjects(ctx, props);
+    const auto &objects = props.objects();
+    if (objects.size() == 1 && std::string(objects[0].name()) == "texture" &&
+        ctx.propertyName(objects[0]) == "texture" && isModelledTexture(ctx.attr(objects[0], "type")))
+        light.texture = loadTexture(ctx, objects[0], kMaxEmission);
+    else
+        noObjects(ctx, props);
     return light;
 }
 

@@ -12,6 +12,7 @@
 #include "affine.h"
 #include "bsdfs/bsdf.h"
 #include "exr_input.h"
+#include "textures/texture.h"
 #include "sampler.h"
 #include "transform.h"
 #include "vector.h"
@@ -73,6 +74,9 @@ struct SpotLight {
     Color intensity{1.f, 1.f, 1.f};
     float cutoffAngle = 20.f;        ///< degrees: no light beyond
     float beamWidth = 15.f;          ///< degrees: full intensity within (Mitsuba's default: 3/4 of the cutoff)
+    /// Mitsuba's `texture`: an image projected over the cone, (u, v) = 1/2 + (x, y) / (2 z tan(cutoff)) in the
+    /// light's frame; none: white.
+    std::shared_ptr<const Texture> texture;
 };
 
 /// Mitsuba's `directional`: light from infinitely far away along one direction; irradiance in W/m^2.

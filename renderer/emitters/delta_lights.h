@@ -36,7 +36,7 @@ public:
 private:
     SpotLight m_light;
     Vec3f m_position;
-    float m_cutoffRad, m_cosCutoff, m_cosBeam, m_invTransitionWidth;
+    float m_cutoffRad, m_cosCutoff, m_cosBeam, m_invTransitionWidth, m_uvFactor;
 };
 
 /// Mitsuba's `directional`: irradiance E (W/m^2 on a surface facing it) arriving along one direction from

@@ -1,5 +1,6 @@
 // Mitsuba's spot emitter (src/emitters/spot.cpp): a point light whose intensity falls off linearly in
-// angle between beam_width and cutoff_angle, as its falloff_curve computes it.
+// angle between beam_width and cutoff_angle, as its falloff_curve computes it, times its texture's value
+// where the direction meets the cone's image (direction_to_uv).
 #include <cmath>
 
 #include "../warp.h"
@@ -16,7 +17,7 @@ float radians(float degrees) { return degrees * (kPi / 180.f); }
 SpotEmitter::SpotEmitter(const SpotLight &light)
     : m_light(light), m_position(light.toWorld.point({0.f, 0.f, 0.f})), m_cutoffRad(radians(light.cutoffAngle)),
       m_cosCutoff(std::cos(m_cutoffRad)), m_cosBeam(std::cos(radians(light.beamWidth))),
-      m_invTransitionWidth(1.f / (m_cutoffRad - radians(light.beamWidth))) {}
+      m_invTransitionWidth(1.f / (m_cutoffRad - radians(light.beamWidth))), m_uvFactor(std::tan(m_cutoffRad)) {}
 
 float SpotEmitter::falloff(const Vec3f &local) const {
     const float cosTheta = normalize(local).z;
@@ -40,7 +41,12 @@ EmitterSample SpotEmitter::sample(const Vec3f &ref, const Vec2f &) const {
                       inv[1][0] * w.x + inv[1][1] * w.y + inv[1][2] * w.z,
                       inv[2][0] * w.x + inv[2][1] * w.y + inv[2][2] * w.z};
     const float f = falloff(local);
-    s.weight = f > 0.f ? m_light.intensity * (f * (invDist * invDist)) : Color(0.f, 0.f, 0.f);
+    if (!(f > 0.f)) return s;
+    Color intensity = m_light.intensity;
+    if (m_light.texture)
+        intensity = intensity * m_light.texture->eval({0.5f + 0.5f * local.x / (local.z * m_uvFactor),
+                                                       0.5f + 0.5f * local.y / (local.z * m_uvFactor)});
+    s.weight = intensity * (f * (invDist * invDist));
     return s;
 }
 

@@ -17,6 +17,7 @@
 #include "temp_files.h"
 #include "bsdfs/masked.h"
 #include "textures/texture_loader.h"
+#include "warp.h"
 
 using namespace mcval;
 namespace fs = std::filesystem;
@@ -231,4 +232,33 @@ TEST(Textures, AMaskTheLoaderCannotReadIsRefused) {
                 "a mask inside a mask");
     expectError(scene("mask_opacity", "path", mask("<float name=\"opacity\" value=\"1.5\"/>" + diffuse)), "path",
                 "opacity");
+}
+
+TEST(Textures, ASpotsProjectedImageScalesItsIntensity) {
+    // A spot 1 above a diffuse plane, pointing down: a uniform image of 0.5 halves the light on the axis; a
+    // checkerboard projects its squares (uv = 1/2 + (x, y) / (2 z tan(cutoff)): the axis at uv (1/2, 1/2)).
+    const auto spot = [](const std::string &texture) {
+        return "<shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"10\"/></transform>"
+               "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"1\"/></bsdf></shape>\n"
+               "<emitter type=\"spot\"><rgb name=\"intensity\" value=\"2\"/>" + texture +
+               "<transform name=\"to_world\"><lookat origin=\"0, 0, 1\" target=\"0, 0, 0\" up=\"0, 1, 0\"/>"
+               "</transform></emitter>\n";
+    };
+    const auto radiance = [&](const std::string &name, const std::string &texture, const Vec3f &at) {
+        const std::string path = (folder() / (name + ".xml")).string();
+        std::ofstream(path) << "<scene version=\"3.0.0\">\n<integrator type=\"direct\"/>\n<sensor type=\"perspective\">"
+                               "<film type=\"hdrfilm\"/></sensor>\n" << spot(texture) << "</scene>\n";
+        return estimate(loadScene(path), {at.x, at.y, 1.f}, {0.f, 0.f, -1.f}, 16).mean;
+    };
+    const double plain = radiance("spot_plain", "", {0.f, 0.f, 0.f});
+    EXPECT_NEAR(plain, 2.0 / kPi, 1e-4);  // rho / pi * I / d^2
+    const std::string half = "<texture name=\"texture\" type=\"checkerboard\"><float name=\"color0\" value=\"0.5\"/>"
+                             "<float name=\"color1\" value=\"0.5\"/></texture>";
+    EXPECT_NEAR(radiance("spot_half", half, {0.f, 0.f, 0.f}), 0.5 * plain, 1e-5);
+    const std::string checks = "<texture name=\"texture\" type=\"checkerboard\"><float name=\"color0\" value=\"1\"/>"
+                               "<float name=\"color1\" value=\"0.25\"/></texture>";
+    // Off the axis by a tenth of the cone's radius at the plane: u or v moves from 1/2 by 1/20.
+    const float r = 0.1f * std::tan(20.f * kPi / 180.f);
+    const double a = radiance("spot_a", checks, {r, r, 0.f}), b = radiance("spot_b", checks, {r, -r, 0.f});
+    EXPECT_NEAR(std::max(a, b) / std::min(a, b), 4.0, 1e-3);
 }

@@ -1,5 +1,5 @@
 """What the renderer does not model is refused by name, at its line, and only where the integrator would read it:
-a textured reflectance (inline or by reference), a spot light's projected image, a projector."""
+a textured reflectance (inline or by reference) under simple, a spot light's textured intensity, a projector."""
 import subprocess
 
 import pytest
@@ -37,11 +37,12 @@ def test_a_textured_reflectance_is_named_where_it_is_read(tmp_path, extra, refle
     assert res.returncode == 0 and out.exists(), res.stderr
 
 
-def test_a_spot_lights_projected_image_is_named(tmp_path):
-    spot = '<emitter type="spot"><texture type="bitmap" name="texture"/></emitter>'
+def test_a_spot_lights_textured_intensity_is_named(tmp_path):
+    """(Its projected image, `texture`, is read: tests/cpp/test_textures.cpp.)"""
+    spot = '<emitter type="spot"><texture type="checkerboard" name="intensity"/></emitter>'
     res, out, scene = run(tmp_path, "direct", spot)
     assert res.returncode != 0 and not out.exists()
-    assert f"{scene}:4:" in res.stderr and "spot light's projected image" in res.stderr, res.stderr
+    assert f"{scene}:4:" in res.stderr and 'textured emission ("intensity")' in res.stderr, res.stderr
     res, out, _ = run(tmp_path, "simple", spot)  # simple reads point lights only: the spot is skipped
     assert res.returncode == 0 and "skipped" in res.stderr, res.stderr
 
