@@ -1,12 +1,15 @@
 #include "texture_loader.h"
 
 #include <cmath>
+#include <filesystem>
+#include <memory>
 #include <stdexcept>
 
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
 #include <half.h>
 
 #include "../exr_input.h"
+#include "image_file.h"
 
 namespace mcval {
 
@@ -15,6 +18,35 @@ namespace {
 /// Mitsuba's sRGB to linear conversion of a value in [0, 1].
 float srgbToLinear(float v) {
     return v <= 0.04045f ? v * (1.f / 12.92f) : std::pow((v + 0.055f) * (1.f / 1.055f), 2.4f);
+}
+
+/// libmcval_imageio's two functions, loaded on first use: where the build put it, else beside the program.
+struct ImageFileReader {
+    decltype(&mcval_read_image_file) read = nullptr;
+    decltype(&mcval_free_image_file) free = nullptr;
+    std::string error;  ///< why it could not be loaded
+};
+
+const ImageFileReader &imageFileReader() {
+    static const ImageFileReader reader = [] {
+        ImageFileReader r;
+        void *library = dlopen(MCVAL_IMAGEIO_LIBRARY, RTLD_NOW | RTLD_LOCAL);
+        if (!library) {
+            r.error = dlerror();
+            std::error_code ec;
+            const auto beside = std::filesystem::read_symlink("/proc/self/exe", ec).parent_path() /
+                                std::filesystem::path(MCVAL_IMAGEIO_LIBRARY).filename();
+            library = dlopen(beside.c_str(), RTLD_NOW | RTLD_LOCAL);
+        }
+        if (!library) return r;
+        r.read = reinterpret_cast<decltype(r.read)>(dlsym(library, "mcval_read_image_file"));
+        r.free = reinterpret_cast<decltype(r.free)>(dlsym(library, "mcval_free_image_file"));
+        return r;
+    }();
+    if (!reader.read || !reader.free)
+        throw std::runtime_error(std::string("cannot load the image reader ") + MCVAL_IMAGEIO_LIBRARY +
+                                 " (built with the renderer; it links OpenImageIO): " + reader.error);
+    return reader;
 }
 
 std::shared_ptr<const Texture> loadBitmap(const XmlContext &ctx, XmlProps &props, float maxValue) {
@@ -65,34 +97,27 @@ std::shared_ptr<const Texture> loadCheckerboard(XmlProps &props, float maxValue)
 }  // namespace
 
 TextureImage readTextureImage(const std::string &path, bool raw) {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) throw std::runtime_error(path + ": " + OIIO::geterror());
-    const OIIO::ImageSpec spec = in->spec();
-    const int64_t width = spec.width, height = spec.height;
-    const int channels = spec.nchannels;
-    if (width <= 0 || height <= 0 || size_t(width) * size_t(height) > kMaxImagePixels)
-        throw std::runtime_error(path + ": an image of " + std::to_string(width) + " x " + std::to_string(height) +
-                                 " pixels (at most " + std::to_string(kMaxImagePixels) + " are read)");
-    if (channels < 1 || channels > 4)
-        throw std::runtime_error(path + ": " + std::to_string(channels) + " channels (Y, YA, RGB or RGBA are read)");
-    std::vector<float> pixels(size_t(width) * size_t(height) * size_t(channels));
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
-        throw std::runtime_error(path + ": " + in->geterror());
+    const ImageFileReader &reader = imageFileReader();
+    McvalImageFile file{};
+    char error[512];
+    if (reader.read(path.c_str(), kMaxImagePixels, &file, error, sizeof(error)) != 0)
+        throw std::runtime_error(path + ": " + error);
+    std::unique_ptr<McvalImageFile, void (*)(McvalImageFile *)> owned(&file, reader.free);
     // Mitsuba reads integer images (PNG, JPEG, BMP, TGA) as sRGB and stores every image of at most 16 bits a
     // channel in half precision; float images (OpenEXR, RGBE, PFM) are linear.
-    const bool integer = spec.format.basetype == OIIO::TypeDesc::UINT8 || spec.format.basetype == OIIO::TypeDesc::UINT16;
-    const bool storedHalf = spec.format.size() <= 2;
+    const bool storedHalf = file.bytesPerChannel <= 2;
+    const size_t pixels = size_t(file.width) * size_t(file.height), channels = size_t(file.channels);
     TextureImage image;
-    image.width = int(width);
-    image.height = int(height);
-    image.rgb.resize(size_t(width) * size_t(height) * 3);
-    const int colour = channels >= 3 ? 3 : 1;  // YA's A and RGBA's A are dropped
-    for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
-        for (int c = 0; c < 3; ++c) {
-            float v = pixels[i * size_t(channels) + size_t(colour == 3 ? c : 0)];
-            if (integer && !raw) v = srgbToLinear(v);
+    image.width = file.width;
+    image.height = file.height;
+    image.rgb.resize(pixels * 3);
+    const bool colour = channels >= 3;  // YA's A and RGBA's A are dropped
+    for (size_t i = 0; i < pixels; ++i)
+        for (size_t c = 0; c < 3; ++c) {
+            float v = file.pixels[i * channels + (colour ? c : 0)];
+            if (file.integer && !raw) v = srgbToLinear(v);
             if (storedHalf) v = float(::half(v));
-            image.rgb[3 * i + size_t(c)] = v;
+            image.rgb[3 * i + c] = v;
         }
     return image;
 }
