@@ -28,15 +28,15 @@ pugi::xml_node textureNode(const XmlContext &ctx, const pugi::xml_node &child, c
 
 /// A texture the diffuse reflectance is given as, where the integrator reads textures (or is not known yet):
 /// the textured surface, or nullptr where the texture is of a type this renderer does not read.
-Material readTexturedDiffuse(const XmlContext &ctx, const pugi::xml_node &node, const pugi::xml_node &child,
-                             Deferred &deferred) {
+Material readTexturedDiffuse(const XmlContext &ctx, const pugi::xml_node &node, const XmlProps &props,
+                             const pugi::xml_node &child, Deferred &deferred) {
     if (deferred.known && !deferred.readsTextures) return nullptr;
     const pugi::xml_node texture = textureNode(ctx, child, deferred);
     if (!texture || !isModelledTexture(ctx.attr(texture, "type"))) return nullptr;
     if (ctx.propertyName(child) != "reflectance")
         ctx.fail(child, "unexpected texture \"" + ctx.propertyName(child) + "\" inside <bsdf type=\"diffuse\">: "
                         "expected reflectance");
-    XmlProps(ctx, node).finish("reflectance");
+    props.finish("reflectance");
     deferred.texturedBsdfs.emplace_back(node, "<bsdf type=\"diffuse\">" + ctx.at(node) + " (reflectance: a " +
                                                   ctx.attr(texture, "type") + " texture)");
     return std::make_shared<TexturedDiffuseBsdf>(loadTexture(ctx, texture, 1.f));
@@ -48,11 +48,10 @@ Material readTexturedDiffuse(const XmlContext &ctx, const pugi::xml_node &node, 
 Material readDiffuse(const XmlContext &ctx, const pugi::xml_node &node, Deferred &deferred) {
     XmlProps props(ctx, node);
     std::string unread;
-    for (const auto &child : props.objects()) {
-        if (props.objects().size() == 1)
-            if (Material textured = readTexturedDiffuse(ctx, node, child, deferred)) return textured;
+    if (props.objects().size() == 1)
+        if (Material textured = readTexturedDiffuse(ctx, node, props, props.objects()[0], deferred)) return textured;
+    for (const auto &child : props.objects())
         if (const std::string texture = textureGiven(ctx, child); !texture.empty()) unread = texture + ctx.at(child);
-    }
     const pugi::xml_node given = props.node("reflectance");
     if (given && std::string(given.name()) == "spectrum" && given.attribute("filename"))
         unread = "a <spectrum> read from a file" + ctx.at(given);

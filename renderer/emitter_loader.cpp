@@ -86,27 +86,6 @@ DirectionalLight readDirectional(const XmlContext &ctx, const pugi::xml_node &no
     return light;
 }
 
-/// Whether the linear part of `t` is orthonormal: it maps unit directions to unit directions.
-bool isRotation(const Transform &t) {
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-            const float d = t.m[0][i] * t.m[0][j] + t.m[1][i] * t.m[1][j] + t.m[2][i] * t.m[2][j];
-            if (!(std::abs(d - (i == j ? 1.f : 0.f)) <= 1e-4f)) return false;
-        }
-    return true;
-}
-
-/// The first pixel value that is negative, too large or not finite, as " (x, y)", or "".
-std::string badPixel(const RgbImage &image) {
-    for (size_t i = 0; i < image.rgb.size(); ++i)
-        if (!(image.rgb[i] >= 0.f && image.rgb[i] <= kMaxEmission)) {
-            const size_t pixel = i / 3;
-            return " (" + std::to_string(pixel % size_t(image.width)) + ", " +
-                   std::to_string(pixel / size_t(image.width)) + ")";
-        }
-    return "";
-}
-
 EnvironmentMap readEnvmap(const XmlContext &ctx, const pugi::xml_node &node, const std::vector<std::string> &folders) {
     XmlProps props(ctx, node);
     EnvironmentMap map;
@@ -116,19 +95,19 @@ EnvironmentMap readEnvmap(const XmlContext &ctx, const pugi::xml_node &node, con
     if (extension != ".exr")
         props.failAt("filename", "an envmap's image is read from an OpenEXR file (.exr), not \"" + name + "\"");
     try {
-        map.image = std::make_shared<const RgbImage>(readExrRgb(XmlContext::resolve(name, folders)));
+        map.image = std::make_shared<const RgbImage>(readRgbImage(XmlContext::resolve(name, folders), false));
     } catch (const std::exception &e) {
         props.failAt("filename", std::string("cannot read the envmap's image: ") + e.what());
     }
     if (map.image->width < 2 || map.image->height < 3)
         props.failAt("filename", "an envmap's image must have at least 2 x 3 pixels, as Mitsuba requires");
-    if (const std::string where = badPixel(*map.image); !where.empty())
+    if (const std::string where = badPixel(*map.image, kMaxEmission); !where.empty())
         props.failAt("filename", "the envmap's pixel" + where + " is negative, not finite or above " +
                                      std::to_string(kMaxEmission) + " (a radiance is read)");
     map.scale = props.getFloat("scale", 1.f);
     props.requireRange("scale", map.scale, 0.f, kMaxEmission);
     map.toWorld = props.getTransform("to_world");
-    if (!isRotation(map.toWorld))
+    if (!map.toWorld.orthonormal(1e-4))
         props.failAt("to_world", "an envmap's to_world must be a rotation: Mitsuba's directions are not unit under "
                                  "a scale or shear");
     // MIS compensation changes how directions are drawn, not what the image converges to.

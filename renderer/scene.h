@@ -11,7 +11,6 @@
 
 #include "affine.h"
 #include "bsdfs/bsdf.h"
-#include "exr_input.h"
 #include "textures/texture.h"
 #include "sampler.h"
 #include "transform.h"

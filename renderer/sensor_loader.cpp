@@ -17,14 +17,9 @@ std::string typeOf(const XmlContext &ctx, const pugi::xml_node &node) { return c
 /// Mitsuba refuses a camera whose to_world scales or shears (Transform::has_scale: its columns are
 /// orthonormal within 1e-3), and a scaled camera's rays would not be unit length (at 1e-30 they are 0).
 void requireRigid(const XmlContext &ctx, const pugi::xml_node &node, const Transform &t) {
-    for (int i = 0; i < 3; ++i)
-        for (int j = i; j < 3; ++j) {
-            const double dot = double(t.m[0][i]) * t.m[0][j] + double(t.m[1][i]) * t.m[1][j] +
-                               double(t.m[2][i]) * t.m[2][j];
-            if (!(std::abs(dot - (i == j ? 1.0 : 0.0)) <= 1e-3))
-                ctx.fail(node, "the camera's to_world scales or shears (its axes must be orthonormal, as Mitsuba "
-                               "requires): move the scale to the shapes");
-        }
+    if (!t.orthonormal(1e-3))
+        ctx.fail(node, "the camera's to_world scales or shears (its axes must be orthonormal, as Mitsuba "
+                       "requires): move the scale to the shapes");
 }
 
 /// Mitsuba's alternative to fov (and its default, 50mm): a focal length in 35 mm film equivalent, which

@@ -109,6 +109,20 @@ Vec3f Transform::vector(const Vec3f &v) const {
             m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
 }
 
+Vec3f Transform::inverseVector(const Vec3f &v) const {
+    return {inv[0][0] * v.x + inv[0][1] * v.y + inv[0][2] * v.z, inv[1][0] * v.x + inv[1][1] * v.y + inv[1][2] * v.z,
+            inv[2][0] * v.x + inv[2][1] * v.y + inv[2][2] * v.z};
+}
+
+bool Transform::orthonormal(double tolerance) const {
+    for (int i = 0; i < 3; ++i)
+        for (int j = i; j < 3; ++j) {
+            const double dot = double(m[0][i]) * m[0][j] + double(m[1][i]) * m[1][j] + double(m[2][i]) * m[2][j];
+            if (!(std::abs(dot - (i == j ? 1.0 : 0.0)) <= tolerance)) return false;
+        }
+    return true;
+}
+
 Vec3f Transform::normal(const Vec3f &n) const {
     return {inv[0][0] * n.x + inv[1][0] * n.y + inv[2][0] * n.z, inv[0][1] * n.x + inv[1][1] * n.y + inv[2][1] * n.z,
             inv[0][2] * n.x + inv[1][2] * n.y + inv[2][2] * n.z};

@@ -24,6 +24,11 @@ public:
 
     Vec3f point(const Vec3f &p) const;
     Vec3f vector(const Vec3f &v) const;
+    /// The inverse's linear part applied to v: a world direction in the transform's own space.
+    Vec3f inverseVector(const Vec3f &v) const;
+    /// Whether the linear part's columns are orthonormal within `tolerance`: a rotation, possibly mirrored, that
+    /// keeps directions unit (Mitsuba's Transform::has_scale tests 1e-3).
+    bool orthonormal(double tolerance) const;
     /// Normals transform with the inverse transpose.
     Vec3f normal(const Vec3f &n) const;
     /// Determinant of the linear part: negative for a mirroring transform.

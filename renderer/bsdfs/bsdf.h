@@ -16,6 +16,8 @@ using Color = Vec3f;  ///< linear RGB
 
 /// The mean of a colour's channels (Mitsuba's mean() of an RGB texture).
 inline float meanOf(const Color &c) { return (c.x + c.y + c.z) / 3.f; }
+/// Mitsuba's luminance() of linear sRGB (the Y row of its sRGB to XYZ matrix).
+inline float luminance(const Color &c) { return 0.212671f * c.x + 0.715160f * c.y + 0.072169f * c.z; }
 
 struct BsdfSample {
     Vec3f wo;             ///< the sampled direction, local frame

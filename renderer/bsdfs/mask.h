@@ -35,8 +35,7 @@ private:
     /// Mitsuba's eval_1: an RGB texture's luminance, clamped to [0, 1].
     float opacityAt(const Vec2f &uv) const {
         if (!m_opacity) return m_constant;
-        const Color c = m_opacity->eval(uv);
-        return std::clamp(0.212671f * c.x + 0.715160f * c.y + 0.072169f * c.z, 0.f, 1.f);
+        return std::clamp(luminance(m_opacity->eval(uv)), 0.f, 1.f);
     }
     std::shared_ptr<const Texture> m_opacity;
     float m_constant;

@@ -15,13 +15,6 @@ namespace mcval {
 
 namespace {
 
-float luminance(const float *rgb) { return 0.212671f * rgb[0] + 0.715160f * rgb[1] + 0.072169f * rgb[2]; }
-
-Vec3f apply(const float a[3][3], const Vec3f &v) {
-    return {a[0][0] * v.x + a[0][1] * v.y + a[0][2] * v.z, a[1][0] * v.x + a[1][1] * v.y + a[1][2] * v.z,
-            a[2][0] * v.x + a[2][1] * v.y + a[2][2] * v.z};
-}
-
 /// The bin of a cumulative table (its last entry the total) that `target` falls in, and where in it.
 size_t findBin(const double *cdf, size_t n, double target, double &within) {
     const size_t i = std::min(size_t(std::upper_bound(cdf, cdf + n, target) - cdf), n - 1);
@@ -35,12 +28,7 @@ constexpr float kMinSinTheta = std::numeric_limits<float>::epsilon();
 }  // namespace
 
 EnvmapEmitter::EnvmapEmitter(const EnvironmentMap &map)
-    : m_width(map.image->width), m_height(map.image->height) {
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-            m_world[i][j] = map.toWorld.m[i][j];
-            m_local[i][j] = map.toWorld.inv[i][j];
-        }
+    : m_width(map.image->width), m_height(map.image->height), m_toWorld(map.toWorld) {
     const int columns = m_width + 1;
     m_grid.resize(size_t(columns) * size_t(m_height) * 3);
     for (int y = 0; y < m_height; ++y)
@@ -58,7 +46,10 @@ EnvmapEmitter::EnvmapEmitter(const EnvironmentMap &map)
         const double sinMean = 0.5 * (std::sin(y * thetaStep) + std::sin((y + 1) * thetaStep));
         double row = 0.0;
         for (int x = 0; x < m_width; ++x) {
-            const auto lum = [&](int gx, int gy) { return luminance(&m_grid[3 * (size_t(gy) * columns + gx)]); };
+            const auto lum = [&](int gx, int gy) {
+                const float *p = &m_grid[3 * (size_t(gy) * columns + gx)];
+                return luminance({p[0], p[1], p[2]});
+            };
             const double w = 0.25 * (lum(x, y) + lum(x + 1, y) + lum(x, y + 1) + lum(x + 1, y + 1)) * sinMean;
             m_cellWeight[size_t(y) * m_width + x] = float(w);
             row += w;
@@ -69,8 +60,8 @@ EnvmapEmitter::EnvmapEmitter(const EnvironmentMap &map)
     }
 }
 
-Vec3f EnvmapEmitter::toLocal(const Vec3f &d) const { return normalize(apply(m_local, d)); }
-Vec3f EnvmapEmitter::toWorld(const Vec3f &d) const { return normalize(apply(m_world, d)); }
+Vec3f EnvmapEmitter::toLocal(const Vec3f &d) const { return normalize(m_toWorld.inverseVector(d)); }
+Vec3f EnvmapEmitter::toWorld(const Vec3f &d) const { return normalize(m_toWorld.vector(d)); }
 
 Vec2f EnvmapEmitter::gridOf(const Vec3f &local) const {
     // In float and in Mitsuba's order of operations, so that a direction lands between the same grid points.

@@ -31,7 +31,7 @@ private:
 
     int m_width, m_height;       ///< the image's; the grid has m_width + 1 columns
     std::vector<float> m_grid;   ///< RGB at the grid's points, times the scale
-    float m_world[3][3], m_local[3][3];
+    Transform m_toWorld;  ///< a rotation
     /// Sampling: the image's W x (H - 1) cells between grid points, each weighed by its corners' mean luminance
     /// times the mean sin(theta) of its two rows (positive wherever the radiance is).
     std::vector<double> m_rowCdf;   ///< cumulative weight of rows 0..r

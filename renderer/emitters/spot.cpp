@@ -35,11 +35,7 @@ EmitterSample SpotEmitter::sample(const Vec3f &ref, const Vec2f &) const {
     s.pdf = 1.f;
     s.delta = true;
     // The direction leaving the light toward ref, in the light's own space (to_world's inverse).
-    const Vec3f &w = -s.d;
-    const auto &inv = m_light.toWorld.inv;
-    const Vec3f local{inv[0][0] * w.x + inv[0][1] * w.y + inv[0][2] * w.z,
-                      inv[1][0] * w.x + inv[1][1] * w.y + inv[1][2] * w.z,
-                      inv[2][0] * w.x + inv[2][1] * w.y + inv[2][2] * w.z};
+    const Vec3f local = m_light.toWorld.inverseVector(-s.d);
     const float f = falloff(local);
     if (!(f > 0.f)) return s;
     Color intensity = m_light.intensity;

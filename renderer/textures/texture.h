@@ -33,15 +33,17 @@ public:
 enum class WrapMode { Repeat, Mirror, Clamp };
 enum class FilterMode { Bilinear, Nearest };
 
-/// Linear RGB pixels (three floats each; a one-channel image repeats its value), row 0 at v = 0.
-struct TextureImage {
+/// Linear RGB pixels, three floats each (a one-channel image repeats its value), row by row from the top: a
+/// texture's (row 0 at v = 0) or an environment map's (row 0 at theta = 0).
+struct RgbImage {
     int width = 0, height = 0;
     std::vector<float> rgb;
+    const float *at(int x, int y) const { return rgb.data() + 3 * (size_t(y) * size_t(width) + size_t(x)); }
 };
 
 class BitmapTexture final : public Texture {
 public:
-    BitmapTexture(std::shared_ptr<const TextureImage> image, WrapMode wrap, FilterMode filter, const UvTransform &toUv)
+    BitmapTexture(std::shared_ptr<const RgbImage> image, WrapMode wrap, FilterMode filter, const UvTransform &toUv)
         : m_image(std::move(image)), m_wrap(wrap), m_filter(filter), m_toUv(toUv) {}
     /// Pixel centres at ((i + 1/2) / width, (j + 1/2) / height); bilinear between the four nearest, or the
     /// nearest alone; indices beyond the image wrapped by the wrap mode.
@@ -51,7 +53,7 @@ public:
 private:
     int wrap(int i, int n) const;
     Color pixel(int x, int y) const;
-    std::shared_ptr<const TextureImage> m_image;
+    std::shared_ptr<const RgbImage> m_image;
     WrapMode m_wrap;
     FilterMode m_filter;
     UvTransform m_toUv;

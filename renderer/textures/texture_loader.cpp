@@ -8,7 +8,6 @@
 #include <dlfcn.h>
 #include <half.h>
 
-#include "../exr_input.h"
 #include "image_file.h"
 
 namespace mcval {
@@ -69,18 +68,16 @@ std::shared_ptr<const Texture> loadBitmap(const XmlContext &ctx, XmlProps &props
     if (format != "auto" && format != "fp16" && format != "variant")
         props.failAt("format", "expected auto, variant or fp16, not \"" + format + "\"");
     props.finish("filename, raw, wrap_mode, filter_type, to_uv, format, accel");
-    std::shared_ptr<const TextureImage> image;
+    std::shared_ptr<const RgbImage> image;
     try {
-        image = std::make_shared<const TextureImage>(readTextureImage(ctx.resolve(name), raw));
+        image = std::make_shared<const RgbImage>(readRgbImage(ctx.resolve(name), raw));
     } catch (const std::exception &e) {
         props.failAt("filename", std::string("cannot read the texture's image: ") + e.what());
     }
-    auto texture = std::make_shared<const BitmapTexture>(image, wrap, filter, toUv);
-    for (float v : image->rgb)
-        if (!(v >= 0.f && v <= maxValue))
-            props.failAt("filename", "the image holds a value outside [0, " + std::to_string(maxValue) +
-                                         "], which a reflectance cannot be");
-    return texture;
+    if (const std::string where = badPixel(*image, maxValue); !where.empty())
+        props.failAt("filename", "the image's pixel" + where + " holds a value outside [0, " +
+                                     std::to_string(maxValue) + "], which a reflectance cannot be");
+    return std::make_shared<const BitmapTexture>(image, wrap, filter, toUv);
 }
 
 std::shared_ptr<const Texture> loadCheckerboard(XmlProps &props, float maxValue) {
@@ -96,7 +93,7 @@ std::shared_ptr<const Texture> loadCheckerboard(XmlProps &props, float maxValue)
 
 }  // namespace
 
-TextureImage readTextureImage(const std::string &path, bool raw) {
+RgbImage readRgbImage(const std::string &path, bool raw) {
     const ImageFileReader &reader = imageFileReader();
     McvalImageFile file{};
     char error[512];
@@ -107,7 +104,7 @@ TextureImage readTextureImage(const std::string &path, bool raw) {
     // channel in half precision; float images (OpenEXR, RGBE, PFM) are linear.
     const bool storedHalf = file.bytesPerChannel <= 2;
     const size_t pixels = size_t(file.width) * size_t(file.height), channels = size_t(file.channels);
-    TextureImage image;
+    RgbImage image;
     image.width = file.width;
     image.height = file.height;
     image.rgb.resize(pixels * 3);
@@ -120,6 +117,16 @@ TextureImage readTextureImage(const std::string &path, bool raw) {
             image.rgb[3 * i + c] = v;
         }
     return image;
+}
+
+std::string badPixel(const RgbImage &image, float maxValue) {
+    for (size_t i = 0; i < image.rgb.size(); ++i)
+        if (!(image.rgb[i] >= 0.f && image.rgb[i] <= maxValue)) {
+            const size_t pixel = i / 3;
+            return " (" + std::to_string(pixel % size_t(image.width)) + ", " +
+                   std::to_string(pixel / size_t(image.width)) + ")";
+        }
+    return "";
 }
 
 std::shared_ptr<const Texture> loadTexture(const XmlContext &ctx, const pugi::xml_node &node, float maxValue) {

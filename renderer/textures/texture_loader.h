@@ -19,9 +19,15 @@ inline bool isModelledTexture(const std::string &type) { return type == "bitmap"
 /// that cannot be read, an unknown wrap_mode or filter_type, a value outside [0, maxValue].
 std::shared_ptr<const Texture> loadTexture(const XmlContext &ctx, const pugi::xml_node &node, float maxValue);
 
+/// The largest image read, in pixels: 2^26 (a 16k x 4k environment map).
+constexpr size_t kMaxImagePixels = size_t(1) << 26;
+
 /// An image file as Mitsuba's bitmap texture reads it: 8- and 16-bit images taken from sRGB to linear (unless
 /// raw), then, as Mitsuba stores them, rounded to half precision; float images as they are. Throws
 /// std::runtime_error saying what is wrong.
-TextureImage readTextureImage(const std::string &path, bool raw);
+RgbImage readRgbImage(const std::string &path, bool raw);
+
+/// The first pixel with a value outside [0, maxValue] or not finite, as " (x, y)"; "" if there is none.
+std::string badPixel(const RgbImage &image, float maxValue);
 
 }  // namespace mcval

@@ -58,7 +58,7 @@ void expectColor(const Color &got, const Color &want, const std::string &what) {
 }  // namespace
 
 TEST(Textures, ABitmapIsMitsubasLookupForEveryWrapAndFilter) {
-    const auto image = std::make_shared<const TextureImage>(readTextureImage(probePng(), false));
+    const auto image = std::make_shared<const RgbImage>(readRgbImage(probePng(), false));
     const UvTransform toUv(Transform::translate({0.1f, 0.05f, 0.f}) * Transform::scale({1.5f, 1.25f, 1.f}));
     const Vec2f uvs[5] = {{0.1f, 0.2f}, {0.5f, 0.5f}, {0.9f, 0.95f}, {-0.3f, 1.4f}, {1.7f, -0.6f}};
     struct Case {
